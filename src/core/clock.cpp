@@ -1,0 +1,24 @@
+#include "core/clock.hpp"
+
+#include <chrono>
+#include <thread>
+
+namespace virtcom {
+
+static int64_t wallNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+PacedClock::PacedClock(double speed) : speed_(speed > 0 ? speed : 1.0), startWallNs_(wallNs()) {}
+
+void PacedClock::advanceTo(int64_t targetNs) {
+  if (targetNs <= nowNs_) return;
+  int64_t wallTarget = startWallNs_ + static_cast<int64_t>(static_cast<double>(targetNs) / speed_);
+  int64_t remaining = wallTarget - wallNs();
+  if (remaining > 0) std::this_thread::sleep_for(std::chrono::nanoseconds(remaining));
+  nowNs_ = targetNs;
+}
+
+}  // namespace virtcom

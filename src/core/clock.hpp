@@ -1,0 +1,42 @@
+#pragma once
+// The one place that knows what time it is. Everything else receives a Clock, so the same code
+// runs in virtual time (as fast as possible, deterministic) or paced to the wall clock.
+#include <cstdint>
+
+namespace virtcom {
+
+class Clock {
+ public:
+  virtual ~Clock() = default;
+  // Current time in ns since the start of the run.
+  virtual int64_t nowNs() const = 0;
+  // Advances to `targetNs`: a virtual clock jumps, a paced clock sleeps until the wall clock
+  // (scaled by its speed factor) reaches it. Never goes backwards.
+  virtual void advanceTo(int64_t targetNs) = 0;
+};
+
+class VirtualClock final : public Clock {
+ public:
+  int64_t nowNs() const override { return nowNs_; }
+  void advanceTo(int64_t targetNs) override {
+    if (targetNs > nowNs_) nowNs_ = targetNs;
+  }
+
+ private:
+  int64_t nowNs_ = 0;
+};
+
+// Virtual time that follows the wall clock at `speed` (1.0 = real time, 2.0 = twice as fast).
+class PacedClock final : public Clock {
+ public:
+  explicit PacedClock(double speed);
+  int64_t nowNs() const override { return nowNs_; }
+  void advanceTo(int64_t targetNs) override;
+
+ private:
+  double speed_;
+  int64_t startWallNs_;
+  int64_t nowNs_ = 0;
+};
+
+}  // namespace virtcom

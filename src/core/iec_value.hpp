@@ -1,0 +1,49 @@
+#pragma once
+// IEC 61131-3 elementary types and the textual (IEC literal) form of their values.
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace virtcom {
+
+enum class ElemKind : uint8_t { Bool, Bits, Signed, Unsigned, Float, Duration, Date, Text };
+
+enum class ElemType : uint8_t {
+#define X(e, name, size, kind) e,
+#include "core/elementary_types.def"
+#undef X
+};
+
+struct ElemTypeInfo {
+  std::string_view name;
+  uint32_t sizeBytes;  // 0 for STRING/WSTRING: their size depends on the declared length
+  ElemKind kind;
+};
+
+const ElemTypeInfo& elemTypeInfo(ElemType t);
+// Looks up a type keyword (case-insensitive), accepting the aliases TOD and DT. False if unknown.
+bool elemTypeByName(std::string_view name, ElemType& out);
+
+bool isIntegerKind(ElemKind k);  // Bits, Signed, Unsigned
+inline bool isInteger(ElemType t) { return isIntegerKind(elemTypeInfo(t).kind); }
+inline bool isSignedInt(ElemType t) { return elemTypeInfo(t).kind == ElemKind::Signed; }
+inline bool isFloat(ElemType t) { return elemTypeInfo(t).kind == ElemKind::Float; }
+// Number of value bits of an integer or bit-string type (BOOL: 1).
+uint32_t bitWidth(ElemType t);
+
+// IEC literal forms, as `virtcom exec --print` shows values.
+std::string formatTimeMs(int64_t ms);        // T#1s500ms, T#0ms, T#-2s
+std::string formatLtimeNs(int64_t ns);       // LTIME#1s5ns
+std::string formatDate(int64_t secondsSince1970);      // D#2024-01-02
+std::string formatTimeOfDay(int64_t msSinceMidnight);  // TOD#12:30:00.5
+std::string formatDateAndTime(int64_t secondsSince1970);  // DT#2024-01-02-12:30:00
+std::string formatReal(float v);    // shortest round-trip form with a decimal point: 1.5, 2.0, 1E+20
+std::string formatLreal(double v);
+// Quotes a STRING value with IEC $-escapes: 'it$'s'.
+std::string quoteString(std::string_view raw);
+
+// Days since 1970-01-01 for a proleptic Gregorian date and back (used by D#/DT# literals).
+int64_t daysFromCivil(int64_t y, unsigned m, unsigned d);
+void civilFromDays(int64_t days, int64_t& y, unsigned& m, unsigned& d);
+
+}  // namespace virtcom

@@ -11,6 +11,8 @@ static int64_t wallNs() {
       .count();
 }
 
+int64_t monotonicNowNs() { return wallNs(); }
+
 PacedClock::PacedClock(double speed) : speed_(speed > 0 ? speed : 1.0), startWallNs_(wallNs()) {}
 
 void PacedClock::advanceTo(int64_t targetNs) {

@@ -15,6 +15,10 @@ class Clock {
   virtual void advanceTo(int64_t targetNs) = 0;
 };
 
+// Monotonic wall time in ns, for measuring how long work took (statistics only: never used to
+// decide what a simulation does).
+int64_t monotonicNowNs();
+
 class VirtualClock final : public Clock {
  public:
   int64_t nowNs() const override { return nowNs_; }

@@ -1,0 +1,37 @@
+#pragma once
+// Load-time checks of a program image: after verifyModule accepts a module, the interpreter
+// can run it without ever indexing outside code, registers, constants, POUs or natives.
+#include <cstdint>
+#include <string>
+
+#include "bytecode/module.hpp"
+
+namespace virtcom::bc {
+
+// What an instruction's operand field means (shared by the verifier and the disassembler).
+enum class Operand : uint8_t {
+  None,
+  Reg,       // a register of the current window
+  Imm,       // an unsigned 16-bit immediate (offsets, MULI factor)
+  SImm,      // a signed 16-bit immediate (ADDI)
+  BitIndex,  // 0..7 (LD_BIT / ST_BIT)
+  BitCount,  // 1..64 (SEXT / ZEXT)
+};
+enum class WideOperand : uint8_t { None, SImm, Imm, Const, Abs, Pou, Native, Jump, Fault };
+
+struct OperandRoles {
+  Operand a = Operand::None, b = Operand::None, c = Operand::None;
+  WideOperand bx = WideOperand::None;  // for ABx / AsBx formats
+  uint8_t width = 0;                   // access width in bytes of absolute loads/stores
+};
+OperandRoles operandRoles(Op op);
+
+// Checks the whole module: POU code ranges, frame templates, every instruction's operands
+// (registers inside the window, constant/POU/native indices, absolute addresses inside
+// [kNullGuard, staticSize), jump targets inside the POU, last instruction of a POU is RET, JMP
+// or TRAP), line table, types, symbols, programs, tasks and process areas.
+// Returns "" if the module is fine, else the first problem, e.g.
+// "pou 'MAIN' pc 12: register 40 outside window of 16". Allocates only for the message.
+std::string verifyModule(const Module& m);
+
+}  // namespace virtcom::bc

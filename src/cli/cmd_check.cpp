@@ -1,0 +1,21 @@
+#include <iostream>
+
+#include "cli/commands.hpp"
+#include "cli/common.hpp"
+
+namespace virtcom::cli {
+
+void addCheckCommand(CLI::App& app, std::function<void(int)> setExit) {
+  auto files = std::make_shared<std::vector<std::string>>();
+  CLI::App* cmd = app.add_subcommand("check", "Compile ST files and report every diagnostic (exit 0 clean, 1 on errors)");
+  cmd->add_option("files", *files, "ST source files compiled together as one program")->required()->check(CLI::ExistingFile);
+  cmd->callback([files, setExit] {
+    SourceManager sources;
+    Diagnostics diags;
+    auto module = compileFiles(*files, sources, diags);
+    if (module && diags.warningCount() == 0) std::cerr << "ok: " << files->size() << " file(s), no diagnostics\n";
+    setExit(module ? kExitOk : kExitCompileError);
+  });
+}
+
+}  // namespace virtcom::cli

@@ -1,0 +1,182 @@
+// `virtcom exec`: run ST programs on the soft PLC in virtual time (or paced with --speed).
+#include <atomic>
+#include <csignal>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "cli/commands.hpp"
+#include "cli/common.hpp"
+#include "plc/runtime.hpp"
+
+namespace virtcom::cli {
+
+namespace {
+
+std::atomic<bool> gInterrupted{false};
+extern "C" void onSignal(int) { gInterrupted = true; }
+
+struct ExecOptions {
+  std::vector<std::string> files;
+  int64_t cycles = -1;
+  std::string cycleTime;
+  std::vector<std::string> sets;
+  std::vector<std::string> prints;
+  std::vector<std::string> traces;
+  std::string traceFile;
+  double speed = 0;
+  uint64_t budget = 50'000'000;
+  bool stats = false;
+};
+
+bool resolveAll(const bc::Module& m, const std::vector<std::string>& names, std::vector<bc::VarRef>& out) {
+  for (const auto& n : names) {
+    auto ref = bc::resolveVariable(m, n);
+    if (!ref) {
+      std::cerr << "error: unknown variable '" << n << "' (use the qualified name, e.g. MAIN.count or GVL.x)\n";
+      return false;
+    }
+    out.push_back(*ref);
+  }
+  return true;
+}
+
+bool applySets(const bc::Module& m, uint8_t* memory, const std::vector<std::string>& sets) {
+  for (const auto& s : sets) {
+    auto eq = s.find('=');
+    if (eq == std::string::npos) {
+      std::cerr << "error: --set expects NAME=VALUE, found '" << s << "'\n";
+      return false;
+    }
+    std::string name = s.substr(0, eq), value = s.substr(eq + 1);
+    auto ref = bc::resolveVariable(m, name);
+    if (!ref) {
+      std::cerr << "error: --set: unknown variable '" << name << "'\n";
+      return false;
+    }
+    std::string problem = bc::writeValueFromText(m, *ref, value, memory);
+    if (!problem.empty()) {
+      std::cerr << "error: --set " << name << ": " << problem << "\n";
+      return false;
+    }
+  }
+  return true;
+}
+
+void writeTraceRow(std::ostream& out, const bc::Module& m, const uint8_t* memory, uint64_t scan, int64_t timeNs,
+                   const std::vector<bc::VarRef>& refs) {
+  out << scan << ',' << (timeNs / 1'000'000);
+  for (const auto& r : refs) {
+    std::string v = bc::formatValue(m, r, memory);
+    bool quote = v.find_first_of(",\"") != std::string::npos;
+    if (quote) {
+      std::string q = "\"";
+      for (char c : v) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+      v = q + "\"";
+    }
+    out << ',' << v;
+  }
+  out << '\n';
+}
+
+int runExec(const ExecOptions& o) {
+  SourceManager sources;
+  Diagnostics diags;
+  auto module = compileFiles(o.files, sources, diags);
+  if (!module) return kExitCompileError;
+  if (!o.cycleTime.empty()) {
+    auto ns = parseDurationNs(o.cycleTime);
+    if (!ns) {
+      std::cerr << "error: --cycle-time: '" << o.cycleTime << "' is not a duration (e.g. 10ms, 1s, 250us)\n";
+      return kExitUsage;
+    }
+    // The cycle time applies to the default task; configured tasks keep their INTERVAL.
+    for (auto& t : module->tasks)
+      if (t.name == "MainTask" || t.name == "__DEFAULT") t.intervalNs = *ns;
+  }
+  std::vector<bc::VarRef> printRefs, traceRefs;
+  std::vector<std::string> traceNames;
+  for (const auto& group : o.traces) {
+    std::stringstream ss(group);
+    std::string name;
+    while (std::getline(ss, name, ','))
+      if (!name.empty()) traceNames.push_back(name);
+  }
+  if (!resolveAll(*module, o.prints, printRefs) || !resolveAll(*module, traceNames, traceRefs)) return kExitUsage;
+
+  std::unique_ptr<Clock> clock;
+  if (o.speed > 0) clock = std::make_unique<PacedClock>(o.speed);
+  else clock = std::make_unique<VirtualClock>();
+  plc::RuntimeOptions ropts;
+  ropts.instructionBudget = o.budget;
+  plc::Runtime runtime(*module, *clock, ropts);
+  if (!runtime.coldStart()) {
+    std::cerr << "runtime fault: " << runtime.faultText() << "\n";
+    return kExitRuntimeFault;
+  }
+  if (!applySets(*module, runtime.machine().memory(), o.sets)) return kExitUsage;
+
+  std::ofstream traceFile;
+  std::ostream* trace = &std::cout;
+  if (!o.traceFile.empty()) {
+    traceFile.open(o.traceFile);
+    if (!traceFile) {
+      std::cerr << "error: cannot write " << o.traceFile << "\n";
+      return kExitUsage;
+    }
+    trace = &traceFile;
+  }
+  if (!traceRefs.empty()) {
+    *trace << "scan,time_ms";
+    for (const auto& n : traceNames) *trace << ',' << n;
+    *trace << '\n';
+  }
+  bool forever = o.cycles < 0 && o.speed > 0;
+  int64_t cycles = o.cycles < 0 ? (forever ? INT64_MAX : 1) : o.cycles;
+  if (forever) {
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+  }
+  int exitCode = kExitOk;
+  for (int64_t k = 0; k < cycles && !gInterrupted; ++k) {
+    int64_t now = runtime.nextTickNs();
+    if (!runtime.tick()) {
+      std::cerr << "runtime fault: " << runtime.faultText() << "\n";
+      exitCode = kExitRuntimeFault;
+      break;
+    }
+    if (!traceRefs.empty()) writeTraceRow(*trace, *module, runtime.machine().memory(), static_cast<uint64_t>(k), now, traceRefs);
+  }
+  for (size_t i = 0; i < o.prints.size(); ++i)
+    std::cout << o.prints[i] << " = " << bc::formatValue(*module, printRefs[i], runtime.machine().memory()) << "\n";
+  if (o.stats) {
+    for (size_t t = 0; t < module->tasks.size(); ++t) {
+      const auto& s = runtime.stats(t);
+      std::cerr << "task " << module->tasks[t].name << ": " << s.scans << " scans, exec min/avg/max "
+                << s.minExecNs / 1000.0 << "/" << s.avgExecNs() / 1000.0 << "/" << s.maxExecNs / 1000.0 << " us\n";
+    }
+  }
+  return exitCode;
+}
+
+}  // namespace
+
+void addExecCommand(CLI::App& app, std::function<void(int)> setExit) {
+  auto o = std::make_shared<ExecOptions>();
+  CLI::App* cmd = app.add_subcommand("exec", "Run ST programs on the soft PLC for N scans in virtual time and print variables");
+  cmd->add_option("files", o->files, "ST source files compiled together as one program")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--cycles", o->cycles, "number of scheduler ticks (scans of the fastest task) to run; default 1, or forever with --speed")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--cycle-time", o->cycleTime, "interval of the default task, e.g. 10ms (default 10ms)");
+  cmd->add_option("--set", o->sets, "NAME=VALUE applied before the first scan (repeatable), e.g. MAIN.speed=5");
+  cmd->add_option("--print", o->prints, "variable printed after the run as NAME = VALUE (repeatable)");
+  cmd->add_option("--trace", o->traces, "comma-separated variables written as CSV after every tick");
+  cmd->add_option("--trace-file", o->traceFile, "write the --trace CSV to this file instead of stdout");
+  cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); without --cycles runs until SIGINT/SIGTERM")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--budget", o->budget, "watchdog: max backward jumps + calls per task scan (default 50000000)");
+  cmd->add_flag("--stats", o->stats, "print per-task scan statistics to stderr");
+  cmd->callback([o, setExit] { setExit(runExec(*o)); });
+}
+
+}  // namespace virtcom::cli

@@ -1,0 +1,10 @@
+#pragma once
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace virtcom::cli {
+// Each subcommand registers itself and reports its exit code through `setExit`.
+void addCheckCommand(CLI::App& app, std::function<void(int)> setExit);
+void addExecCommand(CLI::App& app, std::function<void(int)> setExit);
+}  // namespace virtcom::cli

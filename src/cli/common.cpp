@@ -1,0 +1,70 @@
+#include "cli/common.hpp"
+
+#include <cctype>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "lang/st/compiler.hpp"
+
+namespace virtcom::cli {
+
+std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, SourceManager& sources,
+                                         Diagnostics& diags, bool printWarnings) {
+  std::vector<st::SourceInput> inputs;
+  for (const auto& path : paths) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+      std::cerr << path << ": error: cannot read the file\n";
+      return nullptr;
+    }
+    std::stringstream buf;
+    buf << in.rdbuf();
+    inputs.push_back({path, buf.str()});
+  }
+  auto module = st::compileProgram(inputs, sources, diags);
+  if (!module || printWarnings) std::cerr << diags.render(sources);
+  return module;
+}
+
+std::optional<int64_t> parseDurationNs(const std::string& raw) {
+  std::string text = raw;
+  for (auto& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (text.rfind("t#", 0) == 0) text = text.substr(2);
+  else if (text.rfind("time#", 0) == 0) text = text.substr(5);
+  if (text.empty()) return std::nullopt;
+  // a bare number is milliseconds
+  bool bare = true;
+  for (char c : text)
+    if (!std::isdigit(static_cast<unsigned char>(c)) && c != '.') bare = false;
+  if (bare) text += "ms";
+  static const std::pair<const char*, double> kUnits[] = {{"ms", 1e6}, {"us", 1e3}, {"ns", 1.0}, {"d", 86400e9},
+                                                         {"h", 3600e9}, {"m", 60e9},   {"s", 1e9}};
+  double total = 0;
+  size_t i = 0;
+  while (i < text.size()) {
+    size_t start = i;
+    while (i < text.size() && (std::isdigit(static_cast<unsigned char>(text[i])) || text[i] == '.' || text[i] == '_')) ++i;
+    if (start == i) return std::nullopt;
+    std::string number;
+    for (size_t k = start; k < i; ++k)
+      if (text[k] != '_') number += text[k];
+    double value = std::strtod(number.c_str(), nullptr);
+    bool matched = false;
+    for (const auto& [unit, scale] : kUnits) {
+      size_t n = std::char_traits<char>::length(unit);
+      if (text.compare(i, n, unit) == 0) {
+        total += value * scale;
+        i += n;
+        matched = true;
+        break;
+      }
+    }
+    if (!matched) return std::nullopt;
+  }
+  if (total <= 0) return std::nullopt;
+  return static_cast<int64_t>(total + 0.5);
+}
+
+}  // namespace virtcom::cli

@@ -1,0 +1,24 @@
+#pragma once
+// Shared pieces of the `virtcom` subcommands.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bytecode/module.hpp"
+#include "core/diagnostics.hpp"
+#include "core/source.hpp"
+
+namespace virtcom::cli {
+
+// Exit codes of every subcommand.
+enum ExitCode { kExitOk = 0, kExitCompileError = 1, kExitRuntimeFault = 2, kExitUsage = 64 };
+
+// Reads and compiles the files; prints diagnostics to stderr. Null on a read or compile error.
+std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, SourceManager& sources,
+                                         Diagnostics& diags, bool printWarnings = true);
+
+// Parses a duration such as "10ms", "1.5s", "250us", "T#1s500ms", "100" (ms). Nullopt if invalid.
+std::optional<int64_t> parseDurationNs(const std::string& text);
+
+}  // namespace virtcom::cli

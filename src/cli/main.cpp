@@ -1,0 +1,22 @@
+// The `virtcom` command.
+#include <iostream>
+
+#include "cli/commands.hpp"
+#include "cli/common.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"virtcom - virtual commissioning engine: runs IEC 61131-3 control logic against a simulated cell"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "virtcom 0.1.0");
+  int exitCode = virtcom::cli::kExitOk;
+  auto setExit = [&](int code) { exitCode = code; };
+  virtcom::cli::addCheckCommand(app, setExit);
+  virtcom::cli::addExecCommand(app, setExit);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);
+    return code == 0 ? 0 : virtcom::cli::kExitUsage;
+  }
+  return exitCode;
+}

@@ -1,0 +1,675 @@
+// Code generation: calls of FUNCTIONs, FUNCTION_BLOCK instances, METHODs (with dynamic dispatch
+// through class ids for inheritance and interfaces), ACTIONs and PROPERTY accessors.
+#include <algorithm>
+#include <set>
+
+#include "lang/st/codegen.hpp"
+#include "lang/st/diagnostic_codes.hpp"
+
+namespace virtcom::st {
+
+using bc::Op;
+
+// IEC and CODESYS spell some standard FB inputs differently; both are accepted.
+static std::string canonicalParam(const PouSym* callee, const std::string& upperName) {
+  if (!callee || !callee->isLibrary) return upperName;
+  static const std::pair<const char*, const char*> kAliases[] = {
+      {"R", "RESET"}, {"LD", "LOAD"}, {"S1", "SET1"}, {"S", "SET"}, {"R1", "RESET1"}};
+  std::string fb = upper(callee->name);
+  for (const auto& [from, to] : kAliases) {
+    if (upperName != from) continue;
+    if (fb == "SR" && upperName == "R") return "RESET";
+    if (fb == "RS" && upperName == "S") return "SET";
+    if ((fb == "CTU" || fb == "CTUD") && upperName == "R") return "RESET";
+    if (fb == "SR" && upperName == "S1") return "SET1";
+    if (fb == "RS" && upperName == "R1") return "RESET1";
+    if ((fb == "CTD" || fb == "CTUD") && upperName == "LD") return "LOAD";
+    (void)to;
+  }
+  return upperName;
+}
+
+std::vector<const VarInfo*> PouCompiler::fbParams(PouSym& fb) {
+  std::vector<const VarInfo*> out;
+  for (const auto& m : fb.members)
+    if (m.section == VarSection::Input || m.section == VarSection::Output || m.section == VarSection::InOut)
+      out.push_back(&m);
+  return out;
+}
+
+bool PouCompiler::bindArgs(const Expr& call, const std::vector<const VarInfo*>& params, PouSym* callee,
+                           std::vector<Binding>& out) {
+  std::set<size_t> used;
+  size_t positional = 0;
+  bool ok = true;
+  std::string calleeName = callee ? callee->qualifiedName : "?";
+  for (const auto& arg : call.args) {
+    size_t index = params.size();
+    if (arg.name.empty()) {
+      // positional: inputs and in-outs in declaration order
+      while (positional < params.size() && params[positional]->section == VarSection::Output) ++positional;
+      index = positional++;
+      if (index >= params.size()) {
+        diags().error(diag::E203, arg.loc, "too many arguments for '" + calleeName + "' (it takes " +
+                                               std::to_string(params.size()) + ")");
+        ok = false;
+        continue;
+      }
+    } else {
+      std::string key = canonicalParam(callee, upper(arg.name));
+      for (size_t i = 0; i < params.size(); ++i)
+        if (upper(params[i]->name) == key) index = i;
+      if (index == params.size()) {
+        diags().error(diag::E203, arg.loc, "'" + calleeName + "' has no parameter '" + arg.name + "'");
+        ok = false;
+        continue;
+      }
+    }
+    const VarInfo& p = *params[index];
+    if (!used.insert(index).second) {
+      diags().error(diag::E203, arg.loc, "parameter '" + p.name + "' is given twice");
+      ok = false;
+      continue;
+    }
+    if (arg.output != (p.section == VarSection::Output)) {
+      diags().error(diag::E203, arg.loc, p.section == VarSection::Output
+                                             ? "'" + p.name + "' is an output: connect it with '=>'"
+                                             : "'" + p.name + "' is an input: pass it with ':='");
+      ok = false;
+      continue;
+    }
+    Binding b;
+    b.param = index;
+    if (arg.output) b.output = &arg;
+    else b.value.place.var = nullptr;
+    out.push_back(b);
+    // remember which CallArg feeds the binding (same order as call.args)
+    out.back().output = &arg;
+  }
+  for (size_t i = 0; i < params.size(); ++i)
+    if (params[i]->section == VarSection::InOut && !used.count(i) && callee && callee->kind != PouKind::FunctionBlock) {
+      diags().error(diag::E203, call.loc, "VAR_IN_OUT '" + params[i]->name + "' of '" + calleeName + "' must be connected");
+      ok = false;
+    }
+  return ok;
+}
+
+void PouCompiler::evaluateInputs(const std::vector<const VarInfo*>& params, std::vector<Binding>& bindings) {
+  for (auto& b : bindings) {
+    const VarInfo& p = *params[b.param];
+    const CallArg& arg = *b.output;
+    if (p.section == VarSection::Output) continue;
+    if (!arg.value) continue;
+    if (p.section == VarSection::InOut) {
+      auto target = place(*arg.value, true);
+      if (!target) continue;
+      if (target->type != p.type && !(types().isString(target->type) && types().isString(p.type))) {
+        diags().error(diag::E202, arg.loc, "VAR_IN_OUT '" + p.name + "' needs a " + describe(types(), p.type) +
+                                               " variable, found " + describe(types(), target->type));
+        continue;
+      }
+      if (target->bit >= 0 || target->valueBit >= 0) {
+        diags().error(diag::E203, arg.loc, "a single bit cannot be passed to VAR_IN_OUT '" + p.name + "'");
+        continue;
+      }
+      b.address = addressOf(*target);
+      continue;
+    }
+    Value v = expr(*arg.value, p.type);
+    if (v.ok() && types().isScalar(p.type)) v = coerce(v, p.type, arg.loc);
+    else if (v.ok() && v.kind == Value::Kind::Reg && !types().isScalar(v.type)) v.kind = Value::Kind::Reg;
+    b.value = v;
+  }
+}
+
+uint16_t PouCompiler::emitFrameCall(PouSym& callee, uint16_t thisReg, const std::vector<Binding>& bindings) {
+  (void)bindings;
+  uint16_t frame = allocReg();
+  uint16_t self = allocReg();
+  emitBx(Op::ENTER, frame, callee.bcIndex);
+  if (thisReg != 0xffff) emit(Op::MOV, self, thisReg, 0);
+  return frame;
+}
+
+static Place frameSlot(const VarInfo& p, uint16_t frameReg, const TypeTable& types) {
+  Place slot;
+  slot.base = frameReg;
+  slot.offset = p.offset;
+  slot.type = p.byReference ? TypeTable::elem(ElemType::Lword) : p.type;
+  (void)types;
+  return slot;
+}
+
+void PouCompiler::readOutputs(PouSym& callee, uint16_t base, Storage storage, const std::vector<Binding>& bindings,
+                              const std::vector<const VarInfo*>& params) {
+  (void)callee;
+  (void)storage;
+  for (const auto& b : bindings) {
+    const VarInfo& p = *params[b.param];
+    if (p.section != VarSection::Output || !b.output || !b.output->value) continue;
+    auto target = place(*b.output->value, true);
+    if (!target) continue;
+    Place src = frameSlot(p, base, types());
+    Value v;
+    if (types().isScalar(p.type)) {
+      v = regValue(p.type, load(src));
+      if (b.output->negated) {
+        uint16_t r = allocReg();
+        emit(Op::LNOT, r, v.reg, 0);
+        v.reg = r;
+      }
+    } else {
+      v.kind = Value::Kind::Addr;
+      v.type = p.type;
+      v.place = src;
+    }
+    assignValue(*target, v, b.output->loc);
+  }
+}
+
+Value PouCompiler::returnValue(PouSym& callee, uint16_t frameReg) {
+  if (callee.returnType == kNoType) {
+    Value v;
+    v.kind = Value::Kind::Void;
+    return v;
+  }
+  Place src;
+  src.base = frameReg;
+  src.offset = callee.returnOffset;
+  src.type = callee.returnType;
+  if (types().isScalar(callee.returnType)) return regValue(callee.returnType, load(src));
+  // Aggregates are copied out before the next call reuses the callee's frame.
+  Place tmp = frameTemp(callee.returnType);
+  uint16_t dst = addressOf(tmp);
+  uint16_t from = addressOf(src);
+  copyBytes(dst, from, types()[callee.returnType].size);
+  Value v;
+  v.kind = Value::Kind::Addr;
+  v.type = callee.returnType;
+  v.place = tmp;
+  return v;
+}
+
+// Stores the evaluated arguments into the callee's frame (functions, methods) or instance (FBs).
+static void storeInputs(PouCompiler& pc, const std::vector<const VarInfo*>& params,
+                        const std::vector<PouCompiler::Binding>& bindings, uint16_t base) {
+  for (const auto& b : bindings) {
+    const VarInfo& p = *params[b.param];
+    if (p.section == VarSection::Output) continue;
+    Place slot = frameSlot(p, base, pc.types());
+    if (p.section == VarSection::InOut) {
+      if (b.address != 0xffff) pc.store(slot, b.address);
+      continue;
+    }
+    if (b.value.ok()) pc.assignValue(slot, b.value, b.output->loc);
+  }
+}
+
+Value PouCompiler::callFunction(PouSym& fn, const Expr& e) {
+  pou_.callees.push_back(&fn);
+  std::vector<Binding> bindings;
+  if (!bindArgs(e, fn.params, &fn, bindings)) return Value::error();
+  evaluateInputs(fn.params, bindings);
+  uint16_t frame = emitFrameCall(fn, 0xffff, bindings);
+  storeInputs(*this, fn.params, bindings, frame);
+  emitBx(Op::CALL, frame, fn.bcIndex);
+  Value result = returnValue(fn, frame);
+  readOutputs(fn, frame, Storage::Frame, bindings, fn.params);
+  return result;
+}
+
+Value PouCompiler::callFbInstance(const Place& inst, PouSym& fb, const Expr& e) {
+  pou_.callees.push_back(&fb);
+  std::vector<const VarInfo*> params = fbParams(fb);
+  std::vector<Binding> bindings;
+  if (!bindArgs(e, params, &fb, bindings)) return Value::error();
+  evaluateInputs(params, bindings);
+  uint16_t self = addressOf(inst);
+  storeInputs(*this, params, bindings, self);
+  uint16_t frame = emitFrameCall(fb, self, bindings);
+  emitBx(Op::CALL, frame, fb.bcIndex);
+  readOutputs(fb, self, Storage::Instance, bindings, params);
+  Value v;
+  v.kind = Value::Kind::Void;
+  return v;
+}
+
+Value PouCompiler::callAction(PouSym& action, uint16_t thisReg) {
+  pou_.callees.push_back(&action);
+  std::vector<Binding> none;
+  uint16_t frame = emitFrameCall(action, thisReg, none);
+  emitBx(Op::CALL, frame, action.bcIndex);
+  Value v;
+  v.kind = Value::Kind::Void;
+  return v;
+}
+
+static bool derivesFrom(const PouSym* c, const PouSym* base) {
+  for (; c; c = c->base)
+    if (c == base) return true;
+  return false;
+}
+
+static bool implementsInterface(ProgramModel& m, const PouSym* c, const std::string& itf) {
+  std::function<bool(const std::string&, int)> matches = [&](const std::string& name, int depth) {
+    if (name == itf) return true;
+    if (depth > 16) return false;
+    auto it = m.interfaces.find(name);
+    if (it == m.interfaces.end()) return false;
+    for (const auto& b : it->second.bases)
+      if (matches(b, depth + 1)) return true;
+    return false;
+  };
+  for (; c; c = c->base)
+    for (const auto& i : c->interfaces)
+      if (matches(i, 0)) return true;
+  return false;
+}
+
+std::vector<std::pair<uint32_t, PouSym*>> PouCompiler::dispatchTargets(const Receiver& recv, const std::string& key,
+                                                                      bool property, bool setter) {
+  auto implOf = [&](PouSym* c) -> PouSym* {
+    if (property) {
+      auto it = c->properties.find(key);
+      if (it == c->properties.end()) return nullptr;
+      return setter ? it->second.setter : it->second.getter;
+    }
+    auto it = c->methods.find(key);
+    return it == c->methods.end() ? nullptr : it->second;
+  };
+  std::vector<std::pair<uint32_t, PouSym*>> out;
+  if (recv.exact || (recv.staticClass && !recv.staticClass->hasClassHeader)) {
+    if (PouSym* m = implOf(recv.staticClass)) out.push_back({0, m});
+    return out;
+  }
+  for (PouSym* c : model().classes) {
+    bool candidate = recv.viaInterface ? implementsInterface(model(), c, upper(recv.viaInterface->name))
+                                       : derivesFrom(c, recv.staticClass);
+    if (!candidate || c->isAbstract) continue;
+    if (PouSym* m = implOf(c)) out.push_back({c->classId, m});
+  }
+  return out;
+}
+
+// Emits `callOne(target)` for each dispatch target, selected at run time by the class id stored in
+// the first 4 bytes of the instance; a single target is called directly.
+template <typename F>
+static void emitDispatch(PouCompiler& pc, uint16_t thisReg, const std::vector<std::pair<uint32_t, PouSym*>>& targets,
+                         F callOne) {
+  std::set<PouSym*> distinct;
+  for (const auto& t : targets) distinct.insert(t.second);
+  if (distinct.size() == 1) {
+    callOne(*targets.front().second);
+    return;
+  }
+  uint16_t cls = pc.allocReg();
+  pc.emit(Op::LD_U32, cls, thisReg, 0);
+  std::vector<uint32_t> toEnd;
+  for (size_t i = 0; i < targets.size(); ++i) {
+    uint32_t skip = 0;
+    bool last = i + 1 == targets.size();
+    if (!last) {
+      uint16_t k = pc.loadConstInt(targets[i].first);
+      uint16_t eq = pc.allocReg();
+      pc.emit(Op::NE, eq, cls, k);
+      skip = pc.emitJump(Op::JNZ, eq);
+    }
+    callOne(*targets[i].second);
+    if (!last) {
+      toEnd.push_back(pc.emitJump(Op::JMP, 0));
+      pc.patchJump(skip, pc.here());
+    }
+  }
+  for (uint32_t j : toEnd) pc.patchJump(j, pc.here());
+}
+
+Value PouCompiler::callMethod(const std::string& name, const Receiver& recv, const Expr& e) {
+  std::string key = upper(name);
+  auto targets = dispatchTargets(recv, key, false, false);
+  if (targets.empty()) {
+    // interface prototype exists but no class implements it: still type-check
+    diags().error(diag::E206, e.loc, "no implementation of METHOD '" + name + "' is available for this call");
+    return Value::error();
+  }
+  PouSym& proto = *targets.front().second;
+  std::vector<Binding> bindings;
+  if (!bindArgs(e, proto.params, &proto, bindings)) return Value::error();
+  evaluateInputs(proto.params, bindings);
+  uint16_t mark = regMark();
+  uint16_t resultReg = allocReg();
+  TypeId rt = proto.returnType;
+  bool scalarResult = rt != kNoType && types().isScalar(rt);
+  Place aggregate;
+  if (rt != kNoType && !scalarResult) aggregate = frameTemp(rt);
+  uint16_t aggregateAddr = rt != kNoType && !scalarResult ? addressOf(aggregate) : 0;
+  (void)mark;
+  emitDispatch(*this, recv.thisReg, targets, [&](PouSym& m) {
+    pou_.callees.push_back(&m);
+    uint16_t inner = regMark();
+    uint16_t frame = emitFrameCall(m, recv.thisReg, bindings);
+    storeInputs(*this, m.params, bindings, frame);
+    emitBx(Op::CALL, frame, m.bcIndex);
+    if (rt != kNoType) {
+      Place src;
+      src.base = frame;
+      src.offset = m.returnOffset;
+      src.type = rt;
+      if (scalarResult) emit(Op::MOV, resultReg, load(src), 0);
+      else copyBytes(aggregateAddr, addressOf(src), types()[rt].size);
+    }
+    readOutputs(m, frame, Storage::Frame, bindings, m.params);
+    freeRegs(inner);
+  });
+  if (rt == kNoType) {
+    Value v;
+    v.kind = Value::Kind::Void;
+    return v;
+  }
+  if (scalarResult) return regValue(rt, resultReg);
+  Value v;
+  v.kind = Value::Kind::Addr;
+  v.type = rt;
+  v.place = aggregate;
+  return v;
+}
+
+Value PouCompiler::propertyGet(const PropertySym& prop, uint16_t thisReg, PouSym* staticClass, SourceLocation loc) {
+  Receiver recv;
+  recv.thisReg = thisReg;
+  recv.staticClass = staticClass;
+  auto targets = dispatchTargets(recv, upper(prop.name), true, false);
+  if (targets.empty()) {
+    diags().error(diag::E209, loc, "property '" + prop.name + "' has no GET accessor");
+    return Value::error();
+  }
+  uint16_t result = allocReg();
+  bool scalar = types().isScalar(prop.type);
+  Place aggregate;
+  if (!scalar) aggregate = frameTemp(prop.type);
+  emitDispatch(*this, thisReg, targets, [&](PouSym& getter) {
+    pou_.callees.push_back(&getter);
+    uint16_t inner = regMark();
+    std::vector<Binding> none;
+    uint16_t frame = emitFrameCall(getter, thisReg, none);
+    emitBx(Op::CALL, frame, getter.bcIndex);
+    Place src;
+    src.base = frame;
+    src.offset = getter.returnOffset;
+    src.type = prop.type;
+    if (scalar) emit(Op::MOV, result, load(src), 0);
+    else copyBytes(addressOf(aggregate), addressOf(src), types()[prop.type].size);
+    freeRegs(inner);
+  });
+  if (scalar) return regValue(prop.type, result);
+  Value v;
+  v.kind = Value::Kind::Addr;
+  v.type = prop.type;
+  v.place = aggregate;
+  return v;
+}
+
+bool PouCompiler::receiverOf(const Expr& object, Receiver& recv) {
+  if (object.kind == ExprKind::Deref && object.lhs &&
+      (object.lhs->kind == ExprKind::This || object.lhs->kind == ExprKind::Super)) {
+    PouSym* owner = pou_.kind == PouKind::FunctionBlock ? &pou_ : pou_.owner;
+    if (!owner || owner->kind != PouKind::FunctionBlock) return false;
+    recv.thisReg = kThis;
+    recv.staticClass = object.lhs->kind == ExprKind::Super ? owner->base : owner;
+    recv.exact = object.lhs->kind == ExprKind::Super;
+    return recv.staticClass != nullptr;
+  }
+  Diagnostics probe;
+  // Interface-typed variables hold the address of an instance.
+  if (object.kind == ExprKind::Name || object.kind == ExprKind::Member || object.kind == ExprKind::Index) {
+    size_t before = diags().all().size();
+    auto p = place(object, false);
+    if (!p) return false;
+    (void)before;
+    if (auto itf = model().interfaceByType.find(p->type); itf != model().interfaceByType.end()) {
+      Place slot = *p;
+      recv.thisReg = load(slot);
+      recv.viaInterface = itf->second;
+      return true;
+    }
+    auto fb = model().fbByType.find(p->type);
+    if (fb == model().fbByType.end()) return false;
+    recv.thisReg = addressOf(*p);
+    recv.staticClass = fb->second;
+    recv.exact = true;
+    return true;
+  }
+  if (object.kind == ExprKind::Deref) {
+    auto p = place(object, false);
+    if (!p) return false;
+    auto fb = model().fbByType.find(p->type);
+    if (fb == model().fbByType.end()) return false;
+    recv.thisReg = addressOf(*p);
+    recv.staticClass = fb->second;
+    return true;
+  }
+  return false;
+}
+
+std::optional<Value> PouCompiler::memberProperty(const Expr& e) {
+  // Quick structural check before generating any code for the object.
+  const Expr& object = *e.lhs;
+  std::string key = upper(e.text);
+  auto staticTypeHasProperty = [&](TypeId t) {
+    if (auto fb = model().fbByType.find(t); fb != model().fbByType.end()) return fb->second->properties.count(key) > 0;
+    if (auto itf = model().interfaceByType.find(t); itf != model().interfaceByType.end())
+      return itf->second->properties.count(key) > 0;
+    return false;
+  };
+  TypeId objectType = kNoType;
+  if (object.kind == ExprKind::Deref && object.lhs && (object.lhs->kind == ExprKind::This || object.lhs->kind == ExprKind::Super)) {
+    PouSym* owner = pou_.kind == PouKind::FunctionBlock ? &pou_ : pou_.owner;
+    if (owner) objectType = owner->instanceType;
+  } else if (object.kind == ExprKind::Name) {
+    std::string n = upper(object.text);
+    const VarInfo* v = nullptr;
+    if (auto it = pou_.localIndex.find(n); it != pou_.localIndex.end()) v = &pou_.locals[it->second];
+    PouSym* owner = pou_.kind == PouKind::FunctionBlock || pou_.kind == PouKind::Program ? &pou_ : pou_.owner;
+    if (!v && owner)
+      if (auto it = owner->memberIndex.find(n); it != owner->memberIndex.end()) v = &owner->members[it->second];
+    if (!v)
+      if (auto it = model().globalIndex.find(n); it != model().globalIndex.end()) v = &model().globals[it->second].var;
+    if (v) objectType = v->type;
+  } else {
+    return std::nullopt;
+  }
+  if (objectType == kNoType || !staticTypeHasProperty(objectType)) return std::nullopt;
+  Receiver recv;
+  if (!receiverOf(object, recv)) return std::nullopt;
+  PropertySym prop;
+  if (recv.viaInterface) prop = recv.viaInterface->properties[key];
+  else prop = recv.staticClass->properties[key];
+  if (recv.viaInterface) {
+    auto targets = dispatchTargets(recv, key, true, false);
+    PropertySym p = prop;
+    uint16_t result = allocReg();
+    emitDispatch(*this, recv.thisReg, targets, [&](PouSym& getter) {
+      uint16_t inner = regMark();
+      std::vector<Binding> none;
+      uint16_t frame = emitFrameCall(getter, recv.thisReg, none);
+      emitBx(Op::CALL, frame, getter.bcIndex);
+      Place src;
+      src.base = frame;
+      src.offset = getter.returnOffset;
+      src.type = p.type;
+      emit(Op::MOV, result, load(src), 0);
+      freeRegs(inner);
+    });
+    return regValue(p.type, result);
+  }
+  Receiver r = recv;
+  if (recv.exact) {
+    auto targets = dispatchTargets(recv, key, true, false);
+    if (targets.empty()) {
+      diags().error(diag::E209, e.loc, "property '" + e.text + "' has no GET accessor");
+      return Value::error();
+    }
+  }
+  return propertyGet(prop, r.thisReg, r.staticClass, e.loc);
+}
+
+bool PouCompiler::propertySet(const Expr& target, const Expr& valueExpr, SourceLocation loc) {
+  std::string key;
+  Receiver recv;
+  PouSym* owner = pou_.kind == PouKind::FunctionBlock ? &pou_ : pou_.owner;
+  if (target.kind == ExprKind::Name) {
+    key = upper(target.text);
+    if (pou_.localIndex.count(key) || !owner || !owner->properties.count(key)) return false;
+    if (owner->memberIndex.count(key)) return false;
+    recv.thisReg = kThis;
+    recv.staticClass = owner;
+  } else if (target.kind == ExprKind::Member) {
+    key = upper(target.text);
+    const Expr& object = *target.lhs;
+    TypeId objectType = kNoType;
+    if (object.kind == ExprKind::Deref && object.lhs && object.lhs->kind == ExprKind::This && owner) {
+      objectType = owner->instanceType;
+    } else if (object.kind == ExprKind::Name) {
+      std::string n = upper(object.text);
+      if (auto it = pou_.localIndex.find(n); it != pou_.localIndex.end()) objectType = pou_.locals[it->second].type;
+      else if (owner && owner->memberIndex.count(n)) objectType = owner->members[owner->memberIndex[n]].type;
+      else if (auto g = model().globalIndex.find(n); g != model().globalIndex.end()) objectType = model().globals[g->second].var.type;
+    }
+    bool isProp = false;
+    if (auto fb = model().fbByType.find(objectType); fb != model().fbByType.end()) isProp = fb->second->properties.count(key);
+    if (auto itf = model().interfaceByType.find(objectType); itf != model().interfaceByType.end())
+      isProp = itf->second->properties.count(key);
+    if (!isProp || !receiverOf(object, recv)) return false;
+  } else {
+    return false;
+  }
+  auto targets = dispatchTargets(recv, key, true, true);
+  if (targets.empty()) {
+    diags().error(diag::E209, loc, "property '" + key + "' has no SET accessor");
+    return true;
+  }
+  PouSym& proto = *targets.front().second;
+  const VarInfo* in = nullptr;
+  for (const auto& l : proto.locals)
+    if (upper(l.name) == key) in = &l;
+  if (!in) return true;
+  Value v = expr(valueExpr, in->type);
+  if (v.ok() && types().isScalar(in->type)) v = coerce(v, in->type, loc);
+  if (!v.ok()) return true;
+  emitDispatch(*this, recv.thisReg, targets, [&](PouSym& setter) {
+    pou_.callees.push_back(&setter);
+    uint16_t inner = regMark();
+    std::vector<Binding> none;
+    uint16_t frame = emitFrameCall(setter, recv.thisReg, none);
+    const VarInfo* slotVar = nullptr;
+    for (const auto& l : setter.locals)
+      if (upper(l.name) == key) slotVar = &l;
+    if (slotVar) assignValue(frameSlot(*slotVar, frame, types()), v, loc);
+    emitBx(Op::CALL, frame, setter.bcIndex);
+    freeRegs(inner);
+  });
+  return true;
+}
+
+Value PouCompiler::call(const Expr& e, TypeId expected) {
+  const Expr& callee = *e.lhs;
+  if (callee.kind == ExprKind::Name) {
+    std::string key = upper(callee.text);
+    // a variable of FB type
+    auto p = namePlace(callee, false);
+    if (p) {
+      if (auto fb = model().fbByType.find(p->type); fb != model().fbByType.end()) return callFbInstance(*p, *fb->second, e);
+      diags().error(diag::E206, callee.loc, "'" + callee.text + "' is a variable of type " + describe(types(), p->type) +
+                                                 ", not a function block instance");
+      return Value::error();
+    }
+    PouSym* owner = pou_.kind == PouKind::FunctionBlock || pou_.kind == PouKind::Program ? &pou_ : pou_.owner;
+    if (owner) {
+      if (owner->methods.count(key)) {
+        Receiver recv;
+        recv.thisReg = kThis;
+        recv.staticClass = owner;
+        return callMethod(callee.text, recv, e);
+      }
+      if (auto a = owner->actions.find(key); a != owner->actions.end()) return callAction(*a->second, kThis);
+    }
+    if (auto b = builtin(key, e, expected)) return *b;
+    auto fn = model().pouByName.find(key);
+    if (fn != model().pouByName.end()) {
+      if (fn->second->kind == PouKind::Function) return callFunction(*fn->second, e);
+      diags().error(diag::E206, callee.loc, "'" + callee.text + "' is a " +
+                                                 (fn->second->kind == PouKind::Program ? "PROGRAM" : "FUNCTION_BLOCK") +
+                                                 " type; call an instance of it instead");
+      return Value::error();
+    }
+    diags().error(diag::E201, callee.loc, "'" + callee.text + "' is not declared (no such function, function block instance, method or action)");
+    return Value::error();
+  }
+  if (callee.kind == ExprKind::Member) {
+    std::string key = upper(callee.text);
+    // program action: MAIN.Act()
+    if (callee.lhs->kind == ExprKind::Name)
+      for (const auto& inst : model().programInstances)
+        if (upper(inst.name) == upper(callee.lhs->text))
+          if (auto a = inst.pou->actions.find(key); a != inst.pou->actions.end())
+            return callAction(*a->second, loadConstInt(inst.address));
+    Receiver recv;
+    Diagnostics scratch;
+    bool isMethodCall = false;
+    // Decide by the object's static type whether this is a method/action or a nested FB instance.
+    {
+      const Expr& object = *callee.lhs;
+      TypeId objectType = kNoType;
+      if (object.kind == ExprKind::Deref && object.lhs &&
+          (object.lhs->kind == ExprKind::This || object.lhs->kind == ExprKind::Super)) {
+        PouSym* owner = pou_.kind == PouKind::FunctionBlock ? &pou_ : pou_.owner;
+        if (owner) objectType = object.lhs->kind == ExprKind::Super && owner->base ? owner->base->instanceType : owner->instanceType;
+      } else if (object.kind == ExprKind::Name) {
+        std::string n = upper(object.text);
+        PouSym* owner = pou_.kind == PouKind::FunctionBlock || pou_.kind == PouKind::Program ? &pou_ : pou_.owner;
+        if (auto it = pou_.localIndex.find(n); it != pou_.localIndex.end()) objectType = pou_.locals[it->second].type;
+        else if (owner && owner->memberIndex.count(n)) objectType = owner->members[owner->memberIndex[n]].type;
+        else if (auto g = model().globalIndex.find(n); g != model().globalIndex.end()) objectType = model().globals[g->second].var.type;
+      }
+      if (objectType != kNoType && types().isReference(objectType) && !model().interfaceByType.count(objectType))
+        objectType = types()[objectType].element;
+      if (auto fb = model().fbByType.find(objectType); fb != model().fbByType.end())
+        isMethodCall = fb->second->methods.count(key) || fb->second->actions.count(key);
+      if (auto itf = model().interfaceByType.find(objectType); itf != model().interfaceByType.end())
+        isMethodCall = itf->second->methods.count(key) > 0;
+      if (objectType == kNoType && object.kind != ExprKind::Name) isMethodCall = true;
+    }
+    if (isMethodCall && receiverOf(*callee.lhs, recv)) {
+      if (recv.staticClass)
+        if (auto a = recv.staticClass->actions.find(key); a != recv.staticClass->actions.end())
+          return callAction(*a->second, recv.thisReg);
+      bool known = recv.viaInterface ? recv.viaInterface->methods.count(key) : recv.staticClass->methods.count(key);
+      if (!known) {
+        diags().error(diag::E212, callee.loc, "no METHOD '" + callee.text + "' in " +
+                                                  (recv.viaInterface ? recv.viaInterface->name : recv.staticClass->name));
+        return Value::error();
+      }
+      return callMethod(callee.text, recv, e);
+    }
+    auto p = place(callee, false);
+    if (!p) return Value::error();
+    if (auto fb = model().fbByType.find(p->type); fb != model().fbByType.end()) return callFbInstance(*p, *fb->second, e);
+    diags().error(diag::E206, callee.loc, "'" + callee.text + "' cannot be called");
+    return Value::error();
+  }
+  if (callee.kind == ExprKind::Deref || callee.kind == ExprKind::Index) {
+    auto p = place(callee, false);
+    if (!p) return Value::error();
+    if (callee.kind == ExprKind::Deref && callee.lhs && callee.lhs->kind == ExprKind::Super) {
+      // SUPER^(): run the base FB's body on this instance
+      auto fb = model().fbByType.find(p->type);
+      if (fb != model().fbByType.end()) return callFbInstance(*p, *fb->second, e);
+    }
+    if (auto fb = model().fbByType.find(p->type); fb != model().fbByType.end()) return callFbInstance(*p, *fb->second, e);
+    diags().error(diag::E206, callee.loc, "this expression cannot be called");
+    return Value::error();
+  }
+  diags().error(diag::E206, callee.loc, "this expression cannot be called");
+  return Value::error();
+}
+
+}  // namespace virtcom::st

@@ -1,0 +1,159 @@
+#include "lang/st/compiler.hpp"
+
+#include <filesystem>
+#include <functional>
+
+#include "bytecode/verifier.hpp"
+#include "lang/st/codegen.hpp"
+#include "lang/st/diagnostic_codes.hpp"
+#include "lang/st/parser.hpp"
+#include "lang/st/prelude.hpp"
+
+namespace virtcom::st {
+
+namespace {
+
+bc::PouKind moduleKind(PouKind k) {
+  switch (k) {
+    case PouKind::Program: return bc::PouKind::Program;
+    case PouKind::Function: return bc::PouKind::Function;
+    case PouKind::FunctionBlock: return bc::PouKind::FunctionBlock;
+    case PouKind::Method: return bc::PouKind::Method;
+    case PouKind::Action: return bc::PouKind::Action;
+    case PouKind::PropertyGet: return bc::PouKind::PropertyGet;
+    case PouKind::PropertySet: return bc::PouKind::PropertySet;
+  }
+  return bc::PouKind::Function;
+}
+
+bool hasCode(const PouSym& p) {
+  if (p.isInterfaceMethod) return false;
+  if (p.kind == PouKind::Method && !p.ast->hasBody) return false;
+  return true;
+}
+
+// Reports calls that (directly or through other POUs) reach the caller again.
+void checkRecursion(ProgramModel& model, Diagnostics& diags) {
+  enum Mark { White, Grey, Black };
+  std::map<PouSym*, Mark> mark;
+  std::function<void(PouSym*)> visit = [&](PouSym* p) {
+    mark[p] = Grey;
+    for (PouSym* c : p->callees) {
+      if (mark[c] == Grey) {
+        diags.error(diag::E207, p->ast->loc, "'" + p->qualifiedName + "' calls '" + c->qualifiedName +
+                                                 "' recursively; IEC 61131-3 does not allow recursion");
+        continue;
+      }
+      if (mark[c] == White) visit(c);
+    }
+    mark[p] = Black;
+  };
+  for (auto& p : model.pous)
+    if (mark[p.get()] == White) visit(p.get());
+}
+
+void fillSymbols(ProgramModel& model, bc::Module& module, TypeTable& types) {
+  for (const auto& g : model.globals) {
+    bc::Symbol s;
+    s.name = g.listName.empty() ? g.var.name : g.listName + "." + g.var.name;
+    s.type = g.var.type;
+    s.address = g.var.offset;
+    s.readOnly = g.var.readOnly;
+    if (g.var.bit >= 0) continue;  // located single bits are reached through %IX addresses
+    module.symbols.push_back(s);
+  }
+  for (const auto& inst : model.programInstances) {
+    module.symbols.push_back({inst.name, inst.pou->instanceType, inst.address, false});
+    module.programs.push_back({inst.name, inst.pou->bcIndex, inst.address});
+  }
+  for (const auto& t : model.tasks) {
+    bc::TaskInfo info;
+    info.name = t.name;
+    info.intervalNs = t.intervalNs;
+    info.priority = t.priority;
+    for (const auto& name : t.programInstances)
+      for (size_t i = 0; i < model.programInstances.size(); ++i)
+        if (upper(model.programInstances[i].name) == name) info.programs.push_back(static_cast<uint32_t>(i));
+    module.tasks.push_back(std::move(info));
+  }
+  (void)types;
+}
+
+}  // namespace
+
+std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& inputs, SourceManager& sources,
+                                           Diagnostics& diags) {
+  auto module = std::make_unique<bc::Module>();
+  std::vector<CompilationUnit> units;
+  NodeId nextId = 0;
+  uint32_t libraryFile = sources.addFile("<standard library>", std::string(standardLibrarySource()));
+  units.push_back(parseFile(libraryFile, sources.text(libraryFile), diags, nextId));
+  size_t libraryPous = units.front().pous.size();
+  for (const auto& in : inputs) {
+    uint32_t id = sources.addFile(in.path, in.text);
+    units.push_back(parseFile(id, sources.text(id), diags, nextId));
+    for (auto& gvl : units.back().globals)
+      if (gvl.name.empty()) gvl.name = std::filesystem::path(in.path).stem().string();
+  }
+  module->files.clear();
+  for (uint32_t i = 0; i < sources.fileCount(); ++i) module->files.push_back(sources.path(i));
+  if (diags.hasErrors()) {
+    diags.sortByLocation();
+    return nullptr;
+  }
+  ProgramModel model;
+  TypeTable types(module->types);
+  ImageBuilder image(module->initialImage);
+  Declarer declarer(units, diags, types, model, image, *module);
+  declarer.run();
+  for (auto& p : model.pous)
+    for (size_t i = 0; i < libraryPous; ++i)
+      if (p->ast == units.front().pous[i].get() || (p->owner && p->owner->ast == units.front().pous[i].get())) p->isLibrary = true;
+  bool noProgram = model.programInstances.empty();
+  if (noProgram && !diags.hasErrors())
+    diags.error(diag::E217, {}, "no PROGRAM to run: declare a PROGRAM (e.g. PROGRAM MAIN ... END_PROGRAM)");
+  if (diags.hasErrors()) {
+    diags.sortByLocation();
+    return nullptr;
+  }
+  // Every POU with code gets its slot first, so calls can name any callee.
+  for (auto& p : model.pous) {
+    if (!hasCode(*p)) continue;
+    p->bcIndex = static_cast<uint32_t>(module->pous.size());
+    bc::PouInfo info;
+    info.name = p->qualifiedName;
+    info.kind = moduleKind(p->kind);
+    info.instanceType = p->kind == PouKind::FunctionBlock || p->kind == PouKind::Program ? p->instanceType : bc::kNoType;
+    module->pous.push_back(info);
+  }
+  CompileContext ctx{model, types, declarer, *module, image, diags};
+  for (auto& p : model.pous) {
+    if (!hasCode(*p)) continue;
+    PouCompiler pc(ctx, *p);
+    pc.compile();
+  }
+  checkRecursion(model, diags);
+  if (diags.hasErrors()) {
+    diags.sortByLocation();
+    return nullptr;
+  }
+  declarer.buildTemplates();
+  for (auto& p : model.pous) {
+    if (!hasCode(*p)) continue;
+    module->pous[p->bcIndex].frameSize = p->frameSize;
+    module->pous[p->bcIndex].frameTemplate = p->frameTemplate;
+  }
+  fillSymbols(model, *module, types);
+  module->staticSize = image.size();
+  std::stable_sort(module->lines.begin(), module->lines.end(),
+                   [](const bc::LineEntry& a, const bc::LineEntry& b) { return a.pc < b.pc; });
+  diags.sortByLocation();
+  std::string problem = bc::verifyModule(*module);
+  if (!problem.empty()) {
+    diags.error("E999", {}, "internal compiler error: generated code failed verification: " + problem);
+    return nullptr;
+  }
+  return module;
+}
+
+}  // namespace virtcom::st

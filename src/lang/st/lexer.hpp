@@ -1,0 +1,19 @@
+#pragma once
+// The Structured Text lexer: source text to tokens.
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "core/diagnostics.hpp"
+#include "lang/st/token.hpp"
+
+namespace virtcom::st {
+
+// Splits `text` into tokens, skipping whitespace and comments ((* *) and /* */ nest; //).
+// Keywords are recognised case-insensitively; literals are decoded into the token payloads.
+// Never throws: lexical errors (E001-E005, E008, E009, E012) go to `diags` and lexing goes on,
+// so the result always ends with exactly one Tok::Eof token. Token texts point into `text`,
+// which must outlive the tokens.
+std::vector<Token> lex(uint32_t fileId, std::string_view text, Diagnostics& diags);
+
+}  // namespace virtcom::st

@@ -1,0 +1,33 @@
+#pragma once
+// The Structured Text parser: source text to the syntax tree of ast.hpp.
+#include <cstdint>
+#include <string_view>
+
+#include "core/diagnostics.hpp"
+#include "lang/st/ast.hpp"
+
+namespace virtcom::st {
+
+// Parses one file (lexing it first). Never throws and never crashes, whatever the input: syntax
+// errors become diagnostics (codes E001-E013) and parsing resumes at the next ';', END_xxx or
+// declaration keyword, so one run reports many errors; the returned unit holds everything that
+// could be parsed. `nextNodeId` is a counter shared by the files of one compilation: every Expr
+// and Stmt gets a unique id (++nextNodeId). GlobalVarList::name is left empty (the caller knows
+// the file name). Nesting deeper than an internal bound (about 256 levels) is reported as E010
+// and ends the parse of that file.
+//
+// Conventions of the produced tree:
+// - Literals hold magnitudes; a sign is a Unary Neg around the literal: `-5`, `INT#-5` and
+//   `T#-5s` all become Neg(literal), with the type prefix on the literal.
+// - TimeLit.intValue is nanoseconds for TIME and LTIME alike; DateLit is seconds since 1970
+//   (DATE, DT; DT fractions of a second are dropped) or ms since midnight (TOD).
+// - Typed literals carry the canonical type name in typePrefix ("INT", "TIME_OF_DAY" is "TOD").
+//   BOOL#0/1 is a BoolLit, REAL#1 a RealLit.
+// - Parentheses leave no node. A syntax error inside an expression leaves a Name node with an
+//   empty text in its place.
+// - Binary, Unary, Index and Deref nodes are located at their operator; Member and BitAccess at
+//   the member name; Call at its callee; statements at their first token; POUs, methods,
+//   properties, types and variables at their name.
+CompilationUnit parseFile(uint32_t fileId, std::string_view text, Diagnostics& diags, NodeId& nextNodeId);
+
+}  // namespace virtcom::st

@@ -1,0 +1,80 @@
+#pragma once
+// The PLC runtime: cyclic tasks over one program image, with process images, RUN/STOP/FAULT
+// and per-task statistics, on an injected clock (virtual or paced to the wall clock).
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bytecode/module.hpp"
+#include "core/clock.hpp"
+#include "vm/machine.hpp"
+
+namespace virtcom::plc {
+
+enum class PlcState { Stop, Run, Fault };
+const char* stateName(PlcState s);
+
+struct TaskStats {
+  uint64_t scans = 0;
+  int64_t minExecNs = 0;  // wall time of one scan's execution (statistics only)
+  int64_t maxExecNs = 0;
+  int64_t totalExecNs = 0;
+  int64_t avgExecNs() const { return scans ? totalExecNs / static_cast<int64_t>(scans) : 0; }
+};
+
+struct RuntimeOptions {
+  uint64_t instructionBudget = 50'000'000;  // per task scan: backward jumps + calls (watchdog)
+};
+
+class Runtime {
+ public:
+  // `module` and `clock` must outlive the runtime.
+  Runtime(const bc::Module& module, Clock& clock, RuntimeOptions options = {});
+
+  // Loads initial values (cold start) and enters RUN. False if the init code faulted.
+  bool coldStart();
+  void start() { if (state_ == PlcState::Stop) state_ = PlcState::Run; }
+  void stop() { if (state_ == PlcState::Run) state_ = PlcState::Stop; }
+  PlcState state() const { return state_; }
+
+  // The greatest common divisor of all task intervals: the scheduler's tick.
+  int64_t baseTickNs() const { return baseTickNs_; }
+  // Advances the clock to the next tick and runs every task due then (by priority, then in
+  // declaration order): inputs -> PII, programs, PIQ -> outputs. Returns false once faulted or
+  // stopped (the clock still advances while stopped). Allocates nothing on the normal path.
+  bool tick();
+  // Virtual time of the next tick to run, in ns.
+  int64_t nextTickNs() const { return static_cast<int64_t>(tickIndex_) * baseTickNs_; }
+  uint64_t ticks() const { return tickIndex_; }
+
+  // The external side of the process image: written by devices/protocols, copied into the
+  // %I area at the start of each scan; the %Q area is copied out at its end.
+  uint8_t* inputImage() { return inputs_.data(); }
+  const uint8_t* outputImage() const { return outputs_.data(); }
+
+  const bc::Module& module() const { return module_; }
+  vm::Machine& machine() { return machine_; }
+  const vm::Machine& machine() const { return machine_; }
+  const TaskStats& stats(size_t task) const { return stats_[task]; }
+  // The fault report with source location and call stack, empty if not faulted.
+  std::string faultText() const;
+
+ private:
+  bool runTask(size_t task, int64_t nowNs);
+
+  const bc::Module& module_;
+  Clock& clock_;
+  RuntimeOptions options_;
+  vm::Machine machine_;
+  PlcState state_ = PlcState::Stop;
+  int64_t baseTickNs_ = 10'000'000;
+  uint64_t tickIndex_ = 0;
+  std::vector<size_t> taskOrder_;  // by priority
+  std::vector<uint8_t> inputs_;
+  std::vector<uint8_t> outputs_;
+  std::vector<TaskStats> stats_;
+  std::string faultTask_;
+};
+
+}  // namespace virtcom::plc

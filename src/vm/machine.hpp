@@ -1,0 +1,74 @@
+#pragma once
+// The bytecode interpreter: one memory image, a register stack and a call stack, all
+// allocated once by the constructor. Modules must have passed bc::verifyModule.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "bytecode/module.hpp"
+#include "core/source.hpp"
+
+namespace virtcom::vm {
+
+struct FaultInfo {
+  bc::FaultKind kind = bc::FaultKind::None;
+  uint32_t pc = 0;                  // pc of the faulting instruction
+  SourceLocation loc;               // module.locationOf(pc)
+  std::vector<uint32_t> callStack;  // pcs of the call sites, innermost first (preallocated)
+  // "division by zero at MAIN.st:12:5\n  called from FB_x.st:3:1 (in MAIN)"; allocates.
+  std::string describe(const bc::Module& m) const;
+};
+
+class Machine {
+ public:
+  // Keeps a reference to `m` (which must outlive the machine) and allocates memory
+  // (m.memorySize()), the register stack and the call stack. Memory starts zeroed: call
+  // coldStart() before running.
+  explicit Machine(const bc::Module& m);
+
+  // memory[0, staticSize) = initialImage, the rest zero, sp = staticSize; then runs m.initPou
+  // if set. Returns false if the init POU faulted (fault() says why).
+  bool coldStart();
+
+  uint8_t* memory() { return memory_.data(); }
+  const uint8_t* memory() const { return memory_.data(); }
+  uint32_t memorySize() const { return static_cast<uint32_t>(memory_.size()); }
+
+  void setTaskTimeNs(int64_t ns) { taskTimeNs_ = ns; }      // what SYSTIME returns
+  void setBudget(uint64_t budget) { budget_ = budget; }     // backward jumps + calls per run()
+  uint64_t budget() const { return budget_; }
+
+  // Runs POU `pou` (an index into m.pous; must be valid) with a fresh frame from its template
+  // at sp, r0 = fp and r1 = thisAddress, until its RET. Returns true on normal completion;
+  // false on a fault (fault() describes it; memory is left as is, sp is reset).
+  // Never allocates, never throws, never touches memory outside the image.
+  bool run(uint32_t pou, uint32_t thisAddress);
+
+  const FaultInfo& fault() const { return fault_; }
+  uint64_t instructionsExecuted() const { return executed_; }
+  // Current stack pointer (staticSize when idle).
+  uint32_t stackPointer() const { return sp_; }
+
+ private:
+  struct CallFrame {
+    uint32_t returnPc;
+    uint32_t base;  // caller's register window base
+    uint64_t fp;    // callee frame base (restores sp on RET)
+  };
+
+  bool execute(uint32_t pc, uint32_t startSp);
+  bool raise(bc::FaultKind kind, uint32_t pc, uint32_t depth, uint32_t startSp);
+
+  const bc::Module& m_;
+  std::vector<uint8_t> memory_;
+  std::vector<uint8_t> scratch_;
+  std::vector<uint64_t> regs_;
+  std::vector<CallFrame> frames_;
+  FaultInfo fault_;
+  uint32_t sp_ = 0;
+  int64_t taskTimeNs_ = 0;
+  uint64_t budget_ = 50'000'000;
+  uint64_t executed_ = 0;
+};
+
+}  // namespace virtcom::vm

@@ -10,7 +10,6 @@
 // generated from opcodes.def) and as a plain switch elsewhere.
 #if defined(__GNUC__) && !defined(VIRTCOM_VM_SWITCH_DISPATCH)
 #define VIRTCOM_VM_COMPUTED_GOTO 1
-#pragma GCC diagnostic ignored "-Wpedantic"  // labels as values
 #else
 #define VIRTCOM_VM_COMPUTED_GOTO 0
 #endif
@@ -66,14 +65,12 @@ bool Machine::run(uint32_t pou, uint32_t thisAddress) {
   return execute(p.codeStart, startSp);
 }
 
-// The interpreter. With computed goto, GCC's cross-jumping and GCSE would merge the per-opcode
-// dispatch sequences back into one shared indirect jump (measured: ~30 % slower), so they are
-// disabled for this function only.
-// Invariants from the verifier: pc stays inside code (every POU ends with an
+// The interpreter. Invariants from the verifier: pc stays inside code (every POU ends with an
 // unconditional transfer), register operands are inside the window, constant/POU/native
 // indices and absolute addresses are valid. Everything computed at run time is checked here.
-#if VIRTCOM_VM_COMPUTED_GOTO && !defined(__clang__)
-__attribute__((optimize("no-crossjumping", "no-gcse")))
+#if VIRTCOM_VM_COMPUTED_GOTO
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpedantic"  // labels as values
 #endif
 bool Machine::execute(uint32_t pc, const uint32_t startSp) {
   const Instr* const code = m_.code.data();
@@ -365,6 +362,9 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
 #undef VM_NEXT
 #undef VM_CASE
 }
+#if VIRTCOM_VM_COMPUTED_GOTO
+#pragma GCC diagnostic pop
+#endif
 
 std::string FaultInfo::describe(const bc::Module& m) const {
   auto where = [&m](uint32_t pc, SourceLocation loc) {

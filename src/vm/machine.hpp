@@ -38,9 +38,10 @@ class Machine {
   void setBudget(uint64_t budget) { budget_ = budget; }     // backward jumps + calls per run()
   uint64_t budget() const { return budget_; }
 
-  // Runs POU `pou` (an index into m.pous; must be valid) with a fresh frame from its template
-  // at sp, r0 = fp and r1 = thisAddress, until its RET. Returns true on normal completion;
-  // false on a fault (fault() describes it; memory is left as is, sp is reset).
+  // Runs POU `pou` (an index into m.pous) with a fresh frame from its template at sp,
+  // r0 = fp and r1 = thisAddress, until its RET. Returns true on normal completion; false on a
+  // fault (fault() describes it; memory is left as is, sp is reset). An invalid pou index is
+  // reported as an InvalidPointer fault at pc 0. The budget (watchdog) restarts on every run.
   // Never allocates, never throws, never touches memory outside the image.
   bool run(uint32_t pou, uint32_t thisAddress);
 

@@ -110,6 +110,9 @@ class PouCompiler {
   std::optional<Value> builtin(const std::string& upperName, const Expr& e, TypeId expected);
   Value callNative(bc::Native n, const std::vector<uint16_t>& argRegs, TypeId resultType);
   Value stringResult(bc::Native n, std::vector<uint16_t> args, TypeId stringType);
+  Value compare(const Expr& e, Value a, Value b);
+  Value arithmetic(const Expr& e, Value a, Value b);
+  TypeId commonType(Value& a, Value& b, SourceLocation loc, BinaryOp op);
 
   PouSym& pou() { return pou_; }
   CompileContext& ctx() { return ctx_; }
@@ -132,9 +135,7 @@ class PouCompiler {
   Value unary(const Expr& e, TypeId expected);
   Value binary(const Expr& e, TypeId expected);
   Value shortCircuit(const Expr& e);
-  Value compare(const Expr& e, Value a, Value b);
-  Value arithmetic(const Expr& e, Value a, Value b);
-  TypeId commonType(Value& a, Value& b, SourceLocation loc, BinaryOp op);
+  Value dateArithmetic(const Expr& e, Value a, Value b);
   std::optional<Place> namePlace(const Expr& e, bool forWrite);
   std::optional<Place> memberPlace(const Expr& e, bool forWrite);
   std::optional<Place> indexPlace(const Expr& e, bool forWrite);

@@ -338,8 +338,18 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
       ins.push_back(v);
     }
     if (common == kNoType) common = ins.front().type;
-    if (!t.isScalar(common)) {
-      diags().error(diag::E108, e.loc, name + " supports elementary types only");
+    bool strings = t.isString(common);
+    if (strings) {
+      // select the address of the chosen string; the result has the longest input's capacity
+      for (const auto& v : ins)
+        if (!t.isString(v.type)) {
+          diags().error(diag::E202, e.loc, name + " inputs must all be strings or all elementary values");
+          return Value::error();
+        } else if (t[v.type].stringLength > t[common].stringLength) {
+          common = v.type;
+        }
+    } else if (!t.isScalar(common)) {
+      diags().error(diag::E108, e.loc, name + " supports elementary types and strings only");
       return Value::error();
     }
     // MUX with an out-of-range selector takes the last input (documented in docs/st-dialect.md).
@@ -353,7 +363,7 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
         emit(Op::NE, c, kr, idx);
         skip = emitJump(Op::JNZ, c);
       }
-      Value v = coerce(ins[i], common, e.loc);
+      Value v = strings ? ins[i] : coerce(ins[i], common, e.loc);
       if (!v.ok()) return v;
       emit(Op::MOV, r, toReg(v), 0);
       if (!last) {
@@ -362,6 +372,14 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
       }
     }
     for (uint32_t d : done) patchJump(d, here());
+    if (strings) {
+      Value out;
+      out.kind = Value::Kind::Addr;
+      out.type = common;
+      out.place.type = common;
+      out.place.base = r;
+      return out;
+    }
     return regValue(common, r);
   }
   if (name == "SHL" || name == "SHR" || name == "ROL" || name == "ROR") {
@@ -468,7 +486,8 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
         diags().error(diag::E202, e.loc, name + " needs numbers");
         return Value::error();
       }
-    bool wide = t.isElem(mn.type, ElemType::Lreal) || t.isElem(v.type, ElemType::Lreal) || t.isElem(mx.type, ElemType::Lreal);
+    auto typedLreal = [&](const Value& x) { return !x.untyped && t.isElem(x.type, ElemType::Lreal); };
+    bool wide = typedLreal(mn) || typedLreal(v) || typedLreal(mx);
     TypeId rt = elemId(wide ? ElemType::Lreal : ElemType::Real);
     if (name == "SCALE_X" && expected != kNoType && t.isNumeric(expected)) rt = expected;
     TypeId lr = elemId(ElemType::Lreal);

@@ -515,7 +515,7 @@ std::optional<Value> PouCompiler::memberProperty(const Expr& e) {
 bool PouCompiler::propertySet(const Expr& target, const Expr& valueExpr, SourceLocation loc) {
   std::string key;
   Receiver recv;
-  PouSym* owner = pou_.kind == PouKind::FunctionBlock ? &pou_ : pou_.owner;
+  PouSym* owner = pou_.kind == PouKind::FunctionBlock || pou_.kind == PouKind::Program ? &pou_ : pou_.owner;
   if (target.kind == ExprKind::Name) {
     key = upper(target.text);
     if (pou_.localIndex.count(key) || !owner || !owner->properties.count(key)) return false;

@@ -394,9 +394,25 @@ Value PouCompiler::coerce(Value v, TypeId to, SourceLocation loc) {
     diags().error(diag::E202, loc, "expression has no value");
     return Value::error();
   }
+  if (t.isEnum(v.type) && t.isInteger(to)) {
+    // CODESYS converts an enumeration to its integer value implicitly (not the other way round).
+    Value base = v;
+    base.type = TypeTable::elem(t.storageElem(v.type));
+    return coerce(base, to, loc);
+  }
   if (t.isEnum(v.type) || t.isEnum(to)) {
     diags().error(diag::E202, loc, "type mismatch: cannot assign " + describe(t, v.type) + " to " + describe(t, to));
     return Value::error();
+  }
+  if (t.isPointer(to) && (t.isInteger(v.type) && t.bits(v.type) >= 32)) {
+    // CODESYS lets integers (0, addresses computed as LWORD) be assigned to pointers
+    Value out = v;
+    out.type = to;
+    return out.kind == Value::Kind::Const ? out : convert(regValue(TypeTable::elem(ElemType::Lword), toReg(v)), to, loc, true);
+  }
+  if (t.isInteger(to) && t.bits(to) >= 32 && t.isPointer(v.type)) {
+    Value out = regValue(TypeTable::elem(ElemType::Lword), toReg(v));
+    return convert(out, to, loc, true);
   }
   if ((t.isPointer(to) || t.isReference(to)) && (t.isPointer(v.type) || t.isReference(v.type))) {
     TypeId a = t[to].element, b = t[v.type].element;
@@ -429,6 +445,7 @@ Value PouCompiler::coerce(Value v, TypeId to, SourceLocation loc) {
 void PouCompiler::assignValue(const Place& target, Value v, SourceLocation loc) {
   TypeTable& t = types();
   TypeId tt = target.type;
+  if (tt == kNoType) return;
   if (t.isString(tt)) {
     if (!v.ok()) return;
     if (!t.isString(v.type) && !(v.kind == Value::Kind::Const && v.c.kind == ConstValue::Kind::String)) {

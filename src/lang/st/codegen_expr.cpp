@@ -80,8 +80,8 @@ Place PouCompiler::varPlace(const VarInfo& v, uint16_t instanceBase) {
     p.base = addr;
     p.offset = 0;
   }
-  if (types().isReference(v.type)) {
-    // REFERENCE TO: used like the referee.
+  if (types().isReference(v.type) && !model().interfaceByType.count(v.type)) {
+    // REFERENCE TO: used like the referee (interface variables stay references).
     Place slot = p;
     uint16_t addr = load(slot);
     p.type = types()[v.type].element;
@@ -178,7 +178,7 @@ std::optional<Place> PouCompiler::memberPlace(const Expr& e, bool forWrite) {
     p.offset += f.offset;
     p.var = nullptr;
     p.isInput = false;
-    if (types().isReference(f.type)) {
+    if (types().isReference(f.type) && !model().interfaceByType.count(f.type)) {
       uint16_t addr = load(p);
       p.type = types()[f.type].element;
       p.base = addr;
@@ -458,6 +458,15 @@ Value PouCompiler::expr(const Expr& e, TypeId expected) {
 }
 
 Value PouCompiler::unary(const Expr& e, TypeId expected) {
+  if (e.unaryOp == UnaryOp::Neg && e.lhs->kind == ExprKind::IntLit && !e.lhs->typePrefix.empty()) {
+    // INT#-32768: the range check applies to the negated value
+    ElemType et;
+    if (elemTypeByName(e.lhs->typePrefix, et)) {
+      Value v = constInt(TypeTable::elem(et), static_cast<int64_t>(0 - e.lhs->intValue));
+      if (!ctx_.declarer.checkRange(v.type, v.c, e.lhs->loc)) return Value::error();
+      return v;
+    }
+  }
   Value a = expr(*e.lhs, expected);
   if (!a.ok()) return a;
   TypeTable& t = types();
@@ -541,6 +550,9 @@ TypeId PouCompiler::commonType(Value& a, Value& b, SourceLocation loc, BinaryOp 
   TypeTable& t = types();
   (void)loc;
   (void)op;
+  auto realLiteral = [&](const Value& v) { return v.untyped && v.c.kind == ConstValue::Kind::Real; };
+  if (realLiteral(b) && t.isInteger(a.type)) return TypeTable::elem(ElemType::Real);
+  if (realLiteral(a) && t.isInteger(b.type)) return TypeTable::elem(ElemType::Real);
   if (a.untyped && !b.untyped) return b.type;
   if (b.untyped && !a.untyped) return a.type;
   if (a.type == b.type) return a.type;
@@ -641,6 +653,36 @@ Value PouCompiler::compare(const Expr& e, Value a, Value b) {
   return regValue(boolT, out);
 }
 
+// DATE/DT hold seconds and TOD milliseconds; TIME is milliseconds.
+Value PouCompiler::dateArithmetic(const Expr& e, Value a, Value b) {
+  TypeTable& t = types();
+  TypeId timeT = TypeTable::elem(ElemType::Time);
+  auto secondsBased = [&](TypeId x) { return t.isElem(x, ElemType::Date) || t.isElem(x, ElemType::Dt); };
+  bool sub = e.binaryOp == BinaryOp::Sub;
+  if (sub && a.type == b.type && t.isDateLike(a.type)) {
+    uint16_t x = toReg(a), y = toReg(b), r = allocReg();
+    emit(Op::SUB, r, x, y);
+    if (secondsBased(a.type)) emit(Op::MUL, r, r, loadConstInt(1000));
+    normalize(r, timeT);
+    return regValue(timeT, r);
+  }
+  if (t.isDateLike(a.type) && (t.isTimeLike(b.type) || b.untyped)) {
+    Value tb = coerce(b, timeT, e.rhs ? e.rhs->loc : e.loc);
+    if (!tb.ok()) return tb;
+    uint16_t x = toReg(a), y = toReg(tb), r = allocReg();
+    if (secondsBased(a.type)) {
+      uint16_t k = loadConstInt(1000), q = allocReg();
+      emit(Op::DIV_I, q, y, k);
+      y = q;
+    }
+    emit(sub ? Op::SUB : Op::ADD, r, x, y);
+    normalize(r, a.type);
+    return regValue(a.type, r);
+  }
+  diags().error(diag::E210, e.loc, "operator cannot combine " + describe(t, a.type) + " and " + describe(t, b.type));
+  return Value::error();
+}
+
 Value PouCompiler::arithmetic(const Expr& e, Value a, Value b) {
   TypeTable& t = types();
   BinaryOp op = e.binaryOp;
@@ -657,6 +699,8 @@ Value PouCompiler::arithmetic(const Expr& e, Value a, Value b) {
     }
     b = bb;
   }
+  if ((t.isDateLike(a.type) || t.isDateLike(b.type)) && (op == BinaryOp::Add || op == BinaryOp::Sub))
+    return dateArithmetic(e, a, b);
   if (op == BinaryOp::Power) {
     TypeId rt = t.isElem(a.type, ElemType::Lreal) || t.isElem(b.type, ElemType::Lreal) ? TypeTable::elem(ElemType::Lreal)
                                                                                       : TypeTable::elem(ElemType::Real);

@@ -39,7 +39,9 @@ void checkRecursion(ProgramModel& model, Diagnostics& diags) {
   std::function<void(PouSym*)> visit = [&](PouSym* p) {
     mark[p] = Grey;
     for (PouSym* c : p->callees) {
-      if (mark[c] == Grey) {
+      // CODESYS allows recursive METHODs (bounded by the stack at run time); FUNCTIONs and FBs may not recurse.
+      bool mayRecurse = c->kind == PouKind::Method || c->kind == PouKind::PropertyGet || c->kind == PouKind::PropertySet;
+      if (mark[c] == Grey && !mayRecurse) {
         diags.error(diag::E207, p->ast->loc, "'" + p->qualifiedName + "' calls '" + c->qualifiedName +
                                                  "' recursively; IEC 61131-3 does not allow recursion");
         continue;

@@ -378,6 +378,7 @@ void Declarer::applyInit(TypeId type, uint8_t* dst, const Expr& init, const PouS
       return;
     }
     size_t n = std::min<size_t>(v->s.size(), d.stringLength);
+    std::memset(dst, 0, d.size);
     if (types_.isWideString(type)) {
       for (size_t i = 0; i < n; ++i) {
         dst[2 * i] = static_cast<uint8_t>(v->s[i]);

@@ -162,6 +162,16 @@ TypeId Declarer::resolveNamed(const TypeSpec& spec, const PouSym* pou) {
     default:
       // Aliases (also of arrays, strings and pointers) name an existing type.
       id = resolveType(decl.spec, pou);
+      if (id != kNoType && decl.init) {
+        // An alias with its own initial value is a distinct type so its default can differ.
+        TypeId alias = types_.addNamed(types_[id].kind, decl.name);
+        bc::TypeDesc copy = types_[id];
+        copy.name = decl.name;
+        types_.mut(alias) = copy;
+        if (auto sub = model_.subranges.find(id); sub != model_.subranges.end()) model_.subranges[alias] = sub->second;
+        id = alias;
+        typeInits_[id] = decl.init.get();
+      }
       if (id != kNoType) model_.namedTypes[key] = id;
       break;
   }

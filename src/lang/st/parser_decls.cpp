@@ -276,8 +276,10 @@ void Parser::parseTypeBlock(std::vector<TypeDecl>& out, std::vector<Attribute> a
         diags_.error(diag::E006, decl.loc, "only a STRUCT type can EXTENDS another type");
     }
     if (accept(Tok::Assign)) decl.init = parseExpr();
-    bool isStruct = decl.spec.kind == TypeSpecKind::Struct;
-    if (!accept(Tok::Semicolon) && !isStruct) {
+    // Like CODESYS, no ';' is needed after END_STRUCT / END_UNION.
+    Tok previous = toks_[pos_ - 1].kind;
+    bool endedByKeyword = previous == Tok::KwEndStruct || previous == Tok::KwEndUnion || previous == Tok::Semicolon;
+    if (!accept(Tok::Semicolon) && !endedByKeyword) {
       errorExpected("';'", "after type declaration");
       if (!(atName() && peekTok(1).kind == Tok::Colon) && !at(Tok::KwEndType)) skipPastSemicolon(false);
     }

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <set>
 #include <sstream>
@@ -54,7 +56,7 @@ std::string show(const Expr* e) {
     case ExprKind::IntLit: return withPrefix(*e, std::to_string(e->intValue));
     case ExprKind::RealLit: return withPrefix(*e, "r" + showReal(e->realValue));
     case ExprKind::BoolLit: return withPrefix(*e, e->intValue ? "TRUE" : "FALSE");
-    case ExprKind::StringLit: return e->wide ? "\"" + e->text + "\"" : "'" + e->text + "'";
+    case ExprKind::StringLit: return withPrefix(*e, e->wide ? "\"" + e->text + "\"" : "'" + e->text + "'");
     case ExprKind::TimeLit: return e->typePrefix + "#" + std::to_string(e->intValue) + "ns";
     case ExprKind::DateLit: return e->typePrefix + "#" + std::to_string(e->intValue);
     case ExprKind::EnumLit: return e->typePrefix + "#" + e->text;
@@ -301,7 +303,7 @@ TEST(ParserExpr, TypedLiterals) {
   EXPECT_EQ(expr("Color#Red"), "Color#Red");
   EXPECT_EQ(diags("PROGRAM P x := INT#1.5; y := BOOL#2; END_PROGRAM"),
             "1:20 E013 '1.5' is not a valid INT literal\n"
-            "1:38 E013 '2' is not a valid BOOL literal\n");
+            "1:35 E013 '2' is not a valid BOOL literal\n");
 }
 
 TEST(ParserExpr, Initialisers) {
@@ -623,8 +625,8 @@ TEST(ParserPou, NodeIdsAreUniqueAndSharedAcrossFiles) {
   NodeId afterFirst = next;
   CompilationUnit b = parseFile(1, "PROGRAM B x := 1; END_PROGRAM", d, next);
   EXPECT_EQ(d.all().size(), 0u);
-  EXPECT_EQ(afterFirst, 9u);  // 2 statements, 7 expressions
-  EXPECT_EQ(next, 12u);
+  EXPECT_EQ(afterFirst, 10u);  // 3 statements, 7 expressions
+  EXPECT_EQ(next, 13u);
   std::set<NodeId> ids;
   std::function<void(const Expr*)> visit = [&](const Expr* e) {
     if (!e) return;
@@ -636,9 +638,37 @@ TEST(ParserPou, NodeIdsAreUniqueAndSharedAcrossFiles) {
   visit(a.pous[0]->body[0]->lhs.get());
   visit(a.pous[0]->body[0]->rhs.get());
   visit(ifStmt.branches[0].cond.get());
-  EXPECT_EQ(b.pous[0]->body[0]->id, 10u);
+  EXPECT_EQ(b.pous[0]->body[0]->lhs->id, 11u);
+  EXPECT_EQ(b.pous[0]->body[0]->id, 12u);
   EXPECT_EQ(b.fileId, 1u);
   EXPECT_EQ(b.pous[0]->body[0]->loc.fileId, 1u);
+}
+
+// The fuzz seed corpus doubles as a set of realistic programs: all but errors.st must be clean.
+TEST(ParserPou, SeedCorpusParsesCleanly) {
+  std::filesystem::path dir = std::filesystem::path(VIRTCOM_SOURCE_DIR) / "tests/fuzz/corpus/st";
+  size_t files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    std::ifstream in(entry.path(), std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    auto p = parse(text);
+    ++files;
+    if (entry.path().filename() == "errors.st") {
+      EXPECT_EQ(diagText(p->diags),
+                "3:2 E006 expected ';' after variable declaration, found 'END_VAR'\n"
+                "4:1 E006 expected ';' after statement, found 'y'\n"
+                "4:11 E006 expected an expression, found ';'\n"
+                "5:18 E006 expected ';' after statement, found 'END_IF'\n"
+                "6:1 E006 unexpected 'END_WHILE': there is no open WHILE\n"
+                "7:13 E006 expected ':' after CASE label, found 'x'\n");
+    } else {
+      EXPECT_EQ(diagText(p->diags), "") << entry.path();
+      EXPECT_FALSE(p->unit.pous.empty() && p->unit.types.empty() && p->unit.globals.empty() &&
+                   p->unit.configurations.empty())
+          << entry.path();
+    }
+  }
+  EXPECT_GE(files, 10u);
 }
 
 // ---- Errors and recovery ----------------------------------------------------------------------
@@ -685,13 +715,14 @@ TEST(ParserErrors, BadStatementsAndDeclarations) {
                 "5:7 E006 expected a type, found ';'\n"
                 "6:3 E007 expected 'END_VAR' to close 'VAR' at line 2, found 'IF'\n"
                 "6:6 E006 expected an expression, found ':'\n"
-                "7:1 E006 expected a statement or 'END_PROGRAM', found 'END_VAR'\n");
+                "7:1 E007 expected 'END_IF' to close 'IF' at line 6, found 'END_VAR'\n");
 }
 
 TEST(ParserErrors, TopLevelGarbageAndMisplacedMembers) {
-  EXPECT_EQ(diags("x := 1;\nMETHOD M END_METHOD\nPROGRAM P END_PROGRAM"),
-            "1:1 E006 expected PROGRAM, FUNCTION, FUNCTION_BLOCK, INTERFACE, TYPE, VAR_GLOBAL or CONFIGURATION, found 'x'\n"
-            "2:1 E006 'METHOD' is only allowed inside a FUNCTION_BLOCK, PROGRAM or INTERFACE\n");
+  EXPECT_EQ(diags("x := 1;\nPROGRAM P END_PROGRAM"),
+            "1:1 E006 expected PROGRAM, FUNCTION, FUNCTION_BLOCK, INTERFACE, TYPE, VAR_GLOBAL or CONFIGURATION, found 'x'\n");
+  EXPECT_EQ(diags("METHOD M END_METHOD\nPROGRAM P END_PROGRAM"),
+            "1:1 E006 'METHOD' is only allowed inside a FUNCTION_BLOCK, PROGRAM or INTERFACE\n");
   auto p = parse("x := 1;\nPROGRAM P END_PROGRAM");
   EXPECT_EQ(p->unit.pous.size(), 1u);
 }

@@ -1,0 +1,218 @@
+// Golden tests: every tests/golden/st/**.st file (or folder with main.st) is compiled and run as
+// its header comments say (see tests/golden/st/README.md). Diagnostics are also compared with a
+// `.diag` file next to the test; VIRTCOM_UPDATE_GOLDEN=1 rewrites those files for review.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "bytecode/module.hpp"
+#include "core/clock.hpp"
+#include "lang/st/compiler.hpp"
+#include "plc/runtime.hpp"
+
+namespace fs = std::filesystem;
+using namespace virtcom;
+
+namespace {
+
+const fs::path kRoot = fs::path(VIRTCOM_SOURCE_DIR) / "tests" / "golden" / "st";
+
+struct GoldenCase {
+  std::string name;                 // relative path, e.g. fbs/ton_done
+  std::vector<fs::path> files;      // compiled together
+  fs::path headerFile;              // file carrying the headers
+};
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<GoldenCase> discover() {
+  std::vector<GoldenCase> cases;
+  if (!fs::exists(kRoot)) return cases;
+  std::set<fs::path> folderTests;
+  for (const auto& entry : fs::recursive_directory_iterator(kRoot))
+    if (entry.is_regular_file() && entry.path().filename() == "main.st") folderTests.insert(entry.path().parent_path());
+  for (const auto& entry : fs::recursive_directory_iterator(kRoot)) {
+    if (!entry.is_regular_file() || entry.path().extension() != ".st") continue;
+    fs::path dir = entry.path().parent_path();
+    if (folderTests.count(dir)) continue;
+    GoldenCase c;
+    c.name = fs::relative(entry.path(), kRoot).replace_extension("").string();
+    c.files = {entry.path()};
+    c.headerFile = entry.path();
+    cases.push_back(c);
+  }
+  for (const auto& dir : folderTests) {
+    GoldenCase c;
+    c.name = fs::relative(dir, kRoot).string();
+    for (const auto& entry : fs::directory_iterator(dir))
+      if (entry.path().extension() == ".st") c.files.push_back(entry.path());
+    std::sort(c.files.begin(), c.files.end());
+    c.headerFile = dir / "main.st";
+    cases.push_back(c);
+  }
+  std::sort(cases.begin(), cases.end(), [](const GoldenCase& a, const GoldenCase& b) { return a.name < b.name; });
+  return cases;
+}
+
+struct Header {
+  int64_t cycles = 1;
+  std::string cycleTime;
+  std::vector<std::string> sets;
+  std::vector<std::pair<std::string, std::string>> checks;
+  std::string fault;
+  std::set<uint32_t> errorLines, warningLines;
+  bool expectErrors = false;
+};
+
+std::string trim(std::string s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+  size_t i = 0;
+  while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
+  return s.substr(i);
+}
+
+Header parseHeader(const std::string& text) {
+  Header h;
+  std::stringstream ss(text);
+  std::string line;
+  while (std::getline(ss, line)) {
+    line = trim(line);
+    auto take = [&](const char* tag, std::string& rest) {
+      std::string t = std::string("// ") + tag;
+      if (line.rfind(t, 0) != 0) return false;
+      rest = trim(line.substr(t.size()));
+      return true;
+    };
+    std::string rest;
+    if (take("RUN:", rest)) {
+      std::stringstream rs(rest);
+      std::string kv;
+      while (rs >> kv) {
+        if (kv.rfind("cycles=", 0) == 0) h.cycles = std::stoll(kv.substr(7));
+        else if (kv.rfind("cycle-time=", 0) == 0) h.cycleTime = kv.substr(11);
+        else if (kv.rfind("set=", 0) == 0) h.sets.push_back(kv.substr(4));
+      }
+    } else if (take("CHECK-FAULT:", rest)) {
+      h.fault = rest;
+    } else if (take("CHECK:", rest)) {
+      auto eq = rest.find(" = ");
+      if (eq != std::string::npos) h.checks.push_back({trim(rest.substr(0, eq)), trim(rest.substr(eq + 3))});
+    } else if (take("EXPECT-ERROR:", rest)) {
+      h.expectErrors = true;
+      h.errorLines.insert(static_cast<uint32_t>(std::stoul(rest)));
+    } else if (take("EXPECT-WARNING:", rest)) {
+      h.warningLines.insert(static_cast<uint32_t>(std::stoul(rest)));
+    }
+  }
+  return h;
+}
+
+int64_t parseCycleTimeNs(const std::string& s) {
+  if (s.empty()) return 10'000'000;
+  size_t i = 0;
+  while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i;
+  int64_t n = std::stoll(s.substr(0, i));
+  std::string unit = s.substr(i);
+  if (unit == "ms") return n * 1'000'000;
+  if (unit == "us") return n * 1'000;
+  if (unit == "s") return n * 1'000'000'000;
+  return n * 1'000'000;
+}
+
+void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.name; }
+
+class Golden : public ::testing::TestWithParam<GoldenCase> {};
+
+TEST_P(Golden, Run) {
+  const GoldenCase& c = GetParam();
+  Header h = parseHeader(readFile(c.headerFile));
+  std::vector<st::SourceInput> inputs;
+  for (const auto& f : c.files) inputs.push_back({fs::relative(f, kRoot).string(), readFile(f)});
+  SourceManager sources;
+  Diagnostics diags;
+  auto module = st::compileProgram(inputs, sources, diags);
+  std::string rendered = diags.render(sources);
+
+  uint32_t headerFileId = 0;
+  for (uint32_t i = 0; i < sources.fileCount(); ++i)
+    if (sources.path(i) == fs::relative(c.headerFile, kRoot).string()) headerFileId = i;
+  std::set<uint32_t> errors, warnings;
+  for (const auto& d : diags.all()) {
+    if (d.loc.fileId != headerFileId) continue;
+    if (d.severity == Severity::Error) errors.insert(d.loc.line);
+    if (d.severity == Severity::Warning) warnings.insert(d.loc.line);
+  }
+  if (h.expectErrors || !h.warningLines.empty()) {
+    fs::path diagFile = fs::path(c.headerFile).replace_extension(".diag");
+    if (c.headerFile.filename() == "main.st") diagFile = c.headerFile.parent_path() / "expected.diag";
+    if (std::getenv("VIRTCOM_UPDATE_GOLDEN")) {
+      std::ofstream(diagFile, std::ios::binary) << rendered;
+    } else if (fs::exists(diagFile)) {
+      EXPECT_EQ(readFile(diagFile), rendered) << "diagnostics differ from " << diagFile
+                                              << " (VIRTCOM_UPDATE_GOLDEN=1 rewrites it)";
+    } else {
+      ADD_FAILURE() << "missing golden diagnostics " << diagFile << "; run with VIRTCOM_UPDATE_GOLDEN=1 and review it";
+    }
+  }
+  if (h.expectErrors) {
+    EXPECT_TRUE(module == nullptr) << "expected compile errors";
+    EXPECT_EQ(errors, h.errorLines) << rendered;
+    return;
+  }
+  ASSERT_NE(module, nullptr) << rendered;
+  EXPECT_EQ(warnings, h.warningLines) << rendered;
+
+  for (auto& t : module->tasks)
+    if (t.name == "MainTask" || t.name == "__DEFAULT") t.intervalNs = parseCycleTimeNs(h.cycleTime);
+  VirtualClock clock;
+  plc::RuntimeOptions options;
+  options.instructionBudget = 2'000'000;
+  plc::Runtime runtime(*module, clock, options);
+  ASSERT_TRUE(runtime.coldStart()) << runtime.faultText();
+  for (const auto& s : h.sets) {
+    auto eq = s.find('=');
+    auto ref = bc::resolveVariable(*module, s.substr(0, eq));
+    ASSERT_TRUE(ref) << "unknown variable in set=" << s;
+    ASSERT_EQ(bc::writeValueFromText(*module, *ref, s.substr(eq + 1), runtime.machine().memory()), "");
+  }
+  bool faulted = false;
+  for (int64_t k = 0; k < h.cycles; ++k)
+    if (!runtime.tick()) {
+      faulted = true;
+      break;
+    }
+  if (!h.fault.empty()) {
+    ASSERT_TRUE(faulted) << "expected a runtime fault containing '" << h.fault << "'";
+    EXPECT_NE(runtime.faultText().find(h.fault), std::string::npos) << runtime.faultText();
+  } else {
+    ASSERT_FALSE(faulted) << runtime.faultText();
+  }
+  for (const auto& [name, expected] : h.checks) {
+    auto ref = bc::resolveVariable(*module, name);
+    if (!ref) {
+      ADD_FAILURE() << "unknown variable " << name;
+      continue;
+    }
+    EXPECT_EQ(bc::formatValue(*module, *ref, runtime.machine().memory()), expected) << name;
+  }
+}
+
+std::string caseName(const ::testing::TestParamInfo<GoldenCase>& info) {
+  std::string n = info.param.name;
+  for (auto& ch : n)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return n;
+}
+
+INSTANTIATE_TEST_SUITE_P(St, Golden, ::testing::ValuesIn(discover()), caseName);
+
+}  // namespace

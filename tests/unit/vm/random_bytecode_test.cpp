@@ -1,0 +1,83 @@
+// Robustness: random bytecode either fails verification or runs to completion / a fault
+// without touching memory outside the image (ASan/UBSan in the test build catch the rest).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "bytecode/verifier.hpp"
+#include "test_module_builder.hpp"
+#include "vm/machine.hpp"
+
+namespace virtcom {
+namespace {
+
+using bc::Op;
+using bc::WideOperand;
+
+bc::Instr randomInstr(std::mt19937& rng, uint16_t numRegs, uint32_t pc, uint32_t start, uint32_t size) {
+  auto pick = [&rng](uint32_t lo, uint32_t hi) { return std::uniform_int_distribution<uint32_t>(lo, hi)(rng); };
+  const auto op = static_cast<Op>(pick(0, static_cast<uint32_t>(Op::Count_) - 1));
+  const auto rare = [&] { return pick(0, 99) == 0; };  // occasionally an invalid operand
+  const auto reg = [&] { return static_cast<uint16_t>(pick(0, numRegs - 1) + (rare() ? 1 : 0)); };
+  if (bc::opFormat(op) == bc::Format::ABC) {
+    uint16_t c = pick(0, 3) == 0 ? static_cast<uint16_t>(pick(0, 0xffff)) : static_cast<uint16_t>(pick(0, 70));
+    switch (bc::operandRoles(op).c) {
+      case bc::Operand::Reg: c = reg(); break;
+      case bc::Operand::BitIndex: c = static_cast<uint16_t>(pick(0, 7) + (rare() ? 8 : 0)); break;
+      case bc::Operand::BitCount: c = static_cast<uint16_t>(pick(1, 64) + (rare() ? 64 : 0)); break;
+      default: break;
+    }
+    return bc::Instr::abc(op, reg(), reg(), c);
+  }
+  uint32_t bx = 0;
+  switch (bc::operandRoles(op).bx) {
+    case WideOperand::Abs: bx = rare() ? pick(0, 270) : pick(16, 248); break;
+    case WideOperand::Pou: bx = pick(0, 2) + (rare() ? 1 : 0); break;
+    case WideOperand::Const: bx = pick(0, 2) + (rare() ? 1 : 0); break;
+    case WideOperand::Native: bx = pick(0, static_cast<uint32_t>(bc::Native::Count_) - 1) + (rare() ? 1 : 0); break;
+    case WideOperand::Jump: {
+      const int32_t target = static_cast<int32_t>(pick(start, start + size)) - 1;
+      return bc::Instr::asbx(op, reg(), target - static_cast<int32_t>(pc) - 1);
+    }
+    case WideOperand::Fault: bx = pick(1, 8) + (rare() ? 1 : 0); break;
+    default: bx = pick(0, 3) == 0 ? pick(0, 0xffffffffu) : pick(0, 300); break;
+  }
+  return bc::Instr::abx(op, reg(), bx);
+}
+
+TEST(RandomBytecode, VerifiedModulesRunSafely) {
+  std::mt19937 rng(20240611);
+  int verified = 0, completed = 0;
+  for (int round = 0; round < 20000; ++round) {
+    test::ModuleBuilder b(256);
+    b.m.stackSize = 512;
+    b.m.maxCallDepth = 8;
+    b.m.registerStackSize = 64;
+    for (int k = 0; k < 3; ++k) b.constant(std::uniform_int_distribution<uint64_t>()(rng) % 600);
+    for (size_t i = 16; i < b.m.initialImage.size(); ++i) b.m.initialImage[i] = static_cast<uint8_t>(rng() % 4 ? rng() : 0);
+    for (int p = 0; p < 3; ++p) {
+      const auto regs = static_cast<uint16_t>(2 + rng() % 10);
+      const uint32_t size = 2 + rng() % 12;
+      b.beginPou("P" + std::to_string(p), regs, rng() % 64, 16 + rng() % 128);
+      const uint32_t start = b.pc();
+      for (uint32_t i = 0; i + 1 < size; ++i) b.emit(randomInstr(rng, regs, b.pc(), start, size), 1 + i);
+      b.emit(rng() % 8 ? bc::Instr::abc(Op::RET, 0, 0, 0) : randomInstr(rng, regs, b.pc(), start, size));
+    }
+    if (!bc::verifyModule(b.m).empty()) continue;
+    ++verified;
+    vm::Machine vm(b.m);
+    vm.setBudget(200);
+    vm.coldStart();
+    for (uint32_t p = 0; p < 3; ++p) {
+      const bool ok = vm.run(p, static_cast<uint32_t>(rng() % 300));
+      completed += ok;
+      if (!ok) (void)vm.fault().describe(b.m);
+      EXPECT_EQ(vm.stackPointer(), b.m.staticSize);
+    }
+  }
+  EXPECT_GT(verified, 100);
+  EXPECT_GT(completed, 50);
+}
+
+}  // namespace
+}  // namespace virtcom

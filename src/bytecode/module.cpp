@@ -143,7 +143,7 @@ bool applyMember(const Module& m, Cursor& cur, std::string_view& rest) {
     for (const Field& f : t.fields) {
       if (!equalsNoCase(f.name, name)) continue;
       cur.type = f.type;
-      cur.address += f.offset;
+      cur.address = f.absolute ? f.offset : cur.address + f.offset;
       if (f.bit >= 0) {
         cur.address += static_cast<uint64_t>(f.bit) / 8;
         cur.bit = f.bit % 8;

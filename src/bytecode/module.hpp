@@ -40,6 +40,7 @@ struct Field {
   int8_t bit = -1;         // >= 0: a BOOL packed as one bit (located %IX/%QX variables)
   bool hidden = false;     // internal state (e.g. a timer's start time): not listed, still addressable
   bool readOnly = false;   // CONSTANT, or {attribute 'ads_readonly'}
+  bool absolute = false;   // offset is a memory address: a located (AT %IX0.0) member of a POU
   std::string section;     // "VAR_INPUT", "VAR_OUTPUT", "VAR", ... for tools that show interfaces
 };
 

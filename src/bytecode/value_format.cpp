@@ -162,7 +162,7 @@ class Formatter {
       if (!first) out_ += ", ";
       first = false;
       out_ += f.name + " := ";
-      const uint64_t at = address + f.offset + (f.bit >= 0 ? f.bit / 8 : 0);
+      const uint64_t at = (f.absolute ? 0 : address) + f.offset + (f.bit >= 0 ? f.bit / 8 : 0);
       value(f.type, at, f.bit >= 0 ? f.bit % 8 : -1);
     }
     out_ += ')';

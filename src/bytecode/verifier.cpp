@@ -161,7 +161,8 @@ class Verifier {
           for (const Field& f : t.fields) {
             if (!validType(f.type)) return fail(where + "field '" + f.name + "' has an invalid type");
             const uint64_t size = f.bit >= 0 ? (f.bit / 8) + 1 : m_.types[f.type].size;
-            if (uint64_t{f.offset} + size > t.size) return fail(where + "field '" + f.name + "' outside the struct");
+            if (f.absolute ? !inStatic(f.offset, size) : uint64_t{f.offset} + size > t.size)
+              return fail(where + "field '" + f.name + "' outside the " + (f.absolute ? "static memory" : "struct"));
           }
           break;
         case TypeKind::Enum:

@@ -149,6 +149,10 @@ class PouCompiler {
     bool exact = false;                  // a value instance or SUPER^: no dynamic dispatch
   };
   std::vector<const VarInfo*> fbParams(PouSym& fb);
+ public:
+  // VAR_IN_OUT and REFERENCE TO inputs receive the address of the actual variable.
+  bool passesAddress(const VarInfo& p);
+ private:
   bool bindArgs(const Expr& call, const std::vector<const VarInfo*>& params, PouSym* callee, std::vector<Binding>& out);
   void evaluateInputs(const std::vector<const VarInfo*>& params, std::vector<Binding>& bindings);
   uint16_t emitFrameCall(PouSym& callee, uint16_t thisReg, const std::vector<Binding>& bindings);

@@ -516,7 +516,7 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
     uint16_t a = addressOf(*p);
     uint16_t r = allocReg();
     emit(Op::MOV, r, a, 0);
-    return regValue(name == "ADR" ? t.pointerTo(p->type) : t.referenceTo(p->type), r);
+    return regValue(t.pointerTo(p->type), r);
   }
   if (name == "SIZEOF") {
     if (!arity(1, 1)) return Value::error();

@@ -29,6 +29,11 @@ static std::string canonicalParam(const PouSym* callee, const std::string& upper
   return upperName;
 }
 
+bool PouCompiler::passesAddress(const VarInfo& p) {
+  return p.byReference || (p.section == VarSection::Input && types().isReference(p.type) &&
+                           !model().interfaceByType.count(p.type));
+}
+
 std::vector<const VarInfo*> PouCompiler::fbParams(PouSym& fb) {
   std::vector<const VarInfo*> out;
   for (const auto& m : fb.members)
@@ -43,6 +48,12 @@ bool PouCompiler::bindArgs(const Expr& call, const std::vector<const VarInfo*>& 
   size_t positional = 0;
   bool ok = true;
   std::string calleeName = callee ? callee->qualifiedName : "?";
+  bool anyNamed = false, anyPositional = false;
+  for (const auto& arg : call.args) (arg.name.empty() ? anyPositional : anyNamed) = true;
+  if (anyNamed && anyPositional) {
+    diags().error(diag::E203, call.loc, "the call of '" + calleeName + "' mixes positional and named arguments; use one form");
+    return false;
+  }
   for (const auto& arg : call.args) {
     size_t index = params.size();
     if (arg.name.empty()) {
@@ -86,6 +97,14 @@ bool PouCompiler::bindArgs(const Expr& call, const std::vector<const VarInfo*>& 
     // remember which CallArg feeds the binding (same order as call.args)
     out.back().output = &arg;
   }
+  bool isFunction = callee && callee->kind == PouKind::Function;
+  for (size_t i = 0; i < params.size(); ++i)
+    if (isFunction && anyPositional && params[i]->section == VarSection::Input && !used.count(i) &&
+        !(params[i]->decl && params[i]->decl->init)) {
+      diags().error(diag::E203, call.loc, "too few arguments for '" + calleeName + "': input '" + params[i]->name + "' is missing");
+      ok = false;
+      break;
+    }
   for (size_t i = 0; i < params.size(); ++i)
     if (params[i]->section == VarSection::InOut && !used.count(i) && callee && callee->kind != PouKind::FunctionBlock) {
       diags().error(diag::E203, call.loc, "VAR_IN_OUT '" + params[i]->name + "' of '" + calleeName + "' must be connected");
@@ -100,12 +119,18 @@ void PouCompiler::evaluateInputs(const std::vector<const VarInfo*>& params, std:
     const CallArg& arg = *b.output;
     if (p.section == VarSection::Output) continue;
     if (!arg.value) continue;
-    if (p.section == VarSection::InOut) {
+    if (passesAddress(p)) {
       auto target = place(*arg.value, true);
       if (!target) continue;
-      if (target->type != p.type && !(types().isString(target->type) && types().isString(p.type))) {
-        diags().error(diag::E202, arg.loc, "VAR_IN_OUT '" + p.name + "' needs a " + describe(types(), p.type) +
+      TypeId wanted = p.byReference ? p.type : types()[p.type].element;
+      if (target->type != wanted && !(types().isString(target->type) && types().isString(wanted))) {
+        diags().error(diag::E202, arg.loc, "'" + p.name + "' needs a " + describe(types(), wanted) +
                                                " variable, found " + describe(types(), target->type));
+        continue;
+      }
+      if (target->constant) {
+        diags().error(diag::E204, arg.loc, "the CONSTANT '" + (target->var ? target->var->name : std::string("value")) +
+                                               "' cannot be passed to '" + p.name + "', which may write it");
         continue;
       }
       if (target->bit >= 0 || target->valueBit >= 0) {
@@ -116,7 +141,7 @@ void PouCompiler::evaluateInputs(const std::vector<const VarInfo*>& params, std:
       continue;
     }
     Value v = expr(*arg.value, p.type);
-    if (v.ok() && types().isScalar(p.type)) v = coerce(v, p.type, arg.loc);
+    if (v.ok() && types().isScalar(p.type) && !model().interfaceByType.count(p.type)) v = coerce(v, p.type, arg.loc);
     else if (v.ok() && v.kind == Value::Kind::Reg && !types().isScalar(v.type)) v.kind = Value::Kind::Reg;
     b.value = v;
   }
@@ -197,7 +222,8 @@ static void storeInputs(PouCompiler& pc, const std::vector<const VarInfo*>& para
     const VarInfo& p = *params[b.param];
     if (p.section == VarSection::Output) continue;
     Place slot = frameSlot(p, base, pc.types());
-    if (p.section == VarSection::InOut) {
+    if (pc.passesAddress(p)) {
+      slot.type = TypeTable::elem(ElemType::Lword);
       if (b.address != 0xffff) pc.store(slot, b.address);
       continue;
     }

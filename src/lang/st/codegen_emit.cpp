@@ -1,5 +1,6 @@
 // Code generation: instruction emission, registers, loads/stores, conversions and assignment.
 #include <cmath>
+#include <functional>
 #include <cstring>
 
 #include "lang/st/codegen.hpp"
@@ -416,7 +417,14 @@ Value PouCompiler::coerce(Value v, TypeId to, SourceLocation loc) {
   }
   if ((t.isPointer(to) || t.isReference(to)) && (t.isPointer(v.type) || t.isReference(v.type))) {
     TypeId a = t[to].element, b = t[v.type].element;
-    if (a == b || a == kNoType || b == kNoType || t.isElem(a, ElemType::Byte)) {
+    auto derived = [&]() {
+      auto from = model().fbByType.find(b), base = model().fbByType.find(a);
+      if (from == model().fbByType.end() || base == model().fbByType.end()) return false;
+      for (const PouSym* c = from->second; c; c = c->base)
+        if (c == base->second) return true;
+      return false;
+    };
+    if (a == b || a == kNoType || b == kNoType || t.isElem(a, ElemType::Byte) || derived()) {
       Value out = v;
       out.type = to;
       return out;
@@ -456,6 +464,35 @@ void PouCompiler::assignValue(const Place& target, Value v, SourceLocation loc) 
     uint16_t cap = loadConstInt(t[tt].stringLength);
     uint16_t src = toReg(v);
     (void)callNative(bc::Native::STR_ASSIGN, {dst, cap, src}, TypeTable::elem(ElemType::Dint));
+    return;
+  }
+  if (auto itf = model().interfaceByType.find(tt); itf != model().interfaceByType.end()) {
+    // An interface variable holds the address of an instance whose class implements it.
+    if (!v.ok()) return;
+    if (v.type == tt) {
+      store(target, toReg(v));
+      return;
+    }
+    auto fb = model().fbByType.find(v.type);
+    bool implements = false;
+    std::string name = upper(itf->second->name);
+    std::function<bool(const std::string&, int)> matches = [&](const std::string& i, int depth) {
+      if (i == name) return true;
+      auto it = model().interfaces.find(i);
+      if (depth > 16 || it == model().interfaces.end()) return false;
+      for (const auto& b : it->second.bases)
+        if (matches(b, depth + 1)) return true;
+      return false;
+    };
+    if (fb != model().fbByType.end() && v.kind == Value::Kind::Addr)
+      for (const PouSym* c = fb->second; c && !implements; c = c->base)
+        for (const auto& i : c->interfaces)
+          if (matches(i, 0)) implements = true;
+    if (!implements) {
+      diags().error(diag::E202, loc, describe(t, v.type) + " does not implement " + itf->second->name);
+      return;
+    }
+    store(target, addressOf(v.place));
     return;
   }
   if (!t.isScalar(tt)) {

@@ -169,6 +169,12 @@ std::optional<Place> PouCompiler::memberPlace(const Expr& e, bool forWrite) {
       mp.offset = p.offset + m->offset;
     }
     mp.isInput = false;  // writing an FB input from outside is how FBs are parameterised
+    bool viaThis = lhs.kind == ExprKind::Deref && lhs.lhs && (lhs.lhs->kind == ExprKind::This || lhs.lhs->kind == ExprKind::Super);
+    if (forWrite && m->section == VarSection::Output && !viaThis) {
+      diags().error(diag::E216, e.loc, "'" + e.text + "' is an output of '" + fb->second->name +
+                                           "' and can only be read from outside the instance");
+      return std::nullopt;
+    }
     return mp;
   }
   for (const auto& f : d.fields) {
@@ -384,6 +390,7 @@ Value PouCompiler::expr(const Expr& e, TypeId expected) {
         if (types().isScalar(p->type)) return regValue(p->type, load(*p));
         return v;
       }
+      if (key == "NULL") return constInt(types().pointerTo(kNoType), 0);
       TypeId enumType = kNoType;
       if (auto c = ctx_.declarer.bareEnumerator(e.text, enumType)) {
         // Prefer the expected enum when the name exists in several enumerations.

@@ -112,28 +112,6 @@ void PouCompiler::assignment(const Stmt& s) {
     patchJump(skip, here());
     return;
   }
-  // Pointer/reference/interface assignment keeps the address; everything else copies the value.
-  if (auto itf = model().interfaceByType.find(target->type); itf != model().interfaceByType.end()) {
-    auto src = place(*s.rhs, false);
-    if (!src) return;
-    if (src->type == target->type) {
-      store(*target, load(*src));
-      return;
-    }
-    auto fb = model().fbByType.find(src->type);
-    std::string itfName = upper(itf->second->name);
-    bool ok = false;
-    if (fb != model().fbByType.end())
-      for (PouSym* c = fb->second; c && !ok; c = c->base)
-        for (const auto& i : c->interfaces)
-          if (i == itfName) ok = true;
-    if (!ok) {
-      diags().error(diag::E202, s.rhs->loc, describe(types(), src->type) + " does not implement " + itf->second->name);
-      return;
-    }
-    store(*target, addressOf(*src));
-    return;
-  }
   assign(*target, *s.rhs, s.rhs->loc);
 }
 

@@ -39,6 +39,11 @@ class Declarer {
 
  private:
   void registerNames();
+  // Reports variables that cannot exist: instances of ABSTRACT FBs, names of standard functions.
+  void checkVariable(const VarInfo& v);
+  void allocateProcessAreas();
+  // Global CONSTANTs are needed (array bounds, string lengths) before globals are laid out.
+  void collectGlobalConstants();
   void registerPou(const Pou& pou, uint32_t fileId);
   void declareTypes();
   void fillTypeDecl(const TypeDecl& decl, TypeId id);
@@ -78,7 +83,7 @@ class Declarer {
   std::map<TypeId, const Expr*> typeInits_;                // TYPE x : T := init
   std::map<TypeId, std::vector<uint8_t>> defaults_;
   std::map<std::string, std::vector<std::pair<TypeId, int64_t>>> enumerators_;  // upper name -> (enum, value)
-  std::set<std::string> constantsInProgress_;
+  std::map<std::string, ConstValue> globalConstants_;  // "X" and "GVL.X"
   uint32_t nextClassId_ = 1;
 };
 

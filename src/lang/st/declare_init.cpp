@@ -83,10 +83,35 @@ void Declarer::placeLocated(VarInfo& v, const std::string& address) {
   v.bit = a->bit;
 }
 
-void Declarer::declareGlobals() {
+void Declarer::allocateProcessAreas() {
   module_.inputs = {image_.allocate(kInputAreaSize, 8), kInputAreaSize};
   module_.outputs = {image_.allocate(kOutputAreaSize, 8), kOutputAreaSize};
   module_.memory = {image_.allocate(kMemoryAreaSize, 8), kMemoryAreaSize};
+}
+
+void Declarer::collectGlobalConstants() {
+  auto collect = [&](const VarBlock& block, const std::string& listName) {
+    if (!block.constant) return;
+    for (const auto& decl : block.vars) {
+      if (!decl.init) continue;
+      auto v = constant(*decl.init, nullptr, true);
+      if (!v) continue;
+      for (const auto& n : decl.names) {
+        globalConstants_[upper(n.name)] = *v;
+        if (!listName.empty()) globalConstants_[upper(listName) + "." + upper(n.name)] = *v;
+      }
+    }
+  };
+  for (int pass = 0; pass < 2; ++pass)  // a second pass resolves constants defined by later ones
+    for (const auto& unit : units_) {
+      for (const auto& gvl : unit.globals)
+        for (const auto& block : gvl.blocks) collect(block, gvl.name);
+      for (const auto& cfg : unit.configurations)
+        for (const auto& block : cfg.globals) collect(block, "");
+    }
+}
+
+void Declarer::declareGlobals() {
   auto declareBlock = [&](const VarBlock& block, const std::string& listName) {
     for (const auto& decl : block.vars) {
       TypeId type = resolveType(decl.type, nullptr);
@@ -100,6 +125,7 @@ void Declarer::declareGlobals() {
         GlobalVar g;
         g.listName = listName;
         g.var = makeVar(n, decl, type, VarSection::Global, block);
+        checkVariable(g.var);
         if (!decl.location.empty()) {
           placeLocated(g.var, decl.location);
         } else {

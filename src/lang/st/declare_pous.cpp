@@ -5,6 +5,7 @@
 
 #include "lang/st/declare.hpp"
 #include "lang/st/diagnostic_codes.hpp"
+#include "lang/st/standard_names.hpp"
 
 namespace virtcom::st {
 
@@ -19,6 +20,13 @@ static bool hasAttribute(const std::vector<Attribute>& attrs, const char* name) 
   for (const auto& a : attrs)
     if (upper(a.name) == name) return true;
   return false;
+}
+
+void Declarer::checkVariable(const VarInfo& v) {
+  if (isStandardFunctionName(upper(v.name)))
+    diags_.error(diag::E119, v.loc, "'" + v.name + "' is the name of a standard function and cannot name a variable");
+  if (auto fb = model_.fbByType.find(v.type); fb != model_.fbByType.end() && fb->second->isAbstract)
+    diags_.error(diag::E215, v.loc, "'" + fb->second->name + "' is ABSTRACT and cannot be instantiated; declare an instance of a FUNCTION_BLOCK that EXTENDS it");
 }
 
 void Declarer::linkInheritance() {
@@ -88,6 +96,14 @@ void Declarer::addMembers(PouSym& pou, const Pou& ast, bool methodInst) {
         }
         if (!decl.location.empty()) {
           placeLocated(v, decl.location);
+          bc::Field f;
+          f.name = v.name;
+          f.type = type;
+          f.offset = v.offset;
+          f.bit = v.bit;
+          f.absolute = true;
+          f.section = "VAR";
+          types_.mut(target.instanceType).fields.push_back(std::move(f));
         } else {
           v.storage = Storage::Instance;
           uint32_t size = v.byReference ? 8 : types_[type].size;
@@ -109,6 +125,7 @@ void Declarer::addMembers(PouSym& pou, const Pou& ast, bool methodInst) {
         }
         if (block.constant && types_.isScalar(type) && decl.init)
           if (auto c = constant(*decl.init, scope, true)) v.constValue = *c;
+        checkVariable(v);
         target.memberIndex[key] = target.members.size();
         target.members.push_back(std::move(v));
       }
@@ -229,6 +246,7 @@ void Declarer::layoutFrame(PouSym& pou) {
         VarInfo v = makeVar(n, decl, type, block.section, block);
         if (block.constant && types_.isScalar(type) && decl.init)
           if (auto c = constant(*decl.init, &pou, true)) v.constValue = *c;
+        checkVariable(v);
         uint32_t slot = v.byReference ? 8 : types_[type].size;
         uint32_t align = v.byReference ? 8 : std::min<uint32_t>(types_[type].align, 8);
         addLocal(std::move(v), slot, align);

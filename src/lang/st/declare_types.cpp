@@ -20,6 +20,8 @@ Declarer::Declarer(const std::vector<CompilationUnit>& units, Diagnostics& diags
 
 void Declarer::run() {
   registerNames();
+  allocateProcessAreas();
+  collectGlobalConstants();
   declareTypes();
   declareInterfaces();
   linkInheritance();
@@ -359,6 +361,7 @@ std::optional<ConstValue> Declarer::lookupConstName(const Expr& e, const PouSym*
   if (e.kind == ExprKind::Member && e.lhs && e.lhs->kind == ExprKind::Name) {
     // Color.Red (enum) or GVL.kMax (constant in a global list)
     if (auto v = enumValue(e.lhs->text, e.text)) return v;
+    if (auto c = globalConstants_.find(upper(e.lhs->text) + "." + upper(e.text)); c != globalConstants_.end()) return c->second;
     auto g = model_.globalIndex.find(upper(e.lhs->text) + "." + upper(e.text));
     if (g != model_.globalIndex.end() && model_.globals[g->second].var.constant &&
         model_.globals[g->second].var.constValue.kind != ConstValue::Kind::None)
@@ -379,6 +382,7 @@ std::optional<ConstValue> Declarer::lookupConstName(const Expr& e, const PouSym*
     }
   }
   if (auto g = model_.globalIndex.find(key); g != model_.globalIndex.end()) return fromVar(model_.globals[g->second].var);
+  if (auto c = globalConstants_.find(key); c != globalConstants_.end()) return c->second;
   TypeId t;
   return bareEnumerator(e.text, t);
 }

@@ -120,7 +120,9 @@ TypeSpec Parser::parseTypeSpec(bool allowStruct, std::vector<CallArg>* fbInitArg
     case Tok::KwArray: parseArrayType(spec); return spec;
     case Tok::LParen: parseEnumType(spec); return spec;
     case Tok::KwPointer: case Tok::KwReferenceTo: case Tok::KwRefTo: {
-      spec.kind = at(Tok::KwPointer) ? TypeSpecKind::Pointer : TypeSpecKind::Reference;
+      // IEC REF_TO is an explicit reference (dereferenced with ^, NULL-able): a pointer here.
+      // CODESYS REFERENCE TO is used like the variable it refers to.
+      spec.kind = at(Tok::KwReferenceTo) ? TypeSpecKind::Reference : TypeSpecKind::Pointer;
       bool needsTo = !at(Tok::KwRefTo);
       std::string what = at(Tok::KwPointer) ? "after POINTER" : "after REFERENCE";
       advance();

@@ -655,7 +655,7 @@ TEST(ParserPou, SeedCorpusParsesCleanly) {
     ++files;
     if (entry.path().filename() == "errors.st") {
       EXPECT_EQ(diagText(p->diags),
-                "3:2 E006 expected ';' after variable declaration, found 'END_VAR'\n"
+                "2:13 E006 expected ';' after variable declaration, found 'END_VAR'\n"
                 "4:1 E006 expected ';' after statement, found 'y'\n"
                 "4:11 E006 expected an expression, found ';'\n"
                 "5:18 E006 expected ';' after statement, found 'END_IF'\n"

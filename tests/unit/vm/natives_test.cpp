@@ -27,14 +27,29 @@ struct NativeResult {
   bool ok = false;
   FaultKind fault = FaultKind::None;
   uint64_t r = 0;
-  std::string dst;  // the string at kDst afterwards
+  std::string dst;   // the string at kDst afterwards
+  std::string wdst;  // the WSTRING at kDst afterwards, code units narrowed to bytes
 };
+
+// UTF-16LE bytes of an ASCII text (without terminator).
+std::string wide(std::string_view ascii) {
+  std::string out;
+  for (char ch : ascii) {
+    out += ch;
+    out += '\0';
+  }
+  return out;
+}
 
 // Calls native n with args in r2.. and the given strings preloaded (kDst is prefilled with "#").
 NativeResult callN(Native n, std::vector<uint64_t> args, std::map<uint32_t, std::string> strings = {}) {
   ModuleBuilder b;
   b.pokeString(kDst, "#");
-  for (auto& [addr, s] : strings) b.pokeString(addr, s.c_str());
+  for (auto& [addr, s] : strings) {
+    std::memcpy(b.m.initialImage.data() + addr, s.data(), s.size());
+    b.m.initialImage[addr + s.size()] = 0;
+    b.m.initialImage[addr + s.size() + 1] = 0;
+  }
   for (uint64_t a : args) b.constant(a);
   b.beginPou("MAIN", 10);
   for (uint16_t i = 0; i < args.size(); ++i) b.emit(abx(Op::LDK, 2 + i, i));
@@ -49,6 +64,8 @@ NativeResult callN(Native n, std::vector<uint64_t> args, std::map<uint32_t, std:
   res.fault = vm.fault().kind;
   std::memcpy(&res.r, vm.memory() + 16, 8);
   res.dst = reinterpret_cast<const char*>(vm.memory() + kDst);
+  for (const uint8_t* p = vm.memory() + kDst; p[0] || p[1]; p += 2)
+    res.wdst += p[1] ? '?' : static_cast<char>(p[0]);
   return res;
 }
 
@@ -194,6 +211,49 @@ TEST(Natives, ToAndFromText) {
   EXPECT_EQ(toF(" -2E3xyz"), -2000.0);
   EXPECT_EQ(toF("+0.25"), 0.25);
   EXPECT_EQ(toF("abc"), 0.0);
+}
+
+// Runs a (dst, cap, ...) WSTRING native on ASCII texts; returns the destination text.
+std::string wstr(Native n, std::vector<uint64_t> rest, std::string a = "", std::string b = "", uint64_t cap = 80) {
+  std::vector<uint64_t> args = {kDst, cap};
+  args.insert(args.end(), rest.begin(), rest.end());
+  NativeResult r = callN(n, args, {{kA, wide(a)}, {kB, wide(b)}});
+  EXPECT_TRUE(r.ok);
+  EXPECT_EQ(r.r, 0u);
+  return r.wdst;
+}
+
+TEST(Natives, WideStrings) {
+  EXPECT_EQ(wstr(Native::WSTR_ASSIGN, {kA}, "hello"), "hello");
+  EXPECT_EQ(wstr(Native::WSTR_ASSIGN, {kA}, "hello", "", 2), "he");
+  EXPECT_EQ(callN(Native::WSTR_LEN, {kA}, {{kA, wide("hello")}}).r, 5u);
+  EXPECT_EQ(callN(Native::WSTR_LEN, {kA}, {{kA, ""}}).r, 0u);
+  EXPECT_EQ(static_cast<int64_t>(callN(Native::WSTR_CMP, {kA, kB}, {{kA, wide("ab")}, {kB, wide("abc")}}).r), -1);
+  EXPECT_EQ(callN(Native::WSTR_CMP, {kA, kB}, {{kA, wide("abc")}, {kB, wide("abc")}}).r, 0u);
+  // 0x0100 > 0x00FF although its low byte is smaller: compared by code unit, not bytewise.
+  EXPECT_EQ(callN(Native::WSTR_CMP, {kA, kB}, {{kA, std::string("\x00\x01", 2)}, {kB, std::string("\xff\x00", 2)}}).r, 1u);
+  EXPECT_EQ(wstr(Native::WSTR_LEFT, {kA, 2}, "SUSI"), "SU");
+  EXPECT_EQ(wstr(Native::WSTR_RIGHT, {kA, 3}, "SUSI"), "USI");
+  EXPECT_EQ(wstr(Native::WSTR_MID, {kA, 2, 2}, "SUSI"), "US");
+  EXPECT_EQ(wstr(Native::WSTR_MID, {kA, 2, 0}, "SUSI"), "");
+  EXPECT_EQ(wstr(Native::WSTR_CONCAT, {kA, kB}, "AB", "CD"), "ABCD");
+  EXPECT_EQ(wstr(Native::WSTR_CONCAT, {kA, kB}, "AB", "CD", 3), "ABC");
+  EXPECT_EQ(wstr(Native::WSTR_INSERT, {kA, kB, 2}, "SUSI", "XY"), "SUXYSI");
+  EXPECT_EQ(wstr(Native::WSTR_DELETE, {kA, 2, 3}, "SUXYSI"), "SUSI");
+  EXPECT_EQ(wstr(Native::WSTR_REPLACE, {kA, kB, 2, 3}, "SUXYSI", "ab"), "SUabSI");
+  EXPECT_EQ(callN(Native::WSTR_FIND, {kA, kB}, {{kA, wide("abcabc")}, {kB, wide("ca")}}).r, 3u);
+  EXPECT_EQ(callN(Native::WSTR_FIND, {kA, kB}, {{kA, wide("abc")}, {kB, wide("x")}}).r, 0u);
+  // Conversions.
+  NativeResult r = callN(Native::WSTR_FROM_STR, {kDst, 80, kA}, {{kA, "xy\xe4"}});
+  EXPECT_EQ(r.wdst, "xy\xe4");
+  r = callN(Native::STR_FROM_WSTR, {kDst, 80, kA}, {{kA, wide("hi") + std::string("\x00\x01", 2)}});
+  EXPECT_EQ(r.dst, "hi?");
+  r = callN(Native::STR_FROM_WSTR, {kDst, 1, kA}, {{kA, wide("hello")}});
+  EXPECT_EQ(r.dst, "h");
+  // A wide destination needs 2 * (cap + 1) bytes.
+  const uint64_t end = 1024 + 4096;
+  EXPECT_FALSE(callN(Native::WSTR_ASSIGN, {end - 21, 10, kA}, {{kA, wide("a")}}).ok);
+  EXPECT_TRUE(callN(Native::WSTR_ASSIGN, {end - 22, 10, kA}, {{kA, wide("a")}}).ok);
 }
 
 TEST(Natives, BadAddressesFault) {

@@ -43,7 +43,7 @@ Field field(std::string name, TypeId type, uint32_t offset, bool hidden = false)
 }
 
 enum : TypeId { kBool, kInt, kUsint, kWord, kTime, kStr10, kColor, kPoint, kPoints, kGrid, kMain, kLreal,
-                kWstr5, kPtr, kReal, kLtime, kDate, kTod, kDt, kUlint, kSint, kLint, kPacked };
+                kWstr5, kPtr, kReal, kLtime, kDate, kTod, kDt, kUlint, kSint, kLint, kPacked, kPrg };
 
 // MAIN (at 100): pts : ARRAY[1..3] OF Point; grid : ARRAY[0..1, 1..3] OF INT; color : Color;
 // name : STRING(10); t : TIME; w : WORD; b : USINT; lr : LREAL; wname : WSTRING(5); p : POINTER TO INT.
@@ -101,8 +101,15 @@ bc::Module makeModule() {
   bit2.bit = 9;
   packed.fields = {bit, bit2};
   T.push_back(packed);
+  TypeDesc prg = desc(TypeKind::Struct, "PRG", 2, 2);  // a program with a located member
+  Field sensor = field("sensor", kBool, 600);
+  sensor.bit = 3;
+  sensor.absolute = true;
+  prg.fields = {field("local", kInt, 0), sensor, field("level", kInt, 602)};
+  prg.fields.back().absolute = true;
+  T.push_back(prg);
   m.symbols = {{"MAIN", kMain, 100, false}, {"GVL.counter", kInt, 300, false}, {"x", kUsint, 302, false},
-               {"GVL.flags", kWord, 304, true}, {"GVL.io", kPacked, 306, false}};
+               {"GVL.flags", kWord, 304, true}, {"GVL.io", kPacked, 306, false}, {"PRG", kPrg, 320, false}};
   return m;
 }
 
@@ -153,6 +160,17 @@ TEST_F(ValueText, ResolvesBits) {
   EXPECT_EQ(ref("GVL.io.ready").bit, 3);
   EXPECT_EQ(ref("GVL.io.done").address, 307u);
   EXPECT_EQ(ref("GVL.io.done").bit, 1);
+}
+
+TEST_F(ValueText, LocatedMembersUseAbsoluteAddresses) {
+  EXPECT_EQ(ref("PRG.sensor").address, 600u);
+  EXPECT_EQ(ref("PRG.sensor").bit, 3);
+  EXPECT_EQ(ref("PRG.level").address, 602u);
+  EXPECT_EQ(roundTrip("PRG.sensor", "TRUE"), "TRUE");
+  EXPECT_EQ(mem[600], 8);
+  EXPECT_EQ(roundTrip("PRG.level", "-3"), "-3");
+  EXPECT_EQ(roundTrip("PRG.local", "4"), "4");
+  EXPECT_EQ(show("PRG"), "(local := 4, sensor := TRUE, level := -3)");
 }
 
 TEST_F(ValueText, RejectsBadPaths) {

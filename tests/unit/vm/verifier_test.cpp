@@ -129,6 +129,24 @@ TEST(Verifier, RejectsImageAndTables) {
               m.types.push_back(s);
             }),
             "type 1 'S': field 'a' outside the struct");
+  EXPECT_EQ(verifyWith([](bc::Module& m) {
+              bc::TypeDesc s;
+              s.kind = bc::TypeKind::Struct;
+              s.name = "P";
+              s.size = 2;
+              bc::Field located;
+              located.name = "sensor";
+              located.type = 0;
+              located.offset = 1022;  // a located member's offset is an absolute address
+              located.absolute = true;
+              s.fields.push_back(located);
+              m.types.push_back(s);
+              m.types.back().fields.back().offset = 1000;
+              std::string ok = bc::verifyModule(m);
+              EXPECT_EQ(ok, "");
+              m.types.back().fields.back().offset = 1022;
+            }),
+            "type 1 'P': field 'sensor' outside the static memory");
 }
 
 }  // namespace

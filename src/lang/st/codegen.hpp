@@ -79,7 +79,7 @@ class PouCompiler {
   uint16_t loadConstReal(double v);
   // Allocates `size` bytes of statement-scoped scratch in the frame; returns a place on fp.
   Place frameTemp(TypeId type);
-  uint32_t stringLiteral(const std::string& bytes);
+  uint32_t stringLiteral(const std::string& bytes, bool wide = false);
 
   // Values
   Value expr(const Expr& e, TypeId expected = kNoType);
@@ -183,6 +183,7 @@ class PouCompiler {
 };
 
 // Helpers shared by the codegen files.
+bc::Native wideNative(bc::Native narrow);  // STR_x -> WSTR_x
 bc::Op loadOp(ElemType e);
 bc::Op loadAbsOp(ElemType e);
 bc::Op storeOp(ElemType e);

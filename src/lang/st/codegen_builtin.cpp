@@ -39,6 +39,18 @@ std::optional<ElemType> typeFromName(const std::string& name) {
 
 }  // namespace
 
+bc::Native wideNative(bc::Native narrow) {
+  // natives.def lists the WSTR_* functions in the order of their STR_* twins
+  int offset = static_cast<int>(bc::Native::WSTR_ASSIGN) - static_cast<int>(bc::Native::STR_ASSIGN);
+  switch (narrow) {
+    case Native::STR_ASSIGN: case Native::STR_LEN: case Native::STR_CMP: case Native::STR_LEFT:
+    case Native::STR_RIGHT: case Native::STR_MID: case Native::STR_CONCAT: case Native::STR_INSERT:
+    case Native::STR_DELETE: case Native::STR_REPLACE: case Native::STR_FIND:
+      return static_cast<Native>(static_cast<int>(narrow) + offset);
+    default: return narrow;
+  }
+}
+
 Value PouCompiler::callNative(Native n, const std::vector<uint16_t>& args, TypeId resultType) {
   // Arguments must sit in consecutive registers: copy them into a fresh block.
   uint16_t first = allocReg();
@@ -82,6 +94,7 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
   };
   auto arg = [&](size_t i, TypeId hint = kNoType) { return expr(*positional(e, i), hint); };
   auto toInt = [&](Value v, SourceLocation loc) { return toReg(coerce(v, elemId(ElemType::Dint), loc)); };
+  bool wide = false;  // set by the first string argument: WSTRING functions are chosen then
   auto stringArg = [&](size_t i) -> std::optional<uint16_t> {
     Value v = arg(i);
     if (!v.ok()) return std::nullopt;
@@ -89,8 +102,15 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
       diags().error(diag::E202, positional(e, i)->loc, name + " needs a STRING here, found " + describe(t, v.type));
       return std::nullopt;
     }
+    bool w = v.type != kNoType && t.isWideString(v.type);
+    if (i == 0) wide = w;
+    else if (w != wide) {
+      diags().error(diag::E202, positional(e, i)->loc, name + " cannot mix STRING and WSTRING; convert with STRING_TO_WSTRING");
+      return std::nullopt;
+    }
     return toReg(v);
   };
+  auto pick = [&](Native narrow) { return wide ? wideNative(narrow) : narrow; };
   auto realMath = [&](Native n) -> Value {
     if (!arity(1, 1)) return Value::error();
     Value v = arg(0, expected);
@@ -133,8 +153,12 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
       }
       if (v.untyped) v = convert(v, from, e.loc, true);
     }
+    if (*typeFromName(dst) == ElemType::Wstring) to = t.stringOf(kStringResultLength, true);
     if (isStringValue(t, v)) {
-      if (t.isString(to)) return v;
+      bool fromWide = v.type != kNoType && t.isWideString(v.type);
+      if (t.isString(to) && fromWide == t.isWideString(to)) return v;
+      if (t.isString(to))
+        return stringResult(fromWide ? Native::STR_FROM_WSTR : Native::WSTR_FROM_STR, {toReg(v)}, to);
       uint16_t s = toReg(v);
       if (t.isReal(to)) return convert(callNative(Native::STR_TO_F, {s}, elemId(ElemType::Lreal)), to, e.loc, true);
       return convert(callNative(Native::STR_TO_I, {s}, elemId(ElemType::Lint)), to, e.loc, true);
@@ -413,26 +437,27 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
 
   // ---- strings ----
   TypeId strResult = t.stringOf(kStringResultLength, false);
+  TypeId wstrResult = t.stringOf(kStringResultLength, true);
   TypeId intT = elemId(ElemType::Int);
   if (name == "LEN") {
     if (!arity(1, 1)) return Value::error();
     auto s = stringArg(0);
     if (!s) return Value::error();
-    return convert(callNative(Native::STR_LEN, {*s}, elemId(ElemType::Dint)), intT, e.loc, true);
+    return convert(callNative(pick(Native::STR_LEN), {*s}, elemId(ElemType::Dint)), intT, e.loc, true);
   }
   if (name == "LEFT" || name == "RIGHT") {
     if (!arity(2, 2)) return Value::error();
     auto s = stringArg(0);
     if (!s) return Value::error();
     uint16_t l = toInt(arg(1), e.loc);
-    return stringResult(name == "LEFT" ? Native::STR_LEFT : Native::STR_RIGHT, {*s, l}, strResult);
+    return stringResult(pick(name == "LEFT" ? Native::STR_LEFT : Native::STR_RIGHT), {*s, l}, (wide ? wstrResult : strResult));
   }
   if (name == "MID") {
     if (!arity(3, 3)) return Value::error();
     auto s = stringArg(0);
     if (!s) return Value::error();
     uint16_t l = toInt(arg(1), e.loc), p = toInt(arg(2), e.loc);
-    return stringResult(Native::STR_MID, {*s, l, p}, strResult);
+    return stringResult(pick(Native::STR_MID), {*s, l, p}, (wide ? wstrResult : strResult));
   }
   if (name == "CONCAT") {
     if (!arity(2, 64)) return Value::error();
@@ -443,7 +468,7 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
     for (size_t i = 1; i < argCount(e); ++i) {
       auto b = stringArg(i);
       if (!b) return Value::error();
-      acc = stringResult(Native::STR_CONCAT, {left, *b}, strResult);
+      acc = stringResult(pick(Native::STR_CONCAT), {left, *b}, wide ? wstrResult : strResult);
       left = addressOf(acc.place);
     }
     return acc;
@@ -453,27 +478,27 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
     auto a = stringArg(0), b = stringArg(1);
     if (!a || !b) return Value::error();
     uint16_t p = toInt(arg(2), e.loc);
-    return stringResult(Native::STR_INSERT, {*a, *b, p}, strResult);
+    return stringResult(pick(Native::STR_INSERT), {*a, *b, p}, (wide ? wstrResult : strResult));
   }
   if (name == "DELETE") {
     if (!arity(3, 3)) return Value::error();
     auto s = stringArg(0);
     if (!s) return Value::error();
     uint16_t l = toInt(arg(1), e.loc), p = toInt(arg(2), e.loc);
-    return stringResult(Native::STR_DELETE, {*s, l, p}, strResult);
+    return stringResult(pick(Native::STR_DELETE), {*s, l, p}, (wide ? wstrResult : strResult));
   }
   if (name == "REPLACE") {
     if (!arity(4, 4)) return Value::error();
     auto a = stringArg(0), b = stringArg(1);
     if (!a || !b) return Value::error();
     uint16_t l = toInt(arg(2), e.loc), p = toInt(arg(3), e.loc);
-    return stringResult(Native::STR_REPLACE, {*a, *b, l, p}, strResult);
+    return stringResult(pick(Native::STR_REPLACE), {*a, *b, l, p}, (wide ? wstrResult : strResult));
   }
   if (name == "FIND") {
     if (!arity(2, 2)) return Value::error();
     auto a = stringArg(0), b = stringArg(1);
     if (!a || !b) return Value::error();
-    return convert(callNative(Native::STR_FIND, {*a, *b}, elemId(ElemType::Dint)), intT, e.loc, true);
+    return convert(callNative(pick(Native::STR_FIND), {*a, *b}, elemId(ElemType::Dint)), intT, e.loc, true);
   }
 
   // ---- scaling (TIA style, seed 004 §1.10.4) ----

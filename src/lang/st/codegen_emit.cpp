@@ -123,9 +123,14 @@ Place PouCompiler::frameTemp(TypeId type) {
   return p;
 }
 
-uint32_t PouCompiler::stringLiteral(const std::string& bytes) {
-  std::string withNul = bytes;
+uint32_t PouCompiler::stringLiteral(const std::string& bytes, bool wide) {
+  std::string withNul;
+  for (char c : bytes) {
+    withNul.push_back(c);
+    if (wide) withNul.push_back('\0');  // UTF-16LE of the (ASCII/Latin-1) characters
+  }
   withNul.push_back('\0');
+  if (wide) withNul.push_back('\0');
   return ctx_.image.addData(withNul.data(), static_cast<uint32_t>(withNul.size()));
 }
 
@@ -253,8 +258,8 @@ uint16_t PouCompiler::toReg(Value v) {
       if (v.type != kNoType && types().isReal(v.type)) return loadConstReal(constAsReal(v.c));
       if (v.c.kind == ConstValue::Kind::Real) return loadConstReal(v.c.f);
       if (v.c.kind == ConstValue::Kind::String) {
-        uint32_t addr = stringLiteral(v.c.s);
-        return loadConstInt(addr);
+        bool wide = v.type != kNoType && types().isWideString(v.type);
+        return loadConstInt(stringLiteral(v.c.s, wide));
       }
       return loadConstInt(v.c.i);
     case Value::Kind::Addr: {
@@ -347,6 +352,18 @@ Value PouCompiler::convert(Value v, TypeId to, SourceLocation loc, bool explicit
   }
   if (fromReal && !toReal) {
     emit(Op::F2I, out, r, 0);
+    normalize(out, to);
+    return regValue(to, out);
+  }
+  // DT (seconds) splits into DATE (seconds at midnight) and TOD (ms since midnight)
+  if (fe == ElemType::Dt && (te == ElemType::Tod || te == ElemType::Date)) {
+    uint16_t day = loadConstInt(86400), rem = allocReg();
+    emit(Op::MOD_U, rem, r, day);
+    if (te == ElemType::Tod) {
+      emit(Op::MUL, out, rem, loadConstInt(1000));
+    } else {
+      emit(Op::SUB, out, r, rem);
+    }
     normalize(out, to);
     return regValue(to, out);
   }
@@ -456,14 +473,16 @@ void PouCompiler::assignValue(const Place& target, Value v, SourceLocation loc) 
   if (tt == kNoType) return;
   if (t.isString(tt)) {
     if (!v.ok()) return;
-    if (!t.isString(v.type) && !(v.kind == Value::Kind::Const && v.c.kind == ConstValue::Kind::String)) {
+    bool srcIsString = t.isString(v.type) || (v.kind == Value::Kind::Const && v.c.kind == ConstValue::Kind::String);
+    if (!srcIsString || (v.type != kNoType && t.isWideString(v.type) != t.isWideString(tt))) {
       diags().error(diag::E202, loc, "type mismatch: cannot assign " + describe(t, v.type) + " to " + describe(t, tt));
       return;
     }
     uint16_t dst = addressOf(target);
     uint16_t cap = loadConstInt(t[tt].stringLength);
     uint16_t src = toReg(v);
-    (void)callNative(bc::Native::STR_ASSIGN, {dst, cap, src}, TypeTable::elem(ElemType::Dint));
+    bc::Native n = t.isWideString(tt) ? wideNative(bc::Native::STR_ASSIGN) : bc::Native::STR_ASSIGN;
+    (void)callNative(n, {dst, cap, src}, TypeTable::elem(ElemType::Dint));
     return;
   }
   if (auto itf = model().interfaceByType.find(tt); itf != model().interfaceByType.end()) {

@@ -617,8 +617,13 @@ Value PouCompiler::compare(const Expr& e, Value a, Value b) {
   uint16_t ra, rb;
   Op lt = Op::LT_I, le = Op::LE_I, eq = Op::EQ, ne = Op::NE;
   if (strings) {
+    bool wa = a.type != kNoType && t.isWideString(a.type), wb = b.type != kNoType && t.isWideString(b.type);
+    if (wa != wb) {
+      diags().error(diag::E210, e.loc, "cannot compare a STRING with a WSTRING; convert one of them");
+      return Value::error();
+    }
     uint16_t x = toReg(a), y = toReg(b);
-    Value cmp = callNative(bc::Native::STR_CMP, {x, y}, TypeTable::elem(ElemType::Dint));
+    Value cmp = callNative(wa ? wideNative(bc::Native::STR_CMP) : bc::Native::STR_CMP, {x, y}, TypeTable::elem(ElemType::Dint));
     ra = cmp.reg;
     rb = loadConstInt(0);
   } else {

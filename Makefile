@@ -37,8 +37,8 @@ test: deps
 	@cd $(TESTBUILD) && FUZZ_BUILD_DIR=$(abspath $(FUZZBUILD)) ctest --output-on-failure -j $(JOBS)
 
 demo: build
-	@$(BUILD)/src/cli/virtcom exec examples/st/traffic_light.st --cycles 400 --cycle-time 10ms \
-	  --print MAIN.phase --print MAIN.cycles --print MAIN.elapsed
+	@$(BUILD)/src/cli/virtcom exec examples/st/traffic_light.st --cycles 2000 --cycle-time 10ms --stats \
+	  --print MAIN.phase --print MAIN.cycles --print MAIN.elapsed --print MAIN.walk
 
 bench: build
 	@$(BUILD)/bench/virtcom_bench --benchmark_counters_tabular=true

@@ -46,7 +46,7 @@ class Machine {
   bool run(uint32_t pou, uint32_t thisAddress);
 
   const FaultInfo& fault() const { return fault_; }
-  uint64_t instructionsExecuted() const { return executed_; }
+  uint64_t instructionsExecuted() const { return executed_; }  // cumulative since construction
   // Current stack pointer (staticSize when idle).
   uint32_t stackPointer() const { return sp_; }
 

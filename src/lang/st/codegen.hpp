@@ -55,7 +55,7 @@ class PouCompiler {
     size_t param = 0;           // index into the callee's parameter list
     Value value;                // inputs: the evaluated argument
     uint16_t address = 0xffff;  // in-outs: register holding the actual's address
-    const CallArg* output = nullptr;  // the argument as written (for outputs: the receiver)
+    const CallArg* arg = nullptr;     // the argument as written (for outputs: the receiver)
   };
   PouCompiler(CompileContext& ctx, PouSym& pou);
   // Emits the POU's code into ctx.module.code and fills its PouInfo; returns false on errors.
@@ -84,7 +84,8 @@ class PouCompiler {
   // Values
   Value expr(const Expr& e, TypeId expected = kNoType);
   uint16_t toReg(Value v);                       // a scalar value in a register
-  Value convert(Value v, TypeId to, SourceLocation loc, bool explicitConv);
+  // Converts a value to `to` (IEC conversion rules; constants fold); reports E202 if impossible.
+  Value convert(Value v, TypeId to, SourceLocation loc);
   Value coerce(Value v, TypeId to, SourceLocation loc);  // implicit, with diagnostics
   uint16_t normalize(uint16_t reg, TypeId type);
   Value regValue(TypeId type, uint16_t reg);
@@ -101,7 +102,13 @@ class PouCompiler {
 
   // Calls (codegen_call.cpp)
   Value call(const Expr& e, TypeId expected);
-  Value propertyGet(const PropertySym& prop, uint16_t thisReg, PouSym* staticClass, SourceLocation loc);
+  struct Receiver {
+    uint16_t thisReg = kThis;
+    PouSym* staticClass = nullptr;       // FB type of the receiver (null for interfaces)
+    InterfaceSym* viaInterface = nullptr;
+    bool exact = false;                  // a value instance or SUPER^: no dynamic dispatch
+  };
+  Value propertyGet(const PropertySym& prop, const Receiver& recv, SourceLocation loc);
   // `x.P` where P is a property of x's FB or interface type: the getter's value; nullopt if not a property.
   std::optional<Value> memberProperty(const Expr& e);
   // `x.P := v` / `P := v` as a property write; false if the target is not a property.
@@ -112,7 +119,7 @@ class PouCompiler {
   Value stringResult(bc::Native n, std::vector<uint16_t> args, TypeId stringType);
   Value compare(const Expr& e, Value a, Value b);
   Value arithmetic(const Expr& e, Value a, Value b);
-  TypeId commonType(Value& a, Value& b, SourceLocation loc, BinaryOp op);
+  TypeId commonType(Value& a, Value& b);
 
   PouSym& pou() { return pou_; }
   CompileContext& ctx() { return ctx_; }
@@ -142,12 +149,6 @@ class PouCompiler {
   std::optional<Place> derefPlace(const Expr& e);
   Place varPlace(const VarInfo& v, uint16_t instanceBase);
 
-  struct Receiver {
-    uint16_t thisReg = kThis;
-    PouSym* staticClass = nullptr;       // FB type of the receiver (null for interfaces)
-    InterfaceSym* viaInterface = nullptr;
-    bool exact = false;                  // a value instance or SUPER^: no dynamic dispatch
-  };
   std::vector<const VarInfo*> fbParams(PouSym& fb);
  public:
   // VAR_IN_OUT and REFERENCE TO inputs receive the address of the actual variable.
@@ -155,9 +156,10 @@ class PouCompiler {
  private:
   bool bindArgs(const Expr& call, const std::vector<const VarInfo*>& params, PouSym* callee, std::vector<Binding>& out);
   void evaluateInputs(const std::vector<const VarInfo*>& params, std::vector<Binding>& bindings);
-  uint16_t emitFrameCall(PouSym& callee, uint16_t thisReg, const std::vector<Binding>& bindings);
-  void readOutputs(PouSym& callee, uint16_t frameReg, Storage storage, const std::vector<Binding>& bindings,
-                   const std::vector<const VarInfo*>& params);
+  // ENTER for `callee` and its `this` (0xffff: none); returns the callee's window register.
+  uint16_t emitFrameCall(PouSym& callee, uint16_t thisReg);
+  // Copies the outputs connected with `=>` from the callee's frame or instance at `base`.
+  void readOutputs(uint16_t base, const std::vector<Binding>& bindings, const std::vector<const VarInfo*>& params);
   Value returnValue(PouSym& callee, uint16_t frameReg);
   Value callFunction(PouSym& fn, const Expr& e);
   Value callFbInstance(const Place& inst, PouSym& fb, const Expr& e);
@@ -165,6 +167,8 @@ class PouCompiler {
   Value callAction(PouSym& action, uint16_t thisReg);
   std::vector<std::pair<uint32_t, PouSym*>> dispatchTargets(const Receiver& recv, const std::string& upperName, bool property, bool setter);
   bool receiverOf(const Expr& objectExpr, Receiver& recv);
+  // The declared type of a bare name or THIS^/SUPER^ without generating code; kNoType otherwise.
+  TypeId staticTypeOf(const Expr& object);
 
   struct Loop {
     std::vector<uint32_t> breaks;

@@ -120,8 +120,8 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
       return Value::error();
     }
     TypeId rt = t.isReal(v.type) ? v.type : elemId(ElemType::Lreal);
-    uint16_t x = toReg(convert(v, elemId(ElemType::Lreal), e.loc, true));
-    return convert(callNative(n, {x}, elemId(ElemType::Lreal)), rt, e.loc, true);
+    uint16_t x = toReg(convert(v, elemId(ElemType::Lreal), e.loc));
+    return convert(callNative(n, {x}, elemId(ElemType::Lreal)), rt, e.loc);
   };
 
   // ---- conversions: X_TO_Y, TO_Y, TRUNC ----
@@ -151,7 +151,7 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
           return Value::error();
         }
       }
-      if (v.untyped) v = convert(v, from, e.loc, true);
+      if (v.untyped) v = convert(v, from, e.loc);
     }
     if (*typeFromName(dst) == ElemType::Wstring) to = t.stringOf(kStringResultLength, true);
     if (isStringValue(t, v)) {
@@ -160,8 +160,8 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
       if (t.isString(to))
         return stringResult(fromWide ? Native::STR_FROM_WSTR : Native::WSTR_FROM_STR, {toReg(v)}, to);
       uint16_t s = toReg(v);
-      if (t.isReal(to)) return convert(callNative(Native::STR_TO_F, {s}, elemId(ElemType::Lreal)), to, e.loc, true);
-      return convert(callNative(Native::STR_TO_I, {s}, elemId(ElemType::Lint)), to, e.loc, true);
+      if (t.isReal(to)) return convert(callNative(Native::STR_TO_F, {s}, elemId(ElemType::Lreal)), to, e.loc);
+      return convert(callNative(Native::STR_TO_I, {s}, elemId(ElemType::Lint)), to, e.loc);
     }
     if (t.isString(to)) {
       uint16_t x = toReg(v);
@@ -177,16 +177,16 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
     if (t.isBool(v.type) && !t.isBool(to)) {
       Value b = v;
       b.type = elemId(ElemType::Usint);
-      return convert(b, to, e.loc, true);
+      return convert(b, to, e.loc);
     }
-    return convert(v, to, e.loc, true);
+    return convert(v, to, e.loc);
   }
   if (name == "TRUNC" || name == "TRUNC_INT") {
     if (!arity(1, 1)) return Value::error();
     Value v = arg(0);
     if (!v.ok()) return v;
     TypeId rt = elemId(name == "TRUNC" ? ElemType::Dint : ElemType::Int);
-    if (!t.isReal(v.type)) return convert(v, rt, e.loc, true);
+    if (!t.isReal(v.type)) return convert(v, rt, e.loc);
     uint16_t x = toReg(v), r = allocReg();
     emit(Op::F2I_TRUNC, r, x, 0);
     normalize(r, rt);
@@ -209,15 +209,15 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
     }
     TypeId rt = t.isElem(a.type, ElemType::Real) && (name == "EXPT" || t.isElem(b.type, ElemType::Real)) ? a.type : elemId(ElemType::Lreal);
     if (name == "EXPT" && t.isElem(a.type, ElemType::Real)) rt = a.type;
-    uint16_t x = toReg(convert(a, elemId(ElemType::Lreal), e.loc, true));
-    uint16_t y = toReg(convert(b, elemId(ElemType::Lreal), e.loc, true));
-    return convert(callNative(name == "EXPT" ? Native::EXPT : Native::ATAN2, {x, y}, elemId(ElemType::Lreal)), rt, e.loc, true);
+    uint16_t x = toReg(convert(a, elemId(ElemType::Lreal), e.loc));
+    uint16_t y = toReg(convert(b, elemId(ElemType::Lreal), e.loc));
+    return convert(callNative(name == "EXPT" ? Native::EXPT : Native::ATAN2, {x, y}, elemId(ElemType::Lreal)), rt, e.loc);
   }
   if (name == "ABS") {
     if (!arity(1, 1)) return Value::error();
     Value v = arg(0, expected);
     if (!v.ok()) return v;
-    if (t.isReal(v.type)) return convert(callNative(Native::FABS, {toReg(v)}, v.type), v.type, e.loc, true);
+    if (t.isReal(v.type)) return convert(callNative(Native::FABS, {toReg(v)}, v.type), v.type, e.loc);
     if (!t.isInteger(v.type) && !t.isTimeLike(v.type)) {
       diags().error(diag::E202, e.loc, "ABS needs a number, found " + describe(t, v.type));
       return Value::error();
@@ -307,7 +307,7 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
       }
       Value a = regValue(common, 0), b = v;
       a.untyped = false;
-      common = commonType(a, b, e.loc, BinaryOp::Add);
+      common = commonType(a, b);
       if (common == kNoType) {
         if (v.type == vals.front().type) common = v.type;
         else {
@@ -320,8 +320,8 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
     Expr lt = fakeBinary(BinaryOp::Lt);
     auto pick = [&](Value a, Value b, bool takeSmaller) {
       // r := a; if (b < a) == takeSmaller then r := b
-      uint16_t ra = toReg(convert(coerce(a, common, e.loc), common, e.loc, false));
-      uint16_t rb = toReg(convert(coerce(b, common, e.loc), common, e.loc, false));
+      uint16_t ra = toReg(convert(coerce(a, common, e.loc), common, e.loc));
+      uint16_t rb = toReg(convert(coerce(b, common, e.loc), common, e.loc));
       uint16_t r = allocReg();
       emit(Op::MOV, r, ra, 0);
       Value c = compare(lt, regValue(common, rb), regValue(common, ra));
@@ -411,7 +411,7 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
     Value v = arg(0, expected);
     Value n = arg(1);
     if (!v.ok() || !n.ok()) return Value::error();
-    if (v.untyped) v = convert(v, elemId(ElemType::Dword), e.loc, false);
+    if (v.untyped) v = convert(v, elemId(ElemType::Dword), e.loc);
     if (!t.isInteger(v.type)) {
       diags().error(diag::E202, e.loc, name + " needs a bit string or integer, found " + describe(t, v.type));
       return Value::error();
@@ -443,7 +443,7 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
     if (!arity(1, 1)) return Value::error();
     auto s = stringArg(0);
     if (!s) return Value::error();
-    return convert(callNative(pick(Native::STR_LEN), {*s}, elemId(ElemType::Dint)), intT, e.loc, true);
+    return convert(callNative(pick(Native::STR_LEN), {*s}, elemId(ElemType::Dint)), intT, e.loc);
   }
   if (name == "LEFT" || name == "RIGHT") {
     if (!arity(2, 2)) return Value::error();
@@ -498,7 +498,7 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
     if (!arity(2, 2)) return Value::error();
     auto a = stringArg(0), b = stringArg(1);
     if (!a || !b) return Value::error();
-    return convert(callNative(pick(Native::STR_FIND), {*a, *b}, elemId(ElemType::Dint)), intT, e.loc, true);
+    return convert(callNative(pick(Native::STR_FIND), {*a, *b}, elemId(ElemType::Dint)), intT, e.loc);
   }
 
   // ---- scaling (TIA style, seed 004 §1.10.4) ----
@@ -516,7 +516,7 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
     TypeId rt = elemId(wide ? ElemType::Lreal : ElemType::Real);
     if (name == "SCALE_X" && expected != kNoType && t.isNumeric(expected)) rt = expected;
     TypeId lr = elemId(ElemType::Lreal);
-    uint16_t a = toReg(convert(mn, lr, e.loc, true)), x = toReg(convert(v, lr, e.loc, true)), b = toReg(convert(mx, lr, e.loc, true));
+    uint16_t a = toReg(convert(mn, lr, e.loc)), x = toReg(convert(v, lr, e.loc)), b = toReg(convert(mx, lr, e.loc));
     uint16_t span = allocReg(), r = allocReg();
     emit(Op::SUB_F, span, b, a);
     if (name == "SCALE_X") {
@@ -526,7 +526,7 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
       emit(Op::SUB_F, r, x, a);
       emit(Op::DIV_F, r, r, span);
     }
-    return convert(regValue(lr, r), rt, e.loc, true);
+    return convert(regValue(lr, r), rt, e.loc);
   }
 
   // ---- addresses ----

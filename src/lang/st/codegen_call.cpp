@@ -13,19 +13,17 @@ using bc::Op;
 // IEC and CODESYS spell some standard FB inputs differently; both are accepted.
 static std::string canonicalParam(const PouSym* callee, const std::string& upperName) {
   if (!callee || !callee->isLibrary) return upperName;
-  static const std::pair<const char*, const char*> kAliases[] = {
-      {"R", "RESET"}, {"LD", "LOAD"}, {"S1", "SET1"}, {"S", "SET"}, {"R1", "RESET1"}};
+  struct Alias {
+    const char* fb;
+    const char* iec;
+    const char* codesys;
+  };
+  static const Alias kAliases[] = {{"CTU", "R", "RESET"},  {"CTD", "LD", "LOAD"}, {"CTUD", "R", "RESET"},
+                                   {"CTUD", "LD", "LOAD"}, {"SR", "S1", "SET1"},  {"SR", "R", "RESET"},
+                                   {"RS", "S", "SET"},     {"RS", "R1", "RESET1"}};
   std::string fb = upper(callee->name);
-  for (const auto& [from, to] : kAliases) {
-    if (upperName != from) continue;
-    if (fb == "SR" && upperName == "R") return "RESET";
-    if (fb == "RS" && upperName == "S") return "SET";
-    if ((fb == "CTU" || fb == "CTUD") && upperName == "R") return "RESET";
-    if (fb == "SR" && upperName == "S1") return "SET1";
-    if (fb == "RS" && upperName == "R1") return "RESET1";
-    if ((fb == "CTD" || fb == "CTUD") && upperName == "LD") return "LOAD";
-    (void)to;
-  }
+  for (const auto& a : kAliases)
+    if (fb == a.fb && upperName == a.iec) return a.codesys;
   return upperName;
 }
 
@@ -91,11 +89,8 @@ bool PouCompiler::bindArgs(const Expr& call, const std::vector<const VarInfo*>& 
     }
     Binding b;
     b.param = index;
-    if (arg.output) b.output = &arg;
-    else b.value.place.var = nullptr;
+    b.arg = &arg;
     out.push_back(b);
-    // remember which CallArg feeds the binding (same order as call.args)
-    out.back().output = &arg;
   }
   bool isFunction = callee && callee->kind == PouKind::Function;
   for (size_t i = 0; i < params.size(); ++i)
@@ -116,7 +111,7 @@ bool PouCompiler::bindArgs(const Expr& call, const std::vector<const VarInfo*>& 
 void PouCompiler::evaluateInputs(const std::vector<const VarInfo*>& params, std::vector<Binding>& bindings) {
   for (auto& b : bindings) {
     const VarInfo& p = *params[b.param];
-    const CallArg& arg = *b.output;
+    const CallArg& arg = *b.arg;
     if (p.section == VarSection::Output) continue;
     if (!arg.value) continue;
     if (passesAddress(p)) {
@@ -147,8 +142,7 @@ void PouCompiler::evaluateInputs(const std::vector<const VarInfo*>& params, std:
   }
 }
 
-uint16_t PouCompiler::emitFrameCall(PouSym& callee, uint16_t thisReg, const std::vector<Binding>& bindings) {
-  (void)bindings;
+uint16_t PouCompiler::emitFrameCall(PouSym& callee, uint16_t thisReg) {
   uint16_t frame = allocReg();
   uint16_t self = allocReg();
   emitBx(Op::ENTER, frame, callee.bcIndex);
@@ -156,29 +150,25 @@ uint16_t PouCompiler::emitFrameCall(PouSym& callee, uint16_t thisReg, const std:
   return frame;
 }
 
-static Place frameSlot(const VarInfo& p, uint16_t frameReg, const TypeTable& types) {
+static Place frameSlot(const VarInfo& p, uint16_t frameReg) {
   Place slot;
   slot.base = frameReg;
   slot.offset = p.offset;
   slot.type = p.byReference ? TypeTable::elem(ElemType::Lword) : p.type;
-  (void)types;
   return slot;
 }
 
-void PouCompiler::readOutputs(PouSym& callee, uint16_t base, Storage storage, const std::vector<Binding>& bindings,
-                              const std::vector<const VarInfo*>& params) {
-  (void)callee;
-  (void)storage;
+void PouCompiler::readOutputs(uint16_t base, const std::vector<Binding>& bindings, const std::vector<const VarInfo*>& params) {
   for (const auto& b : bindings) {
     const VarInfo& p = *params[b.param];
-    if (p.section != VarSection::Output || !b.output || !b.output->value) continue;
-    auto target = place(*b.output->value, true);
+    if (p.section != VarSection::Output || !b.arg || !b.arg->value) continue;
+    auto target = place(*b.arg->value, true);
     if (!target) continue;
-    Place src = frameSlot(p, base, types());
+    Place src = frameSlot(p, base);
     Value v;
     if (types().isScalar(p.type)) {
       v = regValue(p.type, load(src));
-      if (b.output->negated) {
+      if (b.arg->negated) {
         uint16_t r = allocReg();
         emit(Op::LNOT, r, v.reg, 0);
         v.reg = r;
@@ -188,7 +178,7 @@ void PouCompiler::readOutputs(PouSym& callee, uint16_t base, Storage storage, co
       v.type = p.type;
       v.place = src;
     }
-    assignValue(*target, v, b.output->loc);
+    assignValue(*target, v, b.arg->loc);
   }
 }
 
@@ -221,13 +211,13 @@ static void storeInputs(PouCompiler& pc, const std::vector<const VarInfo*>& para
   for (const auto& b : bindings) {
     const VarInfo& p = *params[b.param];
     if (p.section == VarSection::Output) continue;
-    Place slot = frameSlot(p, base, pc.types());
+    Place slot = frameSlot(p, base);
     if (pc.passesAddress(p)) {
       slot.type = TypeTable::elem(ElemType::Lword);
       if (b.address != 0xffff) pc.store(slot, b.address);
       continue;
     }
-    if (b.value.ok()) pc.assignValue(slot, b.value, b.output->loc);
+    if (b.value.ok()) pc.assignValue(slot, b.value, b.arg->loc);
   }
 }
 
@@ -236,11 +226,11 @@ Value PouCompiler::callFunction(PouSym& fn, const Expr& e) {
   std::vector<Binding> bindings;
   if (!bindArgs(e, fn.params, &fn, bindings)) return Value::error();
   evaluateInputs(fn.params, bindings);
-  uint16_t frame = emitFrameCall(fn, 0xffff, bindings);
+  uint16_t frame = emitFrameCall(fn, 0xffff);
   storeInputs(*this, fn.params, bindings, frame);
   emitBx(Op::CALL, frame, fn.bcIndex);
   Value result = returnValue(fn, frame);
-  readOutputs(fn, frame, Storage::Frame, bindings, fn.params);
+  readOutputs(frame, bindings, fn.params);
   return result;
 }
 
@@ -252,9 +242,9 @@ Value PouCompiler::callFbInstance(const Place& inst, PouSym& fb, const Expr& e) 
   evaluateInputs(params, bindings);
   uint16_t self = addressOf(inst);
   storeInputs(*this, params, bindings, self);
-  uint16_t frame = emitFrameCall(fb, self, bindings);
+  uint16_t frame = emitFrameCall(fb, self);
   emitBx(Op::CALL, frame, fb.bcIndex);
-  readOutputs(fb, self, Storage::Instance, bindings, params);
+  readOutputs(self, bindings, params);
   Value v;
   v.kind = Value::Kind::Void;
   return v;
@@ -263,7 +253,7 @@ Value PouCompiler::callFbInstance(const Place& inst, PouSym& fb, const Expr& e) 
 Value PouCompiler::callAction(PouSym& action, uint16_t thisReg) {
   pou_.callees.push_back(&action);
   std::vector<Binding> none;
-  uint16_t frame = emitFrameCall(action, thisReg, none);
+  uint16_t frame = emitFrameCall(action, thisReg);
   emitBx(Op::CALL, frame, action.bcIndex);
   Value v;
   v.kind = Value::Kind::Void;
@@ -361,18 +351,16 @@ Value PouCompiler::callMethod(const std::string& name, const Receiver& recv, con
   std::vector<Binding> bindings;
   if (!bindArgs(e, proto.params, &proto, bindings)) return Value::error();
   evaluateInputs(proto.params, bindings);
-  uint16_t mark = regMark();
   uint16_t resultReg = allocReg();
   TypeId rt = proto.returnType;
   bool scalarResult = rt != kNoType && types().isScalar(rt);
   Place aggregate;
   if (rt != kNoType && !scalarResult) aggregate = frameTemp(rt);
   uint16_t aggregateAddr = rt != kNoType && !scalarResult ? addressOf(aggregate) : 0;
-  (void)mark;
   emitDispatch(*this, recv.thisReg, targets, [&](PouSym& m) {
     pou_.callees.push_back(&m);
     uint16_t inner = regMark();
-    uint16_t frame = emitFrameCall(m, recv.thisReg, bindings);
+    uint16_t frame = emitFrameCall(m, recv.thisReg);
     storeInputs(*this, m.params, bindings, frame);
     emitBx(Op::CALL, frame, m.bcIndex);
     if (rt != kNoType) {
@@ -383,7 +371,7 @@ Value PouCompiler::callMethod(const std::string& name, const Receiver& recv, con
       if (scalarResult) emit(Op::MOV, resultReg, load(src), 0);
       else copyBytes(aggregateAddr, addressOf(src), types()[rt].size);
     }
-    readOutputs(m, frame, Storage::Frame, bindings, m.params);
+    readOutputs(frame, bindings, m.params);
     freeRegs(inner);
   });
   if (rt == kNoType) {
@@ -399,10 +387,8 @@ Value PouCompiler::callMethod(const std::string& name, const Receiver& recv, con
   return v;
 }
 
-Value PouCompiler::propertyGet(const PropertySym& prop, uint16_t thisReg, PouSym* staticClass, SourceLocation loc) {
-  Receiver recv;
-  recv.thisReg = thisReg;
-  recv.staticClass = staticClass;
+Value PouCompiler::propertyGet(const PropertySym& prop, const Receiver& recv, SourceLocation loc) {
+  uint16_t thisReg = recv.thisReg;
   auto targets = dispatchTargets(recv, upper(prop.name), true, false);
   if (targets.empty()) {
     diags().error(diag::E209, loc, "property '" + prop.name + "' has no GET accessor");
@@ -415,8 +401,7 @@ Value PouCompiler::propertyGet(const PropertySym& prop, uint16_t thisReg, PouSym
   emitDispatch(*this, thisReg, targets, [&](PouSym& getter) {
     pou_.callees.push_back(&getter);
     uint16_t inner = regMark();
-    std::vector<Binding> none;
-    uint16_t frame = emitFrameCall(getter, thisReg, none);
+    uint16_t frame = emitFrameCall(getter, thisReg);
     emitBx(Op::CALL, frame, getter.bcIndex);
     Place src;
     src.base = frame;
@@ -434,6 +419,23 @@ Value PouCompiler::propertyGet(const PropertySym& prop, uint16_t thisReg, PouSym
   return v;
 }
 
+TypeId PouCompiler::staticTypeOf(const Expr& object) {
+  PouSym* owner = pou_.kind == PouKind::FunctionBlock || pou_.kind == PouKind::Program ? &pou_ : pou_.owner;
+  if (object.kind == ExprKind::Deref && object.lhs &&
+      (object.lhs->kind == ExprKind::This || object.lhs->kind == ExprKind::Super)) {
+    if (!owner) return kNoType;
+    if (object.lhs->kind == ExprKind::Super) return owner->base ? owner->base->instanceType : kNoType;
+    return owner->instanceType;
+  }
+  if (object.kind != ExprKind::Name) return kNoType;
+  std::string n = upper(object.text);
+  if (auto it = pou_.localIndex.find(n); it != pou_.localIndex.end()) return pou_.locals[it->second].type;
+  if (owner)
+    if (auto it = owner->memberIndex.find(n); it != owner->memberIndex.end()) return owner->members[it->second].type;
+  if (auto g = model().globalIndex.find(n); g != model().globalIndex.end()) return model().globals[g->second].var.type;
+  return kNoType;
+}
+
 bool PouCompiler::receiverOf(const Expr& object, Receiver& recv) {
   if (object.kind == ExprKind::Deref && object.lhs &&
       (object.lhs->kind == ExprKind::This || object.lhs->kind == ExprKind::Super)) {
@@ -444,13 +446,10 @@ bool PouCompiler::receiverOf(const Expr& object, Receiver& recv) {
     recv.exact = object.lhs->kind == ExprKind::Super;
     return recv.staticClass != nullptr;
   }
-  Diagnostics probe;
   // Interface-typed variables hold the address of an instance.
   if (object.kind == ExprKind::Name || object.kind == ExprKind::Member || object.kind == ExprKind::Index) {
-    size_t before = diags().all().size();
     auto p = place(object, false);
     if (!p) return false;
-    (void)before;
     if (auto itf = model().interfaceByType.find(p->type); itf != model().interfaceByType.end()) {
       Place slot = *p;
       recv.thisReg = load(slot);
@@ -486,56 +485,13 @@ std::optional<Value> PouCompiler::memberProperty(const Expr& e) {
       return itf->second->properties.count(key) > 0;
     return false;
   };
-  TypeId objectType = kNoType;
-  if (object.kind == ExprKind::Deref && object.lhs && (object.lhs->kind == ExprKind::This || object.lhs->kind == ExprKind::Super)) {
-    PouSym* owner = pou_.kind == PouKind::FunctionBlock ? &pou_ : pou_.owner;
-    if (owner) objectType = owner->instanceType;
-  } else if (object.kind == ExprKind::Name) {
-    std::string n = upper(object.text);
-    const VarInfo* v = nullptr;
-    if (auto it = pou_.localIndex.find(n); it != pou_.localIndex.end()) v = &pou_.locals[it->second];
-    PouSym* owner = pou_.kind == PouKind::FunctionBlock || pou_.kind == PouKind::Program ? &pou_ : pou_.owner;
-    if (!v && owner)
-      if (auto it = owner->memberIndex.find(n); it != owner->memberIndex.end()) v = &owner->members[it->second];
-    if (!v)
-      if (auto it = model().globalIndex.find(n); it != model().globalIndex.end()) v = &model().globals[it->second].var;
-    if (v) objectType = v->type;
-  } else {
-    return std::nullopt;
-  }
+  if (object.kind != ExprKind::Name && object.kind != ExprKind::Deref) return std::nullopt;
+  TypeId objectType = staticTypeOf(object);
   if (objectType == kNoType || !staticTypeHasProperty(objectType)) return std::nullopt;
   Receiver recv;
   if (!receiverOf(object, recv)) return std::nullopt;
-  PropertySym prop;
-  if (recv.viaInterface) prop = recv.viaInterface->properties[key];
-  else prop = recv.staticClass->properties[key];
-  if (recv.viaInterface) {
-    auto targets = dispatchTargets(recv, key, true, false);
-    PropertySym p = prop;
-    uint16_t result = allocReg();
-    emitDispatch(*this, recv.thisReg, targets, [&](PouSym& getter) {
-      uint16_t inner = regMark();
-      std::vector<Binding> none;
-      uint16_t frame = emitFrameCall(getter, recv.thisReg, none);
-      emitBx(Op::CALL, frame, getter.bcIndex);
-      Place src;
-      src.base = frame;
-      src.offset = getter.returnOffset;
-      src.type = p.type;
-      emit(Op::MOV, result, load(src), 0);
-      freeRegs(inner);
-    });
-    return regValue(p.type, result);
-  }
-  Receiver r = recv;
-  if (recv.exact) {
-    auto targets = dispatchTargets(recv, key, true, false);
-    if (targets.empty()) {
-      diags().error(diag::E209, e.loc, "property '" + e.text + "' has no GET accessor");
-      return Value::error();
-    }
-  }
-  return propertyGet(prop, r.thisReg, r.staticClass, e.loc);
+  const PropertySym& prop = recv.viaInterface ? recv.viaInterface->properties[key] : recv.staticClass->properties[key];
+  return propertyGet(prop, recv, e.loc);
 }
 
 bool PouCompiler::propertySet(const Expr& target, const Expr& valueExpr, SourceLocation loc) {
@@ -551,15 +507,7 @@ bool PouCompiler::propertySet(const Expr& target, const Expr& valueExpr, SourceL
   } else if (target.kind == ExprKind::Member) {
     key = upper(target.text);
     const Expr& object = *target.lhs;
-    TypeId objectType = kNoType;
-    if (object.kind == ExprKind::Deref && object.lhs && object.lhs->kind == ExprKind::This && owner) {
-      objectType = owner->instanceType;
-    } else if (object.kind == ExprKind::Name) {
-      std::string n = upper(object.text);
-      if (auto it = pou_.localIndex.find(n); it != pou_.localIndex.end()) objectType = pou_.locals[it->second].type;
-      else if (owner && owner->memberIndex.count(n)) objectType = owner->members[owner->memberIndex[n]].type;
-      else if (auto g = model().globalIndex.find(n); g != model().globalIndex.end()) objectType = model().globals[g->second].var.type;
-    }
+    TypeId objectType = staticTypeOf(object);
     bool isProp = false;
     if (auto fb = model().fbByType.find(objectType); fb != model().fbByType.end()) isProp = fb->second->properties.count(key);
     if (auto itf = model().interfaceByType.find(objectType); itf != model().interfaceByType.end())
@@ -584,12 +532,11 @@ bool PouCompiler::propertySet(const Expr& target, const Expr& valueExpr, SourceL
   emitDispatch(*this, recv.thisReg, targets, [&](PouSym& setter) {
     pou_.callees.push_back(&setter);
     uint16_t inner = regMark();
-    std::vector<Binding> none;
-    uint16_t frame = emitFrameCall(setter, recv.thisReg, none);
+    uint16_t frame = emitFrameCall(setter, recv.thisReg);
     const VarInfo* slotVar = nullptr;
     for (const auto& l : setter.locals)
       if (upper(l.name) == key) slotVar = &l;
-    if (slotVar) assignValue(frameSlot(*slotVar, frame, types()), v, loc);
+    if (slotVar) assignValue(frameSlot(*slotVar, frame), v, loc);
     emitBx(Op::CALL, frame, setter.bcIndex);
     freeRegs(inner);
   });
@@ -639,23 +586,11 @@ Value PouCompiler::call(const Expr& e, TypeId expected) {
           if (auto a = inst.pou->actions.find(key); a != inst.pou->actions.end())
             return callAction(*a->second, loadConstInt(inst.address));
     Receiver recv;
-    Diagnostics scratch;
     bool isMethodCall = false;
     // Decide by the object's static type whether this is a method/action or a nested FB instance.
     {
       const Expr& object = *callee.lhs;
-      TypeId objectType = kNoType;
-      if (object.kind == ExprKind::Deref && object.lhs &&
-          (object.lhs->kind == ExprKind::This || object.lhs->kind == ExprKind::Super)) {
-        PouSym* owner = pou_.kind == PouKind::FunctionBlock ? &pou_ : pou_.owner;
-        if (owner) objectType = object.lhs->kind == ExprKind::Super && owner->base ? owner->base->instanceType : owner->instanceType;
-      } else if (object.kind == ExprKind::Name) {
-        std::string n = upper(object.text);
-        PouSym* owner = pou_.kind == PouKind::FunctionBlock || pou_.kind == PouKind::Program ? &pou_ : pou_.owner;
-        if (auto it = pou_.localIndex.find(n); it != pou_.localIndex.end()) objectType = pou_.locals[it->second].type;
-        else if (owner && owner->memberIndex.count(n)) objectType = owner->members[owner->memberIndex[n]].type;
-        else if (auto g = model().globalIndex.find(n); g != model().globalIndex.end()) objectType = model().globals[g->second].var.type;
-      }
+      TypeId objectType = staticTypeOf(object);
       if (objectType != kNoType && types().isReference(objectType) && !model().interfaceByType.count(objectType))
         objectType = types()[objectType].element;
       if (auto fb = model().fbByType.find(objectType); fb != model().fbByType.end())

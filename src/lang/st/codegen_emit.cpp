@@ -278,8 +278,7 @@ static bool fitsInteger(const TypeTable& types, TypeId t, int64_t v) {
   return v >= 0 && v < (int64_t(1) << bits);
 }
 
-Value PouCompiler::convert(Value v, TypeId to, SourceLocation loc, bool explicitConv) {
-  (void)explicitConv;
+Value PouCompiler::convert(Value v, TypeId to, SourceLocation loc) {
   if (!v.ok() || to == kNoType) return Value::error();
   TypeId from = v.type;
   TypeTable& t = types();
@@ -403,10 +402,10 @@ Value PouCompiler::coerce(Value v, TypeId to, SourceLocation loc) {
         diags().error(diag::E202, loc, "an integer cannot be assigned to enumeration " + describe(t, to));
         return Value::error();
       }
-      return convert(v, to, loc, false);
+      return convert(v, to, loc);
     }
-    if (t.isReal(to)) return convert(v, to, loc, false);
-    if (t.isBool(to) && v.c.kind == ConstValue::Kind::Int && (v.c.i == 0 || v.c.i == 1)) return convert(v, to, loc, false);
+    if (t.isReal(to)) return convert(v, to, loc);
+    if (t.isBool(to) && v.c.kind == ConstValue::Kind::Int && (v.c.i == 0 || v.c.i == 1)) return convert(v, to, loc);
   }
   if (v.type == kNoType) {
     diags().error(diag::E202, loc, "expression has no value");
@@ -426,11 +425,11 @@ Value PouCompiler::coerce(Value v, TypeId to, SourceLocation loc) {
     // CODESYS lets integers (0, addresses computed as LWORD) be assigned to pointers
     Value out = v;
     out.type = to;
-    return out.kind == Value::Kind::Const ? out : convert(regValue(TypeTable::elem(ElemType::Lword), toReg(v)), to, loc, true);
+    return out.kind == Value::Kind::Const ? out : convert(regValue(TypeTable::elem(ElemType::Lword), toReg(v)), to, loc);
   }
   if (t.isInteger(to) && t.bits(to) >= 32 && t.isPointer(v.type)) {
     Value out = regValue(TypeTable::elem(ElemType::Lword), toReg(v));
-    return convert(out, to, loc, true);
+    return convert(out, to, loc);
   }
   if ((t.isPointer(to) || t.isReference(to)) && (t.isPointer(v.type) || t.isReference(v.type))) {
     TypeId a = t[to].element, b = t[v.type].element;
@@ -449,18 +448,18 @@ Value PouCompiler::coerce(Value v, TypeId to, SourceLocation loc) {
   }
   switch (classifyConversion(t, v.type, to)) {
     case Conversion::Same:
-      if (t.isScalar(to)) return convert(v, to, loc, false);
+      if (t.isScalar(to)) return convert(v, to, loc);
       {
         Value out = v;
         out.type = to;
         return out;
       }
-    case Conversion::Widening: return convert(v, to, loc, false);
+    case Conversion::Widening: return convert(v, to, loc);
     case Conversion::Narrowing:
       diags().warning(diag::W301, loc, "implicit conversion from " + describe(t, v.type) + " to " + describe(t, to) +
                                            " may lose data; use an explicit conversion such as " + describe(t, v.type) +
                                            "_TO_" + describe(t, to));
-      return convert(v, to, loc, false);
+      return convert(v, to, loc);
     case Conversion::Invalid: break;
   }
   diags().error(diag::E202, loc, "type mismatch: cannot assign " + describe(t, v.type) + " to " + describe(t, to));

@@ -381,7 +381,7 @@ Value PouCompiler::expr(const Expr& e, TypeId expected) {
           v.kind = Value::Kind::Const;
           v.type = p->type;
           v.c = p->var->constValue;
-          return convert(v, p->type, e.loc, false);
+          return convert(v, p->type, e.loc);
         }
         Value v;
         v.kind = Value::Kind::Addr;
@@ -410,7 +410,7 @@ Value PouCompiler::expr(const Expr& e, TypeId expected) {
         }
       if (PouSym* owner = instanceOwner(pou_))
         if (auto prop = owner->properties.find(key); prop != owner->properties.end())
-          return propertyGet(prop->second, kThis, owner, e.loc);
+          return propertyGet(prop->second, Receiver{kThis, owner, nullptr, false}, e.loc);
       diags().error(diag::E201, e.loc, "'" + e.text + "' is not declared");
       return Value::error();
     }
@@ -491,7 +491,7 @@ Value PouCompiler::unary(const Expr& e, TypeId expected) {
         diags().error(diag::E210, e.loc, "unary '-' needs a number, found " + describe(t, a.type));
         return Value::error();
       }
-      return convert(r, a.type, e.loc, false);
+      return convert(r, a.type, e.loc);
     }
     if (e.unaryOp == UnaryOp::Plus) return a;
     if (t.isBool(a.type)) {
@@ -500,7 +500,7 @@ Value PouCompiler::unary(const Expr& e, TypeId expected) {
     }
     if (t.isInteger(a.type)) {
       r.c.i = ~a.c.i;
-      return convert(r, a.type, e.loc, false);
+      return convert(r, a.type, e.loc);
     }
   }
   uint16_t src = toReg(a);
@@ -553,10 +553,8 @@ static ElemType signedOfRank(int r) {
   }
 }
 
-TypeId PouCompiler::commonType(Value& a, Value& b, SourceLocation loc, BinaryOp op) {
+TypeId PouCompiler::commonType(Value& a, Value& b) {
   TypeTable& t = types();
-  (void)loc;
-  (void)op;
   auto realLiteral = [&](const Value& v) { return v.untyped && v.c.kind == ConstValue::Kind::Real; };
   if (realLiteral(b) && t.isInteger(a.type)) return TypeTable::elem(ElemType::Real);
   if (realLiteral(a) && t.isInteger(b.type)) return TypeTable::elem(ElemType::Real);
@@ -627,7 +625,7 @@ Value PouCompiler::compare(const Expr& e, Value a, Value b) {
     ra = cmp.reg;
     rb = loadConstInt(0);
   } else {
-    TypeId common = commonType(a, b, e.loc, e.binaryOp);
+    TypeId common = commonType(a, b);
     if (common == kNoType && t.isEnum(a.type) && a.type == b.type) common = a.type;
     if (common == kNoType && (t.isPointer(a.type) || t.isPointer(b.type))) common = TypeTable::elem(ElemType::Lword);
     if (common == kNoType || !t.isScalar(common)) {
@@ -638,8 +636,8 @@ Value PouCompiler::compare(const Expr& e, Value a, Value b) {
       auto r = foldBinary(e.binaryOp, a.c, b.c, t.isReal(common));
       if (r) return constInt(boolT, r->i);
     }
-    Value ca = t.isPointer(common) || common == a.type ? a : convert(a, common, e.loc, false);
-    Value cb = t.isPointer(common) || common == b.type ? b : convert(b, common, e.loc, false);
+    Value ca = t.isPointer(common) || common == a.type ? a : convert(a, common, e.loc);
+    Value cb = t.isPointer(common) || common == b.type ? b : convert(b, common, e.loc);
     if (!ca.ok() || !cb.ok()) return Value::error();
     ra = toReg(ca);
     rb = toReg(cb);
@@ -701,13 +699,13 @@ Value PouCompiler::arithmetic(const Expr& e, Value a, Value b) {
   bool logical = op == BinaryOp::And || op == BinaryOp::Or || op == BinaryOp::Xor;
   // TIME arithmetic: TIME +- TIME, TIME */ ANY_NUM
   if (t.isTimeLike(a.type) && !t.isTimeLike(b.type) && (op == BinaryOp::Mul || op == BinaryOp::Div) && t.isNumeric(b.type)) {
-    Value bb = t.isReal(b.type) ? b : convert(b, a.type, e.loc, false);
+    Value bb = t.isReal(b.type) ? b : convert(b, a.type, e.loc);
     if (t.isReal(b.type)) {
-      uint16_t x = toReg(convert(a, TypeTable::elem(ElemType::Lreal), e.loc, false));
-      uint16_t y = toReg(convert(b, TypeTable::elem(ElemType::Lreal), e.loc, false));
+      uint16_t x = toReg(convert(a, TypeTable::elem(ElemType::Lreal), e.loc));
+      uint16_t y = toReg(convert(b, TypeTable::elem(ElemType::Lreal), e.loc));
       uint16_t out = allocReg();
       emit(op == BinaryOp::Mul ? Op::MUL_F : Op::DIV_F, out, x, y);
-      return convert(regValue(TypeTable::elem(ElemType::Lreal), out), a.type, e.loc, true);
+      return convert(regValue(TypeTable::elem(ElemType::Lreal), out), a.type, e.loc);
     }
     b = bb;
   }
@@ -720,12 +718,12 @@ Value PouCompiler::arithmetic(const Expr& e, Value a, Value b) {
       diags().error(diag::E210, e.loc, "'**' needs numbers");
       return Value::error();
     }
-    uint16_t x = toReg(convert(a, TypeTable::elem(ElemType::Lreal), e.loc, false));
-    uint16_t y = toReg(convert(b, TypeTable::elem(ElemType::Lreal), e.loc, false));
+    uint16_t x = toReg(convert(a, TypeTable::elem(ElemType::Lreal), e.loc));
+    uint16_t y = toReg(convert(b, TypeTable::elem(ElemType::Lreal), e.loc));
     Value r = callNative(bc::Native::EXPT, {x, y}, TypeTable::elem(ElemType::Lreal));
-    return convert(r, rt, e.loc, false);
+    return convert(r, rt, e.loc);
   }
-  TypeId common = commonType(a, b, e.loc, op);
+  TypeId common = commonType(a, b);
   bool ok = common != kNoType &&
             (logical ? (t.isBitString(common) || t.isInteger(common))
                      : ((t.isNumeric(common) || t.isTimeLike(common)) && !(op == BinaryOp::Mod && t.isReal(common))));
@@ -733,7 +731,7 @@ Value PouCompiler::arithmetic(const Expr& e, Value a, Value b) {
     diags().error(diag::E210, e.loc, "operator cannot combine " + describe(t, a.type) + " and " + describe(t, b.type));
     return Value::error();
   }
-  Value ca = convert(a, common, e.loc, false), cb = convert(b, common, e.loc, false);
+  Value ca = convert(a, common, e.loc), cb = convert(b, common, e.loc);
   if (!ca.ok() || !cb.ok()) return Value::error();
   bool real = t.isReal(common);
   if (ca.kind == Value::Kind::Const && cb.kind == Value::Kind::Const) {
@@ -747,7 +745,7 @@ Value PouCompiler::arithmetic(const Expr& e, Value a, Value b) {
     v.c = *r;
     v.type = common;
     v.untyped = a.untyped && b.untyped;
-    return convert(v, common, e.loc, false);
+    return convert(v, common, e.loc);
   }
   uint16_t x = toReg(ca), y = toReg(cb);
   uint16_t out = allocReg();

@@ -1,0 +1,503 @@
+// End-to-end tests of the `virtcom` command: each test runs the built binary (VIRTCOM_EXE) on
+// files in tests/e2e/data and checks its exit code, stdout and stderr as a user sees them.
+// The child runs with tests/e2e/data as its working directory, so diagnostics show the short
+// relative file names; anything it writes (--trace-file) goes to a per-test temporary folder.
+// Everything runs in virtual time except the one --speed test, which asserts no timing.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* const kExe = VIRTCOM_EXE;
+const char* const kDataDir = VIRTCOM_E2E_DATA;
+
+struct RunResult {
+  int exitCode = -1;  // the process's exit status; 128 + signal if it was killed
+  std::string out;
+  std::string err;
+};
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    work_ = fs::path(::testing::TempDir()) /
+            ("virtcom_e2e_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" +
+             std::to_string(::getpid()));
+    fs::remove_all(work_);
+    fs::create_directories(work_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(work_, ec);
+  }
+
+  // Runs `virtcom args...` in the data folder and waits for it.
+  RunResult run(const std::vector<std::string>& args) {
+    const std::string outPath = (work_ / "stdout.txt").string();
+    const std::string errPath = (work_ / "stderr.txt").string();
+    std::vector<std::string> all{kExe};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = ::fork();
+    if (pid < 0) {
+      ADD_FAILURE() << "fork failed";
+      return {};
+    }
+    if (pid == 0) {  // child: only async-signal-safe calls from here on
+      int in = ::open("/dev/null", O_RDONLY);
+      int out = ::open(outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      int err = ::open(errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (in < 0 || out < 0 || err < 0 || ::chdir(kDataDir) != 0) ::_exit(125);
+      ::dup2(in, 0);
+      ::dup2(out, 1);
+      ::dup2(err, 2);
+      ::execv(kExe, argv.data());
+      ::_exit(127);
+    }
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0) {
+    }
+    RunResult r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    r.out = readFile(outPath);
+    r.err = readFile(errPath);
+    return r;
+  }
+
+  fs::path work_;
+};
+
+std::string show(const RunResult& r) {
+  return "exit " + std::to_string(r.exitCode) + "\n--- stdout ---\n" + r.out + "--- stderr ---\n" + r.err;
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// ---------------------------------------------------------------------------------------------
+class CliHelp : public CliTest {};
+
+TEST_F(CliHelp, TopLevelListsTheSubcommands) {
+  RunResult r = run({"--help"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(contains(r.out, "Usage:")) << show(r);
+  EXPECT_TRUE(contains(r.out, "check")) << show(r);
+  EXPECT_TRUE(contains(r.out, "exec")) << show(r);
+  EXPECT_TRUE(contains(r.out, "--version")) << show(r);
+}
+
+TEST_F(CliHelp, ExecListsEveryOption) {
+  RunResult r = run({"exec", "--help"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  for (const char* option : {"files", "--cycles", "--cycle-time", "--set", "--print", "--trace", "--trace-file",
+                             "--speed", "--budget", "--stats"})
+    EXPECT_TRUE(contains(r.out, option)) << option << "\n" << show(r);
+}
+
+TEST_F(CliHelp, CheckDescribesItsFilesAndExitCodes) {
+  RunResult r = run({"check", "--help"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(contains(r.out, "files")) << show(r);
+  EXPECT_TRUE(contains(r.out, "exit 0 clean, 1 on errors")) << show(r);
+}
+
+TEST_F(CliHelp, Version) {
+  RunResult r = run({"--version"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "virtcom 0.1.0\n");
+}
+
+// ---------------------------------------------------------------------------------------------
+class CliUsage : public CliTest {};
+
+TEST_F(CliUsage, UnknownOptionIsAnError) {
+  RunResult r = run({"exec", "counter.st", "--bogus"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "--bogus")) << show(r);
+  EXPECT_EQ(r.out, "");
+}
+
+TEST_F(CliUsage, UnknownTopLevelOptionIsAnError) {
+  RunResult r = run({"--frobnicate"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "--frobnicate")) << show(r);
+}
+
+TEST_F(CliUsage, MissingSubcommandIsAnError) {
+  RunResult r = run({});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "subcommand is required")) << show(r);
+}
+
+TEST_F(CliUsage, ExecWithoutFilesIsAnError) {
+  RunResult r = run({"exec"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "files")) << show(r);
+}
+
+TEST_F(CliUsage, NegativeCyclesAreRejected) {
+  RunResult r = run({"exec", "counter.st", "--cycles", "-1"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "--cycles")) << show(r);
+}
+
+TEST_F(CliUsage, ZeroSpeedIsRejected) {
+  RunResult r = run({"exec", "counter.st", "--speed", "0"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "--speed")) << show(r);
+}
+
+// ---------------------------------------------------------------------------------------------
+class CliCheck : public CliTest {};
+
+TEST_F(CliCheck, CleanFileExitsZero) {
+  RunResult r = run({"check", "counter.st"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.err, "ok: 1 file(s), no diagnostics\n");
+  EXPECT_EQ(r.out, "");
+}
+
+TEST_F(CliCheck, ErrorsExitOneWithRenderedDiagnostics) {
+  RunResult r = run({"check", "errors.st"});
+  EXPECT_EQ(r.exitCode, 1) << show(r);
+  EXPECT_EQ(r.err,
+            "errors.st:6:6: error[E201]: 'b' is not declared\n"
+            "  a := b + 1;\n"
+            "       ^\n"
+            "errors.st:7:6: error[E202]: type mismatch: cannot assign STRING(1) to INT\n"
+            "  a := 'x';\n"
+            "       ^\n"
+            "2 error(s), 0 warning(s)\n");
+  EXPECT_EQ(r.out, "");
+}
+
+TEST_F(CliCheck, WarningsAreShownButDoNotFail) {
+  RunResult r = run({"check", "warning.st"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.err,
+            "warning.st:6:20: warning[W302]: FOR with BY 0 never ends\n"
+            "  FOR i := 1 TO 3 BY 0 DO\n"
+            "                     ^\n"
+            "0 error(s), 1 warning(s)\n");
+}
+
+TEST_F(CliCheck, SeveralFilesCompileTogether) {
+  RunResult r = run({"check", "GVL.st", "uses_gvl.st"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.err, "ok: 2 file(s), no diagnostics\n");
+}
+
+TEST_F(CliCheck, MissingFileIsAnError) {
+  RunResult r = run({"check", "no_such_file.st"});
+  EXPECT_NE(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(contains(r.err, "no_such_file.st")) << show(r);
+}
+
+TEST_F(CliCheck, NoProgramIsAnError) {
+  RunResult r = run({"check", "no_program.st"});
+  EXPECT_EQ(r.exitCode, 1) << show(r);
+  EXPECT_TRUE(contains(r.err, "error[E217]: no PROGRAM to run")) << show(r);
+}
+
+// BUG: the "no PROGRAM" diagnostic (E217, reported with an empty SourceLocation{}) renders as
+// "<standard library>: error[E217]: ...": fileId 0 of every compilation is the standard
+// library, so an empty location blames it. It should name no file (or the user's file).
+TEST_F(CliCheck, DISABLED_NoProgramDoesNotBlameTheStandardLibrary) {
+  RunResult r = run({"check", "no_program.st"});
+  EXPECT_EQ(r.exitCode, 1) << show(r);
+  EXPECT_FALSE(contains(r.err, "<standard library>")) << show(r);
+}
+
+// ---------------------------------------------------------------------------------------------
+class CliExec : public CliTest {};
+
+TEST_F(CliExec, PrintAfterCycles) {
+  RunResult r = run({"exec", "counter.st", "--cycles", "5", "--print", "MAIN.count"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.count = 5\n");
+  EXPECT_EQ(r.err, "");
+}
+
+TEST_F(CliExec, DefaultIsOneCycle) {
+  RunResult r = run({"exec", "counter.st", "--print", "MAIN.count"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.count = 1\n");
+}
+
+TEST_F(CliExec, ZeroCyclesShowsInitialValues) {
+  RunResult r = run({"exec", "set_before_scan.st", "--cycles", "0", "--print", "MAIN.maxCount"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.maxCount = 3\n");
+}
+
+TEST_F(CliExec, PrintNamesAreCaseInsensitiveAndEchoedAsTyped) {
+  RunResult r = run({"exec", "ton.st", "--print", "main.Q", "--print", "MAIN.t"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out,
+            "main.Q = FALSE\n"
+            "MAIN.t = (IN := TRUE, PT := T#100ms, Q := FALSE, ET := T#0ms)\n");
+}
+
+TEST_F(CliExec, PrintUnknownVariableIsAnError) {
+  RunResult r = run({"exec", "counter.st", "--print", "MAIN.nosuch"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_EQ(r.err, "error: unknown variable 'MAIN.nosuch' (use the qualified name, e.g. MAIN.count or GVL.x)\n");
+  EXPECT_EQ(r.out, "");
+}
+
+TEST_F(CliExec, SetAppliesBeforeTheFirstScan) {
+  RunResult r = run({"exec", "set_before_scan.st", "--cycles", "10", "--set", "MAIN.maxCount=7", "--print",
+                     "MAIN.firstSeen", "--print", "MAIN.count"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.firstSeen = 7\nMAIN.count = 7\n");
+}
+
+TEST_F(CliExec, SetIsRepeatableAndParsesIecLiterals) {
+  RunResult r = run({"exec", "set_before_scan.st", "--cycles", "0", "--set", "MAIN.maxCount=16#10", "--set",
+                     "MAIN.speed=1.5", "--set", "MAIN.mode='manual'", "--print", "MAIN.maxCount", "--print",
+                     "MAIN.speed", "--print", "MAIN.mode"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.maxCount = 16\nMAIN.speed = 1.5\nMAIN.mode = 'manual'\n");
+}
+
+TEST_F(CliExec, SetUnknownVariableIsAnError) {
+  RunResult r = run({"exec", "set_before_scan.st", "--set", "MAIN.nosuch=1", "--print", "MAIN.count"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_EQ(r.err, "error: --set: unknown variable 'MAIN.nosuch'\n");
+  EXPECT_EQ(r.out, "");  // nothing ran, nothing printed
+}
+
+TEST_F(CliExec, SetBadValueIsAnError) {
+  RunResult r = run({"exec", "set_before_scan.st", "--set", "MAIN.maxCount=abc"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_EQ(r.err, "error: --set MAIN.maxCount: invalid INT literal 'abc'\n");
+}
+
+TEST_F(CliExec, SetOutOfRangeValueIsAnError) {
+  RunResult r = run({"exec", "set_before_scan.st", "--set", "MAIN.maxCount=70000"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_EQ(r.err, "error: --set MAIN.maxCount: value 70000 out of range for INT (-32768..32767)\n");
+}
+
+TEST_F(CliExec, SetWithoutEqualsIsAnError) {
+  RunResult r = run({"exec", "set_before_scan.st", "--set", "MAIN.maxCount"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_EQ(r.err, "error: --set expects NAME=VALUE, found 'MAIN.maxCount'\n");
+}
+
+// BUG: --set writes a CONSTANT (VarRef::readOnly is true) without complaint. The program keeps
+// using the compiled-in value (MAIN.y stays 5) while --print shows the new one, so the run
+// looks as if the constant had changed. writeValueFromText leaves read-only checks to the
+// caller, and cmd_exec's applySets does not make one. Expected: a clear error, exit 64.
+TEST_F(CliExec, DISABLED_SetOnAConstantIsRefused) {
+  RunResult r = run({"exec", "constant_and_input.st", "--set", "MAIN.k=9", "--print", "MAIN.y"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "MAIN.k")) << show(r);
+}
+
+// BUG: --set on a located input (AT %IX0.0) is accepted but lost: it is written into memory
+// after the cold start, then the first scan copies the (all-zero) input image over the %I area,
+// so the program never sees it and the command still exits 0. Expected: either the value goes
+// into the input image (the program sees TRUE) or the command refuses it.
+TEST_F(CliExec, DISABLED_SetOnALocatedInputIsNotSilentlyLost) {
+  RunResult r = run({"exec", "constant_and_input.st", "--set", "MAIN.button=TRUE", "--print", "MAIN.seenButton"});
+  if (r.exitCode == 0) {
+    EXPECT_EQ(r.out, "MAIN.seenButton = TRUE\n") << show(r);
+  } else {
+    EXPECT_EQ(r.exitCode, 64) << show(r);
+    EXPECT_TRUE(contains(r.err, "MAIN.button")) << show(r);
+  }
+}
+
+TEST_F(CliExec, TraceWritesCsvHeaderAndOneRowPerScan) {
+  RunResult r = run({"exec", "trace.st", "--cycles", "3", "--trace", "MAIN.a,MAIN.b"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out,
+            "scan,time_ms,MAIN.a,MAIN.b\n"
+            "0,0,2,TRUE\n"
+            "1,10,4,FALSE\n"
+            "2,20,6,TRUE\n");
+}
+
+TEST_F(CliExec, TraceIsRepeatableAndQuotesValuesWithCommas) {
+  RunResult r = run({"exec", "trace.st", "--cycles", "2", "--trace", "MAIN.a", "--trace", "MAIN.pair,MAIN.s"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out,
+            "scan,time_ms,MAIN.a,MAIN.pair,MAIN.s\n"
+            "0,0,2,\"[1, 2]\",'it$'s'\n"
+            "1,10,4,\"[1, 2]\",'it$'s'\n");
+}
+
+TEST_F(CliExec, TraceWithZeroCyclesIsJustTheHeader) {
+  RunResult r = run({"exec", "trace.st", "--cycles", "0", "--trace", "MAIN.a"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "scan,time_ms,MAIN.a\n");
+}
+
+TEST_F(CliExec, TraceUnknownVariableIsAnError) {
+  RunResult r = run({"exec", "trace.st", "--trace", "MAIN.a,MAIN.nope"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "unknown variable 'MAIN.nope'")) << show(r);
+  EXPECT_EQ(r.out, "");
+}
+
+TEST_F(CliExec, TraceFileGetsTheCsvAndStdoutKeepsThePrints) {
+  fs::path csv = work_ / "out.csv";
+  RunResult r = run({"exec", "trace.st", "--cycles", "3", "--trace", "MAIN.a,MAIN.b", "--trace-file", csv.string(),
+                     "--print", "MAIN.a"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.a = 6\n");
+  ASSERT_TRUE(fs::exists(csv));
+  EXPECT_EQ(readFile(csv),
+            "scan,time_ms,MAIN.a,MAIN.b\n"
+            "0,0,2,TRUE\n"
+            "1,10,4,FALSE\n"
+            "2,20,6,TRUE\n");
+}
+
+TEST_F(CliExec, TraceFileThatCannotBeWrittenIsAnError) {
+  fs::path csv = work_ / "no_such_dir" / "out.csv";
+  RunResult r = run({"exec", "trace.st", "--trace", "MAIN.a", "--trace-file", csv.string()});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_EQ(r.err, "error: cannot write " + csv.string() + "\n");
+}
+
+TEST_F(CliExec, DefaultCycleTimeIsTenMilliseconds) {
+  RunResult r = run({"exec", "ton.st", "--cycles", "10", "--print", "MAIN.q", "--print", "MAIN.et"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.q = FALSE\nMAIN.et = T#90ms\n");
+  r = run({"exec", "ton.st", "--cycles", "11", "--print", "MAIN.q"});
+  EXPECT_EQ(r.out, "MAIN.q = TRUE\n");
+}
+
+TEST_F(CliExec, CycleTimeChangesTimerTiming) {
+  RunResult r = run({"exec", "ton.st", "--cycles", "3", "--cycle-time", "50ms", "--trace", "MAIN.q,MAIN.et"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out,
+            "scan,time_ms,MAIN.q,MAIN.et\n"
+            "0,0,FALSE,T#0ms\n"
+            "1,50,FALSE,T#50ms\n"
+            "2,100,TRUE,T#100ms\n");
+}
+
+TEST_F(CliExec, CycleTimeAcceptsIecAndBareForms) {
+  for (const char* form : {"T#50ms", "t#50MS", "0.05s", "50", "50000us"}) {
+    RunResult r = run({"exec", "ton.st", "--cycles", "3", "--cycle-time", form, "--print", "MAIN.et"});
+    EXPECT_EQ(r.exitCode, 0) << form << "\n" << show(r);
+    EXPECT_EQ(r.out, "MAIN.et = T#100ms\n") << form;
+  }
+}
+
+TEST_F(CliExec, BadCycleTimeIsAnError) {
+  RunResult r = run({"exec", "ton.st", "--cycle-time", "fast"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_EQ(r.err, "error: --cycle-time: 'fast' is not a duration (e.g. 10ms, 1s, 250us)\n");
+  r = run({"exec", "ton.st", "--cycle-time", "0ms"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+}
+
+// BUG: parseDurationNs rounds to whole nanoseconds after checking `total > 0`, so a cycle time
+// under half a nanosecond is accepted as 0 ns; the runtime then skips the task on every tick
+// (interval <= 0) and the run "succeeds" with the program never executed (MAIN.count = 0).
+TEST_F(CliExec, DISABLED_CycleTimeThatRoundsToZeroIsRejected) {
+  RunResult r = run({"exec", "counter.st", "--cycle-time", "0.1ns", "--cycles", "3", "--print", "MAIN.count"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+}
+
+// BUG: parseDurationNs hands each number to strtod without checking that strtod consumed all
+// of it, so "1.2.3ms" is accepted as 1.2 ms instead of being reported as not a duration.
+TEST_F(CliExec, DISABLED_CycleTimeWithAMalformedNumberIsRejected) {
+  RunResult r = run({"exec", "counter.st", "--cycle-time", "1.2.3ms"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "--cycle-time")) << show(r);
+}
+
+TEST_F(CliExec, CycleTimeLeavesConfiguredTasksAlone) {
+  RunResult r = run({"exec", "two_tasks.st", "--cycles", "7", "--cycle-time", "50ms", "--print", "f.runs", "--print",
+                     "s.runs", "--trace", "f.runs"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(r.out.starts_with("scan,time_ms,f.runs\n0,0,1\n1,10,2\n")) << show(r);
+  EXPECT_TRUE(r.out.ends_with("6,60,7\nf.runs = 7\ns.runs = 3\n")) << show(r);
+}
+
+TEST_F(CliExec, StatsGoToStderr) {
+  RunResult r = run({"exec", "two_tasks.st", "--cycles", "7", "--stats"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "");
+  EXPECT_TRUE(contains(r.err, "task fast: 7 scans, exec min/avg/max ")) << show(r);
+  EXPECT_TRUE(contains(r.err, "task slow: 3 scans, exec min/avg/max ")) << show(r);
+}
+
+TEST_F(CliExec, SeveralFilesRunAsOneProgram) {
+  RunResult r = run({"exec", "GVL.st", "uses_gvl.st", "--cycles", "4", "--print", "GVL.total"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "GVL.total = 40\n");
+}
+
+TEST_F(CliExec, RuntimeFaultExitsTwoAndNamesTheLocation) {
+  RunResult r = run({"exec", "divzero.st", "--cycles", "10", "--trace", "MAIN.q", "--print", "MAIN.divisor"});
+  EXPECT_EQ(r.exitCode, 2) << show(r);
+  EXPECT_EQ(r.err, "runtime fault: division by zero at divzero.st:8:1 (task MainTask)\n");
+  // the rows of the scans before the fault, then the values as the fault left them
+  EXPECT_EQ(r.out,
+            "scan,time_ms,MAIN.q\n"
+            "0,0,50\n"
+            "1,10,100\n"
+            "MAIN.divisor = 0\n");
+}
+
+TEST_F(CliExec, WatchdogStopsAnEndlessLoop) {
+  RunResult r = run({"exec", "endless.st", "--budget", "10000"});
+  EXPECT_EQ(r.exitCode, 2) << show(r);
+  EXPECT_TRUE(r.err.starts_with("runtime fault: watchdog: instruction budget exhausted at endless.st:")) << show(r);
+  EXPECT_TRUE(r.err.ends_with("(task MainTask)\n")) << show(r);
+}
+
+TEST_F(CliExec, CompileErrorExitsOne) {
+  RunResult r = run({"exec", "errors.st", "--print", "MAIN.a"});
+  EXPECT_EQ(r.exitCode, 1) << show(r);
+  EXPECT_TRUE(contains(r.err, "errors.st:6:6: error[E201]: 'b' is not declared\n")) << show(r);
+  EXPECT_EQ(r.out, "");
+}
+
+TEST_F(CliExec, WarningsArePrintedAndTheProgramStillRuns) {
+  RunResult r = run({"exec", "warning.st", "--cycles", "0", "--print", "MAIN.i"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.i = 0\n");
+  EXPECT_TRUE(contains(r.err, "warning[W302]")) << show(r);
+}
+
+TEST_F(CliExec, MissingFileIsAnError) {
+  RunResult r = run({"exec", "no_such_file.st", "--print", "MAIN.count"});
+  EXPECT_NE(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(contains(r.err, "no_such_file.st")) << show(r);
+  EXPECT_EQ(r.out, "");
+}
+
+TEST_F(CliExec, SpeedPacesButFinishes) {
+  // 3 ticks of 10 ms at 1000x real time: about 20 us of wall time. No timing is asserted.
+  RunResult r = run({"exec", "counter.st", "--speed", "1000", "--cycles", "3", "--print", "MAIN.count"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.count = 3\n");
+}
+
+}  // namespace

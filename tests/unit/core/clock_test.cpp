@@ -1,0 +1,59 @@
+#include <gtest/gtest.h>
+
+#include "core/clock.hpp"
+
+namespace virtcom {
+namespace {
+
+TEST(VirtualClock, StartsAtZero) {
+  VirtualClock clock;
+  EXPECT_EQ(clock.nowNs(), 0);
+}
+
+TEST(VirtualClock, JumpsToTheTarget) {
+  VirtualClock clock;
+  clock.advanceTo(10'000'000);
+  EXPECT_EQ(clock.nowNs(), 10'000'000);
+  clock.advanceTo(int64_t{365} * 86'400'000'000'000);  // a year of virtual time costs nothing
+  EXPECT_EQ(clock.nowNs(), int64_t{365} * 86'400'000'000'000);
+}
+
+TEST(VirtualClock, NeverGoesBackwards) {
+  VirtualClock clock;
+  clock.advanceTo(500);
+  clock.advanceTo(499);
+  EXPECT_EQ(clock.nowNs(), 500);
+  clock.advanceTo(-1);
+  EXPECT_EQ(clock.nowNs(), 500);
+  clock.advanceTo(500);
+  EXPECT_EQ(clock.nowNs(), 500);
+  clock.advanceTo(501);
+  EXPECT_EQ(clock.nowNs(), 501);
+}
+
+TEST(VirtualClock, UsableThroughTheClockInterface) {
+  VirtualClock virt;
+  Clock& clock = virt;
+  clock.advanceTo(42);
+  EXPECT_EQ(clock.nowNs(), 42);
+}
+
+// The paced clock sleeps by design; at a speed of 1e9 a whole microsecond of virtual time is
+// one wall nanosecond, so this stays instant. No timing is asserted, only the virtual time.
+TEST(PacedClock, ReportsVirtualTimeAndNeverGoesBackwards) {
+  PacedClock clock(1e9);
+  EXPECT_EQ(clock.nowNs(), 0);
+  clock.advanceTo(1000);
+  EXPECT_EQ(clock.nowNs(), 1000);
+  clock.advanceTo(10);
+  EXPECT_EQ(clock.nowNs(), 1000);
+}
+
+TEST(MonotonicNow, DoesNotDecrease) {
+  int64_t a = monotonicNowNs();
+  int64_t b = monotonicNowNs();
+  EXPECT_LE(a, b);
+}
+
+}  // namespace
+}  // namespace virtcom

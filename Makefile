@@ -7,7 +7,8 @@ FUZZBUILD  ?= build/fuzz
 CMAKE_GEN  := -G Ninja
 
 APT_PACKAGES := build-essential cmake ninja-build g++ clang libclang-rt-14-dev \
-                libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
+                libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
+                libyaml-cpp-dev nlohmann-json3-dev
 
 .PHONY: all deps build test demo bench fuzz clean
 

@@ -7,4 +7,5 @@ namespace virtcom::cli {
 // Each subcommand registers itself and reports its exit code through `setExit`.
 void addCheckCommand(CLI::App& app, std::function<void(int)> setExit);
 void addExecCommand(CLI::App& app, std::function<void(int)> setExit);
+void addRunCommand(CLI::App& app, std::function<void(int)> setExit);
 }  // namespace virtcom::cli

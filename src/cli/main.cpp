@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   auto setExit = [&](int code) { exitCode = code; };
   virtcom::cli::addCheckCommand(app, setExit);
   virtcom::cli::addExecCommand(app, setExit);
+  virtcom::cli::addRunCommand(app, setExit);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

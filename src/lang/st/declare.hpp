@@ -70,6 +70,7 @@ class Declarer {
   const std::vector<uint8_t>& defaultBytes(TypeId type);
   void applyInit(TypeId type, uint8_t* dst, const Expr& init, const PouSym* pou);
   std::optional<ConstValue> lookupConstName(const Expr& e, const PouSym* pou);
+  std::optional<ConstValue> declaredConstant(const Pou& ast, const std::string& upperName, const PouSym* pou);
 
   const std::vector<CompilationUnit>& units_;
   Diagnostics& diags_;
@@ -84,6 +85,7 @@ class Declarer {
   std::map<TypeId, std::vector<uint8_t>> defaults_;
   std::map<std::string, std::vector<std::pair<TypeId, int64_t>>> enumerators_;  // upper name -> (enum, value)
   std::map<std::string, ConstValue> globalConstants_;  // "X" and "GVL.X"
+  std::set<std::string> constantsInProgress_;           // cycle guard for declaredConstant
   uint32_t nextClassId_ = 1;
 };
 

@@ -381,10 +381,28 @@ std::optional<ConstValue> Declarer::lookupConstName(const Expr& e, const PouSym*
       if (!p->owner) break;
     }
   }
+  // A CONSTANT of this POU declared in a block not laid out yet (used as an array bound above it).
+  for (const PouSym* p = pou; p; p = p->owner)
+    if (auto v = declaredConstant(*p->ast, key, p)) return v;
   if (auto g = model_.globalIndex.find(key); g != model_.globalIndex.end()) return fromVar(model_.globals[g->second].var);
   if (auto c = globalConstants_.find(key); c != globalConstants_.end()) return c->second;
   TypeId t;
   return bareEnumerator(e.text, t);
+}
+
+std::optional<ConstValue> Declarer::declaredConstant(const Pou& ast, const std::string& key, const PouSym* pou) {
+  for (const auto& block : ast.varBlocks) {
+    if (!block.constant) continue;
+    for (const auto& decl : block.vars)
+      for (const auto& n : decl.names) {
+        if (upper(n.name) != key || !decl.init) continue;
+        if (!constantsInProgress_.insert(key).second) return std::nullopt;  // defined through itself
+        auto v = constant(*decl.init, pou, true);
+        constantsInProgress_.erase(key);
+        return v;
+      }
+  }
+  return std::nullopt;
 }
 
 ConstContext Declarer::constContext(const PouSym* pou) {

@@ -224,11 +224,13 @@ void Parser::stopParsing(std::string message) {
   pos_ = toks_.size() - 1;
 }
 
+// Attributes written directly before the current token. The parser never moves backwards, so
+// attributes before earlier tokens that nobody claimed (e.g. before a statement) are dropped.
 std::vector<Attribute> Parser::takeAttributes() {
   std::vector<Attribute> taken;
-  for (auto& [index, attr] : attributes_)
-    if (index == pos_) taken.push_back(std::move(attr));
-  std::erase_if(attributes_, [this](const auto& entry) { return entry.first == pos_; });
+  while (nextAttribute_ < attributes_.size() && attributes_[nextAttribute_].first < pos_) ++nextAttribute_;
+  while (nextAttribute_ < attributes_.size() && attributes_[nextAttribute_].first == pos_)
+    taken.push_back(std::move(attributes_[nextAttribute_++].second));
   return taken;
 }
 

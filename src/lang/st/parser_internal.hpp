@@ -148,6 +148,7 @@ class Parser {
   size_t lastErrorPos_ = static_cast<size_t>(-1);
   // Attribute pragmas, keyed by the index of the token they precede.
   std::vector<std::pair<size_t, Attribute>> attributes_;
+  size_t nextAttribute_ = 0;
   std::array<uint16_t, static_cast<size_t>(Tok::Count_)> openEnds_{};
 };
 

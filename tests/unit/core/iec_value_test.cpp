@@ -51,10 +51,11 @@ TEST(FormatLtime, Int64Max) {
   EXPECT_EQ(formatLtimeNs(INT64_MAX), "LTIME#106751d23h47m16s854ms775us807ns");
 }
 
-// BUG: formatDuration negates the value (`value = -value`), which overflows for INT64_MIN
-// (undefined behaviour; in practice it stays negative and every unit is skipped, giving
-// "LTIME#-"). LTIME is a 64-bit type, so an ST program can hold this value (e.g. the smallest
-// LTIME minus nothing, or wrap-around arithmetic) and `exec --print` would show "LTIME#-".
+// BUG: formatDuration negates the value (`value = -value`), which overflows for INT64_MIN:
+// undefined behaviour (UBSan: "negation of -9223372036854775808 cannot be represented",
+// iec_value.cpp), and in practice the value stays negative, every unit is skipped and the
+// result is "LTIME#-". Reachable from the CLI: an LTIME variable with
+// `exec --cycles 0 --set MAIN.dur=-9223372036854775808 --print MAIN.dur` prints "MAIN.dur = LTIME#-".
 TEST(FormatLtime, DISABLED_Int64MinIsFormattedWithoutOverflow) {
   EXPECT_EQ(formatLtimeNs(INT64_MIN), "LTIME#-106751d23h47m16s854ms775us808ns");
 }
@@ -209,6 +210,7 @@ TEST(Calendar, CivilFromDaysKnownDates) {
 }
 
 // Every day from year 1 to 9999 round-trips, and consecutive days are consecutive dates.
+// (Plain comparisons in the loop: 3.6 million gtest assertions would dominate the run time.)
 TEST(Calendar, RoundTripOverTheWholeFourDigitRange) {
   int64_t py = 0;
   unsigned pm = 12, pd = 31;
@@ -216,12 +218,15 @@ TEST(Calendar, RoundTripOverTheWholeFourDigitRange) {
     int64_t y;
     unsigned m, d;
     civilFromDays(z, y, m, d);
-    ASSERT_EQ(daysFromCivil(y, m, d), z) << y << "-" << m << "-" << d;
     bool nextDay = (y == py && m == pm && d == pd + 1) || (y == py && m == pm + 1 && d == 1) ||
                    (y == py + 1 && m == 1 && d == 1 && pm == 12 && pd == 31);
-    ASSERT_TRUE(nextDay) << "after " << py << "-" << pm << "-" << pd << " came " << y << "-" << m << "-" << d;
+    if (daysFromCivil(y, m, d) != z || !nextDay) {
+      FAIL() << "day " << z << " is " << y << "-" << m << "-" << d << " (after " << py << "-" << pm << "-" << pd
+             << "), which maps back to day " << daysFromCivil(y, m, d);
+    }
     py = y, pm = m, pd = d;
   }
+  EXPECT_EQ(py, 9999);
 }
 
 TEST(ElemTypeByName, StandardNamesCaseInsensitive) {

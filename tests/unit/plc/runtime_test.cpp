@@ -201,16 +201,17 @@ TEST(RuntimeFault, FaultIsStickyUntilColdStart) {
 }
 
 TEST(RuntimeFault, FaultInAFunctionShowsTheCallSite) {
-  auto module = compileSt(R"st(FUNCTION Div : INT
+  auto module = compileSt(R"st(FUNCTION Ratio : INT
 VAR_INPUT a, b : INT; END_VAR
-Div := a / b;
+Ratio := a / b;
 END_FUNCTION
 
 PROGRAM MAIN
 VAR
   r : INT;
+  zero : INT;
 END_VAR
-r := Div(10, 0);
+r := Ratio(10, zero);
 END_PROGRAM
 )st");
   ASSERT_NE(module, nullptr);
@@ -220,7 +221,38 @@ END_PROGRAM
   EXPECT_FALSE(rt.tick());
   EXPECT_EQ(rt.faultText(),
             "division by zero at main.st:3:1\n"
-            "  called from main.st:10:1 (in MAIN) (task MainTask)");
+            "  called from main.st:11:1 (in MAIN) (task MainTask)");
+}
+
+// BUG: a user FUNCTION named like a standard function (here DIV) compiles without a
+// diagnostic, but every call silently goes to the standard DIV: r becomes 10 / 2 = 5 instead
+// of the user's 42. Variables with such names get E119 ("is the name of a standard
+// function"); a POU with such a name should too (or calls should reach the user's function).
+TEST(StandardNames, DISABLED_UserFunctionNamedLikeAStandardFunctionIsNotSilentlyIgnored) {
+  const char* text = R"st(FUNCTION Div : INT
+VAR_INPUT a, b : INT; END_VAR
+Div := 42;
+END_FUNCTION
+
+PROGRAM MAIN
+VAR
+  r : INT;
+END_VAR
+r := Div(10, 2);
+END_PROGRAM
+)st";
+  SourceManager sources;
+  Diagnostics diags;
+  auto module = st::compileProgram({{"main.st", text}}, sources, diags);
+  if (!module) {
+    EXPECT_NE(diags.render(sources).find("error[E119]"), std::string::npos) << diags.render(sources);
+    return;
+  }
+  VirtualClock clock;
+  Runtime rt(*module, clock);
+  ASSERT_TRUE(rt.coldStart());
+  ASSERT_TRUE(rt.tick());
+  EXPECT_EQ(valueOf(rt, "MAIN.r"), "42");
 }
 
 const char* const kEndless = R"st(PROGRAM MAIN
@@ -307,7 +339,7 @@ END_PROGRAM
 TEST(ProcessImage, InputsAreCopiedInOnlyAtTheStartOfAScan) {
   auto module = compileSt(kImages);
   ASSERT_NE(module, nullptr);
-  ASSERT_GE(module->inputs.size, 4u);
+  ASSERT_GE(module->inputs.size, 6u);
   VirtualClock clock;
   Runtime rt(*module, clock);
   ASSERT_TRUE(rt.coldStart());
@@ -325,26 +357,28 @@ TEST(ProcessImage, InputsAreCopiedInOnlyAtTheStartOfAScan) {
   EXPECT_EQ(valueOf(rt, "MAIN.x3"), "TRUE");
 }
 
-TEST(ProcessImage, InputWordIsLittleEndianAtItsByteOffset) {
+TEST(ProcessImage, InputWordIsNumberedInWordsAndLittleEndian) {
   auto module = compileSt(kImages);
   ASSERT_NE(module, nullptr);
   VirtualClock clock;
   Runtime rt(*module, clock);
   ASSERT_TRUE(rt.coldStart());
-  rt.inputImage()[2] = 0x2c;  // 300 = 16#012C
-  rt.inputImage()[3] = 0x01;
+  rt.inputImage()[2] = 0xff;  // bytes 2..3 are %IW1, not %IW2
+  rt.inputImage()[3] = 0xff;
+  rt.inputImage()[4] = 0x2c;  // CODESYS numbering: %IW2 starts at byte 4; 300 = 16#012C
+  rt.inputImage()[5] = 0x01;
   ASSERT_TRUE(rt.tick());
   EXPECT_EQ(valueOf(rt, "MAIN.seenLevel"), "300");
 }
 
-TEST(ProcessImage, ProgramWritesToInputsAreOverwrittenByTheNextSample) {
+TEST(ProcessImage, WritesIntoTheInputAreaAreOverwrittenByTheNextSample) {
   auto module = compileSt(kImages);
   ASSERT_NE(module, nullptr);
   VirtualClock clock;
   Runtime rt(*module, clock);
   ASSERT_TRUE(rt.coldStart());
   ASSERT_TRUE(rt.tick());
-  ASSERT_EQ(setValue(rt, "MAIN.x", "TRUE"), "");  // e.g. a debugger forcing the %I area
+  ASSERT_EQ(setValue(rt, "MAIN.x", "TRUE"), "");  // memory, not the input image
   ASSERT_TRUE(rt.tick());
   EXPECT_EQ(valueOf(rt, "MAIN.seen"), "FALSE");  // the device says FALSE
 }

@@ -373,7 +373,7 @@ TEST(ParserDecl, Variables) {
             "pts : ARRAY[0..1] OF Point := [{(x := 1)} {(x := 2)}]");
   EXPECT_EQ(vars("p : Point := (x := 1, y := 2);"), "p : Point := {(x := 1) (y := 2)}");
   EXPECT_EQ(vars("p : POINTER TO INT; r : REFERENCE TO INT; q : REF_TO INT;"),
-            "p : POINTER TO INT; r : REF INT; q : REF INT");
+            "p : POINTER TO INT; r : REF INT; q : POINTER TO INT");  // IEC REF_TO is pointer-like
   EXPECT_EQ(vars("state : (Idle, Run := 5) := Idle;"), "state : (Idle, Run := 5) := Idle");
   EXPECT_EQ(vars("x : INT(0..10) := 5;"), "x : INT(0..10) := 5");
   EXPECT_EQ(vars("m : ARRAY[*] OF INT; t : Lib.TON;"), "m : ARRAY[*] OF INT; t : Lib.TON");

@@ -1,0 +1,79 @@
+#pragma once
+// A loaded cell: the compiled PLC program, the devices, the tag bus, the wiring between device
+// ports and PLC variables, the world (facts and zones) and the run settings.
+// docs/cell-file.md describes the file format.
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bytecode/module.hpp"
+#include "core/diagnostics.hpp"
+#include "core/source.hpp"
+#include "core/tag_bus.hpp"
+#include "core/trace.hpp"
+#include "plant/device.hpp"
+#include "plant/world.hpp"
+
+namespace virtcom::cell {
+
+// One device port connected to one PLC variable. Transfers are typed memory copies.
+struct Wire {
+  TagId tag = kNoTag;
+  plant::PortDir dir = plant::PortDir::In;  // In: PLC variable -> tag; Out: tag -> PLC variable
+  uint32_t address = 0;                     // in the PLC memory image
+  int8_t bit = -1;
+  ElemType varType = ElemType::Bool;        // storage type of the PLC variable
+  std::string varName;                      // for messages
+};
+
+// A stop condition `NAME op VALUE` on a PLC variable, resolved at load time.
+struct Condition {
+  enum class Op { Eq, Ne, Lt, Le, Gt, Ge };
+  std::string text;
+  uint32_t address = 0;
+  int8_t bit = -1;
+  ElemType type = ElemType::Bool;
+  Op op = Op::Eq;
+  double value = 0;
+  bool valid = false;
+};
+
+struct RunSettings {
+  int64_t timeLimitNs = 600'000'000'000;  // 10 min of virtual time
+  int64_t plcCycleNs = 10'000'000;        // default task interval
+  Condition until;                        // stop when true (default: first completed cycle)
+  std::string cycleDoneVar;               // BOOL PLC variable: each rising edge ends a cycle
+  uint32_t cycles = 1;                    // stop after this many cycles (when cycleDoneVar is set)
+  bool stopOnCollision = true;
+  bool stopOnDeviceError = true;
+  std::vector<std::string> recordVars;    // extra PLC variables recorded in the trace
+};
+
+struct Cell {
+  std::string name;
+  std::filesystem::path file;
+  std::unique_ptr<bc::Module> module;
+  TagBus bus;
+  Trace trace;
+  plant::World world{trace};
+  std::vector<std::unique_ptr<plant::Device>> devices;
+  std::vector<Wire> wires;
+  RunSettings run;
+};
+
+// Loads `path`: parses the YAML, compiles the PLC sources it names, creates the devices and the
+// wiring and checks everything (unknown keys, units, PLC variables that do not exist or have an
+// incompatible type, duplicate names). All problems are reported in one pass; returns null if
+// there was any error. `sources` keeps the texts for rendering diagnostics.
+std::unique_ptr<Cell> loadCell(const std::string& path, SourceManager& sources, Diagnostics& diags);
+
+// Parses "MAIN.count >= 3" against the module (also used by `--until`). Reports through `diags`.
+Condition parseCondition(const bc::Module& m, const std::string& text, SourceLocation loc, Diagnostics& diags);
+bool evaluate(const Condition& c, const uint8_t* memory);
+
+// Typed transfers between the PLC memory image and the tag bus (no allocation).
+void readVariable(const Wire& w, const uint8_t* memory, TagBus& bus);
+void writeVariable(const Wire& w, const TagBus& bus, uint8_t* memory);
+
+}  // namespace virtcom::cell

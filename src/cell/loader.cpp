@@ -1,0 +1,249 @@
+// Loading a cell file: YAML -> checked Cell with compiled PLC program, devices and wiring.
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "cell/cell.hpp"
+#include "cell/yaml_config.hpp"
+#include "lang/st/compiler.hpp"
+
+namespace virtcom::cell {
+
+namespace {
+
+bool readText(const std::filesystem::path& p, std::string& out) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) return false;
+  std::stringstream ss;
+  ss << in.rdbuf();
+  out = ss.str();
+  return true;
+}
+
+bool compatible(ElemType port, const bc::TypeDesc& var) {
+  if (var.kind != bc::TypeKind::Elementary && var.kind != bc::TypeKind::Enum) return false;
+  ElemType v = var.elem;
+  if (port == ElemType::Bool) return v == ElemType::Bool;
+  if (v == ElemType::Bool || elemTypeInfo(v).kind == ElemKind::Text) return false;
+  if (isFloat(port)) return isFloat(v) || isInteger(v);
+  return isInteger(v) || var.kind == bc::TypeKind::Enum || isFloat(v);
+}
+
+const char* dirText(plant::PortDir d) { return d == plant::PortDir::In ? "input" : "output"; }
+
+class Loader {
+ public:
+  Loader(SourceManager& sources, Diagnostics& diags) : sources_(sources), diags_(diags) {}
+
+  std::unique_ptr<Cell> load(const std::string& path) {
+    auto cell = std::make_unique<Cell>();
+    cell->file = path;
+    std::string text;
+    if (!readText(path, text)) {
+      diags_.error("C002", {}, "cannot read cell file '" + path + "'");
+      return nullptr;
+    }
+    ConfigNode root;
+    if (!parseYaml(path, text, sources_, diags_, root)) return nullptr;
+    ConfigReader top(root, diags_, "the cell file");
+    cell->name = top.optString("name", std::filesystem::path(path).parent_path().filename().string());
+    if (!compilePlc(*cell, top)) return nullptr;
+    readRun(*cell, top);
+    readWorld(*cell, top);
+    readDevices(*cell, top);
+    top.rejectUnknownKeys();
+    if (diags_.hasErrors()) return nullptr;
+    return cell;
+  }
+
+ private:
+  bool compilePlc(Cell& cell, ConfigReader& top) {
+    const ConfigNode* plcNode = top.child("plc");
+    if (!plcNode) {
+      top.error(top.node().loc(), "the cell file needs a 'plc:' section with the PLC program's 'sources'");
+      return false;
+    }
+    ConfigReader plc(*plcNode, diags_, "'plc'");
+    std::vector<st::SourceInput> inputs;
+    const ConfigNode* srcs = plc.child("sources");
+    if (!srcs || srcs->kind() != ConfigNode::Kind::List || srcs->items().empty()) {
+      plc.error(plcNode->loc(), "'plc' needs 'sources': a list of ST files relative to the cell file");
+    } else {
+      for (const auto& item : srcs->items()) {
+        std::filesystem::path p = cell.file.parent_path() / item.scalar();
+        std::string st;
+        if (!readText(p, st)) {
+          plc.error(item.loc(), "cannot read PLC source '" + p.string() + "'");
+          continue;
+        }
+        inputs.push_back({p.lexically_normal().string(), st});
+      }
+    }
+    cell.run.plcCycleNs = static_cast<int64_t>(plc.optQuantity("cycle_time", Dimension::Time, 0.01) * 1e9 + 0.5);
+    plc.rejectUnknownKeys();
+    if (diags_.hasErrors()) return false;
+    cell.module = st::compileProgram(inputs, sources_, diags_);
+    if (!cell.module) return false;
+    for (auto& t : cell.module->tasks)
+      if (t.name == "MainTask") t.intervalNs = cell.run.plcCycleNs;
+    return true;
+  }
+
+  void readRun(Cell& cell, ConfigReader& top) {
+    const ConfigNode* runNode = top.child("run");
+    if (!runNode) return;
+    ConfigReader run(*runNode, diags_, "'run'");
+    RunSettings& r = cell.run;
+    r.timeLimitNs = static_cast<int64_t>(run.optQuantity("time_limit", Dimension::Time, 600.0) * 1e9 + 0.5);
+    if (const ConfigNode* u = run.child("until")) r.until = parseCondition(*cell.module, u->scalar(), u->loc(), diags_);
+    if (const ConfigNode* c = run.child("cycle_done")) {
+      r.cycleDoneVar = c->scalar();
+      auto ref = bc::resolveVariable(*cell.module, r.cycleDoneVar);
+      if (!ref || cell.module->types[ref->type].elem != ElemType::Bool || cell.module->types[ref->type].kind != bc::TypeKind::Elementary)
+        run.error(c->loc(), "'cycle_done' must name a BOOL PLC variable; '" + r.cycleDoneVar + "' is not one");
+    }
+    r.cycles = static_cast<uint32_t>(run.optInt("cycles", 1));
+    r.stopOnCollision = run.optBool("stop_on_collision", true);
+    r.stopOnDeviceError = run.optBool("stop_on_device_error", true);
+    if (const ConfigNode* rec = run.child("record")) {
+      for (const auto& item : rec->items()) {
+        if (!bc::resolveVariable(*cell.module, item.scalar())) run.error(item.loc(), "'record': no PLC variable '" + item.scalar() + "'");
+        else r.recordVars.push_back(item.scalar());
+      }
+    }
+    run.rejectUnknownKeys();
+  }
+
+  void readWorld(Cell& cell, ConfigReader& top) {
+    if (const ConfigNode* zones = top.child("zones"))
+      for (const auto& z : zones->items()) cell.world.zone(z.scalar());
+    const ConfigNode* worldNode = top.child("world");
+    if (!worldNode) return;
+    ConfigReader world(*worldNode, diags_, "'world'");
+    if (const ConfigNode* facts = world.child("facts")) {
+      if (facts->kind() != ConfigNode::Kind::Map) {
+        world.error(facts->loc(), "'facts' must map fact names to true/false");
+      } else {
+        ConfigReader f(*facts, diags_, "'facts'");
+        for (const auto& [name, value] : facts->entries()) cell.world.setInitial(cell.world.fact(name), f.optBool(name, false));
+      }
+    }
+    world.rejectUnknownKeys();
+  }
+
+  void readDevices(Cell& cell, ConfigReader& top) {
+    const ConfigNode* list = top.child("devices");
+    if (!list || list->kind() != ConfigNode::Kind::List) {
+      top.error(list ? list->loc() : top.node().loc(), "the cell file needs 'devices:', a list of devices");
+      return;
+    }
+    std::set<std::string> names;
+    for (const auto& node : list->items()) {
+      ConfigReader cfg(node, diags_, "device");
+      std::string name = cfg.requireString("name");
+      std::string type = cfg.requireString("type");
+      if (name.empty() || type.empty()) continue;
+      if (!names.insert(name).second) {
+        cfg.error(node.loc(), "a device named '" + name + "' already exists");
+        continue;
+      }
+      const ConfigNode* wiring = cfg.child("wiring");
+      const ConfigNode* faults = cfg.child("faults");
+      cfg.optString("model", "");        // informational: the real device's make and type
+      cfg.optString("description", "");
+      // the factory reads the device's own parameters and rejects unknown keys
+      auto device = plant::createDevice(type, name, cfg, cell.world);
+      if (!device) continue;
+      if (faults) readFaults(*device, *faults);
+      bindPorts(cell, *device, wiring, node);
+      cell.devices.push_back(std::move(device));
+    }
+  }
+
+  void readFaults(plant::Device& d, const ConfigNode& node) {
+    ConfigReader f(node, diags_, "'faults'");
+    plant::FaultPlan& p = d.faults();
+    p.errorCode = static_cast<int32_t>(f.optInt("error_code", 0));
+    p.errorAtCommand = static_cast<uint32_t>(f.optInt("at_command", p.errorCode ? 1 : 0));
+    p.extraDelayNs = static_cast<int64_t>(f.optQuantity("extra_delay", Dimension::Time, 0) * 1e9 + 0.5);
+    p.doneStuck = f.optBool("done_stuck", false);
+    p.stuckOutput = static_cast<int>(f.optInt("stuck_output", -1));
+    f.rejectUnknownKeys();
+  }
+
+  void bindPorts(Cell& cell, plant::Device& d, const ConfigNode* wiring, const ConfigNode& deviceNode) {
+    const auto& ports = d.ports();
+    for (size_t i = 0; i < ports.size(); ++i) d.bindPort(i, cell.bus.add(d.name() + "." + ports[i].name, ports[i].type));
+    if (!wiring) return;  // an unwired device still simulates (e.g. driven only by faults or facts)
+    if (wiring->kind() == ConfigNode::Kind::Scalar) {
+      // Prefix form: every port P is wired to PREFIX.P if that PLC variable exists.
+      size_t wired = 0;
+      for (size_t i = 0; i < ports.size(); ++i) {
+        std::string var = wiring->scalar() + "." + ports[i].name;
+        if (!bc::resolveVariable(*cell.module, var)) continue;
+        wired += connect(cell, d, i, var, wiring->loc());
+      }
+      if (wired == 0)
+        diags_.error("C030", wiring->loc(), "no port of '" + d.name() + "' matches a variable under '" + wiring->scalar() +
+                                                 "' (expected e.g. " + wiring->scalar() + "." + (ports.empty() ? "execute" : ports[0].name) + ")");
+      return;
+    }
+    if (wiring->kind() != ConfigNode::Kind::Map) {
+      diags_.error("C030", wiring->loc(), "'wiring' must be a PLC variable prefix (MAIN.Robot1) or a map port: variable");
+      return;
+    }
+    for (const auto& [port, var] : wiring->entries()) {
+      int index = d.portIndex(port);
+      if (index < 0) {
+        std::string known;
+        for (const auto& p : ports) known += (known.empty() ? "" : ", ") + p.name;
+        diags_.error("C031", wiring->keyLoc(port), "device '" + d.name() + "' has no port '" + port + "' (ports: " + known + ")");
+        continue;
+      }
+      if (!bc::resolveVariable(*cell.module, var.scalar())) {
+        diags_.error("C032", var.loc(), "the PLC has no variable '" + var.scalar() + "' to wire to " + d.name() + "." + port);
+        continue;
+      }
+      connect(cell, d, static_cast<size_t>(index), var.scalar(), var.loc());
+    }
+    (void)deviceNode;
+  }
+
+  size_t connect(Cell& cell, plant::Device& d, size_t port, const std::string& var, SourceLocation loc) {
+    const plant::PortSpec& spec = d.ports()[port];
+    auto ref = bc::resolveVariable(*cell.module, var);
+    const bc::TypeDesc& t = cell.module->types[ref->type];
+    if (!compatible(spec.type, t) && !(ref->bit >= 0 && spec.type == ElemType::Bool)) {
+      diags_.error("C033", loc, "'" + var + "' is " + t.name + " but " + dirText(spec.dir) + " '" + spec.name + "' of " +
+                                    d.name() + " is " + std::string(elemTypeInfo(spec.type).name));
+      return 0;
+    }
+    if (spec.dir == plant::PortDir::Out && ref->readOnly) {
+      diags_.error("C033", loc, "'" + var + "' is read-only (CONSTANT) and cannot receive " + d.name() + "." + spec.name);
+      return 0;
+    }
+    Wire w;
+    w.tag = d.tag(port);
+    w.dir = spec.dir;
+    w.address = ref->address;
+    w.bit = ref->bit;
+    w.varType = t.elem;
+    w.varName = var;
+    cell.wires.push_back(w);
+    return 1;
+  }
+
+  SourceManager& sources_;
+  Diagnostics& diags_;
+};
+
+}  // namespace
+
+std::unique_ptr<Cell> loadCell(const std::string& path, SourceManager& sources, Diagnostics& diags) {
+  Loader loader(sources, diags);
+  auto cell = loader.load(path);
+  diags.sortByLocation();
+  return cell;
+}
+
+}  // namespace virtcom::cell

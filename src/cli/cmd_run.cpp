@@ -1,0 +1,135 @@
+// `virtcom run`: simulate a cell (PLC program + devices) and report cycle time, Gantt, energy.
+#include <atomic>
+#include <csignal>
+#include <fstream>
+#include <iostream>
+
+#include "cell/cell.hpp"
+#include "cli/commands.hpp"
+#include "cli/common.hpp"
+#include "report/html_report.hpp"
+#include "report/json_report.hpp"
+#include "report/kpis.hpp"
+#include "report/summary.hpp"
+#include "report/waveform.hpp"
+#include "sim/simulation.hpp"
+
+namespace virtcom::cli {
+
+namespace {
+
+std::atomic<bool> gStop{false};
+extern "C" void onRunSignal(int) { gStop = true; }
+
+struct RunOptions {
+  std::string cellFile;
+  std::string html, json, vcd, csv;
+  std::string until;
+  std::string timeLimit;
+  std::vector<std::string> sets;
+  std::vector<std::string> signals;
+  double speed = 0;
+  bool quiet = false;
+};
+
+bool writeFile(const std::string& path, const std::string& content) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) {
+    std::cerr << "error: cannot write " << path << "\n";
+    return false;
+  }
+  out << content;
+  return true;
+}
+
+int exitCodeFor(RunEnd end) {
+  switch (end) {
+    case RunEnd::Completed: return kExitOk;
+    case RunEnd::PlcFault: return kExitRuntimeFault;
+    default: return 3;  // device error, collision, time limit, interrupted
+  }
+}
+
+int runCell(const RunOptions& o) {
+  SourceManager sources;
+  Diagnostics diags;
+  auto cell = cell::loadCell(o.cellFile, sources, diags);
+  std::cerr << diags.render(sources);
+  if (!cell) return kExitCompileError;
+  if (!o.until.empty()) {
+    Diagnostics d;
+    cell->run.until = cell::parseCondition(*cell->module, o.until, {}, d);
+    if (d.hasErrors()) {
+      std::cerr << d.render(sources);
+      return kExitUsage;
+    }
+  }
+  sim::SimOptions options;
+  options.speed = o.speed;
+  options.interrupt = &gStop;
+  if (!o.timeLimit.empty()) {
+    auto ns = parseDurationNs(o.timeLimit);
+    if (!ns) {
+      std::cerr << "error: --time-limit: '" << o.timeLimit << "' is not a duration (e.g. 300s, 5m)\n";
+      return kExitUsage;
+    }
+    options.timeLimitNs = *ns;
+  }
+  // Validate every --set on a scratch image first so mistakes are reported before the run.
+  std::vector<std::pair<bc::VarRef, std::string>> presets;
+  std::vector<uint8_t> scratch(cell->module->memorySize(), 0);
+  for (const auto& s : o.sets) {
+    auto eq = s.find('=');
+    auto ref = eq == std::string::npos ? std::nullopt : bc::resolveVariable(*cell->module, s.substr(0, eq));
+    std::string problem = !ref ? "expected NAME=VALUE with a PLC variable name"
+                               : bc::writeValueFromText(*cell->module, *ref, s.substr(eq + 1), scratch.data());
+    if (!problem.empty()) {
+      std::cerr << "error: --set " << s << ": " << problem << "\n";
+      return kExitUsage;
+    }
+    presets.push_back({*ref, s.substr(eq + 1)});
+  }
+  const bc::Module& module = *cell->module;
+  options.preset = [&presets, &module](uint8_t* memory) {
+    for (const auto& [ref, value] : presets) bc::writeValueFromText(module, ref, value, memory);
+  };
+  sim::Simulation simulation(*cell, options);
+  std::signal(SIGINT, onRunSignal);
+  std::signal(SIGTERM, onRunSignal);
+  RunEnd end = simulation.run();
+  const Trace& trace = simulation.trace();
+  report::Kpis kpis = report::computeKpis(trace);
+  if (!o.quiet) std::cout << report::summaryTable(trace, kpis);
+  report::HtmlOptions html;
+  html.title = cell->name;
+  html.signals = o.signals;
+  bool ok = true;
+  if (!o.html.empty()) ok = writeFile(o.html, report::htmlReport(trace, kpis, html)) && ok;
+  if (!o.json.empty()) ok = writeFile(o.json, report::jsonReport(trace, kpis)) && ok;
+  if (!o.vcd.empty()) ok = writeFile(o.vcd, report::vcdReport(trace)) && ok;
+  if (!o.csv.empty()) ok = writeFile(o.csv, report::csvChanges(trace)) && ok;
+  if (!ok) return kExitUsage;
+  return exitCodeFor(end);
+}
+
+}  // namespace
+
+void addRunCommand(CLI::App& app, std::function<void(int)> setExit) {
+  auto o = std::make_shared<RunOptions>();
+  CLI::App* cmd = app.add_subcommand("run", "Simulate a cell file (PLC program + devices) and report cycle time, Gantt chart and energy");
+  cmd->add_option("cell", o->cellFile, "the cell file (YAML)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--report", o->html, "write the HTML report (Gantt chart, KPIs, signals) to this file");
+  cmd->add_option("--json", o->json, "write the JSON report (docs/report.md) to this file");
+  cmd->add_option("--vcd", o->vcd, "write every signal change as VCD (GTKWave) to this file");
+  cmd->add_option("--csv", o->csv, "write every signal change as CSV to this file");
+  cmd->add_option("--until", o->until, "stop when a PLC condition holds, e.g. \"MAIN.partsDone >= 3\"");
+  cmd->add_option("--time-limit", o->timeLimit, "virtual time limit, e.g. 300s (overrides run.time_limit)");
+  cmd->add_option("--set", o->sets, "NAME=VALUE set in the PLC after its first scan (repeatable), e.g. MAIN.sequence=3");
+  cmd->add_option("--signal", o->signals, "signal shown in the report's timeline (repeatable), e.g. Robot1.busy");
+  cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--quiet", o->quiet, "do not print the summary table");
+  cmd->callback([o, setExit] { setExit(runCell(*o)); });
+}
+
+}  // namespace virtcom::cli

@@ -1,0 +1,87 @@
+#pragma once
+// What a simulation run leaves behind: signal changes, device activities (the Gantt bars),
+// collisions, faults and per-device totals. The simulation and the devices append to it; reports
+// read only this. Appends are amortised O(1); labels are interned at load time so recording an
+// activity on the per-tick path never builds a string.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/iec_value.hpp"
+#include "core/tag_bus.hpp"
+
+namespace virtcom {
+
+struct SignalInfo {
+  std::string name;
+  ElemType type = ElemType::Bool;
+  uint64_t initial = 0;   // raw value (TagBus representation) at time 0
+};
+
+struct SignalChange {
+  int64_t timeNs = 0;
+  TagId tag = 0;
+  uint64_t raw = 0;
+};
+
+struct DeviceInfo {
+  std::string name;
+  std::string type;       // "robot", "axis", "press", ...
+  std::string group;      // Gantt lane group, e.g. "Robots"; empty = by type
+};
+
+struct ActivityRecord {
+  uint32_t device = 0;
+  uint32_t label = 0;     // index into Trace::labels
+  int64_t startNs = 0;
+  int64_t endNs = -1;     // -1 while running
+  double energyJ = 0;
+  int32_t errorCode = 0;  // non-zero: the activity ended in this error
+};
+
+struct CollisionRecord {
+  int64_t timeNs = 0;
+  uint32_t zone = 0;      // index into Trace::labels (zone name)
+  uint32_t deviceA = 0, deviceB = 0;
+  uint32_t activityA = 0, activityB = 0;  // labels of what each was doing
+};
+
+struct FaultRecord {
+  int64_t timeNs = 0;
+  std::string source;     // device or "PLC"
+  std::string message;
+};
+
+struct DeviceTotals {
+  int64_t busyNs = 0;
+  double energyJ = 0;     // all energy, idle included
+};
+
+enum class RunEnd { Completed, TimeLimit, PlcFault, DeviceError, Collision, Interrupted };
+const char* runEndName(RunEnd e);
+
+struct Trace {
+  std::vector<SignalInfo> signals;        // indexed by TagId
+  std::vector<SignalChange> changes;      // in time order
+  std::vector<DeviceInfo> devices;
+  std::vector<std::string> labels;
+  std::vector<ActivityRecord> activities; // in start order
+  std::vector<CollisionRecord> collisions;
+  std::vector<FaultRecord> faults;
+  std::vector<DeviceTotals> totals;       // per device, filled at the end of the run
+  int64_t endNs = 0;
+  int64_t cycleStartNs = 0;               // the measured cycle (whole run if no markers)
+  int64_t cycleEndNs = 0;
+  uint32_t cyclesCompleted = 0;
+  RunEnd end = RunEnd::Completed;
+  std::string endMessage;
+
+  // Load time: label ids for operation, procedure and zone names.
+  uint32_t internLabel(const std::string& label);
+  uint32_t addDevice(std::string name, std::string type, std::string group = {});
+  // Per tick: start/finish an activity; returns the activity index.
+  uint32_t beginActivity(uint32_t device, uint32_t label, int64_t nowNs);
+  void endActivity(uint32_t activity, int64_t nowNs, double energyJ, int32_t errorCode = 0);
+};
+
+}  // namespace virtcom

@@ -1,0 +1,73 @@
+#include "plant/config_helpers.hpp"
+
+#include <cstdlib>
+
+#include "plant/motion_profile.hpp"
+
+namespace virtcom::plant {
+
+int64_t requireDurationNs(ConfigReader& cfg, const std::string& key) {
+  return secondsToNs(cfg.requireQuantity(key, Dimension::Time));
+}
+
+int64_t optDurationNs(ConfigReader& cfg, const std::string& key, int64_t fallbackNs) {
+  if (!cfg.has(key)) {
+    cfg.child(key);  // mark as known for rejectUnknownKeys
+    return fallbackNs;
+  }
+  return requireDurationNs(cfg, key);
+}
+
+std::vector<uint32_t> optFactList(ConfigReader& cfg, const std::string& key, World& world) {
+  std::vector<uint32_t> out;
+  const ConfigNode* n = cfg.child(key);
+  if (!n) return out;
+  if (n->kind() == ConfigNode::Kind::Scalar) {
+    if (!n->scalar().empty()) out.push_back(world.fact(n->scalar()));
+    return out;
+  }
+  if (n->kind() != ConfigNode::Kind::List) {
+    cfg.error(n->loc(), "'" + key + "' must be a list of fact names such as [pinPlaced, insertLocked]");
+    return out;
+  }
+  for (const auto& item : n->items()) {
+    if (item.kind() != ConfigNode::Kind::Scalar || item.scalar().empty()) {
+      cfg.error(item.loc(), "'" + key + "': expected a fact name");
+      continue;
+    }
+    out.push_back(world.fact(item.scalar()));
+  }
+  return out;
+}
+
+bool parseCommandNumber(ConfigReader& cfg, const std::string& key, SourceLocation loc, int32_t& out) {
+  char* end = nullptr;
+  long v = std::strtol(key.c_str(), &end, 10);
+  if (key.empty() || *end != '\0' || v < 1 || v > 32767) {
+    cfg.error(loc, "command number '" + key + "' must be a whole number from 1 to 32767");
+    return false;
+  }
+  out = static_cast<int32_t>(v);
+  return true;
+}
+
+const ConfigNode* mapChild(ConfigReader& cfg, const std::string& key, bool required) {
+  const ConfigNode* n = cfg.child(key);
+  if (!n) {
+    if (required) cfg.error(cfg.node().loc(), "missing '" + key + "' (a map)");
+    return nullptr;
+  }
+  if (n->kind() != ConfigNode::Kind::Map) {
+    cfg.error(n->loc(), "'" + key + "' must be a map of `name: value` entries");
+    return nullptr;
+  }
+  return n;
+}
+
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+}  // namespace virtcom::plant

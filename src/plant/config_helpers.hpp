@@ -1,0 +1,31 @@
+#pragma once
+// Load-time helpers shared by the device factories: numbered command tables, fact lists,
+// durations in ns. Everything reports through ConfigReader (file:line:col) and never throws.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/config_node.hpp"
+#include "plant/world.hpp"
+
+namespace virtcom::plant {
+
+// A duration parameter as integer nanoseconds (required / optional with a fallback in ns).
+int64_t requireDurationNs(ConfigReader& cfg, const std::string& key);
+int64_t optDurationNs(ConfigReader& cfg, const std::string& key, int64_t fallbackNs);
+
+// A list of world fact names (`[a, b]`, or one name), interned in `world`. Absent: empty.
+std::vector<uint32_t> optFactList(ConfigReader& cfg, const std::string& key, World& world);
+
+// Parses a command-number map key ("3") into `out`; reports at `loc` and returns false if the
+// key is not a whole number in 1..32767 (the range of an INT procedure number, 0 = none).
+bool parseCommandNumber(ConfigReader& cfg, const std::string& key, SourceLocation loc, int32_t& out);
+
+// A map parameter (`procedures:`, `programs:`, ...): the node, or null with a diagnostic if the
+// key is present but not a map. Absent and not required: null without a diagnostic.
+const ConfigNode* mapChild(ConfigReader& cfg, const std::string& key, bool required);
+
+// "a, b, c" joined for "expected one of" messages.
+std::string joinNames(const std::vector<std::string>& names);
+
+}  // namespace virtcom::plant

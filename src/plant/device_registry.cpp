@@ -1,0 +1,66 @@
+// The one table of device types: cell-file type name, one-line description, factory.
+// createDevice() also handles the keys common to every device (`group`), marks the loader's own
+// keys (`type`, `name`) as known, and rejects unknown keys once the factory has read its own.
+#include <memory>
+
+#include "plant/axis.hpp"
+#include "plant/config_helpers.hpp"
+#include "plant/conveyor.hpp"
+#include "plant/device.hpp"
+#include "plant/press.hpp"
+#include "plant/robot.hpp"
+#include "plant/sensor.hpp"
+#include "plant/timed_device.hpp"
+
+namespace virtcom::plant {
+namespace {
+
+using Factory = std::unique_ptr<Device> (*)(const std::string& name, ConfigReader& cfg, World& world);
+
+struct DeviceType {
+  const char* name;
+  const char* doc;
+  Factory factory;
+};
+
+constexpr DeviceType kDeviceTypes[] = {
+    {"robot", "industrial robot running numbered procedures (moves, tools, grip, screw) with the execute/done handshake",
+     makeRobot},
+    {"axis", "linear positioning axis: moves to targetPosition (mm) with a trapezoidal profile, done when in position",
+     makeAxis},
+    {"press", "servo press running numbered programs (approach, press, hold, return) on a locked insert", makePress},
+    {"timed", "generic device whose numbered commands take a fixed time and set/clear world facts", makeTimed},
+    {"conveyor", "belt conveyor moving parts at a constant speed, with position sensors", makeConveyor},
+    {"sensor", "digital sensor mirroring a world fact, with an optional delay", makeSensor},
+};
+
+}  // namespace
+
+std::unique_ptr<Device> createDevice(const std::string& type, const std::string& name, ConfigReader& cfg, World& world) {
+  cfg.child("type");
+  cfg.child("name");
+  for (const auto& t : kDeviceTypes) {
+    if (type != t.name) continue;
+    const size_t errorsBefore = cfg.diags().errorCount();
+    std::unique_ptr<Device> device = t.factory(name, cfg, world);
+    const std::string group = cfg.optString("group", "");
+    cfg.rejectUnknownKeys();
+    if (!device || cfg.diags().errorCount() > errorsBefore) return nullptr;
+    device->setGroup(group);
+    return device;
+  }
+  std::vector<std::string> names;
+  for (const auto& t : kDeviceTypes) names.push_back(t.name);
+  const ConfigNode* typeNode = cfg.node().find("type");
+  cfg.error(typeNode ? typeNode->loc() : cfg.node().loc(),
+            "unknown device type '" + type + "' (expected one of: " + joinNames(names) + ")");
+  return nullptr;
+}
+
+std::vector<std::pair<std::string, std::string>> deviceTypes() {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& t : kDeviceTypes) out.emplace_back(t.name, t.doc);
+  return out;
+}
+
+}  // namespace virtcom::plant

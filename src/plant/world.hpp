@@ -1,0 +1,54 @@
+#pragma once
+// The shared physical state of a simulated cell that devices act on: named facts about the
+// workpiece and the cell (pinPlaced, insertLocked, ...) and shared-workspace zones with their
+// occupants. Names are interned at load time; the per-tick path uses ids only.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/trace.hpp"
+
+namespace virtcom::plant {
+
+class World {
+ public:
+  explicit World(Trace& trace) : trace_(trace) {}
+
+  // ---- facts (load time: ids; run time: values) ----
+  uint32_t fact(const std::string& name);       // creates it (false) if new
+  bool hasFact(uint32_t id) const { return facts_[id] != 0; }
+  void setFact(uint32_t id, bool value) { facts_[id] = value ? 1 : 0; }
+  const std::string& factName(uint32_t id) const { return factNames_[id]; }
+  size_t factCount() const { return facts_.size(); }
+  // Initial facts (set before the run, e.g. from the cell file's `world:` section).
+  void setInitial(uint32_t id, bool value) { facts_[id] = value ? 1 : 0; }
+
+  // ---- zones ----
+  uint32_t zone(const std::string& name);       // creates it if new
+  size_t zoneCount() const { return zoneNames_.size(); }
+  const std::string& zoneName(uint32_t id) const { return zoneNames_[id]; }
+  // `device` (a Trace device index) starts occupying `zone` while doing `activityLabel`.
+  // If another device is in it, a collision is recorded in the trace (once per pair and entry)
+  // and false is returned. A device may enter a zone it already occupies.
+  bool enterZone(uint32_t zone, uint32_t device, uint32_t activityLabel, int64_t nowNs);
+  void leaveZone(uint32_t zone, uint32_t device);
+  bool occupies(uint32_t zone, uint32_t device) const;
+  // True once any collision happened (the simulation may stop on it).
+  bool collided() const { return collided_; }
+
+  Trace& trace() { return trace_; }
+
+ private:
+  struct Occupant {
+    uint32_t device;
+    uint32_t label;
+  };
+  Trace& trace_;
+  std::vector<uint8_t> facts_;
+  std::vector<std::string> factNames_;
+  std::vector<std::string> zoneNames_;
+  std::vector<std::vector<Occupant>> occupants_;  // per zone; reserved at load, at most #devices
+  bool collided_ = false;
+};
+
+}  // namespace virtcom::plant

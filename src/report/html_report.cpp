@@ -1,0 +1,313 @@
+#include "report/html_report.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include "report/html_chart.hpp"
+#include "report/text_util.hpp"
+
+namespace virtcom::report {
+
+namespace {
+
+using html::LabelColors;
+
+constexpr const char* kCss = R"css(
+:root{--fg:#1f2328;--muted:#59636e;--line:#d1d9e0;--soft:#eef1f4;--bg:#f6f8fa;--accent:#2563eb;--err:#d7263d;--fault:#e07b00;--ok:#1a7f37;--warn:#9a6700}
+*{box-sizing:border-box}
+body{margin:0;background:var(--bg);color:var(--fg);font:14px/1.45 system-ui,-apple-system,"Segoe UI",Roboto,"Helvetica Neue","DejaVu Sans",Arial,sans-serif}
+main{max-width:1290px;margin:0 auto;padding:22px 26px 34px}
+header{display:flex;align-items:center;gap:14px;flex-wrap:wrap;margin-bottom:4px}
+h1{font-size:24px;margin:0;font-weight:650;letter-spacing:-.01em}
+.subtitle{color:var(--muted);margin:0 0 16px}
+.pill{font-size:12px;font-weight:600;padding:2px 10px;border-radius:999px;border:1px solid}
+.pill.ok{color:var(--ok);background:#dafbe1;border-color:#aceebb}
+.pill.warn{color:var(--warn);background:#fff8c5;border-color:#eed888}
+.pill.bad{color:var(--err);background:#ffebe9;border-color:#ffcecb}
+.cards{display:grid;grid-template-columns:repeat(auto-fit,minmax(160px,1fr));gap:12px;margin-bottom:16px}
+.card{background:#fff;border:1px solid var(--line);border-radius:8px;padding:11px 14px}
+.card .k{font-size:11.5px;color:var(--muted);text-transform:uppercase;letter-spacing:.05em;font-weight:600}
+.card .v{font-size:25px;font-weight:650;font-variant-numeric:tabular-nums;line-height:1.25;margin-top:2px}
+.card .v small{font-size:14px;font-weight:500;color:var(--muted);margin-left:3px}
+.card .d{font-size:12px;color:var(--muted)}
+.card.bad{border-color:#ffcecb;background:#fffafa}
+.card.bad .v{color:var(--err)}
+.panel{background:#fff;border:1px solid var(--line);border-radius:8px;padding:14px 16px;margin-bottom:16px;overflow-x:auto}
+h2{font-size:15px;margin:0 0 10px;font-weight:650}
+h2 .hint{font-weight:400;color:var(--muted);font-size:12.5px;margin-left:8px}
+svg.chart{display:block;max-width:100%;height:auto}
+svg text{font-family:system-ui,-apple-system,"Segoe UI",Roboto,"Helvetica Neue","DejaVu Sans",Arial,sans-serif;font-size:11px;fill:var(--fg)}
+svg .lane{font-size:12px;font-weight:600}
+svg .group{font-size:10.5px;font-weight:700;letter-spacing:.08em;text-transform:uppercase;fill:var(--muted)}
+svg .group-rule{stroke:var(--line)}
+svg .zebra{fill:#f6f8fa}
+svg .grid line{stroke:#e3e7eb}
+svg .axis line{stroke:#8c959f}
+svg .axis text{fill:var(--muted)}
+svg .axis-title{font-style:italic}
+svg .cycle rect{fill:var(--accent);fill-opacity:.06}
+svg .cycle line{stroke:var(--accent);stroke-dasharray:4 3;stroke-opacity:.7}
+svg .cycle-bracket line{stroke:var(--accent);stroke-width:1.4}
+svg .cycle-bracket rect{fill:#fff}
+svg .cycle-bracket text{fill:var(--accent);font-weight:650}
+svg .bar{stroke:#fff;stroke-width:.6}
+svg .bar:hover{stroke:#1f2328;stroke-width:1.4}
+svg .bar.err{stroke:var(--err);stroke-width:2.4}
+svg .bar.run{fill-opacity:.5;stroke:#59636e;stroke-dasharray:3 2}
+svg .bar-label{font-size:10.5px;font-weight:500;pointer-events:none}
+svg line.collision{stroke:var(--err);stroke-width:1.6}
+svg .collision-label{fill:var(--err);font-weight:650}
+svg .collision-dot{fill:var(--err);stroke:#fff;stroke-width:1.5}
+svg line.fault{stroke:var(--fault);stroke-width:1.5;stroke-dasharray:5 3}
+svg .fault-label{fill:var(--fault);font-weight:650}
+svg .fault-dot{fill:var(--fault);stroke:#fff;stroke-width:1.2}
+svg .wave{fill:none;stroke:var(--accent);stroke-width:1.5;stroke-linejoin:round}
+svg .area{fill:var(--accent);fill-opacity:.1}
+svg .wave.bool{stroke:var(--ok)}
+svg .area.bool{fill:var(--ok);fill-opacity:.13}
+svg .range,svg .sub{fill:var(--muted);font-size:10px}
+svg .ebar{fill:#4e79a7}
+svg .evalue{font-variant-numeric:tabular-nums;font-weight:600}
+.legend{list-style:none;display:flex;flex-wrap:wrap;gap:6px 18px;margin:10px 0 0;padding:10px 0 0;border-top:1px solid var(--soft);font-size:12.5px}
+.legend li{display:flex;align-items:center;gap:6px}
+.legend .sep{width:1px;height:16px;background:var(--line)}
+.sw{width:16px;height:12px;border-radius:2px;display:inline-block;flex:none}
+.sw.err{background:#fff;border:2px solid var(--err)}
+.sw.run{background:#e8ecf0;border:1px dashed #59636e}
+.sw.col{width:3px;height:16px;background:var(--err);border-radius:0}
+.sw.flt{width:0;height:16px;border-left:2px dashed var(--fault);border-radius:0}
+.sw.cyc{background:rgba(37,99,235,.1);border-left:1px dashed var(--accent);border-right:1px dashed var(--accent);border-radius:0}
+table{border-collapse:collapse;width:100%;font-variant-numeric:tabular-nums;font-size:13px}
+th,td{padding:6px 10px;border-bottom:1px solid var(--soft);text-align:right;white-space:nowrap}
+th{font-size:11.5px;color:var(--muted);font-weight:600;text-transform:uppercase;letter-spacing:.04em}
+tr.total td{font-weight:650;border-top:1px solid var(--line);border-bottom:none}
+.l{text-align:left}
+td.bad{color:var(--err);font-weight:650}
+td.wrap{white-space:normal}
+table.events td:first-child,table.events th:first-child{width:90px}
+table.events td:nth-child(2),table.events td:nth-child(3){width:1%}
+.tag{font-size:11.5px;font-weight:650;padding:1px 8px;border-radius:999px}
+.tag.col{color:var(--err);background:#ffebe9}
+.tag.flt{color:var(--fault);background:#fff1e0}
+.util{display:flex;align-items:center;gap:8px;justify-content:flex-end}
+.track{width:96px;height:8px;background:var(--soft);border-radius:4px;overflow:hidden}
+.fill{height:100%;background:var(--accent);border-radius:4px}
+.two{display:grid;grid-template-columns:minmax(0,3fr) minmax(0,2fr);gap:16px}
+.two .panel{margin-bottom:16px}
+.note{color:var(--muted);font-size:12.5px;margin:8px 0 0}
+footer{color:var(--muted);font-size:12px;margin-top:6px}
+@media (max-width:1000px){.two{grid-template-columns:1fr}}
+@media print{body{background:#fff}.panel,.card{break-inside:avoid}}
+)css";
+
+std::string px(double v) { return formatFixed(v, 1); }
+
+// 17067.3 -> "17 067.3" with thin spaces, as engineering reports write large numbers.
+std::string grouped(const std::string& number) {
+  size_t start = number.starts_with('-') ? 1 : 0;
+  size_t end = number.find('.');
+  if (end == std::string::npos) end = number.size();
+  std::string out = number.substr(0, start);
+  for (size_t i = start; i < end; ++i) {
+    if (i > start && (end - i) % 3 == 0) out += "\u2009";
+    out += number[i];
+  }
+  return out + number.substr(end);
+}
+
+std::string energy(double j) { return grouped(formatFixed(j, 1)); }
+
+// "1 min 41 s" for times of a minute or more, as seed Figure 11 labels cycle times.
+std::string minutesText(int64_t ns) {
+  int64_t s = (ns + 500'000'000) / 1'000'000'000;
+  if (s < 60) return {};
+  std::string out = s >= 3600 ? std::to_string(s / 3600) + " h " : "";
+  return out + std::to_string(s / 60 % 60) + " min " + std::to_string(s % 60) + " s";
+}
+
+const char* endClass(RunEnd e) {
+  switch (e) {
+    case RunEnd::Completed: return "ok";
+    case RunEnd::TimeLimit:
+    case RunEnd::Interrupted: return "warn";
+    default: return "bad";
+  }
+}
+
+bool isRobot(const DeviceInfo& d) {
+  std::string t;
+  for (char c : d.type) t += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return t == "robot";
+}
+
+std::string card(const std::string& key, const std::string& value, const std::string& unit,
+                 const std::string& detail, bool bad = false) {
+  return std::string("<div class=\"card") + (bad ? " bad" : "") + "\"><div class=\"k\">" + key +
+         "</div><div class=\"v\">" + value + (unit.empty() ? "" : "<small>" + unit + "</small>") +
+         "</div><div class=\"d\">" + (detail.empty() ? "&#160;" : detail) + "</div></div>\n";
+}
+
+std::string cards(const Kpis& k) {
+  std::string cycleDetail = k.cycleMeasured ? "measured " + formatSeconds(k.windowStartNs, 1) + "\u2013" +
+                                                  formatSeconds(k.windowEndNs, 1) + " s"
+                                            : "whole run (no cycle markers)";
+  std::string minutes = minutesText(k.cycleTimeNs);
+  if (!minutes.empty()) cycleDetail = minutes + " \u00b7 " + cycleDetail;
+  std::string out = "<section class=\"cards\">\n";
+  out += card("Cycle time", formatSeconds(k.cycleTimeNs, 2), "s", cycleDetail);
+  // Large totals in kJ/MJ so the card stays one line; the device table keeps joules.
+  double j = k.totalEnergyJ;
+  if (std::abs(j) < 1e5) out += card("Total energy", energy(j), "J", "all devices, whole run");
+  else if (std::abs(j) < 1e8) out += card("Total energy", energy(j / 1e3), "kJ", "all devices, whole run");
+  else out += card("Total energy", energy(j / 1e6), "MJ", "all devices, whole run");
+  out += card("Operations", std::to_string(k.operations), "", "in the measured window");
+  out += card("Errors", std::to_string(k.errors), "", "activities ended in error", k.errors > 0);
+  out += card("Collisions", std::to_string(k.collisions), "", "", k.collisions > 0);
+  out += card("Faults", std::to_string(k.faults), "", "", k.faults > 0);
+  out += card("Cycles", std::to_string(k.cyclesCompleted), "",
+              "run " + formatSeconds(k.runNs, 2) + " s");
+  return out + "</section>\n";
+}
+
+std::string legend(const Trace& trace, const Kpis& k, const LabelColors& colors) {
+  std::string out = "<ul class=\"legend\">";
+  for (uint32_t label : colors.usedLabels())
+    out += "<li><span class=\"sw\" style=\"background:" + html::hex(colors.color(label)) + "\"></span>" +
+           escapeHtml(trace.labels[label]) + "</li>";
+  if (colors.usedLabels().empty()) out += "<li>no activities recorded</li>";
+  out += "<li class=\"sep\"></li>";
+  bool running = std::any_of(k.devices.begin(), k.devices.end(), [](const DeviceKpis& d) { return d.running > 0; });
+  if (k.errors > 0) out += "<li><span class=\"sw err\"></span>ended in error</li>";
+  if (running) out += "<li><span class=\"sw run\"></span>running at end of run</li>";
+  if (k.collisions > 0) out += "<li><span class=\"sw col\"></span>collision</li>";
+  if (k.faults > 0) out += "<li><span class=\"sw flt\"></span>fault</li>";
+  if (k.cycleMeasured) out += "<li><span class=\"sw cyc\"></span>measured cycle</li>";
+  return out + "</ul>\n";
+}
+
+std::string deviceTable(const Trace& trace, const Kpis& k) {
+  std::string out =
+      "<table><thead><tr><th class=\"l\">Device</th><th class=\"l\">Type</th><th>Busy s</th><th>Idle s</th>"
+      "<th>Utilisation</th><th>Energy J</th><th>Ops</th><th>Errors</th></tr></thead><tbody>\n";
+  for (const DeviceKpis& d : k.devices) {
+    if (d.device >= trace.devices.size()) continue;
+    const DeviceInfo& info = trace.devices[d.device];
+    double pct = std::clamp(d.utilisationPct, 0.0, 100.0);
+    out += "<tr><td class=\"l\">" + escapeHtml(info.name) + "</td><td class=\"l\">" + escapeHtml(info.type) +
+           "</td><td>" + formatSeconds(d.busyNs, 3) + "</td><td>" + formatSeconds(d.idleNs, 3) +
+           "</td><td><div class=\"util\"><div class=\"track\"><div class=\"fill\" style=\"width:" +
+           formatFixed(pct, 1) + "%\"></div></div>" + formatFixed(d.utilisationPct, 1) + " %</div></td><td>" +
+           energy(d.energyJ) + "</td><td>" + std::to_string(d.operations) + "</td><td" +
+           (d.errors ? " class=\"bad\"" : "") + ">" + std::to_string(d.errors) + "</td></tr>\n";
+  }
+  out += "<tr class=\"total\"><td class=\"l\">Total</td><td></td><td></td><td></td><td></td><td>" +
+         energy(k.totalEnergyJ) + "</td><td>" + std::to_string(k.operations) + "</td><td" +
+         (k.errors ? " class=\"bad\"" : "") + ">" + std::to_string(k.errors) + "</td></tr>\n";
+  return out + "</tbody></table>\n";
+}
+
+// Horizontal bars of energy per robot (every device with energy when there are no robots).
+std::string energyChart(const Trace& trace, const Kpis& k, std::string& heading) {
+  std::vector<const DeviceKpis*> rows;
+  for (const DeviceKpis& d : k.devices)
+    if (d.device < trace.devices.size() && isRobot(trace.devices[d.device])) rows.push_back(&d);
+  heading = "Energy per robot";
+  if (rows.empty()) {
+    heading = "Energy per device";
+    for (const DeviceKpis& d : k.devices)
+      if (d.device < trace.devices.size() && d.energyJ != 0) rows.push_back(&d);
+  }
+  if (rows.empty()) return "<p class=\"note\">No energy recorded.</p>\n";
+  double maxJ = 0;
+  for (const DeviceKpis* d : rows) maxJ = std::max(maxJ, d->energyJ);
+  constexpr double kWidth = 460, kName = 120, kValue = 92, kRow = 34;
+  double barMax = kWidth - kName - kValue;
+  double height = static_cast<double>(rows.size()) * kRow + 6;
+  std::string out = "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"chart energy\" viewBox=\"0 0 " +
+                    px(kWidth) + " " + px(height) + "\" width=\"" + px(kWidth) + "\" height=\"" + px(height) +
+                    "\" role=\"img\" aria-label=\"" + heading + "\">\n";
+  double y = 6;
+  for (const DeviceKpis* d : rows) {
+    const std::string& name = trace.devices[d->device].name;
+    double w = maxJ > 0 ? std::max(0.0, d->energyJ) / maxJ * barMax : 0;
+    out += "<text class=\"lane\" x=\"0\" y=\"" + px(y + 17) + "\">" + escapeHtml(fitWidth(name, 16, "\u2026")) +
+           "<title>" + escapeHtml(name) + "</title></text><rect class=\"track-bg\" x=\"" + px(kName) + "\" y=\"" +
+           px(y + 4) + "\" width=\"" + px(barMax) + "\" height=\"18\" rx=\"3\" fill=\"#eef1f4\"/><rect class=\"ebar\" x=\"" +
+           px(kName) + "\" y=\"" + px(y + 4) + "\" width=\"" + px(w) + "\" height=\"18\" rx=\"3\"/><text class=\"evalue\" x=\"" +
+           px(kWidth) + "\" y=\"" + px(y + 17) + "\" text-anchor=\"end\">" + energy(d->energyJ) + " J</text>\n";
+    y += kRow;
+  }
+  return out + "</svg>\n";
+}
+
+// Collisions and faults in one table, in time order.
+std::string eventTable(const Trace& trace) {
+  if (trace.collisions.empty() && trace.faults.empty()) return {};
+  struct Row {
+    int64_t timeNs;
+    bool collision;
+    std::string where, details;
+  };
+  std::vector<Row> rows;
+  for (const CollisionRecord& c : trace.collisions)
+    rows.push_back({c.timeNs, true, escapeHtml(labelName(trace, c.zone)),
+                    "<b>" + escapeHtml(deviceName(trace, c.deviceA)) + "</b> (" + escapeHtml(labelName(trace, c.activityA)) +
+                        ") \u2194 <b>" + escapeHtml(deviceName(trace, c.deviceB)) + "</b> (" +
+                        escapeHtml(labelName(trace, c.activityB)) + ")"});
+  for (const FaultRecord& f : trace.faults)
+    rows.push_back({f.timeNs, false, escapeHtml(f.source), escapeHtml(f.message)});
+  std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.timeNs < b.timeNs; });
+  std::string out = "<section class=\"panel\"><h2>Collisions and faults</h2>\n<table class=\"events\"><thead><tr>"
+                    "<th>Time s</th><th class=\"l\">Event</th><th class=\"l\">Zone / source</th>"
+                    "<th class=\"l\">Details</th></tr></thead><tbody>\n";
+  for (const Row& r : rows)
+    out += "<tr><td>" + formatSeconds(r.timeNs, 3) + "</td><td class=\"l\"><span class=\"tag " +
+           (r.collision ? "col\">collision" : "flt\">fault") + "</span></td><td class=\"l\">" + r.where +
+           "</td><td class=\"l wrap\">" + r.details + "</td></tr>\n";
+  return out + "</tbody></table></section>\n";
+}
+
+}  // namespace
+
+std::string htmlReport(const Trace& trace, const Kpis& kpis, const HtmlOptions& options) {
+  std::string title = options.title.empty() ? "virtcom run" : options.title;
+  html::TimeScale scale = html::makeTimeScale(trace, kpis, options.chartWidthPx, options.cycleOnly);
+  LabelColors colors(trace);
+
+  std::string out = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\"/>\n"
+                    "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"/>\n<title>" +
+                    escapeHtml(title) + " \u2014 virtcom run report</title>\n<style>" + kCss +
+                    "</style>\n</head>\n<body>\n<main>\n";
+  out += "<header><h1>" + escapeHtml(title) + "</h1><span class=\"pill " + endClass(kpis.end) + "\">" +
+         escapeHtml(runEndName(kpis.end)) + "</span></header>\n<p class=\"subtitle\">";
+  if (!options.subtitle.empty()) out += escapeHtml(options.subtitle) + " \u00b7 ";
+  out += "virtcom run report \u00b7 " + std::to_string(trace.devices.size()) + " devices, " +
+         std::to_string(trace.activities.size()) + " activities, " + std::to_string(trace.signals.size()) +
+         " signals";
+  if (!kpis.endMessage.empty()) out += " \u00b7 " + escapeHtml(kpis.endMessage);
+  out += "</p>\n";
+  out += cards(kpis);
+
+  out += "<section class=\"panel\"><h2>Activities<span class=\"hint\">one lane per device \u00b7 hover a bar "
+         "for details</span></h2>\n";
+  out += html::ganttSvg(trace, kpis, scale, colors);
+  out += legend(trace, kpis, colors) + "</section>\n";
+
+  std::string energyHeading;
+  std::string energySvg = energyChart(trace, kpis, energyHeading);
+  out += "<div class=\"two\"><section class=\"panel\"><h2>Devices<span class=\"hint\">busy and idle time "
+         "within the measured window</span></h2>\n" + deviceTable(trace, kpis) +
+         "</section><section class=\"panel\"><h2>" + energyHeading +
+         "<span class=\"hint\">whole run, idle included</span></h2>\n" + energySvg + "</section></div>\n";
+
+  if (!options.signals.empty())
+    out += "<section class=\"panel\"><h2>Signals</h2>\n" + html::signalsSvg(trace, kpis, scale, options) +
+           "</section>\n";
+  out += eventTable(trace);
+  out += "<footer>Generated by virtcom from the simulation trace. Times in seconds from the start of the run; "
+         "energies in joules.</footer>\n</main>\n</body>\n</html>\n";
+  return out;
+}
+
+}  // namespace virtcom::report

@@ -1,0 +1,145 @@
+#include "sim/simulation.hpp"
+
+namespace virtcom::sim {
+
+Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), options_(options) {
+  if (options_.speed > 0) clock_ = std::make_unique<PacedClock>(options_.speed);
+  else clock_ = std::make_unique<VirtualClock>();
+  runtime_ = std::make_unique<plc::Runtime>(*cell_.module, *clock_);
+  timeLimitNs_ = options_.timeLimitNs >= 0 ? options_.timeLimitNs : cell_.run.timeLimitNs;
+  Trace& trace = cell_.trace;
+  for (auto& d : cell_.devices) d->prepare(cell_.world, trace);
+  // Extra PLC variables to record get their own tags.
+  for (const auto& name : cell_.run.recordVars) {
+    auto ref = bc::resolveVariable(*cell_.module, name);
+    const bc::TypeDesc& t = cell_.module->types[ref->type];
+    cell::Wire w;
+    w.tag = cell_.bus.add(name, t.elem);
+    w.dir = plant::PortDir::In;
+    w.address = ref->address;
+    w.bit = ref->bit;
+    w.varType = t.elem;
+    w.varName = name;
+    recordWires_.push_back(w);
+  }
+  if (!cell_.run.cycleDoneVar.empty()) {
+    auto ref = bc::resolveVariable(*cell_.module, cell_.run.cycleDoneVar);
+    cycleWire_.address = ref->address;
+    cycleWire_.bit = ref->bit;
+    cycleWire_.varType = ElemType::Bool;
+    hasCycleWire_ = true;
+  }
+  trace.signals.clear();
+  for (TagId id = 0; id < cell_.bus.size(); ++id) trace.signals.push_back({cell_.bus.name(id), cell_.bus.type(id), 0});
+  trace.changes.reserve(1 << 16);
+  trace.activities.reserve(1024);
+}
+
+Simulation::~Simulation() = default;
+
+void Simulation::start() {
+  started_ = true;
+  runtime_->coldStart();
+  uint8_t* mem = runtime_->machine().memory();
+  if (options_.preset) options_.preset(mem);
+  for (const auto& w : cell_.wires)
+    if (w.dir == plant::PortDir::In) cell::readVariable(w, mem, cell_.bus);
+  for (const auto& w : recordWires_) cell::readVariable(w, mem, cell_.bus);
+  for (TagId id = 0; id < cell_.bus.size(); ++id) cell_.trace.signals[id].initial = cell_.bus.raw(id);
+  cell_.bus.clearChanges();
+}
+
+void Simulation::recordChanges() {
+  Trace& trace = cell_.trace;
+  cell_.bus.forEachChanged([&](TagId id) { trace.changes.push_back({nowNs_, id, cell_.bus.raw(id)}); });
+  cell_.bus.clearChanges();
+}
+
+void Simulation::finish(RunEnd end, std::string message) {
+  ended_ = true;
+  Trace& trace = cell_.trace;
+  trace.end = end;
+  trace.endMessage = std::move(message);
+  trace.endNs = nowNs_;
+  if (trace.cyclesCompleted == 0) {
+    trace.cycleStartNs = 0;
+    trace.cycleEndNs = nowNs_;
+  }
+  for (auto& d : cell_.devices) d->finish(nowNs_, trace);
+}
+
+bool Simulation::checkStop() {
+  uint8_t* mem = runtime_->machine().memory();
+  if (runtime_->state() == plc::PlcState::Fault) {
+    cell_.trace.faults.push_back({nowNs_, "PLC", runtime_->faultText()});
+    finish(RunEnd::PlcFault, runtime_->faultText());
+    return true;
+  }
+  if (hasCycleWire_) {
+    bool done = (mem[cycleWire_.address] >> (cycleWire_.bit >= 0 ? cycleWire_.bit : 0)) & 1;
+    if (done && !lastCycleDone_) {
+      Trace& trace = cell_.trace;
+      trace.cycleStartNs = lastCycleEdgeNs_;
+      trace.cycleEndNs = nowNs_;
+      lastCycleEdgeNs_ = nowNs_;
+      ++trace.cyclesCompleted;
+      if (trace.cyclesCompleted >= cell_.run.cycles && !cell_.run.until.valid) {
+        finish(RunEnd::Completed, std::to_string(trace.cyclesCompleted) + " cycle(s) completed");
+        return true;
+      }
+    }
+    lastCycleDone_ = done;
+  }
+  if (cell_.run.until.valid && cell::evaluate(cell_.run.until, mem)) {
+    finish(RunEnd::Completed, "'" + cell_.run.until.text + "' became true");
+    return true;
+  }
+  if (cell_.run.stopOnCollision && cell_.world.collided()) {
+    finish(RunEnd::Collision, "robots collided in a shared zone");
+    return true;
+  }
+  if (cell_.run.stopOnDeviceError) {
+    for (const auto& d : cell_.devices)
+      if (int32_t code = d->errorCode()) {
+        std::string msg = d->name() + " reported error " + std::to_string(code);
+        cell_.trace.faults.push_back({nowNs_, d->name(), msg});
+        finish(RunEnd::DeviceError, msg);
+        return true;
+      }
+  }
+  if (nowNs_ >= timeLimitNs_) {
+    finish(RunEnd::TimeLimit, "time limit reached without meeting the stop condition");
+    return true;
+  }
+  if (options_.interrupt && options_.interrupt->load()) {
+    finish(RunEnd::Interrupted, "interrupted");
+    return true;
+  }
+  return false;
+}
+
+bool Simulation::step() {
+  if (ended_) return false;
+  if (!started_) start();
+  uint8_t* mem = runtime_->machine().memory();
+  nowNs_ = runtime_->nextTickNs();
+  for (const auto& w : cell_.wires)
+    if (w.dir == plant::PortDir::Out) cell::writeVariable(w, cell_.bus, mem);
+  runtime_->tick();
+  for (const auto& w : cell_.wires)
+    if (w.dir == plant::PortDir::In) cell::readVariable(w, mem, cell_.bus);
+  for (const auto& w : recordWires_) cell::readVariable(w, mem, cell_.bus);
+  plant::StepContext ctx{nowNs_, runtime_->baseTickNs(), cell_.bus, cell_.world, cell_.trace};
+  for (auto& d : cell_.devices) d->step(ctx);
+  recordChanges();
+  ++ticks_;
+  return !checkStop();
+}
+
+RunEnd Simulation::run() {
+  while (step()) {
+  }
+  return cell_.trace.end;
+}
+
+}  // namespace virtcom::sim

@@ -1,0 +1,66 @@
+#pragma once
+// The co-simulation engine: one integer-nanosecond virtual clock for the PLC tasks, the devices
+// and the recorders, stepped in a fixed order every PLC base tick:
+//   1. device outputs -> PLC variables (wires), 2. PLC scan (all tasks due), 3. PLC variables ->
+//   device inputs, 4. devices step (in cell-file order), 5. recorder stores changed signals,
+//   6. stop conditions (until, cycles, faults, collisions, time limit).
+// The same cell and options give the same trace, byte for byte.
+#include <atomic>
+#include <functional>
+#include <memory>
+
+#include "cell/cell.hpp"
+#include "core/clock.hpp"
+#include "plc/runtime.hpp"
+
+namespace virtcom::sim {
+
+struct SimOptions {
+  double speed = 0;                 // 0: as fast as possible; else paced (1 = real time)
+  int64_t timeLimitNs = -1;         // overrides the cell's run.time_limit when >= 0
+  const std::atomic<bool>* interrupt = nullptr;  // set asynchronously to stop (SIGINT)
+  // Called once after the PLC's cold start, before the first scan (e.g. `--set` presets).
+  std::function<void(uint8_t* plcMemory)> preset;
+};
+
+class Simulation {
+ public:
+  // The cell must outlive the simulation. Prepares devices and the trace (load time).
+  Simulation(cell::Cell& cell, SimOptions options);
+  ~Simulation();
+
+  // Cold-starts the PLC and runs until a stop condition; returns how the run ended (also in
+  // the trace). Allocates nothing per tick except amortised trace appends.
+  RunEnd run();
+  // Advances one base tick (for single stepping); false once the run has ended.
+  bool step();
+
+  plc::Runtime& plc() { return *runtime_; }
+  Trace& trace() { return cell_.trace; }
+  int64_t nowNs() const { return nowNs_; }
+  uint64_t ticks() const { return ticks_; }
+
+ private:
+  void start();
+  bool checkStop();
+  void recordChanges();
+  void finish(RunEnd end, std::string message);
+
+  cell::Cell& cell_;
+  SimOptions options_;
+  std::unique_ptr<Clock> clock_;
+  std::unique_ptr<plc::Runtime> runtime_;
+  std::vector<TagId> recordTags_;
+  std::vector<cell::Wire> recordWires_;  // extra PLC variables recorded as signals
+  cell::Wire cycleWire_;
+  bool hasCycleWire_ = false;
+  bool lastCycleDone_ = false;
+  int64_t lastCycleEdgeNs_ = 0;
+  int64_t nowNs_ = 0;
+  uint64_t ticks_ = 0;
+  bool started_ = false;
+  bool ended_ = false;
+  int64_t timeLimitNs_ = 0;
+};
+
+}  // namespace virtcom::sim

@@ -1,0 +1,136 @@
+// The conveyor: parts moving at belt speed, end stoppers, queueing, sensors, spawning, picking
+// at the end through end_fact, and next-event times.
+#include <gtest/gtest.h>
+
+#include "plant/conveyor.hpp"
+#include "plant_rig.hpp"
+
+namespace virtcom::plant::test {
+namespace {
+
+const char* kBelt = R"(speed: 100 mm/s
+length: 1000 mm
+part_length: 100 mm
+initial_parts: [0 mm]
+power: 50 W
+sensors:
+  entry: 50 mm
+  atEnd: 990 mm
+end_fact: partAtEnd
+)";
+
+TEST(Conveyor, PartTravelsAtBeltSpeedAndStopsAtTheEnd) {
+  PlantRig rig;
+  auto* c = static_cast<Conveyor*>(rig.add("conveyor", "Belt", kBelt));
+  ASSERT_NE(c, nullptr) << rig.renderedDiags();
+  rig.tick();
+  EXPECT_TRUE(rig.getBool("Belt.entry"));
+  EXPECT_FALSE(rig.getBool("Belt.moving"));
+  rig.setBool("Belt.run", true);
+  rig.tick();
+  const int64_t start = rig.now;
+  EXPECT_TRUE(rig.getBool("Belt.moving"));
+  rig.tick(kS);
+  EXPECT_NEAR(c->partPositionM(0), 0.1, 1e-12);
+  EXPECT_FALSE(rig.getBool("Belt.entry"));  // rear edge at 100 mm passed the 50 mm sensor
+  ASSERT_TRUE(rig.tickUntil([&] { return rig.getBool("Belt.atEnd"); }));
+  EXPECT_EQ(rig.now - start, 8900 * kMs);  // front edge from 100 mm to 990 mm
+  EXPECT_FALSE(rig.fact("partAtEnd"));
+  ASSERT_TRUE(rig.tickUntil([&] { return rig.fact("partAtEnd"); }));
+  EXPECT_EQ(rig.now - start, 9000 * kMs);
+  rig.tick(5 * kS);
+  EXPECT_NEAR(c->partPositionM(0), 0.9, 1e-9);  // held by the end stopper
+  EXPECT_TRUE(rig.getBool("Belt.atEnd"));
+}
+
+TEST(Conveyor, TakingThePartAtTheEndRemovesIt) {
+  PlantRig rig;
+  auto* c = static_cast<Conveyor*>(rig.add("conveyor", "Belt", kBelt));
+  ASSERT_NE(c, nullptr);
+  rig.setBool("Belt.run", true);
+  ASSERT_TRUE(rig.tickUntil([&] { return rig.fact("partAtEnd"); }));
+  rig.setFact("partAtEnd", false);  // e.g. a robot's `grip partAtEnd`
+  rig.tick();
+  EXPECT_EQ(c->partCount(), 0u);
+  EXPECT_FALSE(rig.getBool("Belt.atEnd"));
+  EXPECT_FALSE(rig.fact("partAtEnd"));
+}
+
+TEST(Conveyor, PartsQueueWithoutOverlapAndReverseRunsBack) {
+  PlantRig rig;
+  auto* c = static_cast<Conveyor*>(rig.add("conveyor", "Belt", "speed: 1 m/s\nlength: 1 m\npart_length: 200 mm\ninitial_parts: [0 mm, 300 mm]\n"));
+  ASSERT_NE(c, nullptr) << rig.renderedDiags();
+  rig.setBool("Belt.run", true);
+  rig.tick();
+  rig.tick(5 * kS);
+  EXPECT_NEAR(c->partPositionM(1), 0.8, 1e-9);
+  EXPECT_NEAR(c->partPositionM(0), 0.6, 1e-9);
+  rig.setBool("Belt.reverse", true);
+  rig.tick();
+  rig.tick(5 * kS);
+  EXPECT_NEAR(c->partPositionM(0), 0.0, 1e-9);
+  EXPECT_NEAR(c->partPositionM(1), 0.2, 1e-9);
+}
+
+TEST(Conveyor, SpawnsPartsWhileRunning) {
+  PlantRig rig;
+  auto* c = static_cast<Conveyor*>(rig.add("conveyor", "Belt", "speed: 100 mm/s\nlength: 1 m\npart_length: 100 mm\nspawn_interval: 2 s\n"));
+  ASSERT_NE(c, nullptr) << rig.renderedDiags();
+  rig.tick();
+  EXPECT_EQ(c->partCount(), 0u);
+  rig.setBool("Belt.run", true);
+  rig.tick();
+  EXPECT_EQ(c->partCount(), 1u);  // first part at the first running tick
+  rig.tickUntil([&] { return c->partCount() == 2; });
+  EXPECT_NEAR(c->partPositionM(1), 0.2, 1e-9);
+  // a full belt stops spawning: 10 parts of 100 mm on 1 m
+  rig.tick(200 * kS);
+  EXPECT_EQ(c->partCount(), 10u);
+  for (size_t i = 1; i < c->partCount(); ++i) EXPECT_GE(c->partPositionM(i) - c->partPositionM(i - 1), 0.1 - 1e-9);
+}
+
+TEST(Conveyor, NextEventIsTheNextSensorEdge) {
+  PlantRig rig;
+  Device* c = rig.add("conveyor", "Belt", kBelt);
+  ASSERT_NE(c, nullptr);
+  rig.tick();
+  EXPECT_EQ(c->nextEventNs(), INT64_MAX);
+  rig.setBool("Belt.run", true);
+  rig.tick();
+  const int64_t next = c->nextEventNs();  // rear edge (0) passes the entry sensor (50 mm): 0.5 s
+  EXPECT_GT(next, rig.now + 500 * kMs);       // just after: the edge is at p == x
+  EXPECT_LE(next, rig.now + 500 * kMs + 20);  // 1 nm of travel at 100 mm/s = 10 ns
+  rig.tick(next - rig.now);
+  EXPECT_FALSE(rig.getBool("Belt.entry"));
+}
+
+TEST(Conveyor, RunningPeriodsAreActivitiesWithEnergy) {
+  PlantRig rig;
+  Device* c = rig.add("conveyor", "Belt", kBelt);
+  ASSERT_NE(c, nullptr);
+  rig.tick();
+  rig.setBool("Belt.run", true);
+  rig.tick();
+  rig.tick(2 * kS);
+  rig.setBool("Belt.run", false);
+  rig.tick();
+  ASSERT_EQ(rig.trace.activities.size(), 1u);
+  EXPECT_EQ(rig.label(rig.trace.activities[0]), "Running");
+  EXPECT_EQ(rig.trace.activities[0].endNs - rig.trace.activities[0].startNs, 2001 * kMs);
+  EXPECT_NEAR(rig.trace.activities[0].energyJ, 50 * 2.001, 1e-9);
+  rig.finish();
+  EXPECT_EQ(rig.trace.totals[c->traceIndex()].busyNs, 2001 * kMs);
+}
+
+TEST(Conveyor, ConfigErrors) {
+  PlantRig rig;
+  EXPECT_EQ(rig.add("conveyor", "C", "speed: 0 mm/s\nlength: 1 m\ninitial_parts: [0 mm, 50 mm, 2 m]\nsensors:\n  run: 5 mm\n"), nullptr);
+  const std::string out = rig.renderedDiags();
+  EXPECT_NE(out.find("C.yaml:1:8: error[C010]: 'speed' must be greater than 0"), std::string::npos) << out;
+  EXPECT_NE(out.find("C.yaml:3:30: error[C010]: 'initial_parts': part does not fit"), std::string::npos) << out;
+  EXPECT_NE(out.find("'initial_parts': parts overlap"), std::string::npos) << out;
+  EXPECT_NE(out.find("C.yaml:5:3: error[C010]: sensor name 'run' clashes"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace virtcom::plant::test

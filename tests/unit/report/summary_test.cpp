@@ -1,0 +1,69 @@
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "report/kpis.hpp"
+#include "report/summary.hpp"
+#include "example_trace.hpp"
+
+namespace virtcom::report {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::kS;
+
+const fs::path kGoldenDir = fs::path(VIRTCOM_SOURCE_DIR) / "tests" / "unit" / "report" / "golden";
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Compares with golden/<name>; VIRTCOM_UPDATE_GOLDEN=1 rewrites the file for review in the diff.
+void expectGolden(const std::string& name, const std::string& actual) {
+  fs::path file = kGoldenDir / name;
+  if (std::getenv("VIRTCOM_UPDATE_GOLDEN")) {
+    std::ofstream(file, std::ios::binary) << actual;
+    return;
+  }
+  ASSERT_TRUE(fs::exists(file)) << "missing " << file << "; run with VIRTCOM_UPDATE_GOLDEN=1 and review it";
+  EXPECT_EQ(readFile(file), actual) << "differs from " << file << " (VIRTCOM_UPDATE_GOLDEN=1 rewrites it)";
+}
+
+TEST(SummaryTable, MatchesGolden) {
+  Trace t = testing::exampleCellTrace();
+  expectGolden("summary.txt", summaryTable(t, computeKpis(t)));
+}
+
+TEST(SummaryTable, FitsA100ColumnTerminal) {
+  Trace t = testing::exampleCellTrace();
+  t.devices[0].name = "VeryLongRobotNameThatGoesOnAndOnForeverAndEver";
+  t.devices[0].type = "articulated-robot-6-axis";
+  std::istringstream lines(summaryTable(t, computeKpis(t)));
+  std::string line;
+  bool sawCut = false;
+  while (std::getline(lines, line)) {
+    if (line.find("Run ended") == 0 || line.find("s  Robot2:") != std::string::npos) continue;  // free text
+    EXPECT_LE(line.size(), 100u) << line;
+    sawCut |= line.find("VeryLongRobotNameThatGo~") != std::string::npos;
+  }
+  EXPECT_TRUE(sawCut);
+}
+
+TEST(SummaryTable, RunWithoutCycleMarkersOrDevices) {
+  Trace t;
+  t.endNs = 3 * kS;
+  t.end = RunEnd::Completed;
+  std::string s = summaryTable(t, computeKpis(t));
+  EXPECT_NE(s.find("Cycle time    3.000 s (whole run, no cycle markers)\n"), std::string::npos) << s;
+  EXPECT_NE(s.find("Collisions    0\n"), std::string::npos);
+  EXPECT_NE(s.find("Run ended     completed\n"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace virtcom::report

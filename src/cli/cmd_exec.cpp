@@ -41,28 +41,6 @@ bool resolveAll(const bc::Module& m, const std::vector<std::string>& names, std:
   return true;
 }
 
-bool applySets(const bc::Module& m, uint8_t* memory, const std::vector<std::string>& sets) {
-  for (const auto& s : sets) {
-    auto eq = s.find('=');
-    if (eq == std::string::npos) {
-      std::cerr << "error: --set expects NAME=VALUE, found '" << s << "'\n";
-      return false;
-    }
-    std::string name = s.substr(0, eq), value = s.substr(eq + 1);
-    auto ref = bc::resolveVariable(m, name);
-    if (!ref) {
-      std::cerr << "error: --set: unknown variable '" << name << "'\n";
-      return false;
-    }
-    std::string problem = bc::writeValueFromText(m, *ref, value, memory);
-    if (!problem.empty()) {
-      std::cerr << "error: --set " << name << ": " << problem << "\n";
-      return false;
-    }
-  }
-  return true;
-}
-
 void writeTraceRow(std::ostream& out, const bc::Module& m, const uint8_t* memory, uint64_t scan, int64_t timeNs,
                    const std::vector<bc::VarRef>& refs) {
   out << scan << ',' << (timeNs / 1'000'000);
@@ -114,7 +92,13 @@ int runExec(const ExecOptions& o) {
     std::cerr << "runtime fault: " << runtime.faultText() << "\n";
     return kExitRuntimeFault;
   }
-  if (!applySets(*module, runtime.machine().memory(), o.sets)) return kExitUsage;
+  for (const auto& set : o.sets) {
+    std::string problem = presetVariable(*module, set, runtime.machine().memory(), runtime.inputImage());
+    if (!problem.empty()) {
+      std::cerr << "error: --set " << problem << "\n";
+      return kExitUsage;
+    }
+  }
 
   std::ofstream traceFile;
   std::ostream* trace = &std::cout;

@@ -75,23 +75,18 @@ int runCell(const RunOptions& o) {
     }
     options.timeLimitNs = *ns;
   }
-  // Validate every --set on a scratch image first so mistakes are reported before the run.
-  std::vector<std::pair<bc::VarRef, std::string>> presets;
+  // Every --set is checked on a scratch image first so mistakes are reported before the run.
   std::vector<uint8_t> scratch(cell->module->memorySize(), 0);
-  for (const auto& s : o.sets) {
-    auto eq = s.find('=');
-    auto ref = eq == std::string::npos ? std::nullopt : bc::resolveVariable(*cell->module, s.substr(0, eq));
-    std::string problem = !ref ? "expected NAME=VALUE with a PLC variable name"
-                               : bc::writeValueFromText(*cell->module, *ref, s.substr(eq + 1), scratch.data());
+  for (const auto& set : o.sets) {
+    std::string problem = presetVariable(*cell->module, set, scratch.data(), nullptr);
     if (!problem.empty()) {
-      std::cerr << "error: --set " << s << ": " << problem << "\n";
+      std::cerr << "error: --set " << problem << "\n";
       return kExitUsage;
     }
-    presets.push_back({*ref, s.substr(eq + 1)});
   }
   const bc::Module& module = *cell->module;
-  options.preset = [&presets, &module](uint8_t* memory) {
-    for (const auto& [ref, value] : presets) bc::writeValueFromText(module, ref, value, memory);
+  options.preset = [&o, &module](plc::Runtime& plc) {
+    for (const auto& set : o.sets) presetVariable(module, set, plc.machine().memory(), plc.inputImage());
   };
   sim::Simulation simulation(*cell, options);
   std::signal(SIGINT, onRunSignal);

@@ -1,6 +1,8 @@
 #include "cli/common.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -28,6 +30,23 @@ std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, 
   return module;
 }
 
+std::string presetVariable(const bc::Module& m, const std::string& assignment, uint8_t* memory, uint8_t* inputImage) {
+  auto eq = assignment.find('=');
+  if (eq == std::string::npos) return "expected NAME=VALUE, found '" + assignment + "'";
+  std::string name = assignment.substr(0, eq), value = assignment.substr(eq + 1);
+  auto ref = bc::resolveVariable(m, name);
+  if (!ref) return "unknown variable '" + name + "' (use the qualified name, e.g. MAIN.count or GVL.x)";
+  if (ref->readOnly) return "'" + name + "' is a CONSTANT and cannot be set";
+  std::string problem = bc::writeValueFromText(m, *ref, value, memory);
+  if (!problem.empty()) return name + ": " + problem;
+  const bc::ProcessArea& in = m.inputs;
+  if (inputImage && ref->address >= in.address && ref->address < in.address + in.size) {
+    uint32_t size = std::max<uint32_t>(m.types[ref->type].size, 1);
+    std::memcpy(inputImage + (ref->address - in.address), memory + ref->address, std::min(size, in.address + in.size - ref->address));
+  }
+  return {};
+}
+
 std::optional<int64_t> parseDurationNs(const std::string& raw) {
   std::string text = raw;
   for (auto& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -50,6 +69,7 @@ std::optional<int64_t> parseDurationNs(const std::string& raw) {
     std::string number;
     for (size_t k = start; k < i; ++k)
       if (text[k] != '_') number += text[k];
+    if (std::count(number.begin(), number.end(), '.') > 1) return std::nullopt;
     double value = std::strtod(number.c_str(), nullptr);
     bool matched = false;
     for (const auto& [unit, scale] : kUnits) {
@@ -63,8 +83,9 @@ std::optional<int64_t> parseDurationNs(const std::string& raw) {
     }
     if (!matched) return std::nullopt;
   }
-  if (total <= 0) return std::nullopt;
-  return static_cast<int64_t>(total + 0.5);
+  int64_t ns = static_cast<int64_t>(total + 0.5);
+  if (ns <= 0) return std::nullopt;
+  return ns;
 }
 
 }  // namespace virtcom::cli

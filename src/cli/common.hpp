@@ -18,6 +18,11 @@ enum ExitCode { kExitOk = 0, kExitCompileError = 1, kExitRuntimeFault = 2, kExit
 std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, SourceManager& sources,
                                          Diagnostics& diags, bool printWarnings = true);
 
+// Applies one `--set NAME=VALUE` to a PLC image. Located inputs (%I) are also written into
+// the external input image (when given) so the next scan's input copy keeps the value.
+// Returns the error text, empty on success. CONSTANTs are refused.
+std::string presetVariable(const bc::Module& m, const std::string& assignment, uint8_t* memory, uint8_t* inputImage);
+
 // Parses a duration such as "10ms", "1.5s", "250us", "T#1s500ms", "100" (ms). Nullopt if invalid.
 std::optional<int64_t> parseDurationNs(const std::string& text);
 

@@ -29,7 +29,8 @@ static const char* severityName(Severity s) {
 
 std::string renderDiagnostic(const Diagnostic& d, const SourceManager& sources) {
   std::string out;
-  bool hasFile = d.loc.fileId < sources.fileCount();
+  // line 0 means "no location" (e.g. a whole-program diagnostic)
+  bool hasFile = d.loc.fileId < sources.fileCount() && d.loc.line > 0;
   if (hasFile) {
     out += sources.path(d.loc.fileId);
     if (d.loc.line > 0) out += ":" + std::to_string(d.loc.line) + ":" + std::to_string(d.loc.col);

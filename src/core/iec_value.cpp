@@ -43,7 +43,7 @@ uint32_t bitWidth(ElemType t) {
   return elemTypeInfo(t).sizeBytes * 8;
 }
 
-static void appendUnit(std::string& out, int64_t& rest, int64_t unit, const char* suffix) {
+static void appendUnit(std::string& out, uint64_t& rest, uint64_t unit, const char* suffix) {
   if (rest >= unit) {
     out += std::to_string(rest / unit) + suffix;
     rest %= unit;
@@ -52,13 +52,11 @@ static void appendUnit(std::string& out, int64_t& rest, int64_t unit, const char
 
 static std::string formatDuration(const char* prefix, int64_t value, bool nanos) {
   std::string out = prefix;
-  if (value < 0) {
-    out += '-';
-    value = -value;  // TIME is 32-bit here and LTIME never reaches INT64_MIN in practice
-  }
+  // the magnitude as unsigned, so INT64_MIN has one too
+  uint64_t rest = value < 0 ? 0 - static_cast<uint64_t>(value) : static_cast<uint64_t>(value);
+  if (value < 0) out += '-';
   if (value == 0) return out + (nanos ? "0ns" : "0ms");
-  int64_t rest = value;
-  int64_t ms = nanos ? 1000000 : 1;
+  uint64_t ms = nanos ? 1000000 : 1;
   appendUnit(out, rest, 86400000 * ms, "d");
   appendUnit(out, rest, 3600000 * ms, "h");
   appendUnit(out, rest, 60000 * ms, "m");

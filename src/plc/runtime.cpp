@@ -36,6 +36,7 @@ Runtime::Runtime(const bc::Module& module, Clock& clock, RuntimeOptions options)
 bool Runtime::coldStart() {
   tickIndex_ = 0;
   faultTask_.clear();
+  initialised_ = true;
   if (!machine_.coldStart()) {
     state_ = PlcState::Fault;
     return false;

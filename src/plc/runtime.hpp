@@ -34,7 +34,11 @@ class Runtime {
 
   // Loads initial values (cold start) and enters RUN. False if the init code faulted.
   bool coldStart();
-  void start() { if (state_ == PlcState::Stop) state_ = PlcState::Run; }
+  // Enters RUN from STOP; cold-starts first if the image was never loaded.
+  void start() {
+    if (!initialised_) coldStart();
+    else if (state_ == PlcState::Stop) state_ = PlcState::Run;
+  }
   void stop() { if (state_ == PlcState::Run) state_ = PlcState::Stop; }
   PlcState state() const { return state_; }
 
@@ -68,6 +72,7 @@ class Runtime {
   RuntimeOptions options_;
   vm::Machine machine_;
   PlcState state_ = PlcState::Stop;
+  bool initialised_ = false;
   int64_t baseTickNs_ = 10'000'000;
   uint64_t tickIndex_ = 0;
   std::vector<size_t> taskOrder_;  // by priority

@@ -56,10 +56,14 @@ std::string formatSeconds(int64_t ns, int decimals) {
   bool negative = ns < 0;
   uint64_t magnitude = negative ? 0 - static_cast<uint64_t>(ns) : static_cast<uint64_t>(ns);
   uint64_t q = magnitude / unit + (magnitude % unit >= (unit + 1) / 2 && unit > 1 ? 1 : 0);
-  std::string out = (negative && q != 0 ? "-" : "") + std::to_string(q / scale);
+  // Appends only: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string temporaries.
+  std::string out = negative && q != 0 ? "-" : "";
+  out += std::to_string(q / scale);
   if (decimals > 0) {
     std::string frac = std::to_string(q % scale);
-    out += "." + std::string(static_cast<size_t>(decimals) - frac.size(), '0') + frac;
+    out += '.';
+    out.append(static_cast<size_t>(decimals) - frac.size(), '0');
+    out += frac;
   }
   return out;
 }

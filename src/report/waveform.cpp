@@ -43,8 +43,13 @@ std::string vcdName(std::string_view s) {
 
 std::string vcdValue(ElemType t, uint64_t raw, const std::string& id) {
   switch (vcdKind(t)) {
-    case VcdKind::Wire1: return (raw ? "1" : "0") + id;
-    case VcdKind::Real: return "r" + formatShortest(std::bit_cast<double>(raw)) + " " + id;
+    case VcdKind::Wire1: return std::string(1, raw ? '1' : '0') += id;
+    case VcdKind::Real: {
+      std::string out = "r";
+      out += formatShortest(std::bit_cast<double>(raw));
+      out += ' ';
+      return out += id;
+    }
     case VcdKind::Integer:
     case VcdKind::Vector: {
       uint32_t width = bitWidth(t);
@@ -88,7 +93,8 @@ std::string vcdReport(const Trace& trace) {
     const SignalInfo& s = trace.signals[i];
     VcdKind kind = vcdKind(s.type);
     if (kind == VcdKind::None) {
-      skipped += " " + vcdName(s.name);
+      skipped += ' ';
+      skipped += vcdName(s.name);
       continue;
     }
     ids[i] = vcdId(next++);
@@ -120,11 +126,17 @@ std::string vcdReport(const Trace& trace) {
     if (c.tag >= trace.signals.size() || ids[c.tag].empty() || c.timeNs < 0) continue;
     if (c.timeNs > now) {
       now = c.timeNs;
-      out += "#" + std::to_string(now) + "\n";
+      out += '#';
+      out += std::to_string(now);
+      out += '\n';
     }
     out += vcdValue(trace.signals[c.tag].type, c.raw, ids[c.tag]) + "\n";
   }
-  if (trace.endNs > now) out += "#" + std::to_string(trace.endNs) + "\n";
+  if (trace.endNs > now) {
+    out += '#';
+    out += std::to_string(trace.endNs);
+    out += '\n';
+  }
   return out;
 }
 

@@ -41,7 +41,7 @@ void Simulation::start() {
   started_ = true;
   runtime_->coldStart();
   uint8_t* mem = runtime_->machine().memory();
-  if (options_.preset) options_.preset(mem);
+  if (options_.preset) options_.preset(*runtime_);
   for (const auto& w : cell_.wires)
     if (w.dir == plant::PortDir::In) cell::readVariable(w, mem, cell_.bus);
   for (const auto& w : recordWires_) cell::readVariable(w, mem, cell_.bus);

@@ -20,7 +20,7 @@ struct SimOptions {
   int64_t timeLimitNs = -1;         // overrides the cell's run.time_limit when >= 0
   const std::atomic<bool>* interrupt = nullptr;  // set asynchronously to stop (SIGINT)
   // Called once after the PLC's cold start, before the first scan (e.g. `--set` presets).
-  std::function<void(uint8_t* plcMemory)> preset;
+  std::function<void(plc::Runtime& plc)> preset;
 };
 
 class Simulation {

@@ -5,6 +5,7 @@
 
 #include "lang/st/declare.hpp"
 #include "lang/st/diagnostic_codes.hpp"
+#include "lang/st/standard_names.hpp"
 
 namespace virtcom::st {
 
@@ -32,6 +33,10 @@ void Declarer::run() {
 
 void Declarer::registerPou(const Pou& pou, uint32_t fileId) {
   std::string key = upper(pou.name);
+  if (isStandardFunctionName(key)) {
+    diags_.error(diag::E119, pou.loc, "'" + pou.name + "' is the name of a standard function; choose another name");
+    return;
+  }
   if (model_.pouByName.count(key) || typeDecls_.count(key) || model_.interfaces.count(key)) {
     diags_.error(diag::E105, pou.loc, "'" + pou.name + "' is already declared");
     return;

@@ -134,7 +134,8 @@ bool decodeDuration(std::string_view body, uint64_t& ns, bool& negative, std::st
     if (!fraction.empty()) {
       long double frac = 0, scale = 1;
       for (char c : fraction.substr(0, 18)) frac += (c - '0') * (scale /= 10);
-      part += static_cast<uint64_t>(std::llround(frac * static_cast<long double>(unit->ns)));
+      uint64_t fracNs = static_cast<uint64_t>(std::llround(frac * static_cast<long double>(unit->ns)));
+      if (__builtin_add_overflow(part, fracNs, &part)) return why = "value too large", false;
     }
     if (__builtin_add_overflow(ns, part, &ns)) return why = "value too large", false;
     while (i < body.size() && body[i] == '_') ++i;

@@ -293,12 +293,7 @@ CompilationUnit Parser::parseUnit() {
         skipToTopLevel();
         break;
     }
-    if (pos_ == before) {
-      // The construct could not even start (e.g. a wrong END_xxx): move on to the next one.
-      errorExpected("PROGRAM, FUNCTION, FUNCTION_BLOCK, INTERFACE, TYPE, VAR_GLOBAL or CONFIGURATION", "");
-      advance();
-      skipToTopLevel();
-    }
+    if (pos_ == before) advance();  // every branch consumes its keyword; this is a safety net
   }
   return unit;
 }

@@ -23,6 +23,8 @@ namespace virtcom::st {
 //   (DATE, DT; DT fractions of a second are dropped) or ms since midnight (TOD).
 // - Typed literals carry the canonical type name in typePrefix ("INT", "TIME_OF_DAY" is "TOD").
 //   BOOL#0/1 is a BoolLit, REAL#1 a RealLit.
+// - POINTER TO T and IEC REF_TO T give a Pointer spec; CODESYS REFERENCE TO T a Reference.
+// - ARRAY[*] dimensions have null bounds; UNION and VAR_CONFIG are reported as unsupported (E011).
 // - Parentheses leave no node. A syntax error inside an expression leaves a Name node with an
 //   empty text in its place.
 // - Binary, Unary, Index and Deref nodes are located at their operator; Member and BitAccess at

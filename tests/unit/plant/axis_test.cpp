@@ -34,7 +34,9 @@ class AxisTest : public ::testing::Test {
     rig.tick();
     const int64_t start = rig.now;
     auto ended = [&] { return rig.getBool("AxisX.done") || rig.getNumber("AxisX.error") != 0; };
-    if (!ended()) EXPECT_TRUE(rig.tickUntil(ended));
+    if (!ended()) {
+      EXPECT_TRUE(rig.tickUntil(ended));
+    }
     if (took) *took = rig.now - start;
     int error = static_cast<int>(rig.getNumber("AxisX.error"));
     rig.setBool("AxisX.execute", false);

@@ -1,6 +1,7 @@
 // Cell-file mistakes in device entries, reported with file:line:col as the user sees them.
 #include <gtest/gtest.h>
 
+#include "plant/device_errors.hpp"
 #include "plant_rig.hpp"
 
 namespace virtcom::plant::test {
@@ -179,6 +180,21 @@ TEST(DeviceConfig, AllProblemsOfAnEntryAreReportedInOnePass) {
   PlantRig rig;
   EXPECT_EQ(rig.add("robot", "R", "max_speed: fast\nfoo: 1\n"), nullptr);
   EXPECT_GE(rig.diags.errorCount(), 5u) << rig.renderedDiags();  // speed, acceleration, locations, procedures, foo
+}
+
+}  // namespace
+}  // namespace virtcom::plant::test
+
+namespace virtcom::plant::test {
+namespace {
+
+TEST(DeviceErrors, OneTableGivesCodesAndMeanings) {
+  EXPECT_EQ(code(DeviceError::UnknownCommand), 10);
+  EXPECT_EQ(code(DeviceError::NoInsert), 40);
+  EXPECT_EQ(code(DeviceError::InjectedFault), 90);
+  EXPECT_NE(std::string(deviceErrorMeaning(40)).find("insert"), std::string::npos);
+  EXPECT_NE(std::string(deviceErrorMeaning(50)).find("stud"), std::string::npos);
+  EXPECT_EQ(std::string(deviceErrorMeaning(77)), "unknown error code");
 }
 
 }  // namespace

@@ -29,7 +29,9 @@ class PressTest : public ::testing::Test {
     rig.tick();
     const int64_t start = rig.now;
     auto ended = [&] { return rig.getBool("Press.done") || rig.getNumber("Press.error") != 0; };
-    if (!ended()) EXPECT_TRUE(rig.tickUntil(ended));
+    if (!ended()) {
+      EXPECT_TRUE(rig.tickUntil(ended));
+    }
     if (took) *took = rig.now - start;
     int e = static_cast<int>(rig.getNumber("Press.error"));
     rig.setBool("Press.execute", false);

@@ -52,8 +52,8 @@ void arithNativeBench(benchmark::State& state) {
   reportNative(state);
 }
 
-BENCHMARK(arithVm)->Name("arith/vm");
-BENCHMARK(arithNativeBench)->Name("arith/native");
+BENCHMARK(arithVm)->Name("arith/vm")->Apply(withMinStatistic);
+BENCHMARK(arithNativeBench)->Name("arith/native")->Apply(withMinStatistic);
 
 }  // namespace
 }  // namespace virtcom::bench

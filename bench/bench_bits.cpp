@@ -76,8 +76,8 @@ void bitsNative(benchmark::State& state) {
   reportNative(state);
 }
 
-BENCHMARK(bitsVm)->Name("bits/vm");
-BENCHMARK(bitsNative)->Name("bits/native");
+BENCHMARK(bitsVm)->Name("bits/vm")->Apply(withMinStatistic);
+BENCHMARK(bitsNative)->Name("bits/native")->Apply(withMinStatistic);
 
 }  // namespace
 }  // namespace virtcom::bench

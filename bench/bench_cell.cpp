@@ -182,9 +182,9 @@ void cellNative(benchmark::State& state) {
   reportNative(state);
 }
 
-BENCHMARK(cellVm)->Name("cell/vm");
-BENCHMARK(cellVmMachineRun)->Name("cell/vm_machine_run");
-BENCHMARK(cellNative)->Name("cell/native");
+BENCHMARK(cellVm)->Name("cell/vm")->Apply(withMinStatistic);
+BENCHMARK(cellVmMachineRun)->Name("cell/vm_machine_run")->Apply(withMinStatistic);
+BENCHMARK(cellNative)->Name("cell/native")->Apply(withMinStatistic);
 
 }  // namespace
 }  // namespace virtcom::bench

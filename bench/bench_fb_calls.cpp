@@ -89,8 +89,8 @@ void fbCallsNative(benchmark::State& state) {
   reportNative(state);
 }
 
-BENCHMARK(fbCallsVm)->Name("fb_calls/vm");
-BENCHMARK(fbCallsNative)->Name("fb_calls/native");
+BENCHMARK(fbCallsVm)->Name("fb_calls/vm")->Apply(withMinStatistic);
+BENCHMARK(fbCallsNative)->Name("fb_calls/native")->Apply(withMinStatistic);
 
 }  // namespace
 }  // namespace virtcom::bench

@@ -96,8 +96,8 @@ void stringsNative(benchmark::State& state) {
   reportNative(state);
 }
 
-BENCHMARK(stringsVm)->Name("strings/vm");
-BENCHMARK(stringsNative)->Name("strings/native");
+BENCHMARK(stringsVm)->Name("strings/vm")->Apply(withMinStatistic);
+BENCHMARK(stringsNative)->Name("strings/native")->Apply(withMinStatistic);
 
 }  // namespace
 }  // namespace virtcom::bench

@@ -1,5 +1,6 @@
 #include "st_program.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -110,6 +111,10 @@ void measureMachineRuns(benchmark::State& state, StProgram& prog) {
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()));
   state.counters["vm_instr"] = benchmark::Counter(static_cast<double>(prog.instructionsExecuted() - before),
                                                   benchmark::Counter::kAvgIterations);
+}
+
+void withMinStatistic(benchmark::internal::Benchmark* b) {
+  b->ComputeStatistics("min", [](const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); });
 }
 
 void reportNative(benchmark::State& state) {

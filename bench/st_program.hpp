@@ -12,6 +12,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <vector>
 
 #include "bytecode/module.hpp"
 #include "core/clock.hpp"
@@ -41,7 +42,8 @@ class StProgram {
   uint64_t instructionsExecuted() const { return runtime_->machine().instructionsExecuted(); }
 
   // The value of the variable at `path` (e.g. "MAIN.acc") if it exists, is not a packed bit
-  // and has exactly sizeof(T) bytes; nullopt otherwise.
+  // and has exactly sizeof(T) bytes; nullopt otherwise. This and text() require ok() after
+  // construction (a program that never compiled has no memory to read).
   template <class T>
   std::optional<T> read(std::string_view path) const {
     auto ref = bc::resolveVariable(*module_, path);
@@ -92,6 +94,11 @@ void measureScans(benchmark::State& state, StProgram& prog);
 // Like measureScans, but calls vm::Machine::run on MAIN directly (the time still advances
 // by 10 ms per iteration): the scan without the runtime's bookkeeping.
 void measureMachineRuns(benchmark::State& state, StProgram& prog);
+
+// Registration option of every benchmark here: with --benchmark_repetitions=N, also report
+// the minimum over the repetitions ("_min"), the robust statistic on a shared machine where
+// other processes only ever add time.
+void withMinStatistic(benchmark::internal::Benchmark* b);
 
 // The counters of a native twin's benchmark: scans per second as items/s and vm_instr = 0,
 // so the twins share one table with the VM benchmarks.

@@ -127,6 +127,7 @@ struct Module {
   static constexpr uint32_t kNullGuard = 16;
   std::vector<uint8_t> initialImage;  // bytes [0, staticSize)
   uint32_t staticSize = 0;
+  uint32_t writableEnd = 0;  // [kNullGuard, writableEnd) holds variables; above it only constant data
   uint32_t stackSize = 64 * 1024;
   uint32_t maxCallDepth = 256;
   uint32_t registerStackSize = 16 * 1024;  // total registers across all active windows

@@ -86,6 +86,8 @@ class Verifier {
   }
 
   bool layout() {
+    if (m_.writableEnd > m_.staticSize)
+      return fail("writableEnd " + std::to_string(m_.writableEnd) + " is beyond the static image");
     if (m_.initialImage.size() != m_.staticSize)
       return fail("initial image has " + std::to_string(m_.initialImage.size()) + " bytes, static size is " +
                   std::to_string(m_.staticSize));

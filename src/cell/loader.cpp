@@ -222,14 +222,7 @@ class Loader {
       diags_.error("C033", loc, "'" + var + "' is read-only (CONSTANT) and cannot receive " + d.name() + "." + spec.name);
       return 0;
     }
-    Wire w;
-    w.tag = d.tag(port);
-    w.dir = spec.dir;
-    w.address = ref->address;
-    w.bit = ref->bit;
-    w.varType = t.elem;
-    w.varName = var;
-    cell.wires.push_back(w);
+    cell.wires.push_back(makeWire(d.tag(port), spec.type, spec.dir, *ref, t.elem, var));
     return 1;
   }
 

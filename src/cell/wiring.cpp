@@ -39,6 +39,23 @@ void storeReal(uint8_t* p, ElemType t, double v) {
   std::memcpy(p, &v, 8);
 }
 
+
+void storeValue(const Wire& w, const TagBus& bus, uint8_t* p) {
+  if (w.bit >= 0) {
+    if (bus.getBool(w.tag)) *p = static_cast<uint8_t>(*p | (1u << w.bit));
+    else *p = static_cast<uint8_t>(*p & ~(1u << w.bit));
+    return;
+  }
+  ElemType tagType = w.tagType;
+  if (w.varIsReal) {
+    storeReal(p, w.varType, isFloat(tagType) ? bus.getReal(w.tag) : bus.getNumber(w.tag));
+  } else if (isFloat(tagType)) {
+    storeInt(p, w.varType, static_cast<int64_t>(bus.getReal(w.tag) >= 0 ? bus.getReal(w.tag) + 0.5 : bus.getReal(w.tag) - 0.5));
+  } else {
+    storeInt(p, w.varType, bus.getInt(w.tag));
+  }
+}
+
 }  // namespace
 
 void readVariable(const Wire& w, const uint8_t* memory, TagBus& bus) {
@@ -47,8 +64,8 @@ void readVariable(const Wire& w, const uint8_t* memory, TagBus& bus) {
     bus.setBool(w.tag, (*p >> w.bit) & 1);
     return;
   }
-  ElemType tagType = bus.type(w.tag);
-  if (isReal(w.varType)) {
+  ElemType tagType = w.tagType;
+  if (w.varIsReal) {
     double v = loadReal(p, w.varType);
     if (isFloat(tagType)) bus.setReal(w.tag, v);
     else bus.setNumber(w.tag, v);
@@ -60,21 +77,26 @@ void readVariable(const Wire& w, const uint8_t* memory, TagBus& bus) {
   else bus.setInt(w.tag, v);
 }
 
-void writeVariable(const Wire& w, const TagBus& bus, uint8_t* memory) {
+bool writeVariable(const Wire& w, const TagBus& bus, uint8_t* memory) {
   uint8_t* p = memory + w.address;
-  if (w.bit >= 0) {
-    if (bus.getBool(w.tag)) *p = static_cast<uint8_t>(*p | (1u << w.bit));
-    else *p = static_cast<uint8_t>(*p & ~(1u << w.bit));
-    return;
-  }
-  ElemType tagType = bus.type(w.tag);
-  if (isReal(w.varType)) {
-    storeReal(p, w.varType, isFloat(tagType) ? bus.getReal(w.tag) : bus.getNumber(w.tag));
-  } else if (isFloat(tagType)) {
-    storeInt(p, w.varType, static_cast<int64_t>(bus.getReal(w.tag) >= 0 ? bus.getReal(w.tag) + 0.5 : bus.getReal(w.tag) - 0.5));
-  } else {
-    storeInt(p, w.varType, bus.getInt(w.tag));
-  }
+  uint64_t before = 0;
+  std::memcpy(&before, p, w.varSize);
+  storeValue(w, bus, p);
+  return std::memcmp(&before, p, w.varSize) != 0;
+}
+
+Wire makeWire(TagId tag, ElemType tagType, plant::PortDir dir, const bc::VarRef& ref, ElemType varType, std::string varName) {
+  Wire w;
+  w.tag = tag;
+  w.tagType = tagType;
+  w.dir = dir;
+  w.address = ref.address;
+  w.bit = ref.bit;
+  w.varType = varType;
+  w.varSize = static_cast<uint8_t>(ref.bit >= 0 ? 1 : elemTypeInfo(varType).sizeBytes);
+  w.varIsReal = isReal(varType);
+  w.varName = std::move(varName);
+  return w;
 }
 
 bool evaluate(const Condition& c, const uint8_t* memory) {

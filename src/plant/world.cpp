@@ -16,7 +16,7 @@ uint32_t World::zone(const std::string& name) {
   zoneNames_.push_back(name);
   occupants_.emplace_back();
   occupants_.back().reserve(8);
-  trace_.internLabel(name);
+  zoneLabels_.push_back(trace_.internLabel(name));
   return static_cast<uint32_t>(zoneNames_.size() - 1);
 }
 
@@ -37,7 +37,7 @@ bool World::enterZone(uint32_t zone, uint32_t device, uint32_t activityLabel, in
   for (const auto& o : occ) {
     CollisionRecord c;
     c.timeNs = nowNs;
-    c.zone = trace_.internLabel(zoneNames_[zone]);
+    c.zone = zoneLabels_[zone];
     c.deviceA = o.device;
     c.deviceB = device;
     c.activityA = o.label;

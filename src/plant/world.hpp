@@ -47,6 +47,7 @@ class World {
   std::vector<uint8_t> facts_;
   std::vector<std::string> factNames_;
   std::vector<std::string> zoneNames_;
+  std::vector<uint32_t> zoneLabels_;              // trace label of each zone name, interned at load
   std::vector<std::vector<Occupant>> occupants_;  // per zone; reserved at load, at most #devices
   bool collided_ = false;
 };

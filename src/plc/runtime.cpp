@@ -31,12 +31,15 @@ Runtime::Runtime(const bc::Module& module, Clock& clock, RuntimeOptions options)
   std::stable_sort(taskOrder_.begin(), taskOrder_.end(),
                    [&](size_t a, size_t b) { return module.tasks[a].priority < module.tasks[b].priority; });
   machine_.setBudget(options_.instructionBudget);
+  if (options_.skipRepeatedScans && module.tasks.size() == 1)
+    shadow_.resize(module.writableEnd ? module.writableEnd : module.staticSize);
 }
 
 bool Runtime::coldStart() {
   tickIndex_ = 0;
   faultTask_.clear();
   initialised_ = true;
+  quiescent_ = false;
   if (!machine_.coldStart()) {
     state_ = PlcState::Fault;
     return false;
@@ -76,12 +79,27 @@ bool Runtime::tick() {
   clock_.advanceTo(now);
   ++tickIndex_;
   if (state_ != PlcState::Run) return false;
+  bool tracking = !shadow_.empty();
+  if (tracking && quiescent_ && inputImageSettled()) {
+    ++stats_[0].scans;
+    ++stats_[0].skippedScans;
+    return true;
+  }
+  uint64_t timeReads = machine_.timeReads();
+  if (tracking) std::memcpy(shadow_.data(), machine_.memory(), shadow_.size());
   for (size_t t : taskOrder_) {
     int64_t interval = module_.tasks[t].intervalNs;
     if (interval <= 0 || now % interval != 0) continue;
     if (!runTask(t, now)) return false;
   }
+  if (tracking)
+    quiescent_ = machine_.timeReads() == timeReads && std::memcmp(shadow_.data(), machine_.memory(), shadow_.size()) == 0;
   return true;
+}
+
+bool Runtime::inputImageSettled() const {
+  const bc::ProcessArea& in = module_.inputs;
+  return in.size == 0 || std::memcmp(inputs_.data(), machine_.memory() + in.address, in.size) == 0;
 }
 
 std::string Runtime::faultText() const {

@@ -16,7 +16,8 @@ enum class PlcState { Stop, Run, Fault };
 const char* stateName(PlcState s);
 
 struct TaskStats {
-  uint64_t scans = 0;
+  uint64_t scans = 0;          // including skipped repeats
+  uint64_t skippedScans = 0;
   int64_t minExecNs = 0;  // wall time of one scan's execution (statistics only)
   int64_t maxExecNs = 0;
   int64_t totalExecNs = 0;
@@ -25,6 +26,10 @@ struct TaskStats {
 
 struct RuntimeOptions {
   uint64_t instructionBudget = 50'000'000;  // per task scan: backward jumps + calls (watchdog)
+  // Skip a scan when it would provably repeat the previous one: that scan read no time, changed
+  // no memory, and neither the input image nor any variable (see inputsTouched) changed since.
+  // Results are identical; only the executed-scan statistics differ. Single-task programs only.
+  bool skipRepeatedScans = false;
 };
 
 class Runtime {
@@ -52,6 +57,10 @@ class Runtime {
   int64_t nextTickNs() const { return static_cast<int64_t>(tickIndex_) * baseTickNs_; }
   uint64_t ticks() const { return tickIndex_; }
 
+  // Tells the runtime that something outside the PLC wrote its memory (wired variables,
+  // protocol writes), so the next scan must run.
+  void inputsTouched() { quiescent_ = false; }
+
   // The external side of the process image: written by devices/protocols, copied into the
   // %I area at the start of each scan; the %Q area is copied out at its end.
   uint8_t* inputImage() { return inputs_.data(); }
@@ -66,6 +75,7 @@ class Runtime {
 
  private:
   bool runTask(size_t task, int64_t nowNs);
+  bool inputImageSettled() const;
 
   const bc::Module& module_;
   Clock& clock_;
@@ -80,6 +90,8 @@ class Runtime {
   std::vector<uint8_t> outputs_;
   std::vector<TaskStats> stats_;
   std::string faultTask_;
+  bool quiescent_ = false;          // the last executed scan was a provable no-op
+  std::vector<uint8_t> shadow_;     // static memory before the last executed scan
 };
 
 }  // namespace virtcom::plc

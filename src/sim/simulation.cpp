@@ -5,7 +5,9 @@ namespace virtcom::sim {
 Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), options_(options) {
   if (options_.speed > 0) clock_ = std::make_unique<PacedClock>(options_.speed);
   else clock_ = std::make_unique<VirtualClock>();
-  runtime_ = std::make_unique<plc::Runtime>(*cell_.module, *clock_);
+  plc::RuntimeOptions ropts;
+  ropts.skipRepeatedScans = options_.skipRepeatedScans;
+  runtime_ = std::make_unique<plc::Runtime>(*cell_.module, *clock_, ropts);
   timeLimitNs_ = options_.timeLimitNs >= 0 ? options_.timeLimitNs : cell_.run.timeLimitNs;
   Trace& trace = cell_.trace;
   for (auto& d : cell_.devices) d->prepare(cell_.world, trace);
@@ -13,14 +15,7 @@ Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), opti
   for (const auto& name : cell_.run.recordVars) {
     auto ref = bc::resolveVariable(*cell_.module, name);
     const bc::TypeDesc& t = cell_.module->types[ref->type];
-    cell::Wire w;
-    w.tag = cell_.bus.add(name, t.elem);
-    w.dir = plant::PortDir::In;
-    w.address = ref->address;
-    w.bit = ref->bit;
-    w.varType = t.elem;
-    w.varName = name;
-    recordWires_.push_back(w);
+    recordWires_.push_back(cell::makeWire(cell_.bus.add(name, t.elem), t.elem, plant::PortDir::In, *ref, t.elem, name));
   }
   if (!cell_.run.cycleDoneVar.empty()) {
     auto ref = bc::resolveVariable(*cell_.module, cell_.run.cycleDoneVar);
@@ -71,8 +66,11 @@ void Simulation::finish(RunEnd end, std::string message) {
 bool Simulation::checkStop() {
   uint8_t* mem = runtime_->machine().memory();
   if (runtime_->state() == plc::PlcState::Fault) {
-    cell_.trace.faults.push_back({nowNs_, "PLC", runtime_->faultText()});
-    finish(RunEnd::PlcFault, runtime_->faultText());
+    std::string text = runtime_->faultText();
+    for (auto& c : text)
+      if (c == '\n') c = ';';  // one line in tables and reports
+    cell_.trace.faults.push_back({nowNs_, "PLC", text});
+    finish(RunEnd::PlcFault, text);
     return true;
   }
   if (hasCycleWire_) {
@@ -123,8 +121,10 @@ bool Simulation::step() {
   if (!started_) start();
   uint8_t* mem = runtime_->machine().memory();
   nowNs_ = runtime_->nextTickNs();
+  bool touched = false;
   for (const auto& w : cell_.wires)
-    if (w.dir == plant::PortDir::Out) cell::writeVariable(w, cell_.bus, mem);
+    if (w.dir == plant::PortDir::Out) touched |= cell::writeVariable(w, cell_.bus, mem);
+  if (touched) runtime_->inputsTouched();
   runtime_->tick();
   for (const auto& w : cell_.wires)
     if (w.dir == plant::PortDir::In) cell::readVariable(w, mem, cell_.bus);

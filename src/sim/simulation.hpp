@@ -21,6 +21,8 @@ struct SimOptions {
   const std::atomic<bool>* interrupt = nullptr;  // set asynchronously to stop (SIGINT)
   // Called once after the PLC's cold start, before the first scan (e.g. `--set` presets).
   std::function<void(plc::Runtime& plc)> preset;
+  // Skip PLC scans that provably repeat the previous one (exact: same results and trace).
+  bool skipRepeatedScans = true;
 };
 
 class Simulation {

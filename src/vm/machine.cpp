@@ -154,7 +154,7 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
   VM_CASE(MOV) r[ins.a] = r[ins.b]; VM_NEXT();
   VM_CASE(LDI) r[ins.a] = fromI(ins.sbx()); VM_NEXT();
   VM_CASE(LDK) r[ins.a] = constants[ins.bx()]; VM_NEXT();
-  VM_CASE(SYSTIME) r[ins.a] = fromI(taskTimeNs_); VM_NEXT();
+  VM_CASE(SYSTIME) r[ins.a] = fromI(taskTimeNs_); ++timeReads_; VM_NEXT();
 
   VM_CASE(LD_I8) VM_LOAD(int8_t, fromI(v));
   VM_CASE(LD_U8) VM_LOAD(uint8_t, uint64_t{v});

@@ -47,6 +47,9 @@ class Machine {
 
   const FaultInfo& fault() const { return fault_; }
   uint64_t instructionsExecuted() const { return executed_; }  // cumulative since construction
+  // How often SYSTIME ran (cumulative): a scan that read no time and changed no memory is
+  // idempotent, which lets the runtime skip identical scans exactly.
+  uint64_t timeReads() const { return timeReads_; }
   // Current stack pointer (staticSize when idle).
   uint32_t stackPointer() const { return sp_; }
 
@@ -70,6 +73,7 @@ class Machine {
   int64_t taskTimeNs_ = 0;
   uint64_t budget_ = 50'000'000;
   uint64_t executed_ = 0;
+  uint64_t timeReads_ = 0;
 };
 
 }  // namespace virtcom::vm

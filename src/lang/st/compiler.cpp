@@ -108,6 +108,7 @@ std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& input
   ImageBuilder image(module->initialImage);
   Declarer declarer(units, diags, types, model, image, *module);
   declarer.run();
+  module->writableEnd = image.size();  // variables are all placed; constant data follows
   for (auto& p : model.pous)
     for (size_t i = 0; i < libraryPous; ++i)
       if (p->ast == units.front().pous[i].get() || (p->owner && p->owner->ast == units.front().pous[i].get())) p->isLibrary = true;

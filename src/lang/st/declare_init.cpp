@@ -10,9 +10,19 @@
 namespace virtcom::st {
 
 namespace {
-constexpr uint32_t kInputAreaSize = 4096;
-constexpr uint32_t kOutputAreaSize = 4096;
-constexpr uint32_t kMemoryAreaSize = 16384;
+// Each process image area is as large as its located variables need, and at least this large
+// (room for direct addresses used in code and for protocol access), at most kMaxArea.
+constexpr uint32_t kMinAreaSize = 256;
+constexpr uint32_t kMaxAreaSize = 65536;
+
+// Size of the largest type a located declaration could have: arrays and structs need their
+// resolved size, which is not known yet; the address's own width is a lower bound, and the
+// area is rounded up generously (placeLocated checks the real extent later).
+uint32_t areaExtent(const VarDecl& decl) {
+  auto a = parseDirectAddress(decl.location);
+  if (!a) return 0;
+  return a->byteOffset + 64;  // room for a struct or array at the address
+}
 }  // namespace
 
 std::optional<DirectAddress> parseDirectAddress(std::string_view text) {
@@ -84,9 +94,26 @@ void Declarer::placeLocated(VarInfo& v, const std::string& address) {
 }
 
 void Declarer::allocateProcessAreas() {
-  module_.inputs = {image_.allocate(kInputAreaSize, 8), kInputAreaSize};
-  module_.outputs = {image_.allocate(kOutputAreaSize, 8), kOutputAreaSize};
-  module_.memory = {image_.allocate(kMemoryAreaSize, 8), kMemoryAreaSize};
+  uint32_t extent[3] = {kMinAreaSize, kMinAreaSize, kMinAreaSize};  // I, Q, M
+  auto visit = [&](const std::vector<VarBlock>& blocks) {
+    for (const auto& block : blocks)
+      for (const auto& decl : block.vars) {
+        if (decl.location.empty()) continue;
+        auto a = parseDirectAddress(decl.location);
+        if (!a) continue;
+        int area = a->area == 'I' ? 0 : a->area == 'Q' ? 1 : 2;
+        extent[area] = std::max(extent[area], areaExtent(decl));
+      }
+  };
+  for (const auto& unit : units_) {
+    for (const auto& pou : unit.pous) visit(pou->varBlocks);
+    for (const auto& gvl : unit.globals) visit(gvl.blocks);
+    for (const auto& cfg : unit.configurations) visit(cfg.globals);
+  }
+  for (auto& e : extent) e = std::min((e + 63) / 64 * 64, kMaxAreaSize);
+  module_.inputs = {image_.allocate(extent[0], 8), extent[0]};
+  module_.outputs = {image_.allocate(extent[1], 8), extent[1]};
+  module_.memory = {image_.allocate(extent[2], 8), extent[2]};
 }
 
 void Declarer::collectGlobalConstants() {

@@ -218,6 +218,12 @@ void Parser::skipPastSemicolon(bool stopAtStatementStart) {
   }
 }
 
+void Parser::skipStray(size_t& lastStray, std::string_view expected) {
+  if (pos_ != lastStray + 1) errorExpected(expected, "");
+  lastStray = pos_;
+  advance();
+}
+
 void Parser::stopParsing(std::string message) {
   error(diag::E010, std::move(message));
   stopped_ = true;

@@ -25,6 +25,11 @@ namespace virtcom::st {
 //   BOOL#0/1 is a BoolLit, REAL#1 a RealLit.
 // - POINTER TO T and IEC REF_TO T give a Pointer spec; CODESYS REFERENCE TO T a Reference.
 // - ARRAY[*] dimensions have null bounds; UNION and VAR_CONFIG are reported as unsupported (E011).
+// - Pou::body holds, in source order, the statements before, between and after the POU's
+//   METHOD, PROPERTY and ACTION blocks (TwinCAT/CODESYS exports put those before the body).
+// - The operators in function form, `MOD(a, b)`, `AND(a, b, c)`, `OR(...)`, `XOR(...)`, are Calls
+//   whose callee is a Name with the upper-case spelling ("MOD"); so is `NOT(...)` with named or
+//   several arguments, while `NOT(x)` / `NOT (a OR b)` stay a Unary Not.
 // - Parentheses leave no node. A syntax error inside an expression leaves a Name node with an
 //   empty text in its place.
 // - Binary, Unary, Index and Deref nodes are located at their operator; Member and BitAccess at

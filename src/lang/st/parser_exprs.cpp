@@ -75,7 +75,10 @@ ExprPtr Parser::parseUnary() {
   switch (cur().kind) {
     case Tok::Minus: op = UnaryOp::Neg; break;
     case Tok::Plus: op = UnaryOp::Plus; break;
-    case Tok::KwNot: op = UnaryOp::Not; break;
+    case Tok::KwNot:
+      if (peekTok(1).kind == Tok::LParen) return parseNotParen();
+      op = UnaryOp::Not;
+      break;
     default: return parsePostfix();
   }
   auto e = makeExpr(ExprKind::Unary, cur().loc);
@@ -83,6 +86,43 @@ ExprPtr Parser::parseUnary() {
   advance();
   e->lhs = parseUnary();
   return e;
+}
+
+// `NOT (...)`: the unary NOT of a parenthesised expression, or the standard function NOT called
+// with named or several arguments (`NOT(IN := x)`, `NOT(a, b)`, which the checker rejects for its
+// argument count). With one positional argument the two readings are the same, and it stays a
+// Unary Not.
+ExprPtr Parser::parseNotParen() {
+  SourceLocation loc = cur().loc;
+  auto e = makeExpr(ExprKind::Unary, loc);
+  e->unaryOp = UnaryOp::Not;
+  advance();  // NOT
+  bool named = isNameToken(peekTok(1).kind) && (peekTok(2).kind == Tok::Assign || peekTok(2).kind == Tok::OutAssign);
+  if (!named) {
+    NestingGuard guard(*this, kRecursionCost);
+    if (!guard.ok) return errorExpr(loc);
+    advance();  // '('
+    ExprPtr first = parseExpr();
+    if (!at(Tok::Comma)) {
+      expect(Tok::RParen, "to close '('");
+      e->lhs = parsePostfixOps(std::move(first));
+      return e;
+    }
+    CallArg arg;
+    arg.loc = first->loc;
+    arg.value = std::move(first);
+    e->args.push_back(std::move(arg));
+    while (!stopped_ && accept(Tok::Comma)) e->args.push_back(parseCallArg());
+    expect(Tok::RParen, "to close the argument list");
+  } else {
+    advance();  // '('
+    parseCallArgs(e->args);
+  }
+  e->kind = ExprKind::Call;
+  e->unaryOp = UnaryOp{};
+  e->lhs = makeExpr(ExprKind::Name, loc);
+  e->lhs->text = "NOT";
+  return parsePostfixOps(std::move(e));
 }
 
 ExprPtr Parser::parsePostfix() { return parsePostfixOps(parsePrimary()); }
@@ -175,6 +215,15 @@ ExprPtr Parser::parsePrimary() {
       return inner;
     }
     case Tok::LBracket: return parseArrayInit();
+    case Tok::KwAnd: case Tok::KwOr: case Tok::KwXor: case Tok::KwMod: {
+      // The operator in function form, `MOD(a, b)`, `AND(a, b, c)`: a call of the standard
+      // function of that name (the '(' is left for parsePostfixOps).
+      if (peekTok(1).kind != Tok::LParen) break;
+      auto e = makeExpr(ExprKind::Name, tok.loc);
+      e->text = std::string(tokSpelling(tok.kind));
+      advance();
+      return e;
+    }
     default: break;
   }
   if (isNameToken(tok.kind)) {

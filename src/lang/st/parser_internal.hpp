@@ -48,6 +48,10 @@ class Parser {
   bool isHardStop(Tok kind) const;  // ends any statement list / declaration list
   void skipToTopLevel();
   void skipPastSemicolon(bool stopAtStatementStart);
+  // Reports the current token as unexpected and skips it; a run of consecutive stray tokens gets
+  // one error, not one per token. `lastStray` (initially kNoStray) is the loop's memory of it.
+  static constexpr size_t kNoStray = static_cast<size_t>(-2);
+  void skipStray(size_t& lastStray, std::string_view expected);
   void stopParsing(std::string message);  // nesting too deep: report once, jump to Eof
   std::vector<Attribute> takeAttributes();
 
@@ -126,6 +130,7 @@ class Parser {
   ExprPtr parseExpr();
   ExprPtr parseBinary(int minPrecedence);
   ExprPtr parseUnary();
+  ExprPtr parseNotParen();
   ExprPtr parsePostfix();
   ExprPtr parsePostfixOps(ExprPtr base);
   ExprPtr parsePrimary();

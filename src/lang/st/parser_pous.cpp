@@ -39,6 +39,11 @@ std::unique_ptr<Pou> Parser::parsePou(std::vector<Attribute> attributes) {
   if (keyword == Tok::KwFunction && accept(Tok::Colon)) {
     pou->hasReturnType = true;
     pou->returnType = parseTypeSpec(false, nullptr);
+  } else if (keyword != Tok::KwFunction && at(Tok::Colon)) {
+    // `PROGRAM P : BOOL`: one error at the ':', then the type is skipped and parsing goes on.
+    error(diag::E006, "a " + std::string(tokSpelling(keyword)) + " has no return type; only a FUNCTION or METHOD has one");
+    advance();
+    parseTypeSpec(false, nullptr);
   }
   if (keyword == Tok::KwFunctionBlock) parseInheritance(*pou);
   accept(Tok::Semicolon);
@@ -75,37 +80,44 @@ void Parser::parseVarBlocks(std::vector<VarBlock>& blocks) {
   while (isVarBlockStart(cur().kind) && !stopped_) blocks.push_back(parseVarBlock());
 }
 
-// Var blocks, statements, then (if `allowMembers`) METHODs, PROPERTYs and ACTIONs, then endKind.
+// Var blocks, then statements and (if `allowMembers`) METHODs, PROPERTYs and ACTIONs in any
+// order, then endKind. TwinCAT/CODESYS text exports put the members before the body, others
+// after it: the statements before, between and after the members all go, in order, to the body.
 void Parser::parsePouBody(Pou& pou, Tok endKind, bool allowMembers) {
   std::string_view opener = tokSpelling(endKind).substr(4);  // END_PROGRAM -> PROGRAM
   parseVarBlocks(pou.varBlocks);
-  for (;;) {
+  size_t lastStray = kNoStray;
+  while (!stopped_) {
     for (StmtPtr& stmt : parseStatementList({endKind})) pou.body.push_back(std::move(stmt));
-    if (at(endKind) || at(Tok::KwMethod) || at(Tok::KwProperty) || at(Tok::KwAction) || at(Tok::Eof) ||
-        isPouEnd(cur().kind) || isTopLevelStart(cur().kind) || stopped_)
-      break;
+    if (stopped_ || at(endKind) || at(Tok::Eof) || isPouEnd(cur().kind) || isTopLevelStart(cur().kind)) break;
+    bool atMember = at(Tok::KwMethod) || at(Tok::KwProperty) || at(Tok::KwAction);
+    if (atMember && !allowMembers && endKind != Tok::KwEndFunction) break;  // a member's END_xxx is missing
+    if (atMember) {
+      // In a FUNCTION the member is reported, parsed and dropped, so END_FUNCTION is still found.
+      if (!allowMembers) error(diag::E006, "a FUNCTION cannot have METHODs, PROPERTYs or ACTIONs");
+      std::vector<Attribute> attributes = takeAttributes();
+      if (at(Tok::KwMethod)) {
+        auto method = parseMethod(false, std::move(attributes));
+        if (allowMembers) pou.methods.push_back(std::move(method));
+      } else if (at(Tok::KwProperty)) {
+        Property prop = parseProperty(false);
+        if (allowMembers) pou.properties.push_back(std::move(prop));
+      } else {
+        auto action = parseAction(std::move(attributes));
+        if (allowMembers) pou.actions.push_back(std::move(action));
+      }
+      continue;
+    }
     if (isVarBlockStart(cur().kind)) {
-      error(diag::E006, "variable declarations must come before the first statement");
+      bool afterMembers = pou.body.empty() && (!pou.methods.empty() || !pou.properties.empty() || !pou.actions.empty());
+      error(diag::E006, afterMembers ? "variable declarations must come before the first METHOD, PROPERTY or ACTION"
+                                     : "variable declarations must come before the first statement");
       pou.varBlocks.push_back(parseVarBlock());
       continue;
     }
-    errorExpected("a statement or '" + std::string(tokSpelling(endKind)) + "'", "");
-    advance();
-  }
-  while (allowMembers && !stopped_) {
-    std::vector<Attribute> attributes = takeAttributes();
-    if (at(Tok::KwMethod)) {
-      pou.methods.push_back(parseMethod(false, std::move(attributes)));
-    } else if (at(Tok::KwProperty)) {
-      pou.properties.push_back(parseProperty(false));
-    } else if (at(Tok::KwAction)) {
-      pou.actions.push_back(parseAction(std::move(attributes)));
-    } else if (at(endKind) || at(Tok::Eof) || isPouEnd(cur().kind) || isTopLevelStart(cur().kind)) {
-      break;
-    } else {
-      errorExpected("METHOD, PROPERTY, ACTION or '" + std::string(tokSpelling(endKind)) + "'", "");
-      advance();
-    }
+    // A declaration-level token that belongs to nothing here (END_VAR, END_TYPE, ...).
+    skipStray(lastStray, "a statement" + std::string(allowMembers ? ", METHOD, PROPERTY, ACTION" : "") + " or '" +
+                             std::string(tokSpelling(endKind)) + "'");
   }
   expectEnd(endKind, opener, pou.loc, &pou.endLoc);
 }
@@ -144,6 +156,7 @@ Property Parser::parseProperty(bool inInterface) {
   prop.name = expectName("a property name", &prop.loc);
   if (expect(Tok::Colon, "after property name")) prop.type = parseTypeSpec(false, nullptr);
   bool noBody = inInterface || prop.isAbstract;
+  size_t lastStray = kNoStray;
   while (!at(Tok::KwEndProperty) && !stopped_) {
     if (at(Tok::KwGet)) {
       prop.getter = parseAccessor(prop, true, noBody);
@@ -152,8 +165,7 @@ Property Parser::parseProperty(bool inInterface) {
     } else if (isHardStop(cur().kind)) {
       break;
     } else {
-      errorExpected("GET, SET or END_PROPERTY", "");
-      advance();
+      skipStray(lastStray, "GET, SET or END_PROPERTY");
     }
   }
   expectEnd(Tok::KwEndProperty, "PROPERTY", keywordLoc);
@@ -203,6 +215,7 @@ Interface Parser::parseInterface() {
     do itf.extends.push_back(parseQualifiedName());
     while (accept(Tok::Comma));
   }
+  size_t lastStray = kNoStray;
   while (!at(Tok::KwEndInterface) && !stopped_) {
     std::vector<Attribute> attributes = takeAttributes();
     if (at(Tok::KwMethod)) {
@@ -212,8 +225,7 @@ Interface Parser::parseInterface() {
     } else if (at(Tok::Eof) || isTopLevelStart(cur().kind) || isPouEnd(cur().kind)) {
       break;
     } else {
-      errorExpected("METHOD, PROPERTY or END_INTERFACE", "");
-      advance();
+      skipStray(lastStray, "METHOD, PROPERTY or END_INTERFACE");
     }
   }
   expectEnd(Tok::KwEndInterface, "INTERFACE", keywordLoc);
@@ -228,6 +240,7 @@ Configuration Parser::parseConfiguration() {
   SourceLocation keywordLoc = cur().loc;
   advance();
   config.name = expectName("a configuration name", &config.loc);
+  size_t lastStray = kNoStray;
   while (!at(Tok::KwEndConfiguration) && !at(Tok::Eof) && !stopped_) {
     if (at(Tok::KwVarGlobal)) {
       config.globals.push_back(parseVarBlock());
@@ -242,8 +255,7 @@ Configuration Parser::parseConfiguration() {
     } else if (isTopLevelStart(cur().kind)) {
       break;
     } else {
-      errorExpected("VAR_GLOBAL, RESOURCE, TASK, PROGRAM or END_CONFIGURATION", "");
-      advance();
+      skipStray(lastStray, "VAR_GLOBAL, RESOURCE, TASK, PROGRAM or END_CONFIGURATION");
     }
   }
   expectEnd(Tok::KwEndConfiguration, "CONFIGURATION", keywordLoc);
@@ -257,11 +269,11 @@ Resource Parser::parseResource() {
   advance();
   res.name = expectName("a resource name", &res.loc);
   if (expect(Tok::KwOn, "after resource name")) res.onName = expectName("a processor type after ON");
+  size_t lastStray = kNoStray;
   while (!at(Tok::KwEndResource) && !at(Tok::Eof) && !stopped_) {
     if (!parseResourceItem(res)) {
       if (at(Tok::KwEndConfiguration) || (isTopLevelStart(cur().kind) && !at(Tok::KwProgram))) break;
-      errorExpected("VAR_GLOBAL, TASK, PROGRAM or END_RESOURCE", "");
-      advance();
+      skipStray(lastStray, "VAR_GLOBAL, TASK, PROGRAM or END_RESOURCE");
     }
   }
   expectEnd(Tok::KwEndResource, "RESOURCE", keywordLoc);

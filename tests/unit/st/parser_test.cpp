@@ -314,6 +314,43 @@ TEST(ParserExpr, ContextKeywordsAreNames) {
 
 // ---- Statements -----------------------------------------------------------------------------
 
+// MOD, AND, OR, XOR and NOT written as standard function calls.
+TEST(ParserExpr, OperatorsAsFunctionCalls) {
+  EXPECT_EQ(expr("MOD(a, b)"), "(call MOD a b)");
+  EXPECT_EQ(expr("AND(a, b, c)"), "(call AND a b c)");
+  EXPECT_EQ(expr("or(a, b)"), "(call OR a b)");
+  EXPECT_EQ(expr("Xor(a, b) OR c"), "(OR (call XOR a b) c)");
+  EXPECT_EQ(expr("a + MOD(b, 2) * 3"), "(+ a (* (call MOD b 2) 3))");
+  EXPECT_EQ(expr("-MOD(a, 2)"), "(- (call MOD a 2))");
+  EXPECT_EQ(expr("AND(IN1 := a, IN2 := b)"), "(call AND (IN1 := a) (IN2 := b))");
+  EXPECT_EQ(body("f(AND(a, b), OR(c, d));"), "{(call f (call AND a b) (call OR c d))}");
+  // Between operands they stay binary operators, also before a parenthesis.
+  EXPECT_EQ(expr("a MOD (b)"), "(MOD a b)");
+  EXPECT_EQ(expr("a AND (b OR c)"), "(AND a (OR b c))");
+  EXPECT_EQ(expr("a XOR(b)"), "(XOR a b)");
+  // NOT: a parenthesised operand stays the unary operator; named or several arguments make a call.
+  EXPECT_EQ(expr("NOT (a OR b)"), "(NOT (OR a b))");
+  EXPECT_EQ(expr("NOT(a)"), "(NOT a)");
+  EXPECT_EQ(expr("NOT (a) AND b"), "(AND (NOT a) b)");
+  EXPECT_EQ(expr("NOT (arr)[1]"), "(NOT ([] arr 1))");
+  EXPECT_EQ(expr("NOT NOT(a)"), "(NOT (NOT a))");
+  EXPECT_EQ(expr("NOT(a, b)"), "(call NOT a b)");
+  EXPECT_EQ(expr("NOT(IN := a)"), "(call NOT (IN := a))");
+  EXPECT_EQ(expr("NOT(a, b) OR c"), "(OR (call NOT a b) c)");
+  // The call and its callee are located at the keyword.
+  auto p = parse("PROGRAM P\nx := 1 + MOD(a, b);\ny := NOT(a, b);\nEND_PROGRAM\n");
+  ASSERT_EQ(diagText(p->diags), "");
+  const Expr& mod = *p->unit.pous[0]->body[0]->rhs->rhs;
+  EXPECT_EQ(mod.kind, ExprKind::Call);
+  EXPECT_TRUE(mod.loc.line == 2 && mod.loc.col == 10 && mod.lhs->loc.col == 10);
+  const Expr& notCall = *p->unit.pous[0]->body[1]->rhs;
+  EXPECT_EQ(notCall.kind, ExprKind::Call);
+  EXPECT_TRUE(notCall.loc.line == 3 && notCall.loc.col == 6 && notCall.lhs->loc.col == 6);
+  // Errors inside stay single.
+  EXPECT_EQ(body("x := MOD(a, );"), "DIAGS: 2:13 E006 expected an expression, found ')'\n");
+  EXPECT_EQ(body("x := NOT(a, b;"), "DIAGS: 2:14 E006 expected ')' to close the argument list, found ';'\n");
+}
+
 TEST(ParserStmt, Assignments) {
   EXPECT_EQ(body("a := 1; r REF= x; q S= go; q R= stop; %QX0.0 := TRUE;"),
             "{(:= a 1) (REF= r x) (S= q go) (R= q stop) (:= %QX0.0 TRUE)}");
@@ -694,6 +731,73 @@ TEST(ParserPou, SmallCases) {
             "1:11 E011 VAR_CONFIG is not supported; its declarations are read as VAR\n");
 }
 
+// TwinCAT/CODESYS exports put METHODs, PROPERTYs and ACTIONs before the body, others after it:
+// statements before, between and after them all belong to the body, in order.
+TEST(ParserPou, BodyAroundMembers) {
+  auto p = parse(
+      "PROGRAM P\nVAR x, y, z : INT; END_VAR\n"
+      "ACTION A:\n  x := 1;\nEND_ACTION\n"
+      "x := 2;\n"
+      "METHOD M : INT\nM := 1;\nEND_METHOD\n"
+      "y := 3;\n"
+      "PROPERTY Q : INT\nGET Q := x; END_GET\nEND_PROPERTY\n"
+      "ACTION B:\n  y := 1;\nEND_ACTION\n"
+      "z := 4;\n"
+      "END_PROGRAM\n");
+  ASSERT_EQ(diagText(p->diags), "");
+  const Pou& prog = *p->unit.pous.at(0);
+  EXPECT_EQ(show(prog.body), "{(:= x 2) (:= y 3) (:= z 4)}");
+  ASSERT_EQ(prog.actions.size(), 2u);
+  EXPECT_EQ(show(prog.actions[0]->body), "{(:= x 1)}");
+  EXPECT_EQ(prog.actions[1]->name, "B");
+  ASSERT_EQ(prog.methods.size(), 1u);
+  EXPECT_EQ(show(prog.methods[0]->body), "{(:= M 1)}");
+  ASSERT_EQ(prog.properties.size(), 1u);
+  EXPECT_EQ(prog.endLoc.line, 18u);
+
+  // A METHOD before the body of an FB, the TwinCAT layout.
+  auto fb = parse(
+      "FUNCTION_BLOCK FB\nVAR_OUTPUT count : INT; END_VAR\n"
+      "METHOD Peek : INT\nPeek := count + 100;\nEND_METHOD\n"
+      "count := count + 1;\nEND_FUNCTION_BLOCK\n");
+  ASSERT_EQ(diagText(fb->diags), "");
+  EXPECT_EQ(show(fb->unit.pous.at(0)->body), "{(:= count (+ count 1))}");
+  EXPECT_EQ(fb->unit.pous[0]->methods.size(), 1u);
+
+  // Members only, and the body only: nothing changes for them.
+  EXPECT_EQ(diags("FUNCTION_BLOCK F\nMETHOD M\nEND_METHOD\nACTION A: END_ACTION\nEND_FUNCTION_BLOCK"), "");
+  // Declarations still come first.
+  EXPECT_EQ(diags("FUNCTION_BLOCK F\nMETHOD M\nEND_METHOD\nVAR x : INT; END_VAR\nEND_FUNCTION_BLOCK"),
+            "4:1 E006 variable declarations must come before the first METHOD, PROPERTY or ACTION\n");
+  EXPECT_EQ(diags("FUNCTION_BLOCK F\nMETHOD M\nEND_METHOD\nx := 1;\nVAR y : INT; END_VAR\nEND_FUNCTION_BLOCK"),
+            "5:1 E006 variable declarations must come before the first statement\n");
+  // A FUNCTION has no members: a METHOD in it is reported once, and its END_FUNCTION is still found.
+  auto f = parse("FUNCTION F : INT\nF := 1;\nMETHOD M\nEND_METHOD\nF := 2;\nEND_FUNCTION\nPROGRAM P END_PROGRAM");
+  EXPECT_EQ(diagText(f->diags), "3:1 E006 a FUNCTION cannot have METHODs, PROPERTYs or ACTIONs\n");
+  ASSERT_EQ(f->unit.pous.size(), 2u);
+  EXPECT_EQ(show(f->unit.pous[0]->body), "{(:= F 1) (:= F 2)}");
+  EXPECT_TRUE(f->unit.pous[0]->methods.empty());
+}
+
+// `PROGRAM P : BOOL`: one error at the ':', the rest of the POU parses normally.
+TEST(ParserPou, ReturnTypeOnlyForFunctions) {
+  auto p = parse("PROGRAM MAIN : BOOL\nVAR\n  x : INT;\nEND_VAR\nx := 1;\nEND_PROGRAM\n");
+  EXPECT_EQ(diagText(p->diags), "1:14 E006 a PROGRAM has no return type; only a FUNCTION or METHOD has one\n");
+  const Pou& prog = *p->unit.pous.at(0);
+  EXPECT_EQ(prog.name, "MAIN");
+  EXPECT_FALSE(prog.hasReturnType);
+  EXPECT_EQ(prog.varBlocks.size(), 1u);
+  EXPECT_EQ(show(prog.body), "{(:= x 1)}");
+  auto fb = parse("FUNCTION_BLOCK FB : ARRAY[0..1] OF INT EXTENDS Base\nx := 1;\nEND_FUNCTION_BLOCK\n");
+  EXPECT_EQ(diagText(fb->diags),
+            "1:19 E006 a FUNCTION_BLOCK has no return type; only a FUNCTION or METHOD has one\n");
+  EXPECT_EQ(fb->unit.pous.at(0)->extends, "Base");
+  EXPECT_EQ(show(fb->unit.pous[0]->body), "{(:= x 1)}");
+  EXPECT_EQ(diags("PROGRAM P : END_PROGRAM"),
+            "1:11 E006 a PROGRAM has no return type; only a FUNCTION or METHOD has one\n"
+            "1:13 E006 expected a type, found 'END_PROGRAM'\n");
+}
+
 // ---- Errors and recovery ----------------------------------------------------------------------
 
 TEST(ParserErrors, ThreeErrorsThreeDiagnostics) {
@@ -748,6 +852,30 @@ TEST(ParserErrors, TopLevelGarbageAndMisplacedMembers) {
             "1:1 E006 'METHOD' is only allowed inside a FUNCTION_BLOCK, PROGRAM or INTERFACE\n");
   auto p = parse("x := 1;\nPROGRAM P END_PROGRAM");
   EXPECT_EQ(p->unit.pous.size(), 1u);
+}
+
+// A run of tokens that make no sense where they are gets one error, then parsing resumes at the
+// next statement, member or END keyword.
+TEST(ParserErrors, FloodsGiveOneError) {
+  EXPECT_EQ(diags("PROGRAM P\nTHEN 1 2 3 := := ) ) DO;\nx := 1;\nEND_PROGRAM"),
+            "2:1 E006 expected a statement, found 'THEN'\n");
+  EXPECT_EQ(diags("PROGRAM P\nx := 1;\nEND_VAR END_TYPE END_STRUCT END_VAR\ny := 2;\nEND_PROGRAM"),
+            "3:1 E006 expected a statement, METHOD, PROPERTY, ACTION or 'END_PROGRAM', found 'END_VAR'\n");
+  EXPECT_EQ(diags("FUNCTION_BLOCK F\nMETHOD M\nEND_METHOD\nEND_VAR END_TYPE\nx := 1;\nEND_VAR\nEND_FUNCTION_BLOCK"),
+            "4:1 E006 expected a statement, METHOD, PROPERTY, ACTION or 'END_FUNCTION_BLOCK', found 'END_VAR'\n"
+            "6:1 E006 expected a statement, METHOD, PROPERTY, ACTION or 'END_FUNCTION_BLOCK', found 'END_VAR'\n");
+  EXPECT_EQ(diags("FUNCTION_BLOCK F\nPROPERTY P : INT\nx := 1; y := 2;\nGET P := 1; END_GET\nEND_PROPERTY\nEND_FUNCTION_BLOCK"),
+            "3:1 E006 expected GET, SET or END_PROPERTY, found 'x'\n");
+  EXPECT_EQ(diags("INTERFACE I\nx := 1; y := 2;\nMETHOD M END_METHOD\nz := 3;\nEND_INTERFACE"),
+            "2:1 E006 expected METHOD, PROPERTY or END_INTERFACE, found 'x'\n"
+            "4:1 E006 expected METHOD, PROPERTY or END_INTERFACE, found 'z'\n");
+  EXPECT_EQ(diags("CONFIGURATION C\nx := 1; y := 2;\nRESOURCE R ON PLC\na b c;\nEND_RESOURCE\nEND_CONFIGURATION"),
+            "2:1 E006 expected VAR_GLOBAL, RESOURCE, TASK, PROGRAM or END_CONFIGURATION, found 'x'\n"
+            "4:1 E006 expected VAR_GLOBAL, TASK, PROGRAM or END_RESOURCE, found 'a'\n");
+  // The flood of a misplaced body (statements after a forgotten METHOD header) is one error too.
+  auto p = parse("FUNCTION_BLOCK F\nMETHOD M\nEND_METHOD\nx := 1;\n) ) ) ;\ny := 2;\nEND_FUNCTION_BLOCK");
+  EXPECT_EQ(diagText(p->diags), "5:1 E006 expected a statement, found ')'\n");
+  EXPECT_EQ(show(p->unit.pous[0]->body), "{(:= x 1) (:= y 2)}");
 }
 
 TEST(ParserErrors, DeepNestingIsReportedNotACrash) {

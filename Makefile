@@ -8,7 +8,7 @@ CMAKE_GEN  := -G Ninja
 
 APT_PACKAGES := build-essential cmake ninja-build g++ clang libclang-rt-14-dev \
                 libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
-                libyaml-cpp-dev nlohmann-json3-dev
+                libyaml-cpp-dev nlohmann-json3-dev chromium
 
 .PHONY: all deps build test demo bench fuzz clean
 
@@ -35,11 +35,19 @@ test: deps
 	@cmake -S . -B $(FUZZBUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DVIRTCOM_FUZZ_ONLY=ON >/dev/null
 	@cmake --build $(FUZZBUILD) -j $(JOBS)
-	@cd $(TESTBUILD) && FUZZ_BUILD_DIR=$(abspath $(FUZZBUILD)) ctest --output-on-failure -j $(JOBS)
+	@cd $(TESTBUILD) && FUZZ_BUILD_DIR=$(abspath $(FUZZBUILD)) VIRTCOM_REQUIRE_BROWSER=1 \
+	  ctest --output-on-failure -j $(JOBS)
 
 demo: build
-	@$(BUILD)/src/cli/virtcom exec examples/st/traffic_light.st --cycles 2000 --cycle-time 10ms --stats \
-	  --print MAIN.phase --print MAIN.cycles --print MAIN.elapsed --print MAIN.walk
+	@mkdir -p build/demo
+	@echo "== gearbox cell, initial sequence (seed Figure 11a)"
+	@$(BUILD)/src/cli/virtcom run examples/gearbox-cell/cell.yaml --set MAIN.sequence=1 \
+	  --report build/demo/gearbox-sequence1.html
+	@echo; echo "== gearbox cell, refined sequence (seed Figure 11c)"
+	@$(BUILD)/src/cli/virtcom run examples/gearbox-cell/cell.yaml --set MAIN.sequence=3 \
+	  --report build/demo/gearbox-sequence3.html --json build/demo/gearbox-sequence3.json \
+	  --vcd build/demo/gearbox-sequence3.vcd --signal Robot1.busy --signal Robot2.busy --signal Press.actualForce
+	@echo; echo "Reports: build/demo/gearbox-sequence1.html build/demo/gearbox-sequence3.html"
 
 bench: build
 	@$(BUILD)/bench/virtcom_bench --benchmark_counters_tabular=true

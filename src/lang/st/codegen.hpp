@@ -167,6 +167,8 @@ class PouCompiler {
   Value callAction(PouSym& action, uint16_t thisReg);
   std::vector<std::pair<uint32_t, PouSym*>> dispatchTargets(const Receiver& recv, const std::string& upperName, bool property, bool setter);
   bool receiverOf(const Expr& objectExpr, Receiver& recv);
+  // PRIVATE methods are callable inside their FB only, PROTECTED ones in derived FBs too.
+  bool accessible(const PouSym& method, SourceLocation loc);
   // The declared type of a bare name or THIS^/SUPER^ without generating code; kNoType otherwise.
   TypeId staticTypeOf(const Expr& object);
 

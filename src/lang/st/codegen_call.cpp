@@ -339,6 +339,20 @@ static void emitDispatch(PouCompiler& pc, uint16_t thisReg, const std::vector<st
   for (uint32_t j : toEnd) pc.patchJump(j, pc.here());
 }
 
+bool PouCompiler::accessible(const PouSym& method, SourceLocation loc) {
+  Access access = method.ast->access;
+  if (access != Access::Private && access != Access::Protected) return true;
+  const PouSym* caller = pou_.kind == PouKind::FunctionBlock ? &pou_ : pou_.owner;
+  const PouSym* owner = method.owner;
+  bool allowed = caller == owner;
+  if (access == Access::Protected)
+    for (const PouSym* c = caller; c && !allowed; c = c->base) allowed = c == owner;
+  if (!allowed)
+    diags().error(diag::E216, loc, "METHOD " + method.qualifiedName + " is " +
+                                       (access == Access::Private ? "PRIVATE" : "PROTECTED") + " and cannot be called from here");
+  return allowed;
+}
+
 Value PouCompiler::callMethod(const std::string& name, const Receiver& recv, const Expr& e) {
   std::string key = upper(name);
   auto targets = dispatchTargets(recv, key, false, false);
@@ -348,6 +362,7 @@ Value PouCompiler::callMethod(const std::string& name, const Receiver& recv, con
     return Value::error();
   }
   PouSym& proto = *targets.front().second;
+  if (!accessible(proto, e.loc)) return Value::error();
   std::vector<Binding> bindings;
   if (!bindArgs(e, proto.params, &proto, bindings)) return Value::error();
   evaluateInputs(proto.params, bindings);

@@ -38,6 +38,8 @@ void Declarer::linkInheritance() {
       continue;
     }
     sym->base = it->second;
+    if (it->second->ast->isFinal)
+      diags_.error(diag::E218, sym->ast->loc, "'" + it->second->name + "' is FINAL and cannot be extended");
   }
   // Break cycles so later passes can walk bases safely.
   for (auto& sym : model_.pous) {
@@ -190,6 +192,8 @@ void Declarer::declareMethods(PouSym& owner) {
     PouSym* method = newChild(model_, owner, *m, PouKind::Method, m->name);
     addMembers(*method, *m, true);
     layoutFrame(*method);
+    if (auto inherited = owner.methods.find(upper(m->name)); inherited != owner.methods.end() && inherited->second->ast->isFinal)
+      diags_.error(diag::E218, m->loc, "METHOD " + m->name + " is FINAL in '" + inherited->second->owner->name + "' and cannot be overridden");
     owner.methods[upper(m->name)] = method;
   }
   for (const auto& a : ast.actions) {
@@ -347,9 +351,14 @@ void Declarer::declarePous() {
     }
   }
   for (PouSym* sym : topLevel) sym->compiled = false;
-  // Interface conformance: every method of every implemented interface must exist.
+  // Interface conformance: every method of every implemented interface must exist, and a
+  // concrete FB must implement every ABSTRACT method it inherits.
   for (PouSym* sym : topLevel) {
     if (sym->kind != PouKind::FunctionBlock || sym->isAbstract) continue;
+    for (const auto& [mk, m] : sym->methods)
+      if (m->isAbstract && !m->isInterfaceMethod)
+        diags_.error(diag::E115, sym->ast->loc, "'" + sym->name + "' must implement the ABSTRACT METHOD " + m->name +
+                                                    " it inherits from '" + m->owner->name + "'");
     std::vector<std::string> all;
     for (PouSym* p = sym; p; p = p->base) all.insert(all.end(), p->interfaces.begin(), p->interfaces.end());
     for (const auto& i : all) {

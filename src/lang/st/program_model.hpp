@@ -132,7 +132,6 @@ struct ProgramModel {
   std::map<std::string, TypeId> namedTypes;        // upper-cased TYPE names (and FB instance types)
   std::map<TypeId, PouSym*> fbByType;              // instance type -> FB/PROGRAM
   std::map<TypeId, InterfaceSym*> interfaceByType;
-  std::map<TypeId, TypeId> enumBase;               // (unused placeholder for subrange bases)
   std::map<TypeId, std::pair<int64_t, int64_t>> subranges;  // subrange alias -> bounds
   std::vector<GlobalVar> globals;
   std::map<std::string, size_t> globalIndex;       // "X" and "GVL.X" -> globals index

@@ -42,7 +42,11 @@ StProgram::StProgram(std::string_view fileName) {
     error_ = path + ": no program instance MAIN";
     return;
   }
-  runtime_ = std::make_unique<plc::Runtime>(*module_, clock_);
+  // Every iteration must execute the scan: the arith, bits and strings programs repeat
+  // themselves exactly, so a runtime that skips repeated scans would measure nothing.
+  plc::RuntimeOptions options;
+  options.skipRepeatedScans = false;
+  runtime_ = std::make_unique<plc::Runtime>(*module_, clock_, options);
   if (!runtime_->coldStart()) error_ = "cold start fault: " + runtime_->faultText();
 }
 

@@ -29,8 +29,7 @@ static const char* severityName(Severity s) {
 
 std::string renderDiagnostic(const Diagnostic& d, const SourceManager& sources) {
   std::string out;
-  // line 0 means "no location" (e.g. a whole-program diagnostic)
-  bool hasFile = d.loc.fileId < sources.fileCount() && d.loc.line > 0;
+  bool hasFile = d.loc.fileId < sources.fileCount();
   if (hasFile) {
     out += sources.path(d.loc.fileId);
     if (d.loc.line > 0) out += ":" + std::to_string(d.loc.line) + ":" + std::to_string(d.loc.col);

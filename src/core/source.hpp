@@ -7,7 +7,10 @@
 
 namespace virtcom {
 
-// A position in a loaded source file. Lines and columns are 1-based; line 0 means "no location".
+inline constexpr uint32_t kNoFile = 0xffffffffu;
+
+// A position in a loaded source file. Lines and columns are 1-based; line 0 means "the file as
+// a whole"; fileId kNoFile means "no file" (a whole-program diagnostic).
 struct SourceLocation {
   uint32_t fileId = 0;
   uint32_t line = 0;

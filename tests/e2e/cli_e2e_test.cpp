@@ -137,7 +137,7 @@ TEST_F(CliUsage, UnknownOptionIsAnError) {
 TEST_F(CliUsage, UnknownTopLevelOptionIsAnError) {
   RunResult r = run({"--frobnicate"});
   EXPECT_EQ(r.exitCode, 64) << show(r);
-  EXPECT_TRUE(contains(r.err, "Run with --help for more information.")) << show(r);
+  EXPECT_TRUE(contains(r.err, "see virtcom --help")) << show(r);
   EXPECT_EQ(r.out, "");
 }
 
@@ -287,7 +287,7 @@ TEST_F(CliExec, SetIsRepeatableAndParsesIecLiterals) {
 TEST_F(CliExec, SetUnknownVariableIsAnError) {
   RunResult r = run({"exec", "set_before_scan.st", "--set", "MAIN.nosuch=1", "--print", "MAIN.count"});
   EXPECT_EQ(r.exitCode, 64) << show(r);
-  EXPECT_EQ(r.err, "error: --set: unknown variable 'MAIN.nosuch'\n");
+  EXPECT_EQ(r.err, "error: --set unknown variable 'MAIN.nosuch' (use the qualified name, e.g. MAIN.count or GVL.x)\n");
   EXPECT_EQ(r.out, "");  // nothing ran, nothing printed
 }
 
@@ -306,7 +306,7 @@ TEST_F(CliExec, SetOutOfRangeValueIsAnError) {
 TEST_F(CliExec, SetWithoutEqualsIsAnError) {
   RunResult r = run({"exec", "set_before_scan.st", "--set", "MAIN.maxCount"});
   EXPECT_EQ(r.exitCode, 64) << show(r);
-  EXPECT_EQ(r.err, "error: --set expects NAME=VALUE, found 'MAIN.maxCount'\n");
+  EXPECT_EQ(r.err, "error: --set expected NAME=VALUE, found 'MAIN.maxCount'\n");
 }
 
 // Regression test (was a bug found by the e2e/unit suites).

@@ -114,7 +114,7 @@ std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& input
       if (p->ast == units.front().pous[i].get() || (p->owner && p->owner->ast == units.front().pous[i].get())) p->isLibrary = true;
   bool noProgram = model.programInstances.empty();
   if (noProgram && !diags.hasErrors())
-    diags.error(diag::E217, {}, "no PROGRAM to run: declare a PROGRAM (e.g. PROGRAM MAIN ... END_PROGRAM)");
+    diags.error(diag::E217, {kNoFile, 0, 0}, "no PROGRAM to run: declare a PROGRAM (e.g. PROGRAM MAIN ... END_PROGRAM)");
   if (diags.hasErrors()) {
     diags.sortByLocation();
     return nullptr;
@@ -153,7 +153,7 @@ std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& input
   diags.sortByLocation();
   std::string problem = bc::verifyModule(*module);
   if (!problem.empty()) {
-    diags.error("E999", {}, "internal compiler error: generated code failed verification: " + problem);
+    diags.error("E999", {kNoFile, 0, 0}, "internal compiler error: generated code failed verification: " + problem);
     return nullptr;
   }
   return module;

@@ -1,0 +1,360 @@
+// Every class of cell-file mistake is reported at its exact `file:line:col` with its code and
+// message (docs/cell-file.md: "Every mistake is reported with file:line:col"), and all
+// mistakes of one file come out of one load.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "cell_files.hpp"
+
+namespace virtcom::cell::test {
+namespace {
+
+using ::testing::ElementsAre;
+
+class LoaderErrors : public CellFiles {
+ protected:
+  void SetUp() override {
+    CellFiles::SetUp();
+    write("main.st", kMainSt);
+  }
+  // Loads cell.yaml = `text`; the load must fail.
+  std::vector<std::string> fails(const std::string& text) {
+    write("cell.yaml", text);
+    auto cell = load();
+    EXPECT_EQ(cell, nullptr) << "the broken cell loaded";
+    EXPECT_EQ(diags_.errorCount(), diags_.all().size());
+    return errors();
+  }
+};
+
+TEST_F(LoaderErrors, MissingCellFileIsReportedWithoutLocation) {
+  auto cell = load("nowhere.yaml");
+  EXPECT_EQ(cell, nullptr);
+  EXPECT_THAT(errors(), ElementsAre("error[C002]: cannot read cell file '" + path("nowhere.yaml") + "'"));
+}
+
+TEST_F(LoaderErrors, YamlSyntaxErrorAtItsPosition) {
+  EXPECT_THAT(fails("name: x\n"
+                    "plc:\n"
+                    "  sources: [main.st]\n"
+                    "  cycle_time: 10 ms: 5\n"
+                    "devices: []\n"),
+              ElementsAre("cell.yaml:4:20: error[C001]: YAML syntax error: illegal map value"));
+  // rendered like a compiler error: the line quoted, a caret under the column
+  EXPECT_EQ(rendered(),
+            "cell.yaml:4:20: error[C001]: YAML syntax error: illegal map value\n"
+            "    cycle_time: 10 ms: 5\n"
+            "                     ^\n"
+            "1 error(s), 0 warning(s)\n");
+}
+
+TEST_F(LoaderErrors, UnknownTopLevelKeyListsTheKnownOnes) {
+  EXPECT_THAT(fails("name: x\n"
+                    "plc:\n"
+                    "  sources: [main.st]\n"
+                    "devices: []\n"
+                    "devcies: []\n"),
+              ElementsAre("cell.yaml:5:1: error[C011]: unknown key 'devcies' in the cell file "
+                          "(expected one of: name, plc, run, zones, world, devices)"));
+}
+
+TEST_F(LoaderErrors, MissingPlcSection) {
+  EXPECT_THAT(fails("name: x\n"
+                    "devices: []\n"),
+              ElementsAre("cell.yaml:1:1: error[C010]: the cell file needs a 'plc:' section with the PLC program's "
+                          "'sources'"));
+}
+
+TEST_F(LoaderErrors, MissingDevicesSection) {
+  EXPECT_THAT(fails("name: x\n"
+                    "plc:\n"
+                    "  sources: [main.st]\n"),
+              ElementsAre("cell.yaml:1:1: error[C010]: the cell file needs 'devices:', a list of devices"));
+}
+
+TEST_F(LoaderErrors, UnreadableStSourceAtItsListItem) {
+  EXPECT_THAT(fails("name: x\n"
+                    "plc:\n"
+                    "  sources: [main.st, missing.st]\n"
+                    "devices: []\n"),
+              ElementsAre("cell.yaml:3:22: error[C010]: cannot read PLC source 'missing.st'"));
+}
+
+TEST_F(LoaderErrors, StCompileErrorIsRenderedAtTheStFile) {
+  write("broken.st",
+        "PROGRAM MAIN\n"
+        "VAR\n"
+        "  x : INT;\n"
+        "END_VAR\n"
+        "x := y + 1;\n"
+        "END_PROGRAM\n");
+  EXPECT_THAT(fails("name: x\n"
+                    "plc:\n"
+                    "  sources: [broken.st]\n"
+                    "devices: []\n"),
+              ElementsAre("broken.st:5:6: error[E201]: 'y' is not declared"));
+  EXPECT_EQ(rendered(),
+            "broken.st:5:6: error[E201]: 'y' is not declared\n"
+            "  x := y + 1;\n"
+            "       ^\n"
+            "1 error(s), 0 warning(s)\n");
+}
+
+TEST_F(LoaderErrors, UnknownDeviceTypeAtTheTypeValue) {
+  EXPECT_THAT(fails("name: x\n"
+                    "plc:\n"
+                    "  sources: [main.st]\n"
+                    "devices:\n"
+                    "  - name: Gizmo\n"
+                    "    type: teleporter\n"),
+              ElementsAre("cell.yaml:6:11: error[C010]: unknown device type 'teleporter' (expected one of: robot, "
+                          "axis, press, timed, conveyor, sensor)"));
+}
+
+TEST_F(LoaderErrors, DuplicateDeviceNameAtTheSecondEntry) {
+  EXPECT_THAT(fails(std::string("name: x\n"
+                                "plc:\n"
+                                "  sources: [main.st]\n"
+                                "devices:\n"
+                                "  - name: Clamp\n"
+                                "    type: timed\n") +
+                    kClampParams +
+                    "  - name: Clamp\n"
+                    "    type: timed\n" +
+                    kClampParams),
+              ElementsAre("cell.yaml:9:5: error[C010]: a device named 'Clamp' already exists"));
+}
+
+TEST_F(LoaderErrors, UnknownDeviceParameterIsATypo) {
+  EXPECT_THAT(fails(std::string("name: x\n"
+                                "plc:\n"
+                                "  sources: [main.st]\n"
+                                "devices:\n"
+                                "  - name: Clamp\n"
+                                "    type: timed\n"
+                                "    idle_powr: 5 W\n") +
+                    kClampParams),
+              ElementsAre("cell.yaml:7:5: error[C011]: unknown key 'idle_powr' in device (expected one of: name, type, "
+                          "wiring, faults, model, description, command_port, idle_power, busy_power, commands, group)"));
+}
+
+TEST_F(LoaderErrors, QuantityWithoutUnit) {
+  EXPECT_THAT(fails("name: x\n"
+                    "plc:\n"
+                    "  sources: [main.st]\n"
+                    "devices:\n"
+                    "  - name: Clamp\n"
+                    "    type: timed\n"
+                    "    commands:\n"
+                    "      1: { name: Close, duration: 1 }\n"),
+              ElementsAre("cell.yaml:8:35: error[C010]: 'duration': '1' needs a unit: expected a duration (e.g. 2 s, "
+                          "150 ms)"));
+}
+
+TEST_F(LoaderErrors, QuantityOfTheWrongDimension) {
+  EXPECT_THAT(fails(std::string("name: x\n"
+                                "plc:\n"
+                                "  sources: [main.st]\n"
+                                "  cycle_time: 10 mm\n"
+                                "devices:\n"
+                                "  - name: Clamp\n"
+                                "    type: timed\n"
+                                "    busy_power: 5 mm\n") +
+                    kClampParams),
+              ElementsAre("cell.yaml:4:15: error[C010]: 'cycle_time': '10 mm' is not a duration (e.g. 2 s, 150 ms)",
+                          "cell.yaml:8:17: error[C010]: 'busy_power': '5 mm' is not a power (e.g. 150 W)"));
+}
+
+TEST_F(LoaderErrors, WiringToAMissingPlcVariable) {
+  EXPECT_THAT(fails(std::string("name: x\n"
+                                "plc:\n"
+                                "  sources: [main.st]\n"
+                                "devices:\n"
+                                "  - name: Clamp\n"
+                                "    type: timed\n") +
+                    kClampParams +
+                    "    wiring:\n"
+                    "      execute: MAIN.exec\n"
+                    "      done: MAIN.dnoe\n"),
+              ElementsAre("cell.yaml:11:13: error[C032]: the PLC has no variable 'MAIN.dnoe' to wire to Clamp.done"));
+}
+
+TEST_F(LoaderErrors, WiringToAPortTheDeviceDoesNotHave) {
+  EXPECT_THAT(fails(std::string("name: x\n"
+                                "plc:\n"
+                                "  sources: [main.st]\n"
+                                "devices:\n"
+                                "  - name: Clamp\n"
+                                "    type: timed\n") +
+                    kClampParams +
+                    "    wiring:\n"
+                    "      exec: MAIN.exec\n"),
+              ElementsAre("cell.yaml:10:7: error[C031]: device 'Clamp' has no port 'exec' (ports: programNumber, "
+                          "execute, done, error, busy)"));
+}
+
+TEST_F(LoaderErrors, WiringTypeMismatchBothDirections) {
+  EXPECT_THAT(fails(std::string("name: x\n"
+                                "plc:\n"
+                                "  sources: [main.st]\n"
+                                "devices:\n"
+                                "  - name: Clamp\n"
+                                "    type: timed\n") +
+                    kClampParams +
+                    "    wiring:\n"
+                    "      done: MAIN.count\n"
+                    "      execute: MAIN.cmd\n"
+                    "      programNumber: MAIN.exec\n"),
+              ElementsAre("cell.yaml:10:13: error[C033]: 'MAIN.count' is INT but output 'done' of Clamp is BOOL",
+                          "cell.yaml:11:16: error[C033]: 'MAIN.cmd' is INT but input 'execute' of Clamp is BOOL",
+                          "cell.yaml:12:22: error[C033]: 'MAIN.exec' is BOOL but input 'programNumber' of Clamp is INT"));
+}
+
+TEST_F(LoaderErrors, OutputPortToAConstant) {
+  // reading a CONSTANT into an input port is fine; writing an output into one is not
+  EXPECT_THAT(fails(std::string("name: x\n"
+                                "plc:\n"
+                                "  sources: [main.st]\n"
+                                "devices:\n"
+                                "  - name: Clamp\n"
+                                "    type: timed\n") +
+                    kClampParams +
+                    "    wiring:\n"
+                    "      execute: MAIN.kLocked\n"
+                    "      done: MAIN.kLocked\n"),
+              ElementsAre("cell.yaml:11:13: error[C033]: 'MAIN.kLocked' is read-only (CONSTANT) and cannot receive "
+                          "Clamp.done"));
+}
+
+TEST_F(LoaderErrors, PrefixWiringThatMatchesNothing) {
+  EXPECT_THAT(fails(std::string("name: x\n"
+                                "plc:\n"
+                                "  sources: [main.st]\n"
+                                "devices:\n"
+                                "  - name: Clamp\n"
+                                "    type: timed\n") +
+                    kClampParams + "    wiring: MAIN.Clmap\n"),
+              ElementsAre("cell.yaml:9:13: error[C030]: no port of 'Clamp' matches a variable under 'MAIN.Clmap' "
+                          "(expected e.g. MAIN.Clmap.programNumber)"));
+}
+
+TEST_F(LoaderErrors, BadUntilConditions) {
+  const std::string head = "name: x\nplc:\n  sources: [main.st]\nrun:\n  until: ";
+  const std::string tail = "\ndevices: []\n";
+  EXPECT_THAT(fails(head + "\"MAIN.nothing >= 3\"" + tail),
+              ElementsAre("cell.yaml:5:10: error[C020]: condition 'MAIN.nothing >= 3': the PLC has no variable "
+                          "'MAIN.nothing'"));
+  EXPECT_THAT(fails(head + "\"MAIN.count >= banana\"" + tail),
+              ElementsAre("cell.yaml:5:10: error[C020]: condition 'MAIN.count >= banana': invalid INT literal 'banana'"));
+  EXPECT_THAT(fails(head + "\"MAIN.Clamp = 1\"" + tail),
+              ElementsAre("cell.yaml:5:10: error[C020]: condition 'MAIN.Clamp = 1': 'MAIN.Clamp' is not an elementary "
+                          "variable"));
+}
+
+TEST_F(LoaderErrors, CycleDoneMustBeBool) {
+  const std::string head = "name: x\nplc:\n  sources: [main.st]\nrun:\n  cycle_done: ";
+  const std::string tail = "\ndevices: []\n";
+  EXPECT_THAT(fails(head + "MAIN.count" + tail),
+              ElementsAre("cell.yaml:5:15: error[C010]: 'cycle_done' must name a BOOL PLC variable; 'MAIN.count' is not "
+                          "one"));
+  EXPECT_THAT(fails(head + "MAIN.nothing" + tail),
+              ElementsAre("cell.yaml:5:15: error[C010]: 'cycle_done' must name a BOOL PLC variable; 'MAIN.nothing' is not "
+                          "one"));
+}
+
+TEST_F(LoaderErrors, AllMistakesOfOneFileInOnePass) {
+  EXPECT_THAT(fails(std::string("name: x\n"                              // 1
+                                "plc:\n"                                 // 2
+                                "  sources: [main.st]\n"                 // 3
+                                "run:\n"                                 // 4
+                                "  cycle_done: MAIN.cmd\n"               // 5
+                                "  until: \"MAIN.nothing >= 3\"\n"       // 6
+                                "  tme_limit: 5 s\n"                     // 7
+                                "devices:\n"                             // 8
+                                "  - name: Clamp\n"                      // 9
+                                "    type: timed\n") +                   // 10
+                    kClampParams +                                       // 11, 12
+                    "    wiring:\n"                                      // 13
+                    "      done: MAIN.count\n"                           // 14
+                    "      error: MAIN.missing\n"                        // 15
+                    "  - name: Clamp\n"                                  // 16
+                    "    type: timed\n" +                                // 17
+                    kClampParams +                                       // 18, 19
+                    "  - name: Gizmo\n"                                  // 20
+                    "    type: teleporter\n"                             // 21
+                    "  - name: Lock\n"                                   // 22
+                    "    type: timed\n"                                  // 23
+                    "    idle_powr: 5 W\n"                               // 24
+                    "    commands:\n"                                    // 25
+                    "      1: { name: Close, duration: 1 }\n"            // 26
+                    "  - name: Lock3\n"                                  // 27
+                    "    type: timed\n" +                                // 28
+                    kClampParams +                                       // 29, 30
+                    "    wiring: MAIN.nothing\n"                         // 31
+                    "extra: 1\n"),                                       // 32
+              ElementsAre("cell.yaml:5:15: error[C010]: 'cycle_done' must name a BOOL PLC variable; 'MAIN.cmd' is not one",
+                          "cell.yaml:6:10: error[C020]: condition 'MAIN.nothing >= 3': the PLC has no variable "
+                          "'MAIN.nothing'",
+                          "cell.yaml:7:3: error[C011]: unknown key 'tme_limit' in 'run' (expected one of: time_limit, "
+                          "until, cycle_done, cycles, stop_on_collision, stop_on_device_error, record)",
+                          "cell.yaml:14:13: error[C033]: 'MAIN.count' is INT but output 'done' of Clamp is BOOL",
+                          "cell.yaml:15:14: error[C032]: the PLC has no variable 'MAIN.missing' to wire to Clamp.error",
+                          "cell.yaml:16:5: error[C010]: a device named 'Clamp' already exists",
+                          "cell.yaml:21:11: error[C010]: unknown device type 'teleporter' (expected one of: robot, axis, "
+                          "press, timed, conveyor, sensor)",
+                          "cell.yaml:24:5: error[C011]: unknown key 'idle_powr' in device (expected one of: name, type, "
+                          "wiring, faults, model, description, command_port, idle_power, busy_power, commands, group)",
+                          "cell.yaml:26:35: error[C010]: 'duration': '1' needs a unit: expected a duration (e.g. 2 s, "
+                          "150 ms)",
+                          "cell.yaml:31:13: error[C030]: no port of 'Lock3' matches a variable under 'MAIN.nothing' "
+                          "(expected e.g. MAIN.nothing.programNumber)",
+                          "cell.yaml:32:1: error[C011]: unknown key 'extra' in the cell file (expected one of: name, plc, "
+                          "run, zones, world, devices)"));
+}
+
+// BUG: a mistake in the PLC part stops the load before the devices are read, so the cell
+// file's other mistakes (here an unknown device type) only show up after the PLC is fixed —
+// against docs/cell-file.md "all mistakes of a file are reported in one run". The device
+// section can be checked without a compiled program (only wiring needs it).
+TEST_F(LoaderErrors, DISABLED_DeviceMistakesAreReportedEvenWhenThePlcPartFails) {
+  write("broken.st", "PROGRAM MAIN\nx := 1;\nEND_PROGRAM\n");
+  const std::string devices = "devices:\n  - name: Gizmo\n    type: teleporter\n";
+  const std::string unknownType =
+      "error[C010]: unknown device type 'teleporter' (expected one of: robot, axis, press, timed, conveyor, sensor)";
+  {
+    SCOPED_TRACE("no plc section");
+    auto found = fails("name: x\n" + devices);
+    EXPECT_THAT(found, ::testing::Contains("cell.yaml:4:11: " + unknownType));
+  }
+  {
+    SCOPED_TRACE("unreadable ST source");
+    auto found = fails("name: x\nplc:\n  sources: [missing.st]\n" + devices);
+    EXPECT_THAT(found, ::testing::Contains("cell.yaml:6:11: " + unknownType));
+  }
+  {
+    SCOPED_TRACE("ST compile error");
+    auto found = fails("name: x\nplc:\n  sources: [broken.st]\n" + devices);
+    EXPECT_THAT(found, ::testing::Contains("cell.yaml:6:11: " + unknownType));
+  }
+}
+
+// BUG: a device entry with a parameter mistake is dropped before its wiring is checked, so a
+// wiring mistake of the same device is reported only in a second run (docs/cell-file.md: all
+// mistakes of a file in one run).
+TEST_F(LoaderErrors, DISABLED_WiringOfADeviceWithAParameterMistakeIsStillChecked) {
+  EXPECT_THAT(fails(std::string("name: x\n"
+                                "plc:\n"
+                                "  sources: [main.st]\n"
+                                "devices:\n"
+                                "  - name: Clamp\n"
+                                "    type: timed\n"
+                                "    busy_power: 5 mm\n") +
+                    kClampParams +
+                    "    wiring:\n"
+                    "      done: MAIN.dnoe\n"),
+              ElementsAre("cell.yaml:7:17: error[C010]: 'busy_power': '5 mm' is not a power (e.g. 150 W)",
+                          "cell.yaml:11:13: error[C032]: the PLC has no variable 'MAIN.dnoe' to wire to Clamp.done"));
+}
+
+}  // namespace
+}  // namespace virtcom::cell::test

@@ -1,0 +1,228 @@
+// The happy path of the cell loader: every device port becomes a tag named `Device.port` of the
+// port's type, wires run in the port's direction (input ports PLC -> tag, output ports tag ->
+// PLC), prefix wiring connects exactly the ports whose variables exist, and the run, plc and
+// world sections land in the Cell.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "cell_files.hpp"
+
+namespace virtcom::cell::test {
+namespace {
+
+class Loader : public CellFiles {
+ protected:
+  void SetUp() override {
+    CellFiles::SetUp();
+    write("main.st", kMainSt);
+  }
+  std::unique_ptr<Cell> loads(const std::string& text) {
+    write("cell.yaml", text);
+    auto cell = load();
+    EXPECT_NE(cell, nullptr) << rendered();
+    EXPECT_EQ(diags_.all().size(), 0u) << rendered();
+    return cell;
+  }
+  static const Wire* wireTo(const Cell& cell, const std::string& var) {
+    for (const auto& w : cell.wires)
+      if (w.varName == var) return &w;
+    return nullptr;
+  }
+};
+
+const char* const kTwoDevices = R"(name: tiny
+plc:
+  sources: [main.st]
+  cycle_time: 5 ms
+run:
+  cycle_done: MAIN.finished
+  cycles: 3
+  time_limit: 20 s
+  stop_on_collision: false
+  record: [MAIN.count]
+world:
+  facts:
+    partPresent: true
+    clampClosed: false
+devices:
+  - name: Clamp
+    type: timed
+    commands:
+      1: { name: Close, duration: 1 s, requires: [partPresent], sets: [clampClosed] }
+    wiring:
+      programNumber: MAIN.cmd
+      execute: MAIN.exec
+      done: MAIN.done
+      error: MAIN.err
+      busy: MAIN.busy
+  - name: Lock
+    type: timed
+    commands:
+      1: { name: Lock, duration: 200 ms }
+    wiring: MAIN.Clamp
+)";
+
+TEST_F(Loader, PortsBecomeTagsNamedDeviceDotPort) {
+  auto cell = loads(kTwoDevices);
+  ASSERT_NE(cell, nullptr);
+  ASSERT_EQ(cell->devices.size(), 2u);
+  EXPECT_EQ(cell->devices[0]->name(), "Clamp");
+  EXPECT_EQ(cell->devices[1]->name(), "Lock");
+  std::vector<std::string> names;
+  for (TagId id = 0; id < cell->bus.size(); ++id) names.push_back(cell->bus.name(id));
+  EXPECT_THAT(names, ::testing::ElementsAre("Clamp.programNumber", "Clamp.execute", "Clamp.done", "Clamp.error",
+                                            "Clamp.busy", "Lock.programNumber", "Lock.execute", "Lock.done",
+                                            "Lock.error", "Lock.busy"));
+  EXPECT_EQ(cell->bus.type(cell->bus.find("Clamp.programNumber")), ElemType::Int);
+  EXPECT_EQ(cell->bus.type(cell->bus.find("Clamp.execute")), ElemType::Bool);
+  EXPECT_EQ(cell->bus.type(cell->bus.find("Clamp.error")), ElemType::Int);
+  // every device's tags are bound to its ports
+  for (const auto& d : cell->devices)
+    for (size_t i = 0; i < d->ports().size(); ++i) EXPECT_EQ(cell->bus.name(d->tag(i)), d->name() + "." + d->ports()[i].name);
+}
+
+TEST_F(Loader, WiresRunInThePortsDirection) {
+  auto cell = loads(kTwoDevices);
+  ASSERT_NE(cell, nullptr);
+  ASSERT_EQ(cell->wires.size(), 10u);
+  struct Expect {
+    const char* var;
+    const char* tag;
+    plant::PortDir dir;
+  };
+  const Expect expected[] = {
+      {"MAIN.cmd", "Clamp.programNumber", plant::PortDir::In},  {"MAIN.exec", "Clamp.execute", plant::PortDir::In},
+      {"MAIN.done", "Clamp.done", plant::PortDir::Out},         {"MAIN.err", "Clamp.error", plant::PortDir::Out},
+      {"MAIN.busy", "Clamp.busy", plant::PortDir::Out},
+      {"MAIN.Clamp.programNumber", "Lock.programNumber", plant::PortDir::In},
+      {"MAIN.Clamp.execute", "Lock.execute", plant::PortDir::In},
+      {"MAIN.Clamp.done", "Lock.done", plant::PortDir::Out},
+      {"MAIN.Clamp.error", "Lock.error", plant::PortDir::Out},
+      {"MAIN.Clamp.busy", "Lock.busy", plant::PortDir::Out},
+  };
+  for (const auto& e : expected) {
+    SCOPED_TRACE(e.var);
+    const Wire* w = wireTo(*cell, e.var);
+    ASSERT_NE(w, nullptr);
+    EXPECT_EQ(cell->bus.name(w->tag), e.tag);
+    EXPECT_EQ(w->dir, e.dir);
+    auto ref = bc::resolveVariable(*cell->module, e.var);
+    ASSERT_TRUE(ref.has_value());
+    EXPECT_EQ(w->address, ref->address);
+  }
+}
+
+TEST_F(Loader, WiresMoveValuesBetweenMemoryAndBus) {
+  auto cell = loads(kTwoDevices);
+  ASSERT_NE(cell, nullptr);
+  std::vector<uint8_t> memory(cell->module->memorySize(), 0);
+  // input port: PLC variable -> tag
+  const Wire* cmd = wireTo(*cell, "MAIN.cmd");
+  ASSERT_NE(cmd, nullptr);
+  int16_t seven = 7;
+  std::memcpy(memory.data() + cmd->address, &seven, 2);
+  readVariable(*cmd, memory.data(), cell->bus);
+  EXPECT_EQ(cell->bus.getInt(cell->bus.find("Clamp.programNumber")), 7);
+  // output port: tag -> PLC variable, reporting whether the bytes changed
+  const Wire* err = wireTo(*cell, "MAIN.err");
+  ASSERT_NE(err, nullptr);
+  cell->bus.setInt(cell->bus.find("Clamp.error"), 10);
+  EXPECT_TRUE(writeVariable(*err, cell->bus, memory.data()));
+  EXPECT_FALSE(writeVariable(*err, cell->bus, memory.data()));
+  int16_t code = 0;
+  std::memcpy(&code, memory.data() + err->address, 2);
+  EXPECT_EQ(code, 10);
+}
+
+TEST_F(Loader, PrefixWiringConnectsOnlyThePortsThatExist) {
+  auto cell = loads(std::string("name: x\n"
+                                "plc:\n"
+                                "  sources: [main.st]\n"
+                                "devices:\n"
+                                "  - name: Clamp\n"
+                                "    type: timed\n") +
+                    kClampParams + "    wiring: MAIN.Part\n");
+  ASSERT_NE(cell, nullptr);
+  ASSERT_EQ(cell->wires.size(), 2u);
+  EXPECT_EQ(cell->wires[0].varName, "MAIN.Part.execute");
+  EXPECT_EQ(cell->wires[0].dir, plant::PortDir::In);
+  EXPECT_EQ(cell->wires[1].varName, "MAIN.Part.done");
+  EXPECT_EQ(cell->wires[1].dir, plant::PortDir::Out);
+  // unwired ports are still tags
+  EXPECT_NE(cell->bus.find("Clamp.busy"), kNoTag);
+}
+
+TEST_F(Loader, RunPlcAndWorldSettings) {
+  auto cell = loads(kTwoDevices);
+  ASSERT_NE(cell, nullptr);
+  EXPECT_EQ(cell->name, "tiny");
+  EXPECT_EQ(cell->run.plcCycleNs, 5'000'000);
+  EXPECT_EQ(cell->run.timeLimitNs, 20'000'000'000);
+  EXPECT_EQ(cell->run.cycleDoneVar, "MAIN.finished");
+  EXPECT_EQ(cell->run.cycles, 3u);
+  EXPECT_FALSE(cell->run.stopOnCollision);
+  EXPECT_TRUE(cell->run.stopOnDeviceError);
+  EXPECT_THAT(cell->run.recordVars, ::testing::ElementsAre("MAIN.count"));
+  EXPECT_FALSE(cell->run.until.valid);
+  EXPECT_TRUE(cell->world.hasFact(cell->world.fact("partPresent")));
+  EXPECT_FALSE(cell->world.hasFact(cell->world.fact("clampClosed")));
+  // the default task runs at plc.cycle_time
+  bool found = false;
+  for (const auto& t : cell->module->tasks)
+    if (t.name == "MainTask") {
+      found = true;
+      EXPECT_EQ(t.intervalNs, 5'000'000);
+    }
+  EXPECT_TRUE(found);
+}
+
+TEST_F(Loader, NameDefaultsToTheFolderName) {
+  auto cell = loads("plc:\n  sources: [main.st]\ndevices: []\n");
+  ASSERT_NE(cell, nullptr);
+  EXPECT_EQ(cell->name, dir_.filename().string());
+  EXPECT_EQ(cell->run.plcCycleNs, 10'000'000);
+  EXPECT_EQ(cell->run.timeLimitNs, 600'000'000'000);
+}
+
+TEST_F(Loader, UntilConditionIsResolved) {
+  auto cell = loads("plc:\n  sources: [main.st]\nrun:\n  until: \"MAIN.count >= 3\"\ndevices: []\n");
+  ASSERT_NE(cell, nullptr);
+  const Condition& c = cell->run.until;
+  ASSERT_TRUE(c.valid);
+  EXPECT_EQ(c.text, "MAIN.count >= 3");
+  EXPECT_EQ(c.op, Condition::Op::Ge);
+  EXPECT_EQ(c.value, 3);
+  std::vector<uint8_t> memory(cell->module->memorySize(), 0);
+  EXPECT_FALSE(evaluate(c, memory.data()));
+  int16_t three = 3;
+  std::memcpy(memory.data() + c.address, &three, 2);
+  EXPECT_TRUE(evaluate(c, memory.data()));
+}
+
+TEST_F(Loader, ConditionOperatorsAndBareBool) {
+  auto cell = loads("plc:\n  sources: [main.st]\ndevices: []\n");
+  ASSERT_NE(cell, nullptr);
+  std::vector<uint8_t> memory(cell->module->memorySize(), 0);
+  auto ref = bc::resolveVariable(*cell->module, "MAIN.count");
+  ASSERT_TRUE(ref.has_value());
+  int16_t five = 5;
+  std::memcpy(memory.data() + ref->address, &five, 2);
+  struct Case {
+    const char* text;
+    bool holds;
+  };
+  for (const Case& k : {Case{"MAIN.count = 5", true}, Case{"MAIN.count <> 5", false}, Case{"MAIN.count != 4", true},
+                        Case{"MAIN.count < 5", false}, Case{"MAIN.count <= 5", true}, Case{"MAIN.count > 4", true},
+                        Case{"MAIN.count>=6", false}, Case{"MAIN.finished", false}, Case{"MAIN.finished = FALSE", true}}) {
+    SCOPED_TRACE(k.text);
+    Diagnostics d;
+    Condition c = parseCondition(*cell->module, k.text, {}, d);
+    ASSERT_TRUE(c.valid) << d.render(sources_);
+    EXPECT_EQ(evaluate(c, memory.data()), k.holds);
+  }
+}
+
+}  // namespace
+}  // namespace virtcom::cell::test

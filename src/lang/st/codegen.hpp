@@ -88,6 +88,7 @@ class PouCompiler {
   Value convert(Value v, TypeId to, SourceLocation loc);
   Value coerce(Value v, TypeId to, SourceLocation loc);  // implicit, with diagnostics
   uint16_t normalize(uint16_t reg, TypeId type);
+  void emitScale(uint16_t reg, uint64_t factor);  // reg *= factor
   Value regValue(TypeId type, uint16_t reg);
   Value constInt(TypeId type, int64_t v);
 

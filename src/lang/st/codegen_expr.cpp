@@ -196,6 +196,15 @@ std::optional<Place> PouCompiler::memberPlace(const Expr& e, bool forWrite) {
   return std::nullopt;
 }
 
+void PouCompiler::emitScale(uint16_t reg, uint64_t factor) {
+  if (factor <= 0xffff) {
+    emit(Op::MULI, reg, reg, static_cast<uint16_t>(factor));
+  } else {
+    uint16_t k = loadConstInt(static_cast<int64_t>(factor));
+    emit(Op::MUL, reg, reg, k);
+  }
+}
+
 std::optional<Place> PouCompiler::indexPlace(const Expr& e, bool forWrite) {
   auto basePlace = place(*e.lhs, forWrite);
   if (!basePlace) return std::nullopt;
@@ -235,17 +244,16 @@ std::optional<Place> PouCompiler::indexPlace(const Expr& e, bool forWrite) {
     } else {
       uint16_t r = allocReg();
       uint16_t src = toReg(idx);
-      if (dim.lo != 0) {
+      if (dim.lo != 0 && -dim.lo >= INT16_MIN && -dim.lo <= INT16_MAX) {
+        emit(Op::ADDI, r, src, static_cast<uint16_t>(static_cast<int16_t>(-dim.lo)));
+      } else if (dim.lo != 0) {
         uint16_t lo = loadConstInt(-dim.lo);
         emit(Op::ADD, r, src, lo);
       } else {
         emit(Op::MOV, r, src, 0);
       }
       emitBx(Op::BOUND, r, static_cast<uint32_t>(dim.count()));
-      if (stride != 1) {
-        uint16_t s = loadConstInt(static_cast<int64_t>(stride));
-        emit(Op::MUL, r, r, s);
-      }
+      if (stride != 1) emitScale(r, stride);
       if (linear == 0xffff) linear = r;
       else emit(Op::ADD, linear, linear, r);
     }
@@ -253,10 +261,7 @@ std::optional<Place> PouCompiler::indexPlace(const Expr& e, bool forWrite) {
   }
   p.offset += static_cast<uint32_t>(constLinear * elemSize);
   if (linear != 0xffff) {
-    if (elemSize != 1) {
-      uint16_t s = loadConstInt(elemSize);
-      emit(Op::MUL, linear, linear, s);
-    }
+    if (elemSize != 1) emitScale(linear, elemSize);
     uint16_t addr = allocReg();
     if (p.base == kAbsolute) {
       uint16_t b = loadConstInt(p.offset);
@@ -746,6 +751,16 @@ Value PouCompiler::arithmetic(const Expr& e, Value a, Value b) {
     v.type = common;
     v.untyped = a.untyped && b.untyped;
     return convert(v, common, e.loc);
+  }
+  if (!real && (op == BinaryOp::Add || op == BinaryOp::Sub) && cb.kind == Value::Kind::Const) {
+    // x + k / x - k with a small k: one ADDI instead of loading the constant
+    int64_t k = op == BinaryOp::Add ? cb.c.i : -cb.c.i;
+    if (k >= INT16_MIN && k <= INT16_MAX) {
+      uint16_t x = toReg(ca), out = allocReg();
+      emit(Op::ADDI, out, x, static_cast<uint16_t>(static_cast<int16_t>(k)));
+      normalize(out, common);
+      return regValue(common, out);
+    }
   }
   uint16_t x = toReg(ca), y = toReg(cb);
   uint16_t out = allocReg();

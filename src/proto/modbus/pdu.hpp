@@ -1,0 +1,79 @@
+#pragma once
+// Modbus request PDUs answered against a PLC process image with the OpenPLC mapping:
+//   coils            0..          -> %QX  (coil 8b+k = bit k of Q byte b)
+//   discrete inputs  0..          -> %IX  (read only)
+//   input registers  0..          -> %IW  (register n = I bytes 2n..2n+1, read only)
+//   holding registers 0..1023     -> %QW  (register n = Q bytes 2n..2n+1)
+//   holding registers 1024..65535 -> %MW  (register 1024+n = M bytes 2n..2n+1)
+// The PLC image is little endian; registers go big endian on the wire.
+// Pure functions over spans: no sockets, no threads, no allocation.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace virtcom::proto::modbus {
+
+// MODBUS Application Protocol V1.1b3 section 4.1: a PDU is at most 253 bytes.
+inline constexpr size_t kMaxPduSize = 253;
+inline constexpr uint16_t kMemoryRegisterBase = 1024;  // OpenPLC: %MW0 is holding register 1024
+
+enum class FunctionCode : uint8_t {
+#define MODBUS_FUNCTION(name, code, handler, text) name = code,
+#include "proto/modbus/function_codes.def"
+#undef MODBUS_FUNCTION
+};
+// The spec's name of a function code, or nullptr if the server does not implement it.
+const char* functionName(uint8_t code);
+
+// Exception codes: MODBUS Application Protocol V1.1b3 section 7.
+enum class ExceptionCode : uint8_t {
+  IllegalFunction = 0x01,
+  IllegalDataAddress = 0x02,
+  IllegalDataValue = 0x03,
+  ServerDeviceFailure = 0x04,
+  ServerDeviceBusy = 0x06,  // the write queue is full until the next scan drains it
+};
+
+enum class Area : uint8_t { Inputs, Outputs, Memory };
+
+// The three process areas (%I, %Q, %M) a request reads and writes.
+struct ImageView {
+  std::span<uint8_t> inputs, outputs, memory;
+  std::span<uint8_t> bytes(Area a) const { return a == Area::Inputs ? inputs : a == Area::Outputs ? outputs : memory; }
+};
+
+// One byte of a write: bits in `mask` take their value from `value`.
+struct ByteEdit {
+  Area area = Area::Outputs;
+  uint32_t offset = 0;
+  uint8_t value = 0;
+  uint8_t mask = 0;
+};
+// Applies the edit if it lies inside the view (edits are made against views of the same sizes).
+void applyEdit(const ByteEdit& e, const ImageView& image);
+
+// A bounded list of byte edits. Allocates only in the constructor: push never allocates, so it
+// can be filled and drained on the scan path.
+class EditQueue {
+ public:
+  explicit EditQueue(size_t capacity) { edits_.reserve(capacity); }
+  bool hasRoom(size_t n) const { return edits_.capacity() - edits_.size() >= n; }
+  // Precondition: hasRoom(1).
+  void push(const ByteEdit& e) { edits_.push_back(e); }
+  std::span<const ByteEdit> edits() const { return edits_; }
+  void clear() { edits_.clear(); }
+
+ private:
+  std::vector<ByteEdit> edits_;
+};
+
+// Answers one request PDU (function code + data). Reads come from `image`; a write is checked
+// whole first, then applied to `image` and appended to `edits` (all or nothing; exception 06 if
+// `edits` has no room). Malformed or out-of-range requests get an exception response
+// (function | 0x80, code). Returns the response length written to `response`; never fails.
+size_t handlePdu(std::span<const uint8_t> request, const ImageView& image, EditQueue& edits,
+                 std::span<uint8_t, kMaxPduSize> response);
+
+}  // namespace virtcom::proto::modbus

@@ -1,6 +1,7 @@
 // `virtcom exec`: run ST programs on the soft PLC in virtual time (or paced with --speed).
 #include <atomic>
 #include <csignal>
+#include <expected>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -8,6 +9,7 @@
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "plc/runtime.hpp"
+#include "proto/modbus/server.hpp"
 
 namespace virtcom::cli {
 
@@ -27,6 +29,8 @@ struct ExecOptions {
   double speed = 0;
   uint64_t budget = 50'000'000;
   bool stats = false;
+  std::string modbus;       // HOST:PORT to serve Modbus TCP on; empty: no server
+  std::string modbusAllow;  // comma-separated peer addresses; empty: any
 };
 
 bool resolveAll(const bc::Module& m, const std::vector<std::string>& names, std::vector<bc::VarRef>& out) {
@@ -57,6 +61,34 @@ void writeTraceRow(std::ostream& out, const bc::Module& m, const uint8_t* memory
   out << '\n';
 }
 
+// The soft PLC's process areas as the Modbus server sees them: %I is the external input image
+// (what the next scan reads), %Q and %M are the PLC's own memory.
+proto::modbus::ImageView modbusView(plc::Runtime& runtime) {
+  const bc::Module& m = runtime.module();
+  uint8_t* mem = runtime.machine().memory();
+  return {{runtime.inputImage(), m.inputs.size},
+          {mem + m.outputs.address, m.outputs.size},
+          {mem + m.memory.address, m.memory.size}};
+}
+
+std::expected<std::unique_ptr<proto::modbus::Server>, std::string> startModbus(const ExecOptions& o, plc::Runtime& runtime) {
+  namespace mb = proto::modbus;
+  auto endpoint = mb::parseEndpoint(o.modbus);
+  if (!endpoint) return std::unexpected("--modbus: " + endpoint.error());
+  mb::ServerConfig config;
+  config.listen = *endpoint;
+  if (!o.modbusAllow.empty()) {
+    auto allow = mb::parseAllowList(o.modbusAllow);
+    if (!allow) return std::unexpected("--modbus-allow: " + allow.error());
+    config.allowedPeers = *allow;
+  }
+  const bc::Module& m = runtime.module();
+  auto server = mb::Server::start(config, {m.inputs.size, m.outputs.size, m.memory.size});
+  if (!server) return std::unexpected("--modbus: " + server.error());
+  (*server)->publishSnapshot(modbusView(runtime));
+  return server;
+}
+
 int runExec(const ExecOptions& o) {
   SourceManager sources;
   Diagnostics diags;
@@ -83,7 +115,9 @@ int runExec(const ExecOptions& o) {
   if (!resolveAll(*module, o.prints, printRefs) || !resolveAll(*module, traceNames, traceRefs)) return kExitUsage;
 
   std::unique_ptr<Clock> clock;
-  if (o.speed > 0) clock = std::make_unique<PacedClock>(o.speed);
+  // A Modbus server talks to the real world, so it runs in real time unless told otherwise.
+  double speed = o.speed > 0 ? o.speed : o.modbus.empty() ? 0 : 1;
+  if (speed > 0) clock = std::make_unique<PacedClock>(speed);
   else clock = std::make_unique<VirtualClock>();
   plc::RuntimeOptions ropts;
   ropts.instructionBudget = o.budget;
@@ -115,7 +149,17 @@ int runExec(const ExecOptions& o) {
     for (const auto& n : traceNames) *trace << ',' << n;
     *trace << '\n';
   }
-  bool forever = o.cycles < 0 && o.speed > 0;
+  std::unique_ptr<proto::modbus::Server> modbus;
+  if (!o.modbus.empty()) {
+    auto server = startModbus(o, runtime);
+    if (!server) {
+      std::cerr << "error: " << server.error() << "\n";
+      return kExitUsage;
+    }
+    modbus = std::move(*server);
+    std::cerr << "modbus: serving on " << proto::modbus::formatEndpoint(modbus->endpoint()) << "\n";
+  }
+  bool forever = o.cycles < 0 && speed > 0;
   int64_t cycles = o.cycles < 0 ? (forever ? INT64_MAX : 1) : o.cycles;
   if (forever) {
     std::signal(SIGINT, onSignal);
@@ -124,13 +168,17 @@ int runExec(const ExecOptions& o) {
   int exitCode = kExitOk;
   for (int64_t k = 0; k < cycles && !gInterrupted; ++k) {
     int64_t now = runtime.nextTickNs();
-    if (!runtime.tick()) {
+    if (modbus && modbus->applyPendingWrites(modbusView(runtime)) > 0) runtime.inputsTouched();
+    bool ok = runtime.tick();
+    if (modbus) modbus->publishSnapshot(modbusView(runtime));
+    if (!ok) {
       std::cerr << "runtime fault: " << runtime.faultText() << "\n";
       exitCode = kExitRuntimeFault;
       break;
     }
     if (!traceRefs.empty()) writeTraceRow(*trace, *module, runtime.machine().memory(), static_cast<uint64_t>(k), now, traceRefs);
   }
+  if (modbus) modbus->stop();
   for (size_t i = 0; i < o.prints.size(); ++i)
     std::cout << o.prints[i] << " = " << bc::formatValue(*module, printRefs[i], runtime.machine().memory()) << "\n";
   if (o.stats) {
@@ -160,6 +208,8 @@ void addExecCommand(CLI::App& app, std::function<void(int)> setExit) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--budget", o->budget, "watchdog: max backward jumps + calls per task scan (default 50000000)");
   cmd->add_flag("--stats", o->stats, "print per-task scan statistics to stderr");
+  cmd->add_option("--modbus", o->modbus, "serve the process image over Modbus TCP on HOST:PORT (OpenPLC mapping, see docs/modbus.md); implies --speed 1");
+  cmd->add_option("--modbus-allow", o->modbusAllow, "comma-separated IPv4 peers allowed to connect to --modbus (default: any)");
   cmd->callback([o, setExit] { setExit(runExec(*o)); });
 }
 

@@ -52,6 +52,7 @@ class Declarer {
   void layoutStruct(TypeId id, const std::vector<VarDecl>& fields, const std::string& base, SourceLocation loc);
   void declarePous();
   void layoutInstance(PouSym& pou);
+  bool layoutFbOf(const TypeSpec& spec, VarSection section);
   void layoutFrame(PouSym& pou);
   void addMembers(PouSym& pou, const Pou& ast, bool methodInst);
   void declareMethods(PouSym& owner);
@@ -80,6 +81,8 @@ class Declarer {
   bc::Module& module_;
   std::map<std::string, const TypeDecl*> typeDecls_;      // upper-cased
   std::set<std::string> resolving_;                        // cycle detection for types
+  std::set<const PouSym*> layingOut_;                      // cycle detection for FB instances
+  std::set<TypeId> defaultsInProgress_;                    // cycle guard for defaultBytes
   std::map<TypeId, std::vector<std::pair<size_t, const Expr*>>> fieldInits_;  // struct field inits
   std::map<TypeId, const Expr*> typeInits_;                // TYPE x : T := init
   std::map<TypeId, std::vector<uint8_t>> defaults_;

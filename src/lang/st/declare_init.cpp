@@ -286,6 +286,10 @@ void Declarer::buildTemplates() {
 
 const std::vector<uint8_t>& Declarer::defaultBytes(TypeId type) {
   if (auto it = defaults_.find(type); it != defaults_.end()) return it->second;
+  // A type that contains itself by value has already been reported (or fails verification):
+  // never recurse forever, and never copy a member's bytes past the end of its container.
+  static const std::vector<uint8_t> kNone;
+  if (!defaultsInProgress_.insert(type).second) return kNone;
   const bc::TypeDesc& d = types_[type];
   std::vector<uint8_t> bytes(d.size, 0);
   switch (d.kind) {
@@ -314,17 +318,20 @@ const std::vector<uint8_t>& Declarer::defaultBytes(TypeId type) {
         for (const auto& m : pou.members) {
           if (m.storage != Storage::Instance || m.byReference) continue;
           const std::vector<uint8_t>& md = defaultBytes(m.type);
+          if (md.empty() || m.offset > bytes.size() || md.size() > bytes.size() - m.offset) continue;
           std::memcpy(bytes.data() + m.offset, md.data(), md.size());
           if (m.decl && m.decl->init) applyInit(m.type, bytes.data() + m.offset, *m.decl->init, &pou);
         }
       } else {
         for (const auto& f : d.fields) {
           const std::vector<uint8_t> fd = defaultBytes(f.type);
+          if (fd.empty() || f.offset > bytes.size() || fd.size() > bytes.size() - f.offset) continue;
           std::memcpy(bytes.data() + f.offset, fd.data(), fd.size());
         }
         if (auto it = fieldInits_.find(type); it != fieldInits_.end())
           for (const auto& [index, init] : it->second)
-            applyInit(d.fields[index].type, bytes.data() + d.fields[index].offset, *init, nullptr);
+            if (d.fields[index].offset + uint64_t{types_[d.fields[index].type].size} <= bytes.size())
+              applyInit(d.fields[index].type, bytes.data() + d.fields[index].offset, *init, nullptr);
       }
       break;
     }
@@ -338,6 +345,7 @@ const std::vector<uint8_t>& Declarer::defaultBytes(TypeId type) {
       break;
   }
   if (auto it = typeInits_.find(type); it != typeInits_.end()) applyInit(type, bytes.data(), *it->second, nullptr);
+  defaultsInProgress_.erase(type);
   return defaults_[type] = std::move(bytes);
 }
 

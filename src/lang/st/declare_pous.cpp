@@ -76,6 +76,23 @@ VarInfo makeVar(const DeclName& n, const VarDecl& decl, TypeId type, VarSection 
   return v;
 }
 
+// An FB instance (member or local) needs its FB laid out first, whatever the declaration order;
+// an FB cannot contain itself by value. False (reported) for such a cycle.
+bool Declarer::layoutFbOf(const TypeSpec& spec, VarSection section) {
+  const TypeSpec* inner = &spec;
+  while (inner->kind == TypeSpecKind::Array && inner->element) inner = inner->element.get();
+  if (section == VarSection::InOut || inner->kind != TypeSpecKind::Named) return true;
+  auto fb = model_.pouByName.find(upper(inner->name));
+  if (fb == model_.pouByName.end() || fb->second->kind != PouKind::FunctionBlock) return true;
+  for (const PouSym* p = fb->second; p; p = p->base)
+    if (layingOut_.count(p)) {
+      diags_.error(diag::E112, spec.loc, "FUNCTION_BLOCK '" + fb->second->name + "' contains itself");
+      return false;
+    }
+  layoutInstance(*fb->second);
+  return true;
+}
+
 void Declarer::addMembers(PouSym& pou, const Pou& ast, bool methodInst) {
   const PouSym* scope = &pou;
   PouSym& target = methodInst ? *pou.owner : pou;
@@ -83,7 +100,8 @@ void Declarer::addMembers(PouSym& pou, const Pou& ast, bool methodInst) {
     bool member = methodInst ? block.section == VarSection::Inst : isInstanceSection(block.section);
     if (!member) continue;
     for (const auto& decl : block.vars) {
-      TypeId type = resolveType(decl.type, scope);
+      bool cyclic = !layoutFbOf(decl.type, block.section);
+      TypeId type = cyclic ? kNoType : resolveType(decl.type, scope);
       for (const auto& n : decl.names) {
         std::string key = upper(methodInst ? pou.name + "." + n.name : n.name);
         if (target.memberIndex.count(key)) {
@@ -138,6 +156,7 @@ void Declarer::addMembers(PouSym& pou, const Pou& ast, bool methodInst) {
 void Declarer::layoutInstance(PouSym& pou) {
   if (pou.compiled) return;  // reused as "laid out" marker during this pass
   pou.compiled = true;
+  layingOut_.insert(&pou);
   bc::TypeDesc& inst = types_.mut(pou.instanceType);
   inst.align = 1;
   if (pou.base) {
@@ -169,6 +188,7 @@ void Declarer::layoutInstance(PouSym& pou) {
   declareMethods(pou);
   bc::TypeDesc& done = types_.mut(pou.instanceType);
   done.size = alignUp(std::max<uint32_t>(done.size, 1), done.align);
+  layingOut_.erase(&pou);
 }
 
 static PouSym* newChild(ProgramModel& model, PouSym& owner, const Pou& ast, PouKind kind, const std::string& name) {
@@ -244,6 +264,7 @@ void Declarer::layoutFrame(PouSym& pou) {
                                                          block.section != VarSection::Global);
     if (!inFrame) continue;
     for (const auto& decl : block.vars) {
+      if (!layoutFbOf(decl.type, block.section)) continue;
       TypeId type = resolveType(decl.type, &pou);
       if (type == kNoType) continue;
       for (const auto& n : decl.names) {

@@ -284,6 +284,14 @@ void Declarer::layoutStruct(TypeId id, const std::vector<VarDecl>& fields, const
   for (const auto& f : out) seen.insert(upper(f.name));
   for (const auto& decl : fields) {
     TypeId ft = resolveType(decl.type, nullptr);
+    // A STRUCT still being laid out (this one, or one that led here) cannot be a member by value.
+    TypeId inner = ft;
+    while (inner != kNoType && types_[inner].kind == bc::TypeKind::Array) inner = types_[inner].element;
+    if (inner != kNoType && types_.isStruct(inner) && !model_.fbByType.count(inner) &&
+        resolving_.count(upper(types_[inner].name))) {
+      diags_.error(diag::E112, decl.type.loc, "STRUCT '" + types_[inner].name + "' contains itself");
+      ft = kNoType;
+    }
     for (const auto& n : decl.names) {
       if (!seen.insert(upper(n.name)).second) {
         diags_.error(diag::E105, n.loc, "member '" + n.name + "' is already declared");

@@ -1,0 +1,63 @@
+// Whole-scenario benchmark: one full assembly cycle of the bundled gearbox cell
+// (examples/gearbox-cell, sequence 1 = the longest) with its PLC task at 1 ms, as issue 4
+// requires. Reports the simulated seconds per wall second (the real-time factor).
+#include <benchmark/benchmark.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "cell/cell.hpp"
+#include "sim/simulation.hpp"
+
+namespace virtcom::bench {
+namespace {
+
+// Loads the gearbox cell with the PLC task interval set to `cycleNs`.
+std::unique_ptr<cell::Cell> loadGearbox(int64_t cycleNs, SourceManager& sources, Diagnostics& diags) {
+  auto cell = cell::loadCell(VIRTCOM_GEARBOX_CELL, sources, diags);
+  if (!cell) return nullptr;
+  cell->run.plcCycleNs = cycleNs;
+  for (auto& t : cell->module->tasks) t.intervalNs = cycleNs;
+  return cell;
+}
+
+void runGearbox(benchmark::State& state, int64_t cycleNs, bool skipRepeatedScans) {
+  double simulatedS = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    SourceManager sources;
+    Diagnostics diags;
+    auto cell = loadGearbox(cycleNs, sources, diags);
+    if (!cell) {
+      state.SkipWithError(diags.render(sources).c_str());
+      return;
+    }
+    sim::SimOptions options;
+    options.skipRepeatedScans = skipRepeatedScans;
+    options.preset = [](plc::Runtime& plc) {
+      auto ref = bc::resolveVariable(plc.module(), "MAIN.sequence");
+      bc::writeValueFromText(plc.module(), *ref, "1", plc.machine().memory());
+    };
+    sim::Simulation simulation(*cell, options);
+    state.ResumeTiming();
+    RunEnd end = simulation.run();
+    state.PauseTiming();
+    if (end != RunEnd::Completed) state.SkipWithError("the gearbox cycle did not complete");
+    simulatedS = static_cast<double>(simulation.trace().cycleEndNs) * 1e-9;
+    state.ResumeTiming();
+  }
+  state.counters["simulated_s"] = simulatedS;
+  state.counters["realtime_factor"] =
+      benchmark::Counter(simulatedS * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+void BM_GearboxCycle1ms(benchmark::State& state) { runGearbox(state, 1'000'000, true); }
+void BM_GearboxCycle1msNoSkip(benchmark::State& state) { runGearbox(state, 1'000'000, false); }
+void BM_GearboxCycle10ms(benchmark::State& state) { runGearbox(state, 10'000'000, true); }
+
+BENCHMARK(BM_GearboxCycle1ms)->Name("gearbox/cycle_1ms")->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK(BM_GearboxCycle1msNoSkip)->Name("gearbox/cycle_1ms_no_skip")->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK(BM_GearboxCycle10ms)->Name("gearbox/cycle_10ms")->Unit(benchmark::kMillisecond)->MinTime(1.0);
+
+}  // namespace
+}  // namespace virtcom::bench

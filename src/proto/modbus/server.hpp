@@ -1,0 +1,81 @@
+#pragma once
+// A Modbus TCP server for a PLC process image, built so the network never races the scan:
+//  - one I/O thread owns the sockets (poll, non-blocking) and answers requests from a snapshot
+//    of the image; writes update the snapshot and are queued as byte edits;
+//  - the scan thread calls applyPendingWrites() before each scan (every queued request lands
+//    whole, in arrival order) and publishSnapshot() after it (reads see a scan boundary).
+// The one mutex is held only while answering one frame (<= 260 bytes) or copying the image;
+// never across socket I/O, and neither scan-side call allocates.
+#include <cstdint>
+#include <expected>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <vector>
+
+#include "proto/modbus/pdu.hpp"
+
+namespace virtcom::proto::modbus {
+
+struct Endpoint {
+  uint32_t ipv4 = 0x7f000001;  // host byte order
+  uint16_t port = 1502;
+};
+// "HOST:PORT" with an IPv4 address or "localhost"; port 0 picks a free port. Error text on failure.
+std::expected<Endpoint, std::string> parseEndpoint(std::string_view text);
+// "ADDR,ADDR,..." of IPv4 peer addresses (host byte order). Error text on failure.
+std::expected<std::vector<uint32_t>, std::string> parseAllowList(std::string_view text);
+std::string formatEndpoint(const Endpoint& e);
+
+struct ServerConfig {
+  Endpoint listen;
+  std::vector<uint32_t> allowedPeers;  // empty: any peer that can reach `listen`
+  size_t maxClients = 16;              // further connections are accepted and closed at once
+  size_t pendingEditCapacity = 8192;   // queued byte edits between two scans; beyond: exception 06
+};
+
+// The sizes of the process areas the server exposes (the live image's spans must match).
+struct AreaSizes {
+  size_t inputs = 0, outputs = 0, memory = 0;
+};
+
+class Server {
+ public:
+  // Binds, listens and starts the I/O thread. Error text if the address cannot be bound or the
+  // thread cannot start. The initial snapshot is all zero until publishSnapshot().
+  static std::expected<std::unique_ptr<Server>, std::string> start(const ServerConfig& config, AreaSizes sizes);
+  ~Server();  // stop()
+  Server(const Server&) = delete;
+  Server& operator=(const Server&) = delete;
+
+  // The bound endpoint (the real port when 0 was asked for).
+  Endpoint endpoint() const { return bound_; }
+
+  // Scan thread, between scans: applies every queued write to `live` and empties the queue.
+  // Returns the number of byte edits applied. No allocation; locks only to copy.
+  size_t applyPendingWrites(const ImageView& live);
+  // Scan thread, after a scan: copies `live` into the snapshot requests are answered from, then
+  // re-applies writes still queued so a client reads back what it wrote. No allocation.
+  void publishSnapshot(const ImageView& live);
+
+  // Closes every connection and joins the I/O thread. Idempotent.
+  void stop();
+
+ private:
+  Server(const ServerConfig& config, AreaSizes sizes);
+  void run();
+
+  ServerConfig config_;
+  Endpoint bound_;
+  int listenFd_ = -1;
+  int wakeFds_[2] = {-1, -1};
+  std::mutex mutex_;  // guards snapshot_* and pending_
+  std::vector<uint8_t> snapshotInputs_, snapshotOutputs_, snapshotMemory_;
+  ImageView snapshot_;
+  EditQueue pending_;
+  std::thread thread_;
+};
+
+}  // namespace virtcom::proto::modbus

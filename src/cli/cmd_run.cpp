@@ -1,5 +1,7 @@
 // `virtcom run`: simulate a cell (PLC program + devices) and report cycle time, Gantt, energy.
+#include <algorithm>
 #include <atomic>
+#include <bit>
 #include <csignal>
 #include <fstream>
 #include <iostream>
@@ -30,7 +32,35 @@ struct RunOptions {
   std::vector<std::string> signals;
   double speed = 0;
   bool quiet = false;
+  bool step = false;
 };
+
+// Single-step mode: one PLC base tick per line read from stdin (empty line: one tick, a number N:
+// N ticks, q: stop), printing the time and every signal that changed.
+RunEnd stepInteractively(sim::Simulation& simulation, const Trace& trace) {
+  std::cout << "single step: Enter = one tick, N = N ticks, q = quit\n";
+  std::string line;
+  while (true) {
+    std::cout << "[" << static_cast<double>(simulation.nowNs()) * 1e-9 << " s] > " << std::flush;
+    if (!std::getline(std::cin, line) || line == "q") break;
+    long count = line.empty() ? 1 : std::strtol(line.c_str(), nullptr, 10);
+    size_t before = trace.changes.size();
+    bool running = true;
+    for (long i = 0; i < std::max(count, 1L) && running; ++i) running = simulation.step();
+    for (size_t k = before; k < trace.changes.size(); ++k) {
+      const SignalChange& c = trace.changes[k];
+      const SignalInfo& s = trace.signals[c.tag];
+      std::cout << "  " << static_cast<double>(c.timeNs) * 1e-9 << " s  " << s.name << " = ";
+      if (isFloat(s.type)) std::cout << std::bit_cast<double>(c.raw);
+      else if (s.type == ElemType::Bool) std::cout << (c.raw ? "TRUE" : "FALSE");
+      else std::cout << static_cast<int64_t>(c.raw);
+      std::cout << "\n";
+    }
+    if (!running) break;
+  }
+  if (trace.endNs == 0 && simulation.nowNs() > 0) return RunEnd::Interrupted;
+  return trace.end;
+}
 
 bool writeFile(const std::string& path, const std::string& content) {
   std::ofstream out(path, std::ios::binary);
@@ -91,7 +121,7 @@ int runCell(const RunOptions& o) {
   sim::Simulation simulation(*cell, options);
   std::signal(SIGINT, onRunSignal);
   std::signal(SIGTERM, onRunSignal);
-  RunEnd end = simulation.run();
+  RunEnd end = o.step ? stepInteractively(simulation, simulation.trace()) : simulation.run();
   const Trace& trace = simulation.trace();
   report::Kpis kpis = report::computeKpis(trace);
   if (!o.quiet) std::cout << report::summaryTable(trace, kpis);
@@ -124,6 +154,7 @@ void addRunCommand(CLI::App& app, std::function<void(int)> setExit) {
   cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table");
+  cmd->add_flag("--step", o->step, "single step: advance one PLC tick per line read from stdin, printing changed signals");
   cmd->callback([o, setExit] { setExit(runCell(*o)); });
 }
 

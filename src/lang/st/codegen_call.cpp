@@ -562,6 +562,10 @@ Value PouCompiler::call(const Expr& e, TypeId expected) {
   const Expr& callee = *e.lhs;
   if (callee.kind == ExprKind::Name) {
     std::string key = upper(callee.text);
+    if (pou_.kind == PouKind::Function && key == upper(pou_.name)) {
+      diags().error(diag::E207, callee.loc, "FUNCTION '" + pou_.name + "' calls itself; IEC 61131-3 does not allow recursion");
+      return Value::error();
+    }
     // a variable of FB type
     auto p = namePlace(callee, false);
     if (p) {

@@ -49,6 +49,12 @@ Value PouCompiler::literal(const Expr& e, TypeId expected) {
       v.type = types().stringOf(len, e.wide);
       break;
     }
+    case ExprKind::TimeLit:
+      if (v.type == TypeTable::elem(ElemType::Time) && (c->i > INT32_MAX || c->i < INT32_MIN)) {
+        diags().error(diag::E117, e.loc, "the duration does not fit TIME (32-bit milliseconds, at most T#24d20h31m23s647ms); use LTIME#");
+        return Value::error();
+      }
+      break;
     case ExprKind::EnumLit: {
       auto it = model().namedTypes.find(upper(e.typePrefix));
       v.type = it != model().namedTypes.end() ? it->second : kNoType;

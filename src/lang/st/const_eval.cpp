@@ -150,7 +150,17 @@ std::optional<ConstValue> evalConst(const Expr& e, const ConstContext& ctx, Diag
     case ExprKind::Unary: {
       auto a = evalConst(*e.lhs, ctx, diags, quiet);
       if (!a) return std::nullopt;
-      if (e.unaryOp == UnaryOp::Not) return intValue(a->i == 0);
+      if (e.unaryOp == UnaryOp::Not) {
+        // logical for BOOL, bitwise otherwise (the target's width truncates: NOT 16#00FF -> 16#FF00)
+        if (a->type == TypeTable::elem(ElemType::Bool)) {
+          ConstValue b = intValue(a->i == 0);
+          b.type = a->type;
+          return b;
+        }
+        ConstValue b = intValue(~a->i);
+        b.type = a->type;
+        return b;
+      }
       return foldUnary(e.unaryOp, *a, a->kind == ConstValue::Kind::Real);
     }
     case ExprKind::Binary: {

@@ -90,6 +90,7 @@ class Declarer {
   std::map<std::string, ConstValue> globalConstants_;  // "X" and "GVL.X"
   std::set<std::string> constantsInProgress_;           // cycle guard for declaredConstant
   uint32_t nextClassId_ = 1;
+  bool layoutStarted_ = false;
 };
 
 // A VarInfo for one declared name (section, flags and attributes filled in; no storage yet).

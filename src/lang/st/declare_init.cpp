@@ -458,6 +458,12 @@ void Declarer::applyInit(TypeId type, uint8_t* dst, const Expr& init, const PouS
     diags_.error(diag::E116, init.loc, "a REAL value cannot initialise a " + d.name + " (use REAL_TO_" + d.name + ")");
     return;
   }
+  if (init.kind == ExprKind::Unary && init.unaryOp == UnaryOp::Not && types_.isInteger(type) && v->kind == ConstValue::Kind::Int) {
+    // a bitwise NOT of an untyped literal takes the target's width: NOT 16#00FF -> 16#FF00
+    uint32_t bits = types_.bits(type);
+    if (bits < 64) v->i &= static_cast<int64_t>((uint64_t(1) << bits) - 1);
+    if (types_.isSignedInt(type) && bits < 64 && (v->i >> (bits - 1)) & 1) v->i -= int64_t(1) << bits;
+  }
   checkRange(type, *v, init.loc);
   writeScalar(type, dst, *v, -1);
 }

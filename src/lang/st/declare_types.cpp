@@ -23,9 +23,10 @@ void Declarer::run() {
   registerNames();
   allocateProcessAreas();
   collectGlobalConstants();
-  declareTypes();
   declareInterfaces();
   linkInheritance();
+  layoutStarted_ = true;  // inheritance is known: FB layouts may now be computed on demand
+  declareTypes();
   declarePous();
   declareGlobals();
   declareConfiguration();
@@ -124,7 +125,13 @@ TypeId Declarer::resolveNamed(const TypeSpec& spec, const PouSym* pou) {
   std::string key = upper(spec.name);
   ElemType elem;
   if (elemTypeByName(key, elem)) return TypeTable::elem(elem);
-  if (auto it = model_.namedTypes.find(key); it != model_.namedTypes.end()) return it->second;
+  if (auto it = model_.namedTypes.find(key); it != model_.namedTypes.end()) {
+    // An FB used as a member or local before its own declaration is laid out first, so the
+    // container gets its real size (any declaration order is allowed).
+    if (auto fb = model_.fbByType.find(it->second); fb != model_.fbByType.end() && !fb->second->compiled && layoutStarted_)
+      layoutInstance(*fb->second);
+    return it->second;
+  }
   auto declIt = typeDecls_.find(key);
   if (declIt == typeDecls_.end()) {
     if (auto p = model_.pouByName.find(key); p != model_.pouByName.end() && p->second->kind == PouKind::Function) {
@@ -209,6 +216,10 @@ TypeId Declarer::resolveType(const TypeSpec& spec, const PouSym* pou) {
       std::vector<bc::ArrayDim> dims;
       uint64_t total = types_[element].size;
       for (const auto& r : spec.dims) {
+        if (!r.lo || !r.hi) {
+          diags_.error(diag::E108, spec.loc, "ARRAY[*] (variable-length arrays) is not supported; give the bounds");
+          return kNoType;
+        }
         auto lo = constant(*r.lo, pou), hi = constant(*r.hi, pou);
         if (!lo || !hi) return kNoType;
         bc::ArrayDim d{constAsInt(*lo), constAsInt(*hi)};

@@ -5,6 +5,7 @@
 
 #include "lang/st/codegen.hpp"
 #include "lang/st/diagnostic_codes.hpp"
+#include "lang/st/standard_names.hpp"
 
 namespace virtcom::st {
 
@@ -17,17 +18,37 @@ constexpr uint32_t kStringResultLength = 255;
 
 TypeId elemId(ElemType e) { return TypeTable::elem(e); }
 
-const Expr* positional(const Expr& call, size_t i) {
-  size_t n = 0;
-  for (const auto& a : call.args)
-    if (!a.output) {
-      if (n == i) return a.value.get();
-      ++n;
-    }
-  return nullptr;
+// IEC parameter names of the standard functions that take several inputs, in order; the others
+// take IN (one input) or IN1, IN2, ... (extensible) and MUX takes K, IN0, IN1, ...
+const std::map<std::string, std::vector<std::string>>& parameterNames() {
+  static const std::map<std::string, std::vector<std::string>> kNames = {
+      {"LIMIT", {"MN", "IN", "MX"}},       {"SEL", {"G", "IN0", "IN1"}},          {"SHL", {"IN", "N"}},
+      {"SHR", {"IN", "N"}},                {"ROL", {"IN", "N"}},                  {"ROR", {"IN", "N"}},
+      {"MID", {"IN", "L", "P"}},           {"LEFT", {"IN", "L"}},                 {"RIGHT", {"IN", "L"}},
+      {"INSERT", {"IN1", "IN2", "P"}},     {"DELETE", {"IN", "L", "P"}},          {"REPLACE", {"IN1", "IN2", "L", "P"}},
+      {"FIND", {"IN1", "IN2"}},            {"SCALE_X", {"MIN", "VALUE", "MAX"}},  {"NORM_X", {"MIN", "VALUE", "MAX"}},
+      {"ATAN2", {"Y", "X"}},               {"EXPT", {"IN1", "IN2"}},              {"MOD", {"IN1", "IN2"}},
+      {"SUB", {"IN1", "IN2"}},             {"DIV", {"IN1", "IN2"}}};
+  return kNames;
 }
 
-size_t argCount(const Expr& call) { return call.args.size(); }
+// The index a named argument stands for, or -1.
+int parameterIndex(const std::string& function, const std::string& upperName) {
+  auto it = parameterNames().find(function);
+  if (it != parameterNames().end()) {
+    for (size_t i = 0; i < it->second.size(); ++i)
+      if (it->second[i] == upperName) return static_cast<int>(i);
+    return -1;
+  }
+  if (function == "MUX") {
+    if (upperName == "K") return 0;
+    if (upperName.size() > 2 && upperName.starts_with("IN")) return 1 + std::atoi(upperName.c_str() + 2);
+    return -1;
+  }
+  if (upperName == "IN") return 0;
+  if (upperName.size() > 2 && upperName.starts_with("IN")) return std::atoi(upperName.c_str() + 2) - 1;
+  return -1;
+}
 
 std::optional<ElemType> typeFromName(const std::string& name) {
   ElemType e;
@@ -78,18 +99,44 @@ static bool isStringValue(TypeTable& t, const Value& v) {
 }
 
 std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e, TypeId expected) {
+  if (!isStandardFunctionName(name) && name != "__SYSTIME_NS") return std::nullopt;
   TypeTable& t = types();
+  // The arguments in parameter order: positional as written, named ones by their IEC names.
+  std::vector<const Expr*> ordered;
+  for (const auto& a : e.args) {
+    if (a.output) {
+      diags().error(diag::E203, a.loc, name + " has no outputs");
+      return Value::error();
+    }
+    size_t index = ordered.size();
+    if (!a.name.empty()) {
+      int i = parameterIndex(name, upper(a.name));
+      if (i < 0 || i > 63) {
+        diags().error(diag::E203, a.loc, name + " has no input '" + a.name + "'");
+        return Value::error();
+      }
+      index = static_cast<size_t>(i);
+    }
+    if (ordered.size() <= index) ordered.resize(index + 1, nullptr);
+    if (ordered[index]) {
+      diags().error(diag::E203, a.loc, "input " + std::to_string(index + 1) + " of " + name + " is given twice");
+      return Value::error();
+    }
+    ordered[index] = a.value.get();
+  }
+  for (size_t i = 0; i < ordered.size(); ++i)
+    if (!ordered[i]) {
+      diags().error(diag::E203, e.loc, name + " is missing input " + std::to_string(i + 1));
+      return Value::error();
+    }
+  auto positional = [&](const Expr&, size_t i) { return ordered[i]; };
+  auto argCount = [&](const Expr&) { return ordered.size(); };
   auto arity = [&](size_t lo, size_t hi) {
     if (argCount(e) < lo || argCount(e) > hi) {
       diags().error(diag::E203, e.loc, name + " takes " + (lo == hi ? std::to_string(lo) : std::to_string(lo) + ".." + std::to_string(hi)) +
                                            " argument(s), found " + std::to_string(argCount(e)));
       return false;
     }
-    for (const auto& a : e.args)
-      if (a.output || !a.value) {
-        diags().error(diag::E203, a.loc, name + " has no outputs");
-        return false;
-      }
     return true;
   };
   auto arg = [&](size_t i, TypeId hint = kNoType) { return expr(*positional(e, i), hint); };

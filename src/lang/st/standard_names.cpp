@@ -11,7 +11,8 @@ static constexpr std::string_view kNames[] = {
     "ATAN",  "ATAN2", "EXPT",   "ADD",     "SUB",     "MUL",    "DIV",    "MOD",    "MOVE",  "SEL",
     "MUX",   "MIN",   "MAX",    "LIMIT",   "SHL",     "SHR",    "ROL",    "ROR",    "GT",    "GE",
     "EQ",    "LE",    "LT",     "NE",      "LEN",     "LEFT",   "RIGHT",  "MID",    "CONCAT", "INSERT",
-    "DELETE", "REPLACE", "FIND", "TRUNC",  "SCALE_X", "NORM_X", "ADR",    "REF",    "SIZEOF"};
+    "DELETE", "REPLACE", "FIND", "TRUNC",  "SCALE_X", "NORM_X", "ADR",    "REF",    "SIZEOF",
+    "AND",   "OR",    "XOR",    "NOT",     "TRUNC_INT"};
 
 bool isStandardFunctionName(std::string_view name) {
   for (auto n : kNames)

@@ -155,7 +155,7 @@ TEST_F(PduTest, TheLargestReadsFitOnePdu) {
   EXPECT_EQ(handlePdu(coils, image, edits_, response), 252u);
   Bytes regs{0x03, 0x00, 0x03, 0x00, 0x7D};  // 125 registers -> 250 bytes
   EXPECT_EQ(handlePdu(regs, image, edits_, response), 252u);
-  EXPECT_EQ(response[251], 0x80);  // register 127 high byte = byte 255
+  EXPECT_EQ(response[250], 0x80);  // register 127 high byte = image byte 255
 }
 
 TEST(FunctionCodes, TableNamesEveryImplementedCode) {

@@ -1,0 +1,269 @@
+// End-to-end: `virtcom exec modbus_io.st --modbus 127.0.0.1:0` in its own process, driven by the
+// libmodbus client API and by Debian's mbpoll over loopback. Port 0 lets the server pick a free
+// port, which it announces on stderr ("modbus: serving on 127.0.0.1:PORT"). Every wait polls
+// with a deadline; every test ends with SIGTERM and expects exit status 0.
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <modbus.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+const char* const kExe = VIRTCOM_EXE;
+const char* const kDataDir = VIRTCOM_E2E_DATA;
+constexpr auto kDeadline = std::chrono::seconds(20);  // generous: sanitizer builds start slowly
+
+// Holding registers of modbus_io.st (OpenPLC mapping).
+constexpr int kCountRegister = 1;      // %QW1: scans so far
+constexpr int kDoubledRegister = 2;    // %QW2 := %MW0 * 2
+constexpr int kSetpointRegister = 1024;  // %MW0
+
+class ModbusE2e : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    int errPipe[2];
+    ASSERT_EQ(::pipe2(errPipe, O_CLOEXEC), 0);
+    std::vector<std::string> args{kExe, "exec", "modbus_io.st", "--modbus", "127.0.0.1:0", "--set", "MAIN.inWord=7"};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_ = ::fork();
+    ASSERT_GE(pid_, 0);
+    if (pid_ == 0) {  // child: only async-signal-safe calls
+      int in = ::open("/dev/null", O_RDONLY);
+      if (in < 0 || ::chdir(kDataDir) != 0) ::_exit(125);
+      ::dup2(in, 0);
+      ::dup2(errPipe[1], 2);
+      ::execv(kExe, argv.data());
+      ::_exit(127);
+    }
+    ::close(errPipe[1]);
+    errFd_ = errPipe[0];
+    port_ = waitForPort();
+    ASSERT_GT(port_, 0) << "no 'modbus: serving on' line; stderr so far:\n" << err_;
+  }
+
+  void TearDown() override {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGTERM);
+      EXPECT_EQ(waitExit(), 0) << err_;
+    }
+    if (errFd_ >= 0) ::close(errFd_);
+  }
+
+  // Reads the child's stderr until the announcement; the port, or 0 on timeout or exit.
+  int waitForPort() {
+    auto until = std::chrono::steady_clock::now() + kDeadline;
+    while (std::chrono::steady_clock::now() < until) {
+      pollfd p{errFd_, POLLIN, 0};
+      if (::poll(&p, 1, 100) <= 0) continue;
+      char buf[256];
+      ssize_t n = ::read(errFd_, buf, sizeof buf);
+      if (n <= 0) return 0;
+      err_.append(buf, static_cast<size_t>(n));
+      auto at = err_.find("modbus: serving on 127.0.0.1:");
+      auto eol = at == std::string::npos ? at : err_.find('\n', at);
+      if (eol != std::string::npos) return std::atoi(err_.c_str() + at + 30);
+    }
+    return 0;
+  }
+
+  // The exit status after SIGTERM; 128 + signal if killed; -1 (and SIGKILL) if it hangs.
+  int waitExit() {
+    auto until = std::chrono::steady_clock::now() + kDeadline;
+    int status = 0;
+    while (std::chrono::steady_clock::now() < until) {
+      pid_t r = ::waitpid(pid_, &status, WNOHANG);
+      if (r == pid_) {
+        pid_ = -1;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ::kill(pid_, SIGKILL);
+    ::waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return -1;
+  }
+
+  modbus_t* connect() {
+    modbus_t* ctx = modbus_new_tcp("127.0.0.1", port_);
+    if (!ctx) return nullptr;
+    modbus_set_response_timeout(ctx, 5, 0);
+    if (modbus_connect(ctx) != 0) {
+      modbus_free(ctx);
+      return nullptr;
+    }
+    contexts_.push_back(ctx);
+    return ctx;
+  }
+
+  // Polls holding register `reg` until it equals `want`; the last value read.
+  int awaitRegister(modbus_t* ctx, int reg, int want) {
+    uint16_t v = 0;
+    auto until = std::chrono::steady_clock::now() + kDeadline;
+    while (std::chrono::steady_clock::now() < until) {
+      if (modbus_read_registers(ctx, reg, 1, &v) == 1 && v == want) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    return v;
+  }
+
+ public:
+  ~ModbusE2e() override {
+    for (modbus_t* ctx : contexts_) {
+      modbus_close(ctx);
+      modbus_free(ctx);
+    }
+  }
+
+ protected:
+  pid_t pid_ = -1;
+  int errFd_ = -1;
+  int port_ = 0;
+  std::string err_;
+  std::vector<modbus_t*> contexts_;
+};
+
+TEST_F(ModbusE2e, LibmodbusReadsTheImageAndThePlcReactsToWrites) {
+  modbus_t* ctx = connect();
+  ASSERT_NE(ctx, nullptr) << modbus_strerror(errno);
+  uint8_t coils[8] = {};
+  ASSERT_EQ(modbus_read_bits(ctx, 0, 8, coils), 8) << modbus_strerror(errno);
+  EXPECT_EQ(coils[1], 1);  // lamp AT %QX0.1 := NOT inBit
+  uint8_t inputs[8] = {};
+  ASSERT_EQ(modbus_read_input_bits(ctx, 0, 8, inputs), 8);
+  EXPECT_EQ(inputs[0], 0);
+  uint16_t inWord = 0;
+  ASSERT_EQ(modbus_read_input_registers(ctx, 1, 1, &inWord), 1);
+  EXPECT_EQ(inWord, 7);  // --set MAIN.inWord=7 at %IW1
+
+  // The scan counter advances while we watch: the PLC runs paced.
+  uint16_t first = 0;
+  ASSERT_EQ(modbus_read_registers(ctx, kCountRegister, 1, &first), 1);
+  EXPECT_NE(awaitRegister(ctx, kCountRegister, first + 2), first);
+
+  ASSERT_EQ(modbus_write_register(ctx, kSetpointRegister, 21), 1) << modbus_strerror(errno);
+  EXPECT_EQ(awaitRegister(ctx, kDoubledRegister, 42), 42);
+  uint16_t values[] = {50}, readBack[2] = {};
+  ASSERT_EQ(modbus_write_and_read_registers(ctx, kSetpointRegister, 1, values, kSetpointRegister, 2, readBack), 2);
+  EXPECT_EQ(readBack[0], 50);
+  EXPECT_EQ(awaitRegister(ctx, kDoubledRegister, 100), 100);
+  ASSERT_EQ(modbus_write_registers(ctx, kSetpointRegister, 1, values), 1);
+
+  // Coil 8 (%QX1.0) is not written by the program, so it keeps what the client wrote.
+  ASSERT_EQ(modbus_write_bit(ctx, 8, 1), 1);
+  uint8_t data[] = {1, 0, 1};
+  ASSERT_EQ(modbus_write_bits(ctx, 9, 3, data), 3);
+  uint8_t back[4] = {};
+  ASSERT_EQ(modbus_read_bits(ctx, 8, 4, back), 4);
+  EXPECT_EQ(back[0], 1);
+  EXPECT_EQ(back[1], 1);
+  EXPECT_EQ(back[2], 0);
+  EXPECT_EQ(back[3], 1);
+
+  uint16_t none = 0;
+  EXPECT_EQ(modbus_read_registers(ctx, 600, 1, &none), -1);
+  EXPECT_EQ(errno, EMBXILADD);
+  EXPECT_EQ(modbus_read_input_registers(ctx, 60000, 1, &none), -1);
+  EXPECT_EQ(errno, EMBXILADD);
+}
+
+TEST_F(ModbusE2e, ManyClientsAndAbruptDisconnectsDoNotStopTheServer) {
+  std::vector<modbus_t*> clients;
+  for (int i = 0; i < 8; ++i) {
+    clients.push_back(connect());
+    ASSERT_NE(clients.back(), nullptr);
+  }
+  // A client that sends half a frame and resets the connection, and one that sends garbage.
+  for (const std::vector<uint8_t>& bytes : {std::vector<uint8_t>{0, 1, 0, 0, 0, 6, 1, 3},
+                                            std::vector<uint8_t>{'G', 'E', 'T', ' ', '/', '\r', '\n'}}) {
+    int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_port = htons(static_cast<uint16_t>(port_));
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ASSERT_EQ(::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr), 0);
+    ASSERT_EQ(::send(fd, bytes.data(), bytes.size(), MSG_NOSIGNAL), static_cast<ssize_t>(bytes.size()));
+    linger reset{1, 0};
+    ::setsockopt(fd, SOL_SOCKET, SO_LINGER, &reset, sizeof reset);
+    ::close(fd);
+  }
+  std::vector<std::thread> threads;
+  std::vector<int> ok(clients.size(), 0);
+  for (size_t i = 0; i < clients.size(); ++i)
+    threads.emplace_back([&, i] {
+      uint16_t regs[3];
+      for (int k = 0; k < 50; ++k) ok[i] += modbus_read_registers(clients[i], 0, 3, regs) == 3;
+    });
+  for (auto& t : threads) t.join();
+  for (size_t i = 0; i < clients.size(); ++i) EXPECT_EQ(ok[i], 50) << "client " << i;
+  // One more client after all that still gets served.
+  modbus_t* late = connect();
+  ASSERT_NE(late, nullptr);
+  uint16_t v = 0;
+  EXPECT_EQ(modbus_read_registers(late, kSetpointRegister, 1, &v), 1);
+}
+
+// Runs a shell command; its exit status, with stdout and stderr in `out`.
+int shell(const std::string& command, std::string& out) {
+  FILE* p = ::popen((command + " 2>&1").c_str(), "r");
+  if (!p) return -1;
+  char buf[512];
+  size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  int status = ::pclose(p);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST_F(ModbusE2e, MbpollReadsAndWritesEveryTable) {
+  if (::access("/usr/bin/mbpoll", X_OK) != 0) {
+    if (const char* require = std::getenv("VIRTCOM_REQUIRE_MBPOLL"); require && std::string(require) == "1")
+      FAIL() << "mbpoll is not installed (apt-get install mbpoll) and VIRTCOM_REQUIRE_MBPOLL=1";
+    GTEST_SKIP() << "mbpoll is not installed";
+  }
+  // -0: PDU addresses (0-based) as in docs/modbus.md; -1: poll once; -o: timeout in seconds.
+  const std::string mbpoll = "/usr/bin/mbpoll -m tcp -a 1 -0 -1 -o 5 -p " + std::to_string(port_);
+  std::string out;
+  ASSERT_EQ(shell(mbpoll + " -t 4 -r 1024 127.0.0.1 21", out), 0) << out;  // write %MW0
+  EXPECT_NE(out.find("Written 1 references"), std::string::npos) << out;
+  modbus_t* ctx = connect();
+  ASSERT_NE(ctx, nullptr);
+  EXPECT_EQ(awaitRegister(ctx, kDoubledRegister, 42), 42);
+  out.clear();
+  ASSERT_EQ(shell(mbpoll + " -t 4 -r 2 127.0.0.1", out), 0) << out;  // holding: %QW2
+  EXPECT_NE(out.find("[2]: \t42"), std::string::npos) << out;
+  out.clear();
+  ASSERT_EQ(shell(mbpoll + " -t 3 -r 1 127.0.0.1", out), 0) << out;  // input register: %IW1
+  EXPECT_NE(out.find("[1]: \t7"), std::string::npos) << out;
+  out.clear();
+  ASSERT_EQ(shell(mbpoll + " -t 0 -r 1 127.0.0.1", out), 0) << out;  // coil: %QX0.1
+  EXPECT_NE(out.find("[1]: \t1"), std::string::npos) << out;
+  out.clear();
+  ASSERT_EQ(shell(mbpoll + " -t 1 -r 0 127.0.0.1", out), 0) << out;  // discrete input: %IX0.0
+  EXPECT_NE(out.find("[0]: \t0"), std::string::npos) << out;
+  out.clear();
+  ASSERT_EQ(shell(mbpoll + " -t 0 -r 12 127.0.0.1 1", out), 0) << out;  // write coil %QX1.4
+  out.clear();
+  ASSERT_EQ(shell(mbpoll + " -t 0 -r 12 127.0.0.1", out), 0) << out;
+  EXPECT_NE(out.find("[12]: \t1"), std::string::npos) << out;
+  out.clear();
+  EXPECT_NE(shell(mbpoll + " -t 4 -r 600 127.0.0.1", out), 0) << out;
+  EXPECT_NE(out.find("Illegal data address"), std::string::npos) << out;
+}
+
+}  // namespace

@@ -8,7 +8,7 @@ CMAKE_GEN  := -G Ninja
 
 APT_PACKAGES := build-essential cmake ninja-build g++ clang libclang-rt-14-dev \
                 libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
-                libyaml-cpp-dev nlohmann-json3-dev chromium
+                libyaml-cpp-dev nlohmann-json3-dev chromium libmodbus-dev mbpoll pkg-config
 
 .PHONY: all deps build test demo bench fuzz clean
 
@@ -35,7 +35,7 @@ test: deps
 	@cmake -S . -B $(FUZZBUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DVIRTCOM_FUZZ_ONLY=ON >/dev/null
 	@cmake --build $(FUZZBUILD) -j $(JOBS)
-	@cd $(TESTBUILD) && FUZZ_BUILD_DIR=$(abspath $(FUZZBUILD)) VIRTCOM_REQUIRE_BROWSER=1 \
+	@cd $(TESTBUILD) && FUZZ_BUILD_DIR=$(abspath $(FUZZBUILD)) VIRTCOM_REQUIRE_BROWSER=1 VIRTCOM_REQUIRE_MBPOLL=1 \
 	  ctest --output-on-failure -j $(JOBS)
 
 demo: build

@@ -1,0 +1,295 @@
+// End-to-end tests of `virtcom run`: the built binary (VIRTCOM_EXE) simulates the gearbox
+// example (examples/gearbox-cell) or a cell in tests/e2e/data/cells and is checked on its exit
+// code, output and report files, as a user sees them. The child runs in tests/e2e/data, so
+// diagnostics show short relative names; report files go to a per-test temporary folder.
+//
+// The HTML report test also screenshots the page in headless Chromium when /usr/bin/chromium
+// exists (skipped otherwise; with VIRTCOM_REQUIRE_BROWSER=1, as `make test` sets, a missing
+// browser fails the test instead).
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* const kExe = VIRTCOM_EXE;
+const char* const kDataDir = VIRTCOM_E2E_DATA;
+const std::string kGearbox = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell/cell.yaml";
+const std::string kGoldenDir = std::string(VIRTCOM_SOURCE_DIR) + "/tests/golden/cells";
+const char* const kChromium = "/usr/bin/chromium";
+
+struct RunResult {
+  int exitCode = -1;  // the process's exit status; 128 + signal if it was killed
+  std::string out;
+  std::string err;
+};
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+std::string show(const RunResult& r) {
+  return "exit " + std::to_string(r.exitCode) + "\n--- stdout ---\n" + r.out + "--- stderr ---\n" + r.err;
+}
+
+class RunCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    work_ = fs::path(::testing::TempDir()) / ("virtcom_run_e2e_" + std::string(info->test_suite_name()) + "_" +
+                                              info->name() + "_" + std::to_string(::getpid()));
+    fs::remove_all(work_);
+    fs::create_directories(work_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(work_, ec);
+  }
+
+  // Runs `program args...` in the data folder and waits for it.
+  RunResult exec(const std::string& program, const std::vector<std::string>& args) {
+    const std::string outPath = (work_ / "stdout.txt").string();
+    const std::string errPath = (work_ / "stderr.txt").string();
+    std::vector<std::string> all{program};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = ::fork();
+    if (pid < 0) {
+      ADD_FAILURE() << "fork failed";
+      return {};
+    }
+    if (pid == 0) {  // child: only async-signal-safe calls from here on
+      int in = ::open("/dev/null", O_RDONLY);
+      int out = ::open(outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      int err = ::open(errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (in < 0 || out < 0 || err < 0 || ::chdir(kDataDir) != 0) ::_exit(125);
+      ::dup2(in, 0);
+      ::dup2(out, 1);
+      ::dup2(err, 2);
+      ::execv(program.c_str(), argv.data());
+      ::_exit(127);
+    }
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0) {
+    }
+    RunResult r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    r.out = readFile(outPath);
+    r.err = readFile(errPath);
+    return r;
+  }
+  RunResult run(const std::vector<std::string>& args) { return exec(kExe, args); }
+  std::string out(const std::string& name) const { return (work_ / name).string(); }
+
+  fs::path work_;
+};
+
+class RunHelp : public RunCommand {};
+
+TEST_F(RunHelp, ListsEveryOption) {
+  RunResult r = run({"run", "--help"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(contains(r.out, "Simulate a cell file")) << show(r);
+  for (const char* option : {"cell", "--report", "--json", "--vcd", "--csv", "--until", "--time-limit", "--set",
+                             "--signal", "--speed", "--quiet"})
+    EXPECT_TRUE(contains(r.out, option)) << option << "\n" << show(r);
+  EXPECT_EQ(r.err, "");
+}
+
+TEST_F(RunHelp, TopLevelHelpListsRun) {
+  RunResult r = run({"--help"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(contains(r.out, "run")) << show(r);
+}
+
+class RunExit : public RunCommand {};
+
+// Sequence 3 completes: exit 0, the summary on stdout, and the JSON report is the golden one
+// (tests/golden/cells, checked against the library in tests/unit/sim/gearbox_golden_test.cpp).
+TEST_F(RunExit, Sequence3CompletesAndWritesEveryReport) {
+  RunResult r = run({"run", kGearbox, "--set", "MAIN.sequence=3", "--json", out("seq3.json"), "--vcd", out("seq3.vcd"),
+                     "--csv", out("seq3.csv")});
+  ASSERT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.err, "");
+  EXPECT_TRUE(contains(r.out, "Run ended     completed: 1 cycle(s) completed")) << show(r);
+  EXPECT_TRUE(contains(r.out, "Collisions    0")) << show(r);
+  for (const char* device : {"Robot1", "Robot2", "Press", "AxisX", "AxisY"})
+    EXPECT_TRUE(contains(r.out, device)) << device << "\n" << show(r);
+  EXPECT_EQ(readFile(out("seq3.json")), readFile(kGoldenDir + "/gearbox-seq3.json"));
+
+  // VCD (IEEE 1364 §18): header sections first, 1 ns timescale, then the definitions. The
+  // writer leaves out the optional $date on purpose (report/waveform.hpp: deterministic output).
+  const std::string vcd = readFile(out("seq3.vcd"));
+  EXPECT_EQ(vcd.rfind("$version virtcom $end\n$timescale 1 ns $end\n", 0), 0u) << vcd.substr(0, 200);
+  EXPECT_FALSE(contains(vcd, "$date"));
+  EXPECT_TRUE(contains(vcd, "$scope module Robot1 $end")) << vcd.substr(0, 400);
+  EXPECT_TRUE(contains(vcd, "$enddefinitions $end\n"));
+  EXPECT_TRUE(contains(vcd, "#0\n$dumpvars\n"));
+
+  // CSV: header, then every signal's initial value at time 0
+  const std::string csv = readFile(out("seq3.csv"));
+  EXPECT_EQ(csv.rfind("time_s,signal,value\n0.000000000,Robot1.procedureNumber,0\n0.000000000,Robot1.execute,0\n", 0),
+            0u)
+      << csv.substr(0, 200);
+  EXPECT_TRUE(contains(csv, ",MAIN.jobsFinished,")) << "run.record adds MAIN.jobsFinished";
+}
+
+TEST_F(RunExit, CollisionIsExit3) {
+  RunResult r = run({"run", kGearbox, "--set", "MAIN.sequence=4"});
+  EXPECT_EQ(r.exitCode, 3) << show(r);
+  EXPECT_TRUE(contains(r.out, "Run ended     collision: robots collided in a shared zone")) << show(r);
+  EXPECT_TRUE(contains(r.out, "zone SharedTable: Robot1 (PlaceBearing) <-> Robot2 (ScrewStud)")) << show(r);
+}
+
+TEST_F(RunExit, TimeLimitIsExit3) {
+  RunResult r = run({"run", kGearbox, "--set", "MAIN.sequence=3", "--time-limit", "5s", "--json", out("limit.json")});
+  EXPECT_EQ(r.exitCode, 3) << show(r);
+  EXPECT_TRUE(contains(r.out, "Run ended     time limit reached")) << show(r);
+  EXPECT_TRUE(contains(r.out, "Run time      5.000 s")) << show(r);
+  const std::string json = readFile(out("limit.json"));
+  EXPECT_TRUE(contains(json, "\"end\": \"time_limit\"")) << json.substr(0, 400);
+  EXPECT_TRUE(contains(json, "\"duration_s\": 5.0,")) << json.substr(0, 400);
+}
+
+TEST_F(RunExit, BrokenCellFileIsExit1WithEveryMistake) {
+  RunResult r = run({"run", "cells/broken.yaml", "--json", out("never.json")});
+  EXPECT_EQ(r.exitCode, 1) << show(r);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err,
+            "cells/broken.yaml:11:5: error[C011]: unknown key 'busy_powr' in device (expected one of: name, type, "
+            "wiring, faults, model, description, command_port, idle_power, busy_power, commands, group)\n"
+            "      busy_powr: 100 W\n"
+            "      ^\n"
+            "cells/broken.yaml:13:35: error[C010]: 'duration': '1' needs a unit: expected a duration (e.g. 2 s, 150 ms)\n"
+            "        1: { name: Close, duration: 1 }\n"
+            "                                    ^\n"
+            "2 error(s), 0 warning(s)\n");
+  EXPECT_FALSE(fs::exists(out("never.json")));
+}
+
+TEST_F(RunExit, MissingCellFileIsAUsageError) {
+  RunResult r = run({"run", "cells/nowhere.yaml"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "cells/nowhere.yaml")) << show(r);
+}
+
+TEST_F(RunExit, BadUntilAndSetAreUsageErrors) {
+  RunResult r = run({"run", kGearbox, "--until", "MAIN.nothing >= 5"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "error[C020]: condition 'MAIN.nothing >= 5': the PLC has no variable 'MAIN.nothing'"))
+      << show(r);
+  EXPECT_EQ(r.out, "");
+  r = run({"run", kGearbox, "--set", "MAIN.sequense=3"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "error: --set unknown variable 'MAIN.sequense'")) << show(r);
+  r = run({"run", kGearbox, "--time-limit", "soon"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "--time-limit: 'soon' is not a duration")) << show(r);
+}
+
+TEST_F(RunExit, UntilStopsEarly) {
+  RunResult r = run({"run", kGearbox, "--set", "MAIN.sequence=3", "--until", "MAIN.jobsFinished >= 5", "--csv",
+                     out("until.csv")});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(contains(r.out, "Run ended     completed: 'MAIN.jobsFinished >= 5' became true")) << show(r);
+  EXPECT_TRUE(contains(r.out, "0 cycles completed")) << show(r);
+  // the last recorded value of MAIN.jobsFinished is 5: the run stopped at the scan that made it 5
+  const std::string csv = readFile(out("until.csv"));
+  size_t last = csv.rfind(",MAIN.jobsFinished,");
+  ASSERT_NE(last, std::string::npos);
+  EXPECT_EQ(csv.substr(last, csv.find('\n', last) - last), ",MAIN.jobsFinished,5");
+  // and it is the last change of the run
+  EXPECT_EQ(csv.find('\n', last), csv.size() - 1) << csv.substr(last > 300 ? last - 300 : 0);
+}
+
+TEST_F(RunExit, QuietPrintsNothing) {
+  RunResult r = run({"run", kGearbox, "--set", "MAIN.sequence=4", "--quiet"});
+  EXPECT_EQ(r.exitCode, 3) << show(r);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, "");
+}
+
+// PNG (ISO/IEC 15948 §5.2, §11.2.2): 8-byte signature, then the IHDR chunk: 4-byte big-endian
+// length (13), "IHDR", width and height as 4-byte big-endian integers.
+struct PngSize {
+  bool ok = false;
+  uint32_t width = 0, height = 0;
+};
+
+PngSize pngSize(const std::string& bytes) {
+  static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  PngSize s;
+  if (bytes.size() < 24) return s;
+  for (size_t i = 0; i < 8; ++i)
+    if (static_cast<unsigned char>(bytes[i]) != kSignature[i]) return s;
+  if (bytes.compare(12, 4, "IHDR") != 0) return s;
+  auto be32 = [&](size_t at) {
+    uint32_t v = 0;
+    for (size_t i = 0; i < 4; ++i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
+    return v;
+  };
+  if (be32(8) != 13) return s;
+  s.width = be32(16);
+  s.height = be32(20);
+  s.ok = true;
+  return s;
+}
+
+class RunReport : public RunCommand {};
+
+TEST_F(RunReport, GanttChartRendersInAHeadlessBrowser) {
+  const std::string html = out("report.html");
+  RunResult r = run({"run", kGearbox, "--set", "MAIN.sequence=3", "--report", html, "--signal", "Robot1.busy", "--signal",
+                     "Robot2.busy", "--quiet"});
+  ASSERT_EQ(r.exitCode, 0) << show(r);
+  const std::string page = readFile(html);
+  EXPECT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_TRUE(contains(page, "class=\"chart gantt\"")) << "no Gantt chart";
+  EXPECT_TRUE(contains(page, "Energy per robot"));
+  EXPECT_TRUE(contains(page, "Robot1.busy"));
+  EXPECT_TRUE(contains(page, "Robot2.busy"));
+  EXPECT_FALSE(contains(page, "<script")) << "the report is static HTML";
+
+  if (::access(kChromium, X_OK) != 0) {
+    const char* require = std::getenv("VIRTCOM_REQUIRE_BROWSER");
+    if (require != nullptr && std::string(require) == "1")
+      FAIL() << kChromium << " is not installed but VIRTCOM_REQUIRE_BROWSER=1: install chromium (the Makefile's "
+             << "package list has it) to check the report in a real browser";
+    GTEST_SKIP() << kChromium << " is not installed; the screenshot check is skipped";
+  }
+  const std::string png = out("report.png");
+  const std::string profile = out("chromium-profile");
+  fs::create_directories(profile);
+  RunResult shot = exec("/usr/bin/timeout",
+                        {"120", kChromium, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+                         "--no-first-run", "--disable-background-networking", "--disable-component-update",
+                         "--disable-sync", "--user-data-dir=" + profile, "--screenshot=" + png,
+                         "--window-size=1400,1000", "file://" + html});
+  ASSERT_TRUE(fs::exists(png)) << "chromium wrote no screenshot\n" << show(shot);
+  const std::string bytes = readFile(png);
+  EXPECT_GT(bytes.size(), 20u * 1024) << "a screenshot this small is a blank page";
+  PngSize size = pngSize(bytes);
+  ASSERT_TRUE(size.ok) << "not a PNG";
+  EXPECT_EQ(size.width, 1400u);
+  EXPECT_EQ(size.height, 1000u);
+}
+
+}  // namespace

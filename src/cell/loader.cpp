@@ -1,4 +1,5 @@
 // Loading a cell file: YAML -> checked Cell with compiled PLC program, devices and wiring.
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -47,8 +48,11 @@ class Loader {
     if (!parseYaml(path, text, sources_, diags_, root)) return nullptr;
     ConfigReader top(root, diags_, "the cell file");
     cell->name = top.optString("name", std::filesystem::path(path).parent_path().filename().string());
-    if (!compilePlc(*cell, top)) return nullptr;
-    readRun(*cell, top);
+    // Every part is checked even when an earlier one failed, so one run reports all mistakes;
+    // without a compiled PLC program the run settings and wiring cannot be checked.
+    bool plcOk = compilePlc(*cell, top);
+    if (plcOk) readRun(*cell, top);
+    else top.child("run");  // known key; its conditions need the compiled program
     readWorld(*cell, top);
     readDevices(*cell, top);
     top.rejectUnknownKeys();
@@ -80,6 +84,9 @@ class Loader {
       }
     }
     cell.run.plcCycleNs = static_cast<int64_t>(plc.optQuantity("cycle_time", Dimension::Time, 0.01) * 1e9 + 0.5);
+    if (plc.ok() && cell.run.plcCycleNs < 1000)
+      plc.error(plc.node().find("cycle_time") ? plc.node().find("cycle_time")->loc() : plcNode->loc(),
+                "'cycle_time' must be at least 1 us");
     plc.rejectUnknownKeys();
     if (diags_.hasErrors()) return false;
     cell.module = st::compileProgram(inputs, sources_, diags_);
@@ -95,6 +102,7 @@ class Loader {
     ConfigReader run(*runNode, diags_, "'run'");
     RunSettings& r = cell.run;
     r.timeLimitNs = static_cast<int64_t>(run.optQuantity("time_limit", Dimension::Time, 600.0) * 1e9 + 0.5);
+    if (r.timeLimitNs <= 0) run.error(runNode->find("time_limit")->loc(), "'time_limit' must be positive");
     if (const ConfigNode* u = run.child("until")) r.until = parseCondition(*cell.module, u->scalar(), u->loc(), diags_);
     if (const ConfigNode* c = run.child("cycle_done")) {
       r.cycleDoneVar = c->scalar();
@@ -102,13 +110,26 @@ class Loader {
       if (!ref || cell.module->types[ref->type].elem != ElemType::Bool || cell.module->types[ref->type].kind != bc::TypeKind::Elementary)
         run.error(c->loc(), "'cycle_done' must name a BOOL PLC variable; '" + r.cycleDoneVar + "' is not one");
     }
-    r.cycles = static_cast<uint32_t>(run.optInt("cycles", 1));
+    int64_t cycles = run.optInt("cycles", 1);
+    if (cycles < 1 || cycles > 1'000'000) run.error(runNode->find("cycles")->loc(), "'cycles' must be 1..1000000");
+    r.cycles = static_cast<uint32_t>(std::clamp<int64_t>(cycles, 1, 1'000'000));
     r.stopOnCollision = run.optBool("stop_on_collision", true);
     r.stopOnDeviceError = run.optBool("stop_on_device_error", true);
     if (const ConfigNode* rec = run.child("record")) {
       for (const auto& item : rec->items()) {
-        if (!bc::resolveVariable(*cell.module, item.scalar())) run.error(item.loc(), "'record': no PLC variable '" + item.scalar() + "'");
-        else r.recordVars.push_back(item.scalar());
+        auto ref = bc::resolveVariable(*cell.module, item.scalar());
+        if (!ref) {
+          run.error(item.loc(), "'record': no PLC variable '" + item.scalar() + "'");
+          continue;
+        }
+        const bc::TypeDesc& t = cell.module->types[ref->type];
+        if (t.kind != bc::TypeKind::Elementary && t.kind != bc::TypeKind::Enum) {
+          run.error(item.loc(), "'record': '" + item.scalar() + "' is a " + t.name + "; record its elementary members instead");
+          continue;
+        }
+        // a variable listed twice is recorded once
+        if (std::find(r.recordVars.begin(), r.recordVars.end(), item.scalar()) == r.recordVars.end())
+          r.recordVars.push_back(item.scalar());
       }
     }
     run.rejectUnknownKeys();
@@ -174,7 +195,7 @@ class Loader {
   void bindPorts(Cell& cell, plant::Device& d, const ConfigNode* wiring, const ConfigNode& deviceNode) {
     const auto& ports = d.ports();
     for (size_t i = 0; i < ports.size(); ++i) d.bindPort(i, cell.bus.add(d.name() + "." + ports[i].name, ports[i].type));
-    if (!wiring) return;  // an unwired device still simulates (e.g. driven only by faults or facts)
+    if (!wiring || !cell.module) return;  // an unwired device still simulates (e.g. driven only by faults or facts)
     if (wiring->kind() == ConfigNode::Kind::Scalar) {
       // Prefix form: every port P is wired to PREFIX.P if that PLC variable exists.
       size_t wired = 0;

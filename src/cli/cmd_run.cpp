@@ -149,7 +149,7 @@ void addRunCommand(CLI::App& app, std::function<void(int)> setExit) {
   cmd->add_option("--csv", o->csv, "write every signal change as CSV to this file");
   cmd->add_option("--until", o->until, "stop when a PLC condition holds, e.g. \"MAIN.partsDone >= 3\"");
   cmd->add_option("--time-limit", o->timeLimit, "virtual time limit, e.g. 300s (overrides run.time_limit)");
-  cmd->add_option("--set", o->sets, "NAME=VALUE set in the PLC after its first scan (repeatable), e.g. MAIN.sequence=3");
+  cmd->add_option("--set", o->sets, "NAME=VALUE set in the PLC before its first scan (repeatable), e.g. MAIN.sequence=3");
   cmd->add_option("--signal", o->signals, "signal shown in the report's timeline (repeatable), e.g. Robot1.busy");
   cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible")
       ->check(CLI::PositiveNumber);

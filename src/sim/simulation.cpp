@@ -55,11 +55,7 @@ void Simulation::finish(RunEnd end, std::string message) {
   Trace& trace = cell_.trace;
   trace.end = end;
   trace.endMessage = std::move(message);
-  trace.endNs = nowNs_;
-  if (trace.cyclesCompleted == 0) {
-    trace.cycleStartNs = 0;
-    trace.cycleEndNs = nowNs_;
-  }
+  trace.endNs = nowNs_;  // without a completed cycle the window stays empty: reports use the whole run
   for (auto& d : cell_.devices) d->finish(nowNs_, trace);
 }
 

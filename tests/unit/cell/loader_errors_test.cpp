@@ -21,7 +21,7 @@ class LoaderErrors : public CellFiles {
   std::vector<std::string> fails(const std::string& text) {
     write("cell.yaml", text);
     auto cell = load();
-    EXPECT_EQ(cell, nullptr) << "the broken cell loaded";
+    EXPECT_TRUE(cell == nullptr) << "the broken cell loaded";
     EXPECT_EQ(diags_.errorCount(), diags_.all().size());
     return errors();
   }
@@ -316,12 +316,8 @@ TEST_F(LoaderErrors, AllMistakesOfOneFileInOnePass) {
                           "run, zones, world, devices)"));
 }
 
-// BUG: a mistake in the PLC part (no `plc:`, an unreadable source, a bad `cycle_time`, an ST
-// compile error) stops the load in Loader::compilePlc before the devices are read, so the cell
-// file's other mistakes (here an unknown device type) only show up after the PLC is fixed —
-// against docs/cell-file.md "all mistakes of a file are reported in one run". The device
-// section can be checked without a compiled program (only wiring needs it).
-TEST_F(LoaderErrors, DISABLED_DeviceMistakesAreReportedEvenWhenThePlcPartFails) {
+// Regression test (found by the cell/sim test suite).
+TEST_F(LoaderErrors, DeviceMistakesAreReportedEvenWhenThePlcPartFails) {
   write("broken.st", "PROGRAM MAIN\nx := 1;\nEND_PROGRAM\n");
   const std::string devices = "devices:\n  - name: Gizmo\n    type: teleporter\n";
   const std::string unknownType =
@@ -364,6 +360,42 @@ TEST_F(LoaderErrors, DISABLED_WiringOfADeviceWithAParameterMistakeIsStillChecked
                     "      done: MAIN.dnoe\n"),
               ElementsAre("cell.yaml:7:17: error[C010]: 'busy_power': '5 mm' is not a power (e.g. 150 W)",
                           "cell.yaml:11:13: error[C032]: the PLC has no variable 'MAIN.dnoe' to wire to Clamp.done"));
+}
+
+// Regression test (found by the cell/sim test suite).
+TEST_F(LoaderErrors, RecordOfAStructureIsAnError) {
+  auto found = fails("name: x\n"
+                     "plc:\n"
+                     "  sources: [main.st]\n"
+                     "run:\n"
+                     "  record: [MAIN.count, MAIN.Clamp]\n"
+                     "devices: []\n");
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].rfind("cell.yaml:5:24: error[C0", 0), 0u) << found[0];
+  EXPECT_NE(found[0].find("'MAIN.Clamp'"), std::string::npos) << found[0];
+}
+
+// Regression test (found by the cell/sim test suite).
+TEST_F(LoaderErrors, NonPositiveCycleTimeTimeLimitAndCyclesAreErrors) {
+  struct Case {
+    const char* plc;
+    const char* run;
+    const char* at;
+    const char* key;
+  };
+  for (const Case& k : {Case{"  cycle_time: 0 s\n", "", "cell.yaml:4:15: error[C0", "'cycle_time'"},
+                        Case{"  cycle_time: -10 ms\n", "", "cell.yaml:4:15: error[C0", "'cycle_time'"},
+                        Case{"  cycle_time: 0.1 ns\n", "", "cell.yaml:4:15: error[C0", "'cycle_time'"},
+                        Case{"", "  time_limit: -5 s\n", "cell.yaml:5:15: error[C0", "'time_limit'"},
+                        Case{"", "  cycles: -1\n", "cell.yaml:5:11: error[C0", "'cycles'"}}) {
+    SCOPED_TRACE(std::string(k.plc) + k.run);
+    auto found = fails(std::string("name: x\nplc:\n  sources: [main.st]\n") + k.plc + "run:\n" + k.run +
+                       "  cycle_done: MAIN.finished\ndevices: []\n");
+    EXPECT_EQ(found.size(), 1u);
+    if (found.empty()) continue;
+    EXPECT_EQ(found[0].rfind(k.at, 0), 0u) << found[0];
+    EXPECT_NE(found[0].find(k.key), std::string::npos) << found[0];
+  }
 }
 
 }  // namespace

@@ -174,14 +174,8 @@ TEST_F(TinyCell, TimeLimitOfTheCell) {
   EXPECT_EQ(r->kpis().devices[0].running, 1u);
 }
 
-// BUG: a run that ends before its first `cycle_done` edge (time limit, collision, fault) has
-// no measured cycle, but Simulation::finish stores the whole run as cycle markers
-// (cycleStartNs = 0, cycleEndNs = endNs) and computeKpis takes any cycleEndNs > cycleStartNs
-// as markers, so the JSON says "cycle": {"measured": true, "time_s": <run length>} and the
-// summary prints "measured cycle 0.000 s .. 0.500 s, 0 cycles completed" (docs/report.md:
-// `cycle.measured` is "true when the run had cycle markers"). Gearbox sequence 4 (collision)
-// reports a 43 s "cycle time" this way.
-TEST_F(TinyCell, DISABLED_RunWithoutACompletedCycleHasNoMeasuredCycle) {
+// Regression test (found by the cell/sim test suite).
+TEST_F(TinyCell, RunWithoutACompletedCycleHasNoMeasuredCycle) {
   auto r = load("  cycle_done: MAIN.finished\n  time_limit: 500 ms\n");
   ASSERT_NE(r, nullptr);
   EXPECT_EQ(r->run(), RunEnd::TimeLimit);
@@ -269,6 +263,15 @@ TEST_F(TinyCell, SingleSteppingGivesTheSameTraceAsRun) {
   EXPECT_EQ(b->trace().end, RunEnd::Completed);
   EXPECT_EQ(b->json(), a->json());
   EXPECT_EQ(b->csv(), a->csv());
+}
+
+TEST_F(TinyCell, VariableRecordedTwiceIsOneSignal) {
+  auto r = load("  cycle_done: MAIN.finished\n  record: [MAIN.jobs, MAIN.jobs]\n");
+  ASSERT_NE(r, nullptr);
+  r->run();
+  size_t named = 0;
+  for (const auto& s : r->trace().signals) named += s.name == "MAIN.jobs";
+  EXPECT_EQ(named, 1u);
 }
 
 // Two robots whose procedures both go to a location in zone Shared. Robot1 moves there at once;

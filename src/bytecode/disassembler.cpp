@@ -34,6 +34,7 @@ std::string smallOperand(Operand role, uint16_t v) {
     case Operand::None: return {};
     case Operand::Reg: return "r" + std::to_string(v);
     case Operand::SImm: return std::to_string(static_cast<int16_t>(v));
+    case Operand::Index: return "x" + std::to_string(v);
     default: return std::to_string(v);
   }
 }
@@ -50,6 +51,9 @@ std::string wideOperand(const Module& m, uint32_t pc, const Instr& ins, WideOper
     case WideOperand::Native:
       return bx < static_cast<uint32_t>(Native::Count_) ? std::string(nativeName(static_cast<Native>(bx)))
                                                         : "native#" + std::to_string(bx);
+    case WideOperand::NativeFb:
+      return bx < static_cast<uint32_t>(NativeFb::Count_) ? std::string(nativeFbName(static_cast<NativeFb>(bx)))
+                                                          : "fb#" + std::to_string(bx);
     case WideOperand::Jump: return pcText(int64_t{pc} + 1 + ins.sbx());
     case WideOperand::Fault:
       return std::to_string(bx) + " (" +

@@ -1,5 +1,8 @@
 #include "bytecode/instruction.hpp"
 
+#include <array>
+#include <cstdint>
+
 namespace virtcom::bc {
 
 namespace {
@@ -28,7 +31,38 @@ constexpr unsigned kNativeArity[] = {
 #undef X
 };
 
+constexpr std::string_view kNativeFbNames[] = {
+#define FB(name) #name,
+#define M(fb, member, offset, ctype)
+#include "bytecode/native_fbs.def"
+#undef M
+#undef FB
+};
+
+// All members of all native FBs, grouped by FB in table order.
+constexpr NativeFbMember kNativeFbMembers[] = {
+#define FB(name)
+#define M(fb, member, offset, ctype) {#member, offset, sizeof(ctype)},
+#include "bytecode/native_fbs.def"
+#undef M
+#undef FB
+};
+
+// Index of each FB's first member in kNativeFbMembers, plus the end.
+constexpr auto kNativeFbFirst = [] {
+  std::array<uint32_t, static_cast<size_t>(NativeFb::Count_) + 1> first{};
+  uint32_t fb = 0, members = 0;
+#define FB(name) first[fb++] = members;
+#define M(fb, member, offset, ctype) ++members;
+#include "bytecode/native_fbs.def"
+#undef M
+#undef FB
+  first[fb] = members;
+  return first;
+}();
+
 static_assert(std::size(kOpNames) == static_cast<size_t>(Op::Count_));
+static_assert(std::size(kNativeFbNames) == static_cast<size_t>(NativeFb::Count_));
 static_assert(std::size(kNativeNames) == static_cast<size_t>(Native::Count_));
 
 }  // namespace
@@ -51,6 +85,17 @@ std::string_view nativeName(Native n) {
 unsigned nativeArity(Native n) {
   auto i = static_cast<size_t>(n);
   return i < std::size(kNativeArity) ? kNativeArity[i] : 0;
+}
+
+std::string_view nativeFbName(NativeFb f) {
+  auto i = static_cast<size_t>(f);
+  return i < std::size(kNativeFbNames) ? kNativeFbNames[i] : std::string_view("?");
+}
+
+std::span<const NativeFbMember> nativeFbMembers(NativeFb f) {
+  auto i = static_cast<size_t>(f);
+  if (i >= std::size(kNativeFbNames)) return {};
+  return std::span(kNativeFbMembers).subspan(kNativeFbFirst[i], kNativeFbFirst[i + 1] - kNativeFbFirst[i]);
 }
 
 // A switch without default: adding a FaultKind without a text is a -Wswitch warning.

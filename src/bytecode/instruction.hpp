@@ -1,6 +1,7 @@
 #pragma once
 // Opcodes and the 8-byte instruction word; the layout is drawn in opcodes.def.
 #include <cstdint>
+#include <span>
 #include <string_view>
 
 namespace virtcom::bc {
@@ -38,10 +39,30 @@ enum class Native : uint16_t {
   Count_
 };
 
+// The standard FBs with a native implementation (CALLFB), in native_fbs.def order.
+enum class NativeFb : uint16_t {
+#define FB(name) name,
+#define M(fb, member, offset, ctype)
+#include "bytecode/native_fbs.def"
+#undef M
+#undef FB
+  Count_
+};
+
+// One instance member a native FB reads or writes.
+struct NativeFbMember {
+  std::string_view name;  // upper case, as in native_fbs.def
+  uint32_t offset;
+  uint32_t size;
+};
+
 std::string_view opName(Op op);
 Format opFormat(Op op);
 std::string_view nativeName(Native n);
 unsigned nativeArity(Native n);
+std::string_view nativeFbName(NativeFb f);
+// The members of `f` with their offsets and sizes (empty for an invalid f).
+std::span<const NativeFbMember> nativeFbMembers(NativeFb f);
 
 // Run-time fault kinds (TRAP's Bx, and what the VM reports).
 enum class FaultKind : uint8_t {

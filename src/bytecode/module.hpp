@@ -75,6 +75,14 @@ struct PouInfo {
   TypeId instanceType = kNoType;  // FB/PROGRAM instance layout
 };
 
+// One array dimension as INDEX sees it: an index i is valid if lo <= i < lo + count, and
+// selects the element (i - lo) * stride bytes after the start.
+struct IndexDesc {
+  int64_t lo = 0;
+  uint32_t count = 1;
+  uint32_t stride = 1;
+};
+
 // One entry per instruction that starts a statement (sorted by pc).
 struct LineEntry {
   uint32_t pc = 0;
@@ -112,6 +120,7 @@ struct ProcessArea {
 struct Module {
   std::vector<Instr> code;
   std::vector<uint64_t> constants;
+  std::vector<IndexDesc> indexes;  // INDEX's C
   std::vector<PouInfo> pous;
   std::vector<LineEntry> lines;
   std::vector<std::string> files;    // fileId -> path for LineEntry locations

@@ -12,6 +12,7 @@ constexpr OperandRoles wide(O a, W bx, uint8_t width = 0) { return {a, O::None, 
 constexpr OperandRoles kRRR = abc3(O::Reg, O::Reg, O::Reg);
 constexpr OperandRoles kRR = abc3(O::Reg, O::Reg, O::None);
 constexpr OperandRoles kRRImm = abc3(O::Reg, O::Reg, O::Imm);
+constexpr OperandRoles kRRSImm = abc3(O::Reg, O::Reg, O::SImm);
 }  // namespace
 
 // A switch without default: a new opcode without roles is a -Wswitch warning.
@@ -25,6 +26,7 @@ OperandRoles operandRoles(Op op) {
     case Op::LD_I8: case Op::LD_U8: case Op::LD_I16: case Op::LD_U16: case Op::LD_I32:
     case Op::LD_U32: case Op::LD_64: case Op::LD_F32:
     case Op::ST_8: case Op::ST_16: case Op::ST_32: case Op::ST_64: case Op::ST_F32: return kRRImm;
+    case Op::STK_8: case Op::STK_16: case Op::STK_32: case Op::STK_64: return abc3(O::SImm, O::Reg, O::Imm);
     case Op::LD_BIT: case Op::ST_BIT: return abc3(O::Reg, O::Reg, O::BitIndex);
     case Op::LDA_I8: case Op::LDA_U8: case Op::STA_8: return wide(O::Reg, W::Abs, 1);
     case Op::LDA_I16: case Op::LDA_U16: case Op::STA_16: return wide(O::Reg, W::Abs, 2);
@@ -32,11 +34,11 @@ OperandRoles operandRoles(Op op) {
       return wide(O::Reg, W::Abs, 4);
     case Op::LDA_64: case Op::STA_64: return wide(O::Reg, W::Abs, 8);
     case Op::COPY: return kRRR;
-    case Op::BOUND: return wide(O::Reg, W::Imm);
+    case Op::INDEX: return abc3(O::Reg, O::Reg, O::Index);
     case Op::ADD: case Op::SUB: case Op::MUL: case Op::DIV_I: case Op::MOD_I: case Op::DIV_U:
     case Op::MOD_U: return kRRR;
-    case Op::ADDI: return abc3(O::Reg, O::Reg, O::SImm);
-    case Op::MULI: return kRRImm;
+    case Op::ADDI: return kRRSImm;
+    case Op::DIVK: case Op::MODK: return abc3(O::Reg, O::Reg, O::Divisor);
     case Op::NEG: return kRR;
     case Op::SEXT: case Op::ZEXT: return abc3(O::Reg, O::Reg, O::BitCount);
     case Op::BAND: case Op::BOR: case Op::BXOR: return kRRR;
@@ -44,6 +46,7 @@ OperandRoles operandRoles(Op op) {
     case Op::SHL: case Op::SHR: return kRRR;
     case Op::EQ: case Op::NE: case Op::LT_I: case Op::LE_I: case Op::LT_U: case Op::LE_U:
     case Op::EQ_F: case Op::NE_F: case Op::LT_F: case Op::LE_F: return kRRR;
+    case Op::EQK: case Op::NEK: case Op::LTK: case Op::LEK: case Op::GTK: case Op::GEK: return kRRSImm;
     case Op::ADD_F: case Op::SUB_F: case Op::MUL_F: case Op::DIV_F: case Op::ADD_F32:
     case Op::SUB_F32: case Op::MUL_F32: case Op::DIV_F32: return kRRR;
     case Op::NEG_F: case Op::RND_F32: return kRR;
@@ -52,6 +55,7 @@ OperandRoles operandRoles(Op op) {
     case Op::JZ: case Op::JNZ: return wide(O::Reg, W::Jump);
     case Op::ENTER: case Op::CALL: return wide(O::Reg, W::Pou);
     case Op::CALLN: return wide(O::Reg, W::Native);
+    case Op::CALLFB: return wide(O::Reg, W::NativeFb);
     case Op::TRAP: return wide(O::None, W::Fault);
     case Op::Count_: break;
   }
@@ -211,6 +215,9 @@ class Verifier {
       case Operand::BitIndex: return v < 8 || failAt(pou, pc, "bit index " + std::to_string(v) + " above 7");
       case Operand::BitCount:
         return (v >= 1 && v <= 64) || failAt(pou, pc, "bit count " + std::to_string(v) + " not in 1..64");
+      case Operand::Divisor: return v != 0 || failAt(pou, pc, "divisor 0");
+      case Operand::Index:
+        return v < m_.indexes.size() || failAt(pou, pc, "index descriptor " + std::to_string(v) + " out of range");
       default: return true;
     }
   }
@@ -232,6 +239,9 @@ class Verifier {
           return failAt(pou, pc, "native index " + std::to_string(bx) + " out of range");
         return regOk(pou, pc, ins.a, std::max(1u, nativeArity(static_cast<Native>(bx))));
       }
+      case W::NativeFb:
+        return bx < static_cast<uint32_t>(NativeFb::Count_) ||
+               failAt(pou, pc, "native FB index " + std::to_string(bx) + " out of range");
       case W::Jump: {
         const int64_t target = int64_t{pc} + 1 + ins.sbx();
         if (target < p.codeStart || target >= int64_t{p.codeStart} + p.codeSize)

@@ -12,12 +12,14 @@ namespace virtcom::bc {
 enum class Operand : uint8_t {
   None,
   Reg,       // a register of the current window
-  Imm,       // an unsigned 16-bit immediate (offsets, MULI factor)
-  SImm,      // a signed 16-bit immediate (ADDI)
+  Imm,       // an unsigned 16-bit immediate (offsets)
+  SImm,      // a signed 16-bit immediate (ADDI, the K comparisons, the value of STK_*)
   BitIndex,  // 0..7 (LD_BIT / ST_BIT)
   BitCount,  // 1..64 (SEXT / ZEXT)
+  Divisor,   // 1..65535 (DIVK / MODK)
+  Index,     // an index into Module::indexes (INDEX)
 };
-enum class WideOperand : uint8_t { None, SImm, Imm, Const, Abs, Pou, Native, Jump, Fault };
+enum class WideOperand : uint8_t { None, SImm, Imm, Const, Abs, Pou, Native, NativeFb, Jump, Fault };
 
 struct OperandRoles {
   Operand a = Operand::None, b = Operand::None, c = Operand::None;

@@ -4,6 +4,7 @@
 // docs/cell-file.md describes the file format.
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "core/trace.hpp"
 #include "plant/device.hpp"
 #include "plant/world.hpp"
+#include "proto/modbus/signal_map.hpp"
 
 namespace virtcom::cell {
 
@@ -53,17 +55,38 @@ struct RunSettings {
   std::vector<std::string> recordVars;    // extra PLC variables recorded in the trace
 };
 
+// `plc: modbus:` — the cell's controller is an external PLC, polled over Modbus TCP.
+struct ModbusClientSettings {
+  std::string address;                 // HOST:PORT of the PLC's Modbus server
+  int unit = 1;                        // unit id sent with every request
+  int64_t pollNs = 10'000'000;         // read commands / write changed status this often
+  int64_t timeoutNs = 500'000'000;     // a request unanswered this long means the link is lost
+  bool faultOnLoss = true;             // on_loss: fault (end the run) or hold (keep, reconnect)
+  proto::modbus::SignalMap map;        // the PLC's tables (Client role)
+};
+
 struct Cell {
   std::string name;
   std::filesystem::path file;
-  std::unique_ptr<bc::Module> module;
+  std::unique_ptr<bc::Module> module;  // the soft PLC; null when the controller is external
   TagBus bus;
   Trace trace;
   plant::World world{trace};
   std::vector<std::unique_ptr<plant::Device>> devices;
   std::vector<Wire> wires;
   RunSettings run;
+  proto::modbus::SignalMap modbus;     // what `virtcom serve --modbus` serves: `modbus:` or automatic
+  std::optional<ModbusClientSettings> plcModbus;
 };
+
+// Every device port as a signal a protocol map can name ("Press.execute"), in device and port
+// order; input ports are commands, output ports status.
+std::vector<proto::modbus::BusSignal> busSignals(const Cell& cell);
+
+// Makes the controller external: drops the soft PLC and everything that names its variables
+// (wiring, run conditions, recorded variables); the devices then take their commands from
+// bridges only. Used by `virtcom serve`.
+void detachSoftPlc(Cell& cell);
 
 // Loads `path`: parses the YAML, compiles the PLC sources it names, creates the devices and the
 // wiring and checks everything (unknown keys, units, PLC variables that do not exist or have an

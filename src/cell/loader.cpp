@@ -1,11 +1,15 @@
 // Loading a cell file: YAML -> checked Cell with compiled PLC program, devices and wiring.
 #include <algorithm>
 #include <fstream>
+#include <initializer_list>
 #include <set>
 #include <sstream>
 
 #include "cell/cell.hpp"
+#include "cell/mapping_file.hpp"
+#include "cell/modbus_settings.hpp"
 #include "cell/yaml_config.hpp"
+#include "drives/drive_registry.hpp"
 #include "lang/st/compiler.hpp"
 
 namespace virtcom::cell {
@@ -55,23 +59,30 @@ class Loader {
     else top.child("run");  // known key; its conditions need the compiled program
     readWorld(*cell, top);
     readDevices(*cell, top);
+    // Maps name device signals, so they are read once the devices exist.
+    readModbusSection(*cell, top.child("modbus"), diags_);
+    if (plcModbus_) readModbusClient(*cell, *plcModbus_, diags_);
     top.rejectUnknownKeys();
     if (diags_.hasErrors()) return nullptr;
     return cell;
   }
 
  private:
+  // True unless there was an error. Without `plc:` or its `sources:` the cell has no controller
+  // of its own (it can only be served); `plc: modbus:` makes an external PLC the controller.
   bool compilePlc(Cell& cell, ConfigReader& top) {
     const ConfigNode* plcNode = top.child("plc");
-    if (!plcNode) {
-      top.error(top.node().loc(), "the cell file needs a 'plc:' section with the PLC program's 'sources'");
-      return false;
-    }
+    if (!plcNode) return true;
     ConfigReader plc(*plcNode, diags_, "'plc'");
     std::vector<st::SourceInput> inputs;
     const ConfigNode* srcs = plc.child("sources");
-    if (!srcs || srcs->kind() != ConfigNode::Kind::List || srcs->items().empty()) {
-      plc.error(plcNode->loc(), "'plc' needs 'sources': a list of ST files relative to the cell file");
+    plcModbus_ = plcNode->find("modbus");
+    if (srcs && plcModbus_) {
+      plc.error(plcModbus_->loc(), "'plc' has either 'sources' (the soft PLC) or 'modbus' (an external PLC), not both");
+    } else if (plcModbus_ || !srcs) {
+      // no soft PLC; `plc: modbus:` is read with the devices' signals, see load()
+    } else if (srcs->kind() != ConfigNode::Kind::List || srcs->items().empty()) {
+      plc.error(srcs->loc(), "'sources' must be a list of ST files relative to the cell file");
     } else {
       for (const auto& item : srcs->items()) {
         std::filesystem::path p = cell.file.parent_path() / item.scalar();
@@ -87,8 +98,10 @@ class Loader {
     if (plc.ok() && cell.run.plcCycleNs < 1000)
       plc.error(plc.node().find("cycle_time") ? plc.node().find("cycle_time")->loc() : plcNode->loc(),
                 "'cycle_time' must be at least 1 us");
+    plc.child("modbus");
     plc.rejectUnknownKeys();
     if (diags_.hasErrors()) return false;
+    if (inputs.empty()) return true;
     cell.module = st::compileProgram(inputs, sources_, diags_);
     if (!cell.module) return false;
     for (auto& t : cell.module->tasks)
@@ -103,36 +116,53 @@ class Loader {
     RunSettings& r = cell.run;
     r.timeLimitNs = static_cast<int64_t>(run.optQuantity("time_limit", Dimension::Time, 600.0) * 1e9 + 0.5);
     if (r.timeLimitNs <= 0) run.error(runNode->find("time_limit")->loc(), "'time_limit' must be positive");
-    if (const ConfigNode* u = run.child("until")) r.until = parseCondition(*cell.module, u->scalar(), u->loc(), diags_);
-    if (const ConfigNode* c = run.child("cycle_done")) {
-      r.cycleDoneVar = c->scalar();
-      auto ref = bc::resolveVariable(*cell.module, r.cycleDoneVar);
-      if (!ref || cell.module->types[ref->type].elem != ElemType::Bool || cell.module->types[ref->type].kind != bc::TypeKind::Elementary)
-        run.error(c->loc(), "'cycle_done' must name a BOOL PLC variable; '" + r.cycleDoneVar + "' is not one");
-    }
+    // Keys are read in this order so that unknown-key messages list them so.
+    readRunVariables(cell, run, {"until", "cycle_done"});
     int64_t cycles = run.optInt("cycles", 1);
     if (cycles < 1 || cycles > 1'000'000) run.error(runNode->find("cycles")->loc(), "'cycles' must be 1..1000000");
     r.cycles = static_cast<uint32_t>(std::clamp<int64_t>(cycles, 1, 1'000'000));
     r.stopOnCollision = run.optBool("stop_on_collision", true);
     r.stopOnDeviceError = run.optBool("stop_on_device_error", true);
-    if (const ConfigNode* rec = run.child("record")) {
-      for (const auto& item : rec->items()) {
-        auto ref = bc::resolveVariable(*cell.module, item.scalar());
-        if (!ref) {
-          run.error(item.loc(), "'record': no PLC variable '" + item.scalar() + "'");
-          continue;
-        }
-        const bc::TypeDesc& t = cell.module->types[ref->type];
-        if (t.kind != bc::TypeKind::Elementary && t.kind != bc::TypeKind::Enum) {
-          run.error(item.loc(), "'record': '" + item.scalar() + "' is a " + t.name + "; record its elementary members instead");
-          continue;
-        }
-        // a variable listed twice is recorded once
-        if (std::find(r.recordVars.begin(), r.recordVars.end(), item.scalar()) == r.recordVars.end())
-          r.recordVars.push_back(item.scalar());
-      }
-    }
+    readRunVariables(cell, run, {"record"});
     run.rejectUnknownKeys();
+  }
+
+  // The run settings among `keys` that name soft PLC variables; refused without a soft PLC.
+  void readRunVariables(Cell& cell, ConfigReader& run, std::initializer_list<std::string> keys) {
+    for (const std::string& key : keys) {
+      const ConfigNode* n = run.child(key);
+      if (!n) continue;
+      if (!cell.module) run.error(n->loc(), "'" + key + "' names PLC variables, but the cell has no soft PLC ('plc: sources')");
+      else if (key == "until") cell.run.until = parseCondition(*cell.module, n->scalar(), n->loc(), diags_);
+      else if (key == "cycle_done") readCycleDone(cell, run, *n);
+      else readRecord(cell, run, *n);
+    }
+  }
+
+  void readCycleDone(Cell& cell, ConfigReader& run, const ConfigNode& c) {
+    RunSettings& r = cell.run;
+    r.cycleDoneVar = c.scalar();
+    auto ref = bc::resolveVariable(*cell.module, r.cycleDoneVar);
+    if (!ref || cell.module->types[ref->type].elem != ElemType::Bool || cell.module->types[ref->type].kind != bc::TypeKind::Elementary)
+      run.error(c.loc(), "'cycle_done' must name a BOOL PLC variable; '" + r.cycleDoneVar + "' is not one");
+  }
+
+  void readRecord(Cell& cell, ConfigReader& run, const ConfigNode& rec) {
+    RunSettings& r = cell.run;
+    for (const auto& item : rec.items()) {
+      auto ref = bc::resolveVariable(*cell.module, item.scalar());
+      if (!ref) {
+        run.error(item.loc(), "'record': no PLC variable '" + item.scalar() + "'");
+        continue;
+      }
+      const bc::TypeDesc& t = cell.module->types[ref->type];
+      if (t.kind != bc::TypeKind::Elementary && t.kind != bc::TypeKind::Enum) {
+        run.error(item.loc(), "'record': '" + item.scalar() + "' is a " + t.name + "; record its elementary members instead");
+        continue;
+      }
+      // a variable listed twice is recorded once
+      if (std::find(r.recordVars.begin(), r.recordVars.end(), item.scalar()) == r.recordVars.end()) r.recordVars.push_back(item.scalar());
+    }
   }
 
   void readWorld(Cell& cell, ConfigReader& top) {
@@ -159,7 +189,8 @@ class Loader {
       return;
     }
     std::set<std::string> names;
-    for (const auto& node : list->items()) {
+    for (const auto& entry : list->items()) {
+      const ConfigNode node = resolveMappingFile(entry, cell.file.parent_path(), sources_, diags_);
       ConfigReader cfg(node, diags_, "device");
       std::string name = cfg.requireString("name");
       std::string type = cfg.requireString("type");
@@ -173,7 +204,7 @@ class Loader {
       cfg.optString("model", "");        // informational: the real device's make and type
       cfg.optString("description", "");
       // the factory reads the device's own parameters and rejects unknown keys
-      auto device = plant::createDevice(type, name, cfg, cell.world);
+      auto device = plant::createDevice(type, name, cfg, cell.world, drives::deviceTypes());
       if (!device) continue;
       if (faults) readFaults(*device, *faults);
       bindPorts(cell, *device, wiring, node);
@@ -189,13 +220,19 @@ class Loader {
     p.extraDelayNs = static_cast<int64_t>(f.optQuantity("extra_delay", Dimension::Time, 0) * 1e9 + 0.5);
     p.doneStuck = f.optBool("done_stuck", false);
     p.stuckOutput = static_cast<int>(f.optInt("stuck_output", -1));
+    d.readFaults(f);
     f.rejectUnknownKeys();
   }
 
   void bindPorts(Cell& cell, plant::Device& d, const ConfigNode* wiring, const ConfigNode& deviceNode) {
     const auto& ports = d.ports();
     for (size_t i = 0; i < ports.size(); ++i) d.bindPort(i, cell.bus.add(d.name() + "." + ports[i].name, ports[i].type));
-    if (!wiring || !cell.module) return;  // an unwired device still simulates (e.g. driven only by faults or facts)
+    if (!wiring) return;  // an unwired device still simulates (e.g. driven only by faults, facts or a bridge)
+    if (!cell.module) {
+      diags_.error("C030", wiring->loc(), "'wiring' connects ports to soft PLC variables, but the cell has no soft PLC ('plc: sources'); "
+                                          "an external PLC reaches the signals through a Modbus map");
+      return;
+    }
     if (wiring->kind() == ConfigNode::Kind::Scalar) {
       // Prefix form: every port P is wired to PREFIX.P if that PLC variable exists.
       size_t wired = 0;
@@ -249,6 +286,7 @@ class Loader {
 
   SourceManager& sources_;
   Diagnostics& diags_;
+  const ConfigNode* plcModbus_ = nullptr;  // `plc: modbus:` inside the file's tree, read after the devices
 };
 
 }  // namespace

@@ -8,7 +8,11 @@
 
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "lang/sfc/step_monitor.hpp"
 #include "plc/runtime.hpp"
+#include "proto/ads/plc/module_symbols.hpp"
+#include "proto/ads/plc/plc_binding.hpp"
+#include "proto/ads/ams.hpp"
 #include "proto/modbus/server.hpp"
 
 namespace virtcom::cli {
@@ -26,11 +30,16 @@ struct ExecOptions {
   std::vector<std::string> prints;
   std::vector<std::string> traces;
   std::string traceFile;
+  bool traceSteps = false;  // print the active SFC steps after every scan
   double speed = 0;
   uint64_t budget = 50'000'000;
   bool stats = false;
   std::string modbus;       // HOST:PORT to serve Modbus TCP on; empty: no server
   std::string modbusAllow;  // comma-separated peer addresses; empty: any
+  std::string ads;          // HOST:PORT to serve ADS (AMS/TCP) on; empty: no server
+  std::string adsNetId;     // the server's AmsNetId; empty: 127.0.0.1.1.1
+  std::string adsAllow;     // comma-separated peer IPv4 addresses and/or client AmsNetIds
+  bool adsReadOnly = false;
 };
 
 bool resolveAll(const bc::Module& m, const std::vector<std::string>& names, std::vector<bc::VarRef>& out) {
@@ -83,9 +92,54 @@ std::expected<std::unique_ptr<proto::modbus::Server>, std::string> startModbus(c
     config.allowedPeers = *allow;
   }
   const bc::Module& m = runtime.module();
-  auto server = mb::Server::start(config, {m.inputs.size, m.outputs.size, m.memory.size});
+  mb::ImageShape shape;
+  shape.inputs = m.inputs.size;
+  shape.outputs = m.outputs.size;
+  shape.memory = m.memory.size;
+  auto server = mb::Server::start(config, shape);
   if (!server) return std::unexpected("--modbus: " + server.error());
   (*server)->publishSnapshot(modbusView(runtime));
+  return server;
+}
+
+// Splits "--ads-allow A,B,..." into IPv4 peers (4 numbers) and AmsNetIds (6 numbers).
+std::string parseAdsAllow(std::string_view text, proto::ads::ServerConfig& config) {
+  while (!text.empty()) {
+    auto comma = text.find(',');
+    std::string_view item = text.substr(0, comma);
+    if (auto id = proto::ads::parseNetId(item)) {
+      config.allowedNetIds.push_back(*id);
+    } else if (auto ip = proto::net::parseIpv4(item)) {
+      config.allowedPeers.push_back(*ip);
+    } else if (!item.empty()) {
+      return "'" + std::string(item) + "' is neither an IPv4 address nor an AmsNetId (a.b.c.d.e.f)";
+    }
+    if (comma == std::string_view::npos) break;
+    text.remove_prefix(comma + 1);
+  }
+  if (config.allowedPeers.empty() && config.allowedNetIds.empty()) return "the allow-list names no address";
+  return "";
+}
+
+std::expected<std::unique_ptr<proto::ads::Server>, std::string> startAds(const ExecOptions& o,
+                                                                           const proto::ads::SymbolTable& table) {
+  namespace ads = proto::ads;
+  auto endpoint = proto::net::parseEndpoint(o.ads);
+  if (!endpoint) return std::unexpected("--ads: " + endpoint.error());
+  ads::ServerConfig config;
+  config.listen = *endpoint;
+  config.device.readOnly = o.adsReadOnly;
+  if (!o.adsNetId.empty()) {
+    auto id = ads::parseNetId(o.adsNetId);
+    if (!id) return std::unexpected("--ads-netid: '" + o.adsNetId + "' is not an AmsNetId (six numbers 0-255, e.g. 192.168.1.10.1.1)");
+    config.device.netId = *id;
+  }
+  if (!o.adsAllow.empty()) {
+    std::string problem = parseAdsAllow(o.adsAllow, config);
+    if (!problem.empty()) return std::unexpected("--ads-allow: " + problem);
+  }
+  auto server = ads::Server::start(config, table);
+  if (!server) return std::unexpected("--ads: " + server.error());
   return server;
 }
 
@@ -113,10 +167,19 @@ int runExec(const ExecOptions& o) {
       if (!name.empty()) traceNames.push_back(name);
   }
   if (!resolveAll(*module, o.prints, printRefs) || !resolveAll(*module, traceNames, traceRefs)) return kExitUsage;
+  std::vector<sfc::StepVariable> steps;
+  std::string activeSteps;
+  if (o.traceSteps) {
+    steps = sfc::findSteps(*module);
+    if (steps.empty()) {
+      std::cerr << "error: --trace-steps: the program has no SFC steps (INITIAL_STEP / STEP, see docs/st-dialect.md)\n";
+      return kExitUsage;
+    }
+  }
 
   std::unique_ptr<Clock> clock;
   // A Modbus server talks to the real world, so it runs in real time unless told otherwise.
-  double speed = o.speed > 0 ? o.speed : o.modbus.empty() ? 0 : 1;
+  double speed = o.speed > 0 ? o.speed : o.modbus.empty() && o.ads.empty() ? 0 : 1;
   if (speed > 0) clock = std::make_unique<PacedClock>(speed);
   else clock = std::make_unique<VirtualClock>();
   plc::RuntimeOptions ropts;
@@ -149,6 +212,12 @@ int runExec(const ExecOptions& o) {
     for (const auto& n : traceNames) *trace << ',' << n;
     *trace << '\n';
   }
+  // Handlers first: a client may send SIGTERM as soon as the server announces itself.
+  bool forever = o.cycles < 0 && speed > 0;
+  if (forever) {
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+  }
   std::unique_ptr<proto::modbus::Server> modbus;
   if (!o.modbus.empty()) {
     auto server = startModbus(o, runtime);
@@ -159,26 +228,44 @@ int runExec(const ExecOptions& o) {
     modbus = std::move(*server);
     std::cerr << "modbus: serving on " << proto::modbus::formatEndpoint(modbus->endpoint()) << "\n";
   }
-  bool forever = o.cycles < 0 && speed > 0;
-  int64_t cycles = o.cycles < 0 ? (forever ? INT64_MAX : 1) : o.cycles;
-  if (forever) {
-    std::signal(SIGINT, onSignal);
-    std::signal(SIGTERM, onSignal);
+  std::optional<proto::ads::SymbolTable> adsSymbols;
+  std::unique_ptr<proto::ads::Server> ads;
+  if (!o.ads.empty()) {
+    adsSymbols.emplace(proto::ads::buildSymbolTable(*module));
+    auto server = startAds(o, *adsSymbols);
+    if (!server) {
+      std::cerr << "error: " << server.error() << "\n";
+      return kExitUsage;
+    }
+    ads = std::move(*server);
+    proto::ads::afterScan(*ads, runtime);
+    std::cerr << "ads: serving on " << proto::net::formatEndpoint(ads->endpoint()) << " as AmsNetId "
+              << (o.adsNetId.empty() ? "127.0.0.1.1.1" : o.adsNetId) << ", AMS ports 851 and 10000\n";
   }
+  int64_t cycles = o.cycles < 0 ? (forever ? INT64_MAX : 1) : o.cycles;
   int exitCode = kExitOk;
   for (int64_t k = 0; k < cycles && !gInterrupted; ++k) {
     int64_t now = runtime.nextTickNs();
     if (modbus && modbus->applyPendingWrites(modbusView(runtime)) > 0) runtime.inputsTouched();
+    if (ads) proto::ads::beforeScan(*ads, runtime);
     bool ok = runtime.tick();
     if (modbus) modbus->publishSnapshot(modbusView(runtime));
+    if (ads) proto::ads::afterScan(*ads, runtime);
+    // An ADS client may STOP the PLC (WriteControl): time goes on, only a fault ends the run.
+    if (!ok && runtime.state() != plc::PlcState::Fault) ok = true;
     if (!ok) {
       std::cerr << "runtime fault: " << runtime.faultText() << "\n";
       exitCode = kExitRuntimeFault;
       break;
     }
     if (!traceRefs.empty()) writeTraceRow(*trace, *module, runtime.machine().memory(), static_cast<uint64_t>(k), now, traceRefs);
+    if (o.traceSteps) {
+      sfc::formatActiveSteps(steps, runtime.machine().memory(), activeSteps);
+      std::cout << "scan " << k << " (" << now / 1'000'000 << " ms): " << (activeSteps.empty() ? "(none)" : activeSteps) << '\n';
+    }
   }
   if (modbus) modbus->stop();
+  if (ads) ads->stop();
   for (size_t i = 0; i < o.prints.size(); ++i)
     std::cout << o.prints[i] << " = " << bc::formatValue(*module, printRefs[i], runtime.machine().memory()) << "\n";
   if (o.stats) {
@@ -196,7 +283,7 @@ int runExec(const ExecOptions& o) {
 void addExecCommand(CLI::App& app, std::function<void(int)> setExit) {
   auto o = std::make_shared<ExecOptions>();
   CLI::App* cmd = app.add_subcommand("exec", "Run ST programs on the soft PLC for N scans in virtual time and print variables");
-  cmd->add_option("files", o->files, "ST source files compiled together as one program")->required()->check(CLI::ExistingFile);
+  cmd->add_option("files", o->files, "ST (.st) and PLCopen XML (.xml) files compiled together as one program")->required()->check(CLI::ExistingFile);
   cmd->add_option("--cycles", o->cycles, "number of scheduler ticks (scans of the fastest task) to run; default 1, or forever with --speed")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--cycle-time", o->cycleTime, "interval of the default task, e.g. 10ms (default 10ms)");
@@ -204,12 +291,17 @@ void addExecCommand(CLI::App& app, std::function<void(int)> setExit) {
   cmd->add_option("--print", o->prints, "variable printed after the run as NAME = VALUE (repeatable)");
   cmd->add_option("--trace", o->traces, "comma-separated variables written as CSV after every tick");
   cmd->add_option("--trace-file", o->traceFile, "write the --trace CSV to this file instead of stdout");
+  cmd->add_flag("--trace-steps", o->traceSteps, "print the active SFC steps after every tick: scan N (T ms): MAIN.Step1 ...");
   cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); without --cycles runs until SIGINT/SIGTERM")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--budget", o->budget, "watchdog: max backward jumps + calls per task scan (default 50000000)");
   cmd->add_flag("--stats", o->stats, "print per-task scan statistics to stderr");
   cmd->add_option("--modbus", o->modbus, "serve the process image over Modbus TCP on HOST:PORT (OpenPLC mapping, see docs/modbus.md); implies --speed 1");
   cmd->add_option("--modbus-allow", o->modbusAllow, "comma-separated IPv4 peers allowed to connect to --modbus (default: any)");
+  cmd->add_option("--ads", o->ads, "serve the PLC over ADS (AMS/TCP, TwinCAT 3 runtime on AMS port 851) on HOST:PORT, e.g. 127.0.0.1:48898 (see docs/ads.md); implies --speed 1");
+  cmd->add_option("--ads-netid", o->adsNetId, "AmsNetId of the --ads server (default 127.0.0.1.1.1; 127.0.0.1.1.1 is always accepted too)");
+  cmd->add_option("--ads-allow", o->adsAllow, "comma-separated IPv4 peers and/or client AmsNetIds allowed to use --ads (default: any)");
+  cmd->add_flag("--ads-readonly", o->adsReadOnly, "refuse every ADS write and RUN/STOP request (error 0x704)");
   cmd->callback([o, setExit] { setExit(runExec(*o)); });
 }
 

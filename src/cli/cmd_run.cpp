@@ -9,6 +9,7 @@
 #include "cell/cell.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "proto/modbus/client_bridge.hpp"
 #include "report/html_report.hpp"
 #include "report/json_report.hpp"
 #include "report/kpis.hpp"
@@ -80,12 +81,33 @@ int exitCodeFor(RunEnd end) {
   }
 }
 
+// `plc: modbus:`: the external PLC polled as the cell's controller.
+std::unique_ptr<proto::modbus::ClientBridge> startClientBridge(const cell::ModbusClientSettings& s) {
+  proto::modbus::ClientConfig config;
+  config.peer = *proto::net::parseEndpoint(s.address);  // checked by the loader
+  config.unit = s.unit;
+  config.pollNs = s.pollNs;
+  config.timeoutNs = s.timeoutNs;
+  config.faultOnLoss = s.faultOnLoss;
+  config.map = s.map;
+  config.report = [](const std::string& line) { std::cerr << line << "\n"; };
+  std::cerr << "modbus: the PLC at " << s.address << " is the controller (polled every " << s.pollNs / 1e6 << " ms)\n";
+  return std::make_unique<proto::modbus::ClientBridge>(std::move(config));
+}
+
 int runCell(const RunOptions& o) {
   SourceManager sources;
-  Diagnostics diags;
-  auto cell = cell::loadCell(o.cellFile, sources, diags);
-  std::cerr << diags.render(sources);
+  auto cell = loadCellFile(o.cellFile, sources);
   if (!cell) return kExitCompileError;
+  if (!cell->module && !cell->plcModbus) {
+    std::cerr << "error: " << o.cellFile << ": the cell has no controller: add 'plc: sources' (the soft PLC) or 'plc: modbus' "
+                 "(an external PLC), or serve it to a PLC with virtcom serve\n";
+    return kExitUsage;
+  }
+  if (!cell->module && (!o.until.empty() || !o.sets.empty())) {
+    std::cerr << "error: --until and --set name soft PLC variables, but the controller of " << o.cellFile << " is an external PLC\n";
+    return kExitUsage;
+  }
   if (!o.until.empty()) {
     Diagnostics d;
     cell->run.until = cell::parseCondition(*cell->module, o.until, {}, d);
@@ -105,19 +127,27 @@ int runCell(const RunOptions& o) {
     }
     options.timeLimitNs = *ns;
   }
-  // Every --set is checked on a scratch image first so mistakes are reported before the run.
-  std::vector<uint8_t> scratch(cell->module->memorySize(), 0);
-  for (const auto& set : o.sets) {
-    std::string problem = presetVariable(*cell->module, set, scratch.data(), nullptr);
-    if (!problem.empty()) {
-      std::cerr << "error: --set " << problem << "\n";
-      return kExitUsage;
+  if (!o.sets.empty()) {
+    // Every --set is checked on a scratch image first so mistakes are reported before the run.
+    std::vector<uint8_t> scratch(cell->module->memorySize(), 0);
+    for (const auto& set : o.sets) {
+      std::string problem = presetVariable(*cell->module, set, scratch.data(), nullptr);
+      if (!problem.empty()) {
+        std::cerr << "error: --set " << problem << "\n";
+        return kExitUsage;
+      }
     }
+    const bc::Module& module = *cell->module;
+    options.preset = [&o, &module](plc::Runtime& plc) {
+      for (const auto& set : o.sets) presetVariable(module, set, plc.machine().memory(), plc.inputImage());
+    };
   }
-  const bc::Module& module = *cell->module;
-  options.preset = [&o, &module](plc::Runtime& plc) {
-    for (const auto& set : o.sets) presetVariable(module, set, plc.machine().memory(), plc.inputImage());
-  };
+  std::unique_ptr<proto::modbus::ClientBridge> bridge;
+  if (cell->plcModbus) {
+    bridge = startClientBridge(*cell->plcModbus);
+    options.bridges.push_back(bridge.get());
+    if (options.speed == 0) options.speed = 1;  // the external PLC runs in real time
+  }
   sim::Simulation simulation(*cell, options);
   std::signal(SIGINT, onRunSignal);
   std::signal(SIGTERM, onRunSignal);
@@ -151,7 +181,7 @@ void addRunCommand(CLI::App& app, std::function<void(int)> setExit) {
   cmd->add_option("--time-limit", o->timeLimit, "virtual time limit, e.g. 300s (overrides run.time_limit)");
   cmd->add_option("--set", o->sets, "NAME=VALUE set in the PLC before its first scan (repeatable), e.g. MAIN.sequence=3");
   cmd->add_option("--signal", o->signals, "signal shown in the report's timeline (repeatable), e.g. Robot1.busy");
-  cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible")
+  cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible (1 with 'plc: modbus')")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table");
   cmd->add_flag("--step", o->step, "single step: advance one PLC tick per line read from stdin, printing changed signals");

@@ -8,4 +8,7 @@ namespace virtcom::cli {
 void addCheckCommand(CLI::App& app, std::function<void(int)> setExit);
 void addExecCommand(CLI::App& app, std::function<void(int)> setExit);
 void addRunCommand(CLI::App& app, std::function<void(int)> setExit);
+void addServeCommand(CLI::App& app, std::function<void(int)> setExit);
+void addModbusMapCommand(CLI::App& app, std::function<void(int)> setExit);
+void addExportCommand(CLI::App& app, std::function<void(int)> setExit);
 }  // namespace virtcom::cli

@@ -8,26 +8,42 @@
 #include <iostream>
 #include <sstream>
 
+#include "lang/plcopen/importer.hpp"
 #include "lang/st/compiler.hpp"
 
 namespace virtcom::cli {
 
-std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, SourceManager& sources,
-                                         Diagnostics& diags, bool printWarnings) {
+std::optional<std::vector<st::SourceInput>> readSources(const std::vector<std::string>& paths) {
   std::vector<st::SourceInput> inputs;
   for (const auto& path : paths) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
       std::cerr << path << ": error: cannot read the file\n";
-      return nullptr;
+      return std::nullopt;
     }
     std::stringstream buf;
     buf << in.rdbuf();
-    inputs.push_back({path, buf.str()});
+    st::FrontEnd frontEnd;
+    if (plcopen::isPlcopenPath(path)) frontEnd = plcopen::importProject;
+    inputs.push_back({path, buf.str(), frontEnd});
   }
-  auto module = st::compileProgram(inputs, sources, diags);
+  return inputs;
+}
+
+std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, SourceManager& sources,
+                                         Diagnostics& diags, bool printWarnings) {
+  auto inputs = readSources(paths);
+  if (!inputs) return nullptr;
+  auto module = st::compileProgram(*inputs, sources, diags);
   if (!module || printWarnings) std::cerr << diags.render(sources);
   return module;
+}
+
+std::unique_ptr<cell::Cell> loadCellFile(const std::string& path, SourceManager& sources) {
+  Diagnostics diags;
+  auto cell = cell::loadCell(path, sources, diags);
+  std::cerr << diags.render(sources);
+  return cell;
 }
 
 std::string presetVariable(const bc::Module& m, const std::string& assignment, uint8_t* memory, uint8_t* inputImage) {

@@ -6,8 +6,10 @@
 #include <vector>
 
 #include "bytecode/module.hpp"
+#include "cell/cell.hpp"
 #include "core/diagnostics.hpp"
 #include "core/source.hpp"
+#include "lang/st/compiler.hpp"
 
 namespace virtcom::cli {
 
@@ -17,6 +19,13 @@ enum ExitCode { kExitOk = 0, kExitCompileError = 1, kExitRuntimeFault = 2, kExit
 // Reads and compiles the files; prints diagnostics to stderr. Null on a read or compile error.
 std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, SourceManager& sources,
                                          Diagnostics& diags, bool printWarnings = true);
+
+// Reads the files as compiler inputs; .xml files get the PLCopen XML importer as front end.
+// Prints an error and returns nullopt if a file cannot be read.
+std::optional<std::vector<st::SourceInput>> readSources(const std::vector<std::string>& paths);
+
+// Loads a cell file and prints its diagnostics to stderr. Null on any error.
+std::unique_ptr<cell::Cell> loadCellFile(const std::string& path, SourceManager& sources);
 
 // Applies one `--set NAME=VALUE` to a PLC image. Located inputs (%I) are also written into
 // the external input image (when given) so the next scan's input copy keeps the value.

@@ -13,6 +13,10 @@ static int64_t wallNs() {
 
 int64_t monotonicNowNs() { return wallNs(); }
 
+int64_t utcNowNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
 PacedClock::PacedClock(double speed) : speed_(speed > 0 ? speed : 1.0), startWallNs_(wallNs()) {}
 
 void PacedClock::advanceTo(int64_t targetNs) {

@@ -18,6 +18,9 @@ class Clock {
 // Monotonic wall time in ns, for measuring how long work took (statistics only: never used to
 // decide what a simulation does).
 int64_t monotonicNowNs();
+// UTC wall time in ns since 1970-01-01, for timestamps shown to the outside world (ADS
+// notification stamps); never used to decide what a simulation does.
+int64_t utcNowNs();
 
 class VirtualClock final : public Clock {
  public:

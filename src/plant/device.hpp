@@ -6,6 +6,7 @@
 #include <climits>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,9 @@ class Device {
   virtual int32_t errorCode() const { return 0; }
 
   FaultPlan& faults() { return faults_; }
+  // Device-specific keys of the cell file's `faults:` entry, after the loader has read the
+  // generic FaultPlan keys (drives: `inject`, `comm_loss`). Reports through `faults`.
+  virtual void readFaults(ConfigReader& faults) { (void)faults; }
   // Gantt lane group (the cell file's `group:`), read by prepare(); set by createDevice.
   void setGroup(std::string group) { group_ = std::move(group); }
   uint32_t traceIndex() const { return traceIndex_; }
@@ -92,9 +96,19 @@ class Device {
   std::vector<TagId> tags_;
 };
 
+// One row of a device-type table: cell-file type name, one-line description, factory.
+using DeviceFactory = std::unique_ptr<Device> (*)(const std::string& name, ConfigReader& cfg, World& world);
+struct DeviceType {
+  const char* name;
+  const char* doc;
+  DeviceFactory factory;
+};
+
 // Creates a device of `type` from its cell-file entry; reports every problem through `cfg`
-// (file:line:col) and returns null if the type is unknown or the entry invalid.
-std::unique_ptr<Device> createDevice(const std::string& type, const std::string& name, ConfigReader& cfg, World& world);
+// (file:line:col) and returns null if the type is unknown or the entry invalid. `extra` adds
+// the types of higher layers (the drives library's table) to this library's own.
+std::unique_ptr<Device> createDevice(const std::string& type, const std::string& name, ConfigReader& cfg, World& world,
+                                     std::span<const DeviceType> extra = {});
 // The registered device types with a one-line description each (for errors and docs).
 std::vector<std::pair<std::string, std::string>> deviceTypes();
 

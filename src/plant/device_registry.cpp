@@ -15,14 +15,6 @@
 namespace virtcom::plant {
 namespace {
 
-using Factory = std::unique_ptr<Device> (*)(const std::string& name, ConfigReader& cfg, World& world);
-
-struct DeviceType {
-  const char* name;
-  const char* doc;
-  Factory factory;
-};
-
 constexpr DeviceType kDeviceTypes[] = {
     {"robot", "industrial robot running numbered procedures (moves, tools, grip, screw) with the execute/done handshake",
      makeRobot},
@@ -36,10 +28,13 @@ constexpr DeviceType kDeviceTypes[] = {
 
 }  // namespace
 
-std::unique_ptr<Device> createDevice(const std::string& type, const std::string& name, ConfigReader& cfg, World& world) {
+std::unique_ptr<Device> createDevice(const std::string& type, const std::string& name, ConfigReader& cfg, World& world,
+                                     std::span<const DeviceType> extra) {
   cfg.child("type");
   cfg.child("name");
-  for (const auto& t : kDeviceTypes) {
+  std::vector<DeviceType> all(std::begin(kDeviceTypes), std::end(kDeviceTypes));
+  all.insert(all.end(), extra.begin(), extra.end());
+  for (const auto& t : all) {
     if (type != t.name) continue;
     const size_t errorsBefore = cfg.diags().errorCount();
     std::unique_ptr<Device> device = t.factory(name, cfg, world);
@@ -50,7 +45,7 @@ std::unique_ptr<Device> createDevice(const std::string& type, const std::string&
     return device;
   }
   std::vector<std::string> names;
-  for (const auto& t : kDeviceTypes) names.push_back(t.name);
+  for (const auto& t : all) names.push_back(t.name);
   const ConfigNode* typeNode = cfg.node().find("type");
   cfg.error(typeNode ? typeNode->loc() : cfg.node().loc(),
             "unknown device type '" + type + "' (expected one of: " + joinNames(names) + ")");

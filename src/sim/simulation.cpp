@@ -5,9 +5,11 @@ namespace virtcom::sim {
 Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), options_(options) {
   if (options_.speed > 0) clock_ = std::make_unique<PacedClock>(options_.speed);
   else clock_ = std::make_unique<VirtualClock>();
-  plc::RuntimeOptions ropts;
-  ropts.skipRepeatedScans = options_.skipRepeatedScans;
-  runtime_ = std::make_unique<plc::Runtime>(*cell_.module, *clock_, ropts);
+  if (cell_.module) {
+    plc::RuntimeOptions ropts;
+    ropts.skipRepeatedScans = options_.skipRepeatedScans;
+    runtime_ = std::make_unique<plc::Runtime>(*cell_.module, *clock_, ropts);
+  }
   timeLimitNs_ = options_.timeLimitNs >= 0 ? options_.timeLimitNs : cell_.run.timeLimitNs;
   Trace& trace = cell_.trace;
   for (auto& d : cell_.devices) d->prepare(cell_.world, trace);
@@ -34,12 +36,14 @@ Simulation::~Simulation() = default;
 
 void Simulation::start() {
   started_ = true;
-  runtime_->coldStart();
-  uint8_t* mem = runtime_->machine().memory();
-  if (options_.preset) options_.preset(*runtime_);
-  for (const auto& w : cell_.wires)
-    if (w.dir == plant::PortDir::In) cell::readVariable(w, mem, cell_.bus);
-  for (const auto& w : recordWires_) cell::readVariable(w, mem, cell_.bus);
+  if (runtime_) {
+    runtime_->coldStart();
+    uint8_t* mem = runtime_->machine().memory();
+    if (options_.preset) options_.preset(*runtime_);
+    for (const auto& w : cell_.wires)
+      if (w.dir == plant::PortDir::In) cell::readVariable(w, mem, cell_.bus);
+    for (const auto& w : recordWires_) cell::readVariable(w, mem, cell_.bus);
+  }
   for (TagId id = 0; id < cell_.bus.size(); ++id) cell_.trace.signals[id].initial = cell_.bus.raw(id);
   cell_.bus.clearChanges();
 }
@@ -59,7 +63,8 @@ void Simulation::finish(RunEnd end, std::string message) {
   for (auto& d : cell_.devices) d->finish(nowNs_, trace);
 }
 
-bool Simulation::checkStop() {
+// The soft PLC's stop conditions: a fault, the cycle count, `until`.
+bool Simulation::checkPlcStop() {
   uint8_t* mem = runtime_->machine().memory();
   if (runtime_->state() == plc::PlcState::Fault) {
     std::string text = runtime_->faultText();
@@ -88,6 +93,11 @@ bool Simulation::checkStop() {
     finish(RunEnd::Completed, "'" + cell_.run.until.text + "' became true");
     return true;
   }
+  return false;
+}
+
+bool Simulation::checkStop() {
+  if (runtime_ && checkPlcStop()) return true;
   if (cell_.run.stopOnCollision && cell_.world.collided()) {
     finish(RunEnd::Collision, "robots collided in a shared zone");
     return true;
@@ -112,11 +122,8 @@ bool Simulation::checkStop() {
   return false;
 }
 
-bool Simulation::step() {
-  if (ended_) return false;
-  if (!started_) start();
+void Simulation::scanPlc() {
   uint8_t* mem = runtime_->machine().memory();
-  nowNs_ = runtime_->nextTickNs();
   bool touched = false;
   for (const auto& w : cell_.wires)
     if (w.dir == plant::PortDir::Out) touched |= cell::writeVariable(w, cell_.bus, mem);
@@ -125,8 +132,35 @@ bool Simulation::step() {
   for (const auto& w : cell_.wires)
     if (w.dir == plant::PortDir::In) cell::readVariable(w, mem, cell_.bus);
   for (const auto& w : recordWires_) cell::readVariable(w, mem, cell_.bus);
-  plant::StepContext ctx{nowNs_, runtime_->baseTickNs(), cell_.bus, cell_.world, cell_.trace};
+}
+
+// False if a bridge failed; the run then ends as a fault of the (external) PLC.
+bool Simulation::pullBridges() {
+  for (BusBridge* b : options_.bridges) {
+    if (b->pull(cell_.bus, nowNs_)) continue;
+    std::string msg = b->failure();
+    cell_.trace.faults.push_back({nowNs_, "PLC", msg});
+    finish(RunEnd::PlcFault, msg);
+    return false;
+  }
+  return true;
+}
+
+bool Simulation::step() {
+  if (ended_) return false;
+  if (!started_) start();
+  int64_t baseTickNs = runtime_ ? runtime_->baseTickNs() : cell_.run.plcCycleNs;
+  if (runtime_) {
+    nowNs_ = runtime_->nextTickNs();
+    scanPlc();
+  } else {
+    nowNs_ = static_cast<int64_t>(ticks_) * baseTickNs;
+    clock_->advanceTo(nowNs_);
+  }
+  if (!pullBridges()) return false;
+  plant::StepContext ctx{nowNs_, baseTickNs, cell_.bus, cell_.world, cell_.trace};
   for (auto& d : cell_.devices) d->step(ctx);
+  for (BusBridge* b : options_.bridges) b->push(cell_.bus, nowNs_);
   recordChanges();
   ++ticks_;
   return !checkStop();

@@ -2,14 +2,19 @@
 // The co-simulation engine: one integer-nanosecond virtual clock for the PLC tasks, the devices
 // and the recorders, stepped in a fixed order every PLC base tick:
 //   1. device outputs -> PLC variables (wires), 2. PLC scan (all tasks due), 3. PLC variables ->
-//   device inputs, 4. devices step (in cell-file order), 5. recorder stores changed signals,
-//   6. stop conditions (until, cycles, faults, collisions, time limit).
+//   device inputs, 4. bridges pull (external controller -> command signals), 5. devices step
+//   (in cell-file order), 6. bridges push (status signals -> external side), 7. recorder stores
+//   changed signals, 8. stop conditions (until, cycles, faults, collisions, time limit).
+// A cell without a soft PLC (no module: its controller is external) skips 1-3 and ticks at the
+// cell's plc cycle time.
 // The same cell and options give the same trace, byte for byte.
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "cell/cell.hpp"
+#include "core/bus_bridge.hpp"
 #include "core/clock.hpp"
 #include "plc/runtime.hpp"
 
@@ -23,6 +28,9 @@ struct SimOptions {
   std::function<void(plc::Runtime& plc)> preset;
   // Skip PLC scans that provably repeat the previous one (exact: same results and trace).
   bool skipRepeatedScans = true;
+  // Links to external peers (Modbus/ADS), stepped in this order; they must outlive the run.
+  // A failed pull() ends the run as a PLC fault (the external PLC is the controller).
+  std::vector<BusBridge*> bridges;
 };
 
 class Simulation {
@@ -37,6 +45,7 @@ class Simulation {
   // Advances one base tick (for single stepping); false once the run has ended.
   bool step();
 
+  // Precondition: the cell has a soft PLC.
   plc::Runtime& plc() { return *runtime_; }
   Trace& trace() { return cell_.trace; }
   int64_t nowNs() const { return nowNs_; }
@@ -45,6 +54,9 @@ class Simulation {
  private:
   void start();
   bool checkStop();
+  bool checkPlcStop();
+  void scanPlc();
+  bool pullBridges();
   void recordChanges();
   void finish(RunEnd end, std::string message);
 

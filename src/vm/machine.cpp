@@ -76,6 +76,7 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
   const Instr* const code = m_.code.data();
   const bc::PouInfo* const pous = m_.pous.data();
   const uint64_t* const constants = m_.constants.data();
+  const bc::IndexDesc* const indexes = m_.indexes.data();
   const uint8_t* const image = m_.initialImage.data();
   uint8_t* const mem = memory_.data();
   const uint64_t memSize = memory_.size();
@@ -91,21 +92,28 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
   uint64_t sp = sp_;
   uint64_t remaining = budget_;
   uint64_t executed = 0;
-  Instr ins;
+  // ip points past the instruction being executed (`INS`); operands are read where a handler
+  // needs them (decoding all three eagerly costs every dispatch several loads).
+  const Instr* ip = code + pc;
+#define INS (ip - 1)
+  const auto pcOf = [code](const Instr* at) { return static_cast<uint32_t>(at - code); };
+  // The signed 16-bit immediates of ADDI, the K comparisons (C) and STK_* (A).
+  const auto immA = [&ip] { return int64_t{static_cast<int16_t>(INS->a)}; };
+  const auto immC = [&ip] { return int64_t{static_cast<int16_t>(INS->c)}; };
   uint64_t ad = 0;
 
-#define VM_FAULT(kind)                                    \
-  do {                                                    \
-    executed_ += executed;                                \
-    return raise(FaultKind::kind, pc - 1, depth, startSp); \
+#define VM_FAULT(kind)                                      \
+  do {                                                      \
+    executed_ += executed;                                  \
+    return raise(FaultKind::kind, pcOf(INS), depth, startSp); \
   } while (0)
 #define VM_ADDR(width) \
-  if (!checkedAddress(r[ins.b], ins.c, width, memSize, guard, ad)) VM_FAULT(InvalidPointer)
+  if (!checkedAddress(r[INS->b], INS->c, width, memSize, guard, ad)) VM_FAULT(InvalidPointer)
 #define VM_LOAD(T, expr)                     \
   VM_ADDR(sizeof(T));                        \
   {                                          \
     T v = loadLe<T>(mem + ad);               \
-    r[ins.a] = (expr);                       \
+    r[INS->a] = (expr);                      \
   }                                          \
   VM_NEXT()
 #define VM_STORE(T, expr)        \
@@ -114,13 +122,13 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
   VM_NEXT()
 #define VM_LOADA(T, expr)                \
   {                                      \
-    T v = loadLe<T>(mem + ins.bx());     \
-    r[ins.a] = (expr);                   \
+    T v = loadLe<T>(mem + INS->bx());    \
+    r[INS->a] = (expr);                  \
   }                                      \
   VM_NEXT()
-#define VM_STOREA(T, expr) storeLe<T>(mem + ins.bx(), (expr)); VM_NEXT()
-#define VM_BIN(expr) { const uint64_t x = r[ins.b], y = r[ins.c]; r[ins.a] = (expr); } VM_NEXT()
-#define VM_BINF(expr) { const double x = asF(r[ins.b]), y = asF(r[ins.c]); r[ins.a] = (expr); } VM_NEXT()
+#define VM_STOREA(T, expr) storeLe<T>(mem + INS->bx(), (expr)); VM_NEXT()
+#define VM_BIN(expr) { const uint64_t x = r[INS->b], y = r[INS->c]; r[INS->a] = (expr); } VM_NEXT()
+#define VM_BINF(expr) { const double x = asF(r[INS->b]), y = asF(r[INS->c]); r[INS->a] = (expr); } VM_NEXT()
 #define VM_BACKWARD_CHECK(offset) \
   if ((offset) < 0) {             \
     if (remaining == 0) VM_FAULT(WatchdogBudget); \
@@ -135,9 +143,8 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
   };
 #define VM_NEXT()                                  \
   do {                                             \
-    ins = code[pc++];                              \
     ++executed;                                    \
-    goto* kLabels[static_cast<uint8_t>(ins.op)];   \
+    goto* kLabels[static_cast<uint8_t>((ip++)->op)]; \
   } while (0)
 #define VM_CASE(name) op_##name:
   VM_NEXT();
@@ -145,16 +152,15 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
 #define VM_NEXT() continue
 #define VM_CASE(name) case Op::name:
   for (;;) {
-    ins = code[pc++];
     ++executed;
-    switch (ins.op) {
+    switch ((ip++)->op) {
 #endif
 
   VM_CASE(NOP) VM_NEXT();
-  VM_CASE(MOV) r[ins.a] = r[ins.b]; VM_NEXT();
-  VM_CASE(LDI) r[ins.a] = fromI(ins.sbx()); VM_NEXT();
-  VM_CASE(LDK) r[ins.a] = constants[ins.bx()]; VM_NEXT();
-  VM_CASE(SYSTIME) r[ins.a] = fromI(taskTimeNs_); ++timeReads_; VM_NEXT();
+  VM_CASE(MOV) r[INS->a] = r[INS->b]; VM_NEXT();
+  VM_CASE(LDI) r[INS->a] = fromI(INS->sbx()); VM_NEXT();
+  VM_CASE(LDK) r[INS->a] = constants[INS->bx()]; VM_NEXT();
+  VM_CASE(SYSTIME) r[INS->a] = fromI(taskTimeNs_); ++timeReads_; VM_NEXT();
 
   VM_CASE(LD_I8) VM_LOAD(int8_t, fromI(v));
   VM_CASE(LD_U8) VM_LOAD(uint8_t, uint64_t{v});
@@ -165,22 +171,27 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
   VM_CASE(LD_64) VM_LOAD(uint64_t, v);
   VM_CASE(LD_F32) VM_LOAD(float, fromF(static_cast<double>(v)));
   VM_CASE(LD_BIT)
-    if (!checkedAddress(r[ins.b], 0, 1, memSize, guard, ad)) VM_FAULT(InvalidPointer);
-    r[ins.a] = (mem[ad] >> (ins.c & 7u)) & 1u;
+    if (!checkedAddress(r[INS->b], 0, 1, memSize, guard, ad)) VM_FAULT(InvalidPointer);
+    r[INS->a] = (mem[ad] >> (INS->c & 7u)) & 1u;
     VM_NEXT();
 
-  VM_CASE(ST_8) VM_STORE(uint8_t, static_cast<uint8_t>(r[ins.a]));
-  VM_CASE(ST_16) VM_STORE(uint16_t, static_cast<uint16_t>(r[ins.a]));
-  VM_CASE(ST_32) VM_STORE(uint32_t, static_cast<uint32_t>(r[ins.a]));
-  VM_CASE(ST_64) VM_STORE(uint64_t, r[ins.a]);
-  VM_CASE(ST_F32) VM_STORE(float, static_cast<float>(asF(r[ins.a])));
+  VM_CASE(ST_8) VM_STORE(uint8_t, static_cast<uint8_t>(r[INS->a]));
+  VM_CASE(ST_16) VM_STORE(uint16_t, static_cast<uint16_t>(r[INS->a]));
+  VM_CASE(ST_32) VM_STORE(uint32_t, static_cast<uint32_t>(r[INS->a]));
+  VM_CASE(ST_64) VM_STORE(uint64_t, r[INS->a]);
+  VM_CASE(ST_F32) VM_STORE(float, static_cast<float>(asF(r[INS->a])));
   VM_CASE(ST_BIT)
-    if (!checkedAddress(r[ins.b], 0, 1, memSize, guard, ad)) VM_FAULT(InvalidPointer);
+    if (!checkedAddress(r[INS->b], 0, 1, memSize, guard, ad)) VM_FAULT(InvalidPointer);
     {
-      const uint8_t mask = static_cast<uint8_t>(1u << (ins.c & 7u));
-      mem[ad] = r[ins.a] != 0 ? (mem[ad] | mask) : (mem[ad] & ~mask);
+      const uint8_t mask = static_cast<uint8_t>(1u << (INS->c & 7u));
+      mem[ad] = r[INS->a] != 0 ? (mem[ad] | mask) : (mem[ad] & ~mask);
     }
     VM_NEXT();
+
+  VM_CASE(STK_8) VM_STORE(uint8_t, static_cast<uint8_t>(immA()));
+  VM_CASE(STK_16) VM_STORE(uint16_t, static_cast<uint16_t>(immA()));
+  VM_CASE(STK_32) VM_STORE(uint32_t, static_cast<uint32_t>(immA()));
+  VM_CASE(STK_64) VM_STORE(uint64_t, fromI(immA()));
 
   VM_CASE(LDA_I8) VM_LOADA(int8_t, fromI(v));
   VM_CASE(LDA_U8) VM_LOADA(uint8_t, uint64_t{v});
@@ -190,60 +201,66 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
   VM_CASE(LDA_U32) VM_LOADA(uint32_t, uint64_t{v});
   VM_CASE(LDA_64) VM_LOADA(uint64_t, v);
   VM_CASE(LDA_F32) VM_LOADA(float, fromF(static_cast<double>(v)));
-  VM_CASE(STA_8) VM_STOREA(uint8_t, static_cast<uint8_t>(r[ins.a]));
-  VM_CASE(STA_16) VM_STOREA(uint16_t, static_cast<uint16_t>(r[ins.a]));
-  VM_CASE(STA_32) VM_STOREA(uint32_t, static_cast<uint32_t>(r[ins.a]));
-  VM_CASE(STA_64) VM_STOREA(uint64_t, r[ins.a]);
-  VM_CASE(STA_F32) VM_STOREA(float, static_cast<float>(asF(r[ins.a])));
+  VM_CASE(STA_8) VM_STOREA(uint8_t, static_cast<uint8_t>(r[INS->a]));
+  VM_CASE(STA_16) VM_STOREA(uint16_t, static_cast<uint16_t>(r[INS->a]));
+  VM_CASE(STA_32) VM_STOREA(uint32_t, static_cast<uint32_t>(r[INS->a]));
+  VM_CASE(STA_64) VM_STOREA(uint64_t, r[INS->a]);
+  VM_CASE(STA_F32) VM_STOREA(float, static_cast<float>(asF(r[INS->a])));
 
   VM_CASE(COPY) {
-    const uint64_t n = r[ins.c];
+    const uint64_t n = r[INS->c];
     uint64_t src = 0;
-    if (!checkedAddress(r[ins.a], 0, n, memSize, guard, ad) ||
-        !checkedAddress(r[ins.b], 0, n, memSize, guard, src))
+    if (!checkedAddress(r[INS->a], 0, n, memSize, guard, ad) ||
+        !checkedAddress(r[INS->b], 0, n, memSize, guard, src))
       VM_FAULT(InvalidPointer);
     std::memmove(mem + ad, mem + src, n);
   }
     VM_NEXT();
-  VM_CASE(BOUND)
-    if (asI(r[ins.a]) < 0 || r[ins.a] >= ins.bx()) VM_FAULT(IndexOutOfRange);
+
+  VM_CASE(INDEX) {
+    const bc::IndexDesc& d = indexes[INS->c];
+    const int64_t k = asI(r[INS->b] - fromI(d.lo));
+    if (k < 0 || k >= int64_t{d.count}) VM_FAULT(IndexOutOfRange);
+    r[INS->a] = fromI(k) * d.stride;
+  }
     VM_NEXT();
 
   VM_CASE(ADD) VM_BIN(x + y);
   VM_CASE(SUB) VM_BIN(x - y);
   VM_CASE(MUL) VM_BIN(x * y);
   VM_CASE(DIV_I)
-    if (r[ins.c] == 0) VM_FAULT(DivisionByZero);
+    if (r[INS->c] == 0) VM_FAULT(DivisionByZero);
     VM_BIN(asI(y) == -1 ? 0 - x : fromI(asI(x) / asI(y)));
   VM_CASE(MOD_I)
-    if (r[ins.c] == 0) VM_FAULT(DivisionByZero);
+    if (r[INS->c] == 0) VM_FAULT(DivisionByZero);
     VM_BIN(asI(y) == -1 ? 0 : fromI(asI(x) % asI(y)));
   VM_CASE(DIV_U)
-    if (r[ins.c] == 0) VM_FAULT(DivisionByZero);
+    if (r[INS->c] == 0) VM_FAULT(DivisionByZero);
     VM_BIN(x / y);
   VM_CASE(MOD_U)
-    if (r[ins.c] == 0) VM_FAULT(DivisionByZero);
+    if (r[INS->c] == 0) VM_FAULT(DivisionByZero);
     VM_BIN(x % y);
-  VM_CASE(ADDI) r[ins.a] = r[ins.b] + fromI(static_cast<int16_t>(ins.c)); VM_NEXT();
-  VM_CASE(MULI) r[ins.a] = r[ins.b] * uint64_t{ins.c}; VM_NEXT();
-  VM_CASE(NEG) r[ins.a] = 0 - r[ins.b]; VM_NEXT();
+  VM_CASE(ADDI) r[INS->a] = r[INS->b] + fromI(immC()); VM_NEXT();
+  VM_CASE(DIVK) r[INS->a] = fromI(asI(r[INS->b]) / int64_t{INS->c}); VM_NEXT();
+  VM_CASE(MODK) r[INS->a] = fromI(asI(r[INS->b]) % int64_t{INS->c}); VM_NEXT();
+  VM_CASE(NEG) r[INS->a] = 0 - r[INS->b]; VM_NEXT();
   VM_CASE(SEXT) {
-    const unsigned bits = ins.c;
-    const uint64_t v = r[ins.b];
-    r[ins.a] = bits == 0 ? 0 : bits >= 64 ? v : fromI(asI(v << (64 - bits)) >> (64 - bits));
+    const unsigned bits = INS->c;
+    const uint64_t v = r[INS->b];
+    r[INS->a] = bits == 0 ? 0 : bits >= 64 ? v : fromI(asI(v << (64 - bits)) >> (64 - bits));
   }
     VM_NEXT();
   VM_CASE(ZEXT) {
-    const unsigned bits = ins.c;
-    const uint64_t v = r[ins.b];
-    r[ins.a] = bits >= 64 ? v : v & ((uint64_t{1} << bits) - 1);
+    const unsigned bits = INS->c;
+    const uint64_t v = r[INS->b];
+    r[INS->a] = bits >= 64 ? v : v & ((uint64_t{1} << bits) - 1);
   }
     VM_NEXT();
   VM_CASE(BAND) VM_BIN(x & y);
   VM_CASE(BOR) VM_BIN(x | y);
   VM_CASE(BXOR) VM_BIN(x ^ y);
-  VM_CASE(BNOT) r[ins.a] = ~r[ins.b]; VM_NEXT();
-  VM_CASE(LNOT) r[ins.a] = r[ins.b] == 0; VM_NEXT();
+  VM_CASE(BNOT) r[INS->a] = ~r[INS->b]; VM_NEXT();
+  VM_CASE(LNOT) r[INS->a] = r[INS->b] == 0; VM_NEXT();
   VM_CASE(SHL) VM_BIN(y < 64 ? x << y : 0);
   VM_CASE(SHR) VM_BIN(y < 64 ? x >> y : 0);
 
@@ -253,6 +270,12 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
   VM_CASE(LE_I) VM_BIN(asI(x) <= asI(y));
   VM_CASE(LT_U) VM_BIN(x < y);
   VM_CASE(LE_U) VM_BIN(x <= y);
+  VM_CASE(EQK) r[INS->a] = asI(r[INS->b]) == immC(); VM_NEXT();
+  VM_CASE(NEK) r[INS->a] = asI(r[INS->b]) != immC(); VM_NEXT();
+  VM_CASE(LTK) r[INS->a] = asI(r[INS->b]) < immC(); VM_NEXT();
+  VM_CASE(LEK) r[INS->a] = asI(r[INS->b]) <= immC(); VM_NEXT();
+  VM_CASE(GTK) r[INS->a] = asI(r[INS->b]) > immC(); VM_NEXT();
+  VM_CASE(GEK) r[INS->a] = asI(r[INS->b]) >= immC(); VM_NEXT();
   VM_CASE(EQ_F) VM_BINF(x == y);
   VM_CASE(NE_F) VM_BINF(x != y);
   VM_CASE(LT_F) VM_BINF(x < y);
@@ -266,57 +289,63 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
   VM_CASE(SUB_F32) VM_BINF(fromF(static_cast<float>(x - y)));
   VM_CASE(MUL_F32) VM_BINF(fromF(static_cast<float>(x * y)));
   VM_CASE(DIV_F32) VM_BINF(fromF(static_cast<float>(x / y)));
-  VM_CASE(NEG_F) r[ins.a] = fromF(-asF(r[ins.b])); VM_NEXT();
-  VM_CASE(RND_F32) r[ins.a] = fromF(static_cast<float>(asF(r[ins.b]))); VM_NEXT();
+  VM_CASE(NEG_F) r[INS->a] = fromF(-asF(r[INS->b])); VM_NEXT();
+  VM_CASE(RND_F32) r[INS->a] = fromF(static_cast<float>(asF(r[INS->b]))); VM_NEXT();
 
-  VM_CASE(I2F) r[ins.a] = fromF(static_cast<double>(asI(r[ins.b]))); VM_NEXT();
-  VM_CASE(U2F) r[ins.a] = fromF(static_cast<double>(r[ins.b])); VM_NEXT();
-  VM_CASE(F2I) r[ins.a] = fromI(roundToI64(asF(r[ins.b]))); VM_NEXT();
-  VM_CASE(F2I_TRUNC) r[ins.a] = fromI(truncToI64(asF(r[ins.b]))); VM_NEXT();
-  VM_CASE(F2U) r[ins.a] = roundToU64(asF(r[ins.b])); VM_NEXT();
+  VM_CASE(I2F) r[INS->a] = fromF(static_cast<double>(asI(r[INS->b]))); VM_NEXT();
+  VM_CASE(U2F) r[INS->a] = fromF(static_cast<double>(r[INS->b])); VM_NEXT();
+  VM_CASE(F2I) r[INS->a] = fromI(roundToI64(asF(r[INS->b]))); VM_NEXT();
+  VM_CASE(F2I_TRUNC) r[INS->a] = fromI(truncToI64(asF(r[INS->b]))); VM_NEXT();
+  VM_CASE(F2U) r[INS->a] = roundToU64(asF(r[INS->b])); VM_NEXT();
 
   VM_CASE(JMP)
-    VM_BACKWARD_CHECK(ins.sbx());
-    pc += static_cast<uint32_t>(ins.sbx());
+    VM_BACKWARD_CHECK(INS->sbx());
+    ip += INS->sbx();
     VM_NEXT();
   VM_CASE(JZ)
-    if (r[ins.a] == 0) {
-      VM_BACKWARD_CHECK(ins.sbx());
-      pc += static_cast<uint32_t>(ins.sbx());
+    if (r[INS->a] == 0) {
+      VM_BACKWARD_CHECK(INS->sbx());
+      ip += INS->sbx();
     }
     VM_NEXT();
   VM_CASE(JNZ)
-    if (r[ins.a] != 0) {
-      VM_BACKWARD_CHECK(ins.sbx());
-      pc += static_cast<uint32_t>(ins.sbx());
+    if (r[INS->a] != 0) {
+      VM_BACKWARD_CHECK(INS->sbx());
+      ip += INS->sbx();
     }
     VM_NEXT();
   VM_CASE(ENTER) {
-    const bc::PouInfo& p = pous[ins.bx()];
+    const bc::PouInfo& p = pous[INS->bx()];
     if (sp + p.frameSize > memSize) VM_FAULT(StackOverflow);
     std::memcpy(mem + sp, image + p.frameTemplate, p.frameSize);
-    r[ins.a] = sp;
+    r[INS->a] = sp;
     sp += p.frameSize;
   }
     VM_NEXT();
   VM_CASE(CALL) {
-    const bc::PouInfo& p = pous[ins.bx()];
+    const bc::PouInfo& p = pous[INS->bx()];
     if (remaining == 0) VM_FAULT(WatchdogBudget);
     --remaining;
-    const uint64_t newBase = uint64_t{base} + ins.a;
+    const uint64_t newBase = uint64_t{base} + INS->a;
     if (depth >= maxDepth || newBase + p.numRegs > regCount) VM_FAULT(StackOverflow);
-    frames_[depth++] = CallFrame{pc, base, r[ins.a]};
+    frames_[depth++] = CallFrame{pcOf(ip), base, r[INS->a]};
     base = static_cast<uint32_t>(newBase);
     r = regs + base;
-    pc = p.codeStart;
+    ip = code + p.codeStart;
   }
     VM_NEXT();
   VM_CASE(CALLN) {
-    const FaultKind k = kNatives[ins.bx()](r + ins.a, nctx);
+    const FaultKind k = kNatives[INS->bx()](r + INS->a, nctx);
     if (k != FaultKind::None) {
       executed_ += executed;
-      return raise(k, pc - 1, depth, startSp);
+      return raise(k, pcOf(INS), depth, startSp);
     }
+  }
+    VM_NEXT();
+  VM_CASE(CALLFB) {
+    const uint32_t fb = INS->bx();
+    if (!checkedAddress(r[INS->a], 0, kNativeFbSizes[fb], memSize, guard, ad)) VM_FAULT(InvalidPointer);
+    if (kNativeFbs[fb](mem + ad, taskTimeNs_)) ++timeReads_;
   }
     VM_NEXT();
   VM_CASE(RET)
@@ -331,25 +360,26 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
       if (f.fp >= staticSize && f.fp <= sp) sp = f.fp;
       base = f.base;
       r = regs + base;
-      pc = f.returnPc;
+      ip = code + f.returnPc;
     }
     VM_NEXT();
   VM_CASE(TRAP) {
-    const uint32_t kind = ins.bx();
+    const uint32_t kind = INS->bx();
     executed_ += executed;
     return raise(kind <= static_cast<uint32_t>(FaultKind::SubrangeViolation) && kind != 0
                      ? static_cast<FaultKind>(kind)
                      : FaultKind::InvalidEnumValue,
-                 pc - 1, depth, startSp);
+                 pcOf(INS), depth, startSp);
   }
 
 #if !VIRTCOM_VM_COMPUTED_GOTO
       case Op::Count_: break;
     }
     executed_ += executed;
-    return raise(FaultKind::InvalidPointer, pc - 1, depth, startSp);  // unreachable after verification
+    return raise(FaultKind::InvalidPointer, pcOf(INS), depth, startSp);  // unreachable after verification
   }
 #endif
+#undef INS
 #undef VM_FAULT
 #undef VM_ADDR
 #undef VM_LOAD

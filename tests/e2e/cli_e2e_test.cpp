@@ -493,4 +493,87 @@ TEST_F(CliExec, SpeedPacesButFinishes) {
   EXPECT_EQ(r.out, "MAIN.count = 3\n");
 }
 
+TEST_F(CliExec, TraceStepsPrintsTheActiveStepsOfEveryScan) {
+  RunResult r = run({"exec", "sfc_figure8.st", "--cycles", "7", "--trace-steps"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out,
+            "scan 0 (0 ms): MAIN.Init\n"
+            "scan 1 (10 ms): MAIN.Init\n"
+            "scan 2 (20 ms): MAIN.Step2_1 MAIN.Step2_2\n"
+            "scan 3 (30 ms): MAIN.Step2_1 MAIN.Step2_2\n"
+            "scan 4 (40 ms): MAIN.Step2_1 MAIN.Step2_2\n"
+            "scan 5 (50 ms): MAIN.Init\n"
+            "scan 6 (60 ms): MAIN.Init\n");
+}
+
+TEST_F(CliExec, StepFlagsAndTimesArePrintableLikeVariables) {
+  RunResult r = run({"exec", "sfc_figure8.st", "--cycles", "5", "--print", "MAIN.Step2_1.X", "--print", "MAIN.step2_2.t",
+                     "--trace", "MAIN.Init.X"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out,
+            "scan,time_ms,MAIN.Init.X\n"
+            "0,0,TRUE\n"
+            "1,10,TRUE\n"
+            "2,20,FALSE\n"
+            "3,30,FALSE\n"
+            "4,40,FALSE\n"
+            "MAIN.Step2_1.X = TRUE\n"
+            "MAIN.step2_2.t = T#20ms\n");
+}
+
+TEST_F(CliExec, TraceStepsWithoutAChartIsAnError) {
+  RunResult r = run({"exec", "counter.st", "--trace-steps"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "--trace-steps: the program has no SFC steps")) << show(r);
+  EXPECT_EQ(r.out, "");
+}
+
+TEST_F(CliHelp, ExecDescribesTraceSteps) {
+  RunResult r = run({"exec", "--help"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(contains(r.out, "--trace-steps")) << show(r);
+}
+
+// PLCopen TC6 XML projects (tests/golden/plcopen) go through check, exec and export like ST.
+class CliPlcopen : public CliTest {};
+
+TEST_F(CliPlcopen, ExecRunsALadderProject) {
+  RunResult r = run({"exec", "../../golden/plcopen/beremiz_ld.xml", "--cycles", "3", "--set", "inst0.start=TRUE",
+                     "--print", "inst0.motor", "--print", "inst0.count"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "inst0.motor = TRUE\ninst0.count = 3\n");
+}
+
+TEST_F(CliPlcopen, CheckReportsTheXmlElement) {
+  RunResult r = run({"check", "../../golden/plcopen/errors/network_errors.xml"});
+  EXPECT_EQ(r.exitCode, 1) << show(r);
+  EXPECT_TRUE(contains(r.err, "network_errors.xml:19:53: error[X006]: contact (localId 2)")) << show(r);
+}
+
+TEST_F(CliPlcopen, ExportedStProgramChecksAndRunsAsXml) {
+  std::string out = (work_ / "counter.xml").string();
+  RunResult r = run({"export", "--plcopen", out, "counter.st"});
+  ASSERT_EQ(r.exitCode, 0) << show(r);
+  std::string xml = readFile(out);
+  EXPECT_TRUE(contains(xml, "<project xmlns=\"http://www.plcopen.org/xml/tc6_0201\"")) << xml;
+  EXPECT_TRUE(contains(xml, "<pou name=\"MAIN\" pouType=\"program\">")) << xml;
+  r = run({"exec", out, "--cycles", "4", "--print", "MAIN.count"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.count = 4\n");
+}
+
+TEST_F(CliPlcopen, ExportRefusesAProgramWithErrors) {
+  std::string out = (work_ / "bad.xml").string();
+  RunResult r = run({"export", "--plcopen", out, "errors.st"});
+  EXPECT_EQ(r.exitCode, 1) << show(r);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(CliHelp, ExportDescribesItsOptions) {
+  RunResult r = run({"export", "--help"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(contains(r.out, "--plcopen")) << show(r);
+  EXPECT_TRUE(contains(r.out, "--name")) << show(r);
+}
+
 }  // namespace

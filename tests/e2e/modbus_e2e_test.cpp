@@ -17,15 +17,22 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "server_process.hpp"
+#include "shell_command.hpp"
+
 namespace {
+
+using virtcom::e2e::ServerProcess;
+using virtcom::e2e::shell;
+constexpr auto kDeadline = ServerProcess::kDeadline;
 
 const char* const kExe = VIRTCOM_EXE;
 const char* const kDataDir = VIRTCOM_E2E_DATA;
-constexpr auto kDeadline = std::chrono::seconds(20);  // generous: sanitizer builds start slowly
 
 // Holding registers of modbus_io.st (OpenPLC mapping).
 constexpr int kCountRegister = 1;      // %QW1: scans so far
@@ -35,70 +42,17 @@ constexpr int kSetpointRegister = 1024;  // %MW0
 class ModbusE2e : public ::testing::Test {
  protected:
   void SetUp() override {
-    int errPipe[2];
-    ASSERT_EQ(::pipe2(errPipe, O_CLOEXEC), 0);
-    std::vector<std::string> args{kExe, "exec", "modbus_io.st", "--modbus", "127.0.0.1:0", "--set", "MAIN.inWord=7"};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_ = ::fork();
-    ASSERT_GE(pid_, 0);
-    if (pid_ == 0) {  // child: only async-signal-safe calls
-      int in = ::open("/dev/null", O_RDONLY);
-      if (in < 0 || ::chdir(kDataDir) != 0) ::_exit(125);
-      ::dup2(in, 0);
-      ::dup2(errPipe[1], 2);
-      ::execv(kExe, argv.data());
-      ::_exit(127);
-    }
-    ::close(errPipe[1]);
-    errFd_ = errPipe[0];
-    port_ = waitForPort();
-    ASSERT_GT(port_, 0) << "no 'modbus: serving on' line; stderr so far:\n" << err_;
+    plc_ = std::make_unique<ServerProcess>(
+        kExe, std::vector<std::string>{"exec", "modbus_io.st", "--modbus", "127.0.0.1:0", "--set", "MAIN.inWord=7"}, kDataDir,
+        "modbus: serving on ");
+    port_ = plc_->port();
+    ASSERT_GT(port_, 0) << "no 'modbus: serving on' line; stderr so far:\n" << plc_->errorOutput();
   }
 
   void TearDown() override {
-    if (pid_ > 0) {
-      ::kill(pid_, SIGTERM);
-      EXPECT_EQ(waitExit(), 0) << err_;
+    if (port_ > 0) {
+      EXPECT_EQ(plc_->stop(), 0) << plc_->errorOutput();
     }
-    if (errFd_ >= 0) ::close(errFd_);
-  }
-
-  // Reads the child's stderr until the announcement; the port, or 0 on timeout or exit.
-  int waitForPort() {
-    auto until = std::chrono::steady_clock::now() + kDeadline;
-    while (std::chrono::steady_clock::now() < until) {
-      pollfd p{errFd_, POLLIN, 0};
-      if (::poll(&p, 1, 100) <= 0) continue;
-      char buf[256];
-      ssize_t n = ::read(errFd_, buf, sizeof buf);
-      if (n <= 0) return 0;
-      err_.append(buf, static_cast<size_t>(n));
-      const std::string announce = "modbus: serving on 127.0.0.1:";
-      auto at = err_.find(announce);
-      auto eol = at == std::string::npos ? at : err_.find('\n', at);
-      if (eol != std::string::npos) return std::atoi(err_.c_str() + at + announce.size());
-    }
-    return 0;
-  }
-
-  // The exit status after SIGTERM; 128 + signal if killed; -1 (and SIGKILL) if it hangs.
-  int waitExit() {
-    auto until = std::chrono::steady_clock::now() + kDeadline;
-    int status = 0;
-    while (std::chrono::steady_clock::now() < until) {
-      pid_t r = ::waitpid(pid_, &status, WNOHANG);
-      if (r == pid_) {
-        pid_ = -1;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    ::kill(pid_, SIGKILL);
-    ::waitpid(pid_, &status, 0);
-    pid_ = -1;
-    return -1;
   }
 
   modbus_t* connect() {
@@ -134,10 +88,8 @@ class ModbusE2e : public ::testing::Test {
   }
 
  protected:
-  pid_t pid_ = -1;
-  int errFd_ = -1;
+  std::unique_ptr<ServerProcess> plc_;
   int port_ = 0;
-  std::string err_;
   std::vector<modbus_t*> contexts_;
 };
 
@@ -221,17 +173,6 @@ TEST_F(ModbusE2e, ManyClientsAndAbruptDisconnectsDoNotStopTheServer) {
   ASSERT_NE(late, nullptr);
   uint16_t v = 0;
   EXPECT_EQ(modbus_read_registers(late, kSetpointRegister, 1, &v), 1);
-}
-
-// Runs a shell command; its exit status, with stdout and stderr in `out`.
-int shell(const std::string& command, std::string& out) {
-  FILE* p = ::popen((command + " 2>&1").c_str(), "r");
-  if (!p) return -1;
-  char buf[512];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  int status = ::pclose(p);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 TEST_F(ModbusE2e, MbpollReadsAndWritesEveryTable) {

@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
 #include "bytecode/module.hpp"
 #include "core/clock.hpp"
+#include "lang/sfc/step_monitor.hpp"
 #include "lang/st/compiler.hpp"
 #include "plc/runtime.hpp"
 
@@ -67,7 +69,12 @@ struct Header {
   int64_t cycles = 1;
   std::string cycleTime;
   std::vector<std::string> sets;
+  std::vector<std::string> libs;  // lib/ files compiled with the test
   std::vector<std::pair<std::string, std::string>> checks;
+  // Per-scan expectations, scans counted from 1: CHECK-AT, CHECK-BITS, CHECK-STEPS.
+  std::map<int64_t, std::vector<std::pair<std::string, std::string>>> checksAt;
+  std::vector<std::pair<std::string, std::string>> bits;  // BOOL variable, one 0/1 per scan
+  std::map<int64_t, std::string> stepsAt;                  // active SFC steps after the scan
   std::string fault;
   std::set<uint32_t> errorLines, warningLines;
   bool expectErrors = false;
@@ -101,8 +108,22 @@ Header parseHeader(const std::string& text) {
         else if (kv.rfind("cycle-time=", 0) == 0) h.cycleTime = kv.substr(11);
         else if (kv.rfind("set=", 0) == 0) h.sets.push_back(kv.substr(4));
       }
+    } else if (take("LIB:", rest)) {
+      h.libs.push_back(rest);
     } else if (take("CHECK-FAULT:", rest)) {
       h.fault = rest;
+    } else if (take("CHECK-AT:", rest)) {
+      size_t space = rest.find(' ');
+      auto eq = rest.find(" = ");
+      if (space != std::string::npos && eq != std::string::npos)
+        h.checksAt[std::stoll(rest.substr(0, space))].push_back(
+            {trim(rest.substr(space, eq - space)), trim(rest.substr(eq + 3))});
+    } else if (take("CHECK-BITS:", rest)) {
+      auto eq = rest.find(" = ");
+      if (eq != std::string::npos) h.bits.push_back({trim(rest.substr(0, eq)), trim(rest.substr(eq + 3))});
+    } else if (take("CHECK-STEPS:", rest)) {
+      size_t space = rest.find(' ');
+      h.stepsAt[std::stoll(rest.substr(0, space))] = space == std::string::npos ? "" : trim(rest.substr(space));
     } else if (take("CHECK:", rest)) {
       auto eq = rest.find(" = ");
       if (eq != std::string::npos) h.checks.push_back({trim(rest.substr(0, eq)), trim(rest.substr(eq + 3))});
@@ -128,6 +149,25 @@ int64_t parseCycleTimeNs(const std::string& s) {
   return n * 1'000'000;
 }
 
+// The per-scan expectations of `scan`; CHECK-BITS values are collected into `bitsSeen`.
+void checkScan(const bc::Module& module, const Header& h, int64_t scan, const std::vector<sfc::StepVariable>& steps,
+               const uint8_t* memory, std::map<std::string, std::string>& bitsSeen) {
+  auto value = [&](const std::string& name) {
+    auto ref = bc::resolveVariable(module, name);
+    return ref ? bc::formatValue(module, *ref, memory) : "<unknown variable " + name + ">";
+  };
+  if (auto it = h.checksAt.find(scan); it != h.checksAt.end()) {
+    for (const auto& [name, expected] : it->second) EXPECT_EQ(value(name), expected) << name << " after scan " << scan;
+  }
+  for (const auto& [name, expected] : h.bits)
+    if (static_cast<int64_t>(expected.size()) >= scan) bitsSeen[name] += value(name) == "TRUE" ? '1' : '0';
+  if (auto it = h.stepsAt.find(scan); it != h.stepsAt.end()) {
+    std::string active;
+    sfc::formatActiveSteps(steps, memory, active);
+    EXPECT_EQ(active, it->second) << "active steps after scan " << scan;
+  }
+}
+
 void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.name; }
 
 class Golden : public ::testing::TestWithParam<GoldenCase> {};
@@ -137,6 +177,11 @@ TEST_P(Golden, Run) {
   Header h = parseHeader(readFile(c.headerFile));
   std::vector<st::SourceInput> inputs;
   for (const auto& f : c.files) inputs.push_back({fs::relative(f, kRoot).string(), readFile(f)});
+  for (const auto& lib : h.libs) {
+    const fs::path libFile = fs::path(VIRTCOM_SOURCE_DIR) / "lib" / lib;
+    ASSERT_TRUE(fs::exists(libFile)) << "LIB: " << libFile << " does not exist";
+    inputs.push_back({"lib/" + lib, readFile(libFile)});
+  }
   SourceManager sources;
   Diagnostics diags;
   auto module = st::compileProgram(inputs, sources, diags);
@@ -185,11 +230,16 @@ TEST_P(Golden, Run) {
     ASSERT_EQ(bc::writeValueFromText(*module, *ref, s.substr(eq + 1), runtime.machine().memory()), "");
   }
   bool faulted = false;
-  for (int64_t k = 0; k < h.cycles; ++k)
+  std::vector<sfc::StepVariable> steps = sfc::findSteps(*module);
+  std::map<std::string, std::string> bitsSeen;
+  for (int64_t k = 0; k < h.cycles; ++k) {
     if (!runtime.tick()) {
       faulted = true;
       break;
     }
+    checkScan(*module, h, k + 1, steps, runtime.machine().memory(), bitsSeen);
+  }
+  for (const auto& [name, expected] : h.bits) EXPECT_EQ(bitsSeen[name], expected) << name << " scan by scan";
   if (!h.fault.empty()) {
     ASSERT_TRUE(faulted) << "expected a runtime fault containing '" << h.fault << "'";
     EXPECT_NE(runtime.faultText().find(h.fault), std::string::npos) << runtime.faultText();

@@ -45,6 +45,10 @@ struct Value {
   ConstValue c;
   Place place;                // Kind::Addr: aggregates (strings, structs, arrays) by address
   bool untyped = false;       // an integer/real literal without a type prefix: adapts to context
+  // Kind::Reg of an integer type: the low bits are right but the register is not yet sign- or
+  // zero-extended from the IEC width (the result of + - * NOT). Stores and further + - *
+  // AND OR XOR only need the low bits; toReg() extends it for everything else.
+  bool wrapped = false;
   bool ok() const { return kind != Kind::Error; }
   static Value error() { return Value{}; }
 };
@@ -77,6 +81,7 @@ class PouCompiler {
   void jumpTo(bc::Op op, uint16_t reg, uint32_t target);
   uint16_t loadConstInt(int64_t v, uint16_t into = 0xffff);
   uint16_t loadConstReal(double v);
+  uint16_t indexDesc(const bc::IndexDesc& d);  // its index in module.indexes (shared by equal shapes)
   // Allocates `size` bytes of statement-scoped scratch in the frame; returns a place on fp.
   Place frameTemp(TypeId type);
   uint32_t stringLiteral(const std::string& bytes, bool wide = false);
@@ -84,18 +89,24 @@ class PouCompiler {
   // Values
   Value expr(const Expr& e, TypeId expected = kNoType);
   uint16_t toReg(Value v);                       // a scalar value in a register
+  // Like toReg, but a wrapped value stays wrapped: for consumers of the low bits only.
+  uint16_t rawReg(const Value& v);
+  Value wrappedValue(TypeId type, uint16_t reg);  // a Reg value marked wrapped when its width needs it
   // Converts a value to `to` (IEC conversion rules; constants fold); reports E202 if impossible.
   Value convert(Value v, TypeId to, SourceLocation loc);
   Value coerce(Value v, TypeId to, SourceLocation loc);  // implicit, with diagnostics
   uint16_t normalize(uint16_t reg, TypeId type);
-  void emitScale(uint16_t reg, uint64_t factor);  // reg *= factor
   Value regValue(TypeId type, uint16_t reg);
+  // An integer (or BOOL, enum) constant that fits a signed 16-bit immediate; nullopt otherwise.
+  static std::optional<int16_t> smallConst(const Value& v);
   Value constInt(TypeId type, int64_t v);
 
   // Places
   std::optional<Place> place(const Expr& e, bool forWrite);
   uint16_t load(const Place& p);
   void store(const Place& p, uint16_t reg);
+  // Stores a small integer constant with one STK_*; false (nothing emitted) if it cannot.
+  bool storeConst(const Place& p, const Value& v);
   uint16_t addressOf(const Place& p);
   void assign(const Place& target, const Expr& source, SourceLocation loc);
   void assignValue(const Place& target, Value v, SourceLocation loc);

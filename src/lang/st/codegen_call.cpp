@@ -234,6 +234,27 @@ Value PouCompiler::callFunction(PouSym& fn, const Expr& e) {
   return result;
 }
 
+// The VM's native implementation of a standard FB (bytecode/native_fbs.def) if the prelude
+// declares exactly the layout the native expects; nullopt for every other FB.
+static std::optional<bc::NativeFb> nativeFb(const PouSym& fb, const TypeTable& types) {
+  if (!fb.isLibrary || fb.hasClassHeader || fb.base) return std::nullopt;
+  const std::string name = upper(fb.name);
+  for (uint16_t k = 0; k < static_cast<uint16_t>(bc::NativeFb::Count_); ++k) {
+    const auto f = static_cast<bc::NativeFb>(k);
+    if (bc::nativeFbName(f) != name) continue;
+    const auto members = bc::nativeFbMembers(f);
+    if (members.size() != fb.members.size()) return std::nullopt;
+    for (size_t j = 0; j < members.size(); ++j) {
+      const VarInfo& v = fb.members[j];
+      if (upper(v.name) != members[j].name || v.storage != Storage::Instance || v.byReference || v.bit >= 0 ||
+          v.offset != members[j].offset || types[v.type].size != members[j].size)
+        return std::nullopt;
+    }
+    return f;
+  }
+  return std::nullopt;
+}
+
 Value PouCompiler::callFbInstance(const Place& inst, PouSym& fb, const Expr& e) {
   pou_.callees.push_back(&fb);
   std::vector<const VarInfo*> params = fbParams(fb);
@@ -242,8 +263,12 @@ Value PouCompiler::callFbInstance(const Place& inst, PouSym& fb, const Expr& e) 
   evaluateInputs(params, bindings);
   uint16_t self = addressOf(inst);
   storeInputs(*this, params, bindings, self);
-  uint16_t frame = emitFrameCall(fb, self);
-  emitBx(Op::CALL, frame, fb.bcIndex);
+  if (auto native = nativeFb(fb, types())) {
+    emitBx(Op::CALLFB, self, static_cast<uint32_t>(*native));
+  } else {
+    uint16_t frame = emitFrameCall(fb, self);
+    emitBx(Op::CALL, frame, fb.bcIndex);
+  }
   readOutputs(self, bindings, params);
   Value v;
   v.kind = Value::Kind::Void;

@@ -1,4 +1,5 @@
 // Code generation: instruction emission, registers, loads/stores, conversions and assignment.
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <cstring>
@@ -102,6 +103,19 @@ uint16_t PouCompiler::loadConstInt(int64_t v, uint16_t into) {
   return r;
 }
 
+uint16_t PouCompiler::indexDesc(const bc::IndexDesc& d) {
+  auto& all = ctx_.module.indexes;
+  auto same = [&d](const bc::IndexDesc& x) { return x.lo == d.lo && x.count == d.count && x.stride == d.stride; };
+  auto it = std::find_if(all.begin(), all.end(), same);
+  if (it != all.end()) return static_cast<uint16_t>(it - all.begin());
+  if (all.size() > 0xffff) {
+    diags().error(diag::E108, pou_.ast->loc, "too many distinct array shapes (more than 65536)");
+    return 0;
+  }
+  all.push_back(d);
+  return static_cast<uint16_t>(all.size() - 1);
+}
+
 uint16_t PouCompiler::loadConstReal(double v) {
   uint64_t bits;
   std::memcpy(&bits, &v, 8);
@@ -140,6 +154,12 @@ Value PouCompiler::regValue(TypeId type, uint16_t reg) {
   v.type = type;
   v.reg = reg;
   return v;
+}
+
+std::optional<int16_t> PouCompiler::smallConst(const Value& v) {
+  if (v.kind != Value::Kind::Const || v.c.kind != ConstValue::Kind::Int) return std::nullopt;
+  if (v.c.i < INT16_MIN || v.c.i > INT16_MAX) return std::nullopt;
+  return static_cast<int16_t>(v.c.i);
 }
 
 Value PouCompiler::constInt(TypeId type, int64_t i) {
@@ -240,20 +260,33 @@ void PouCompiler::copyBytes(uint16_t dst, uint16_t src, uint32_t size) {
   emit(Op::COPY, dst, src, n);
 }
 
+// Integers narrower than 64 bits (BOOL is always 0 or 1) live sign- or zero-extended.
+static bool hasExtension(const TypeTable& t, TypeId type) {
+  if (!t.isScalar(type) || t.isReal(type)) return false;
+  ElemType e = t.storageElem(type);
+  return bitWidth(e) < 64 && e != ElemType::Bool;
+}
+
 uint16_t PouCompiler::normalize(uint16_t reg, TypeId type) {
-  if (!types().isScalar(type) || types().isReal(type)) return reg;
+  if (!hasExtension(types(), type)) return reg;
   ElemType e = types().storageElem(type);
   uint32_t bits = bitWidth(e);
-  if (bits >= 64) return reg;
-  if (e == ElemType::Bool) return reg;
   bool isSigned = isSignedInt(e) || e == ElemType::Time;
   emit(isSigned ? Op::SEXT : Op::ZEXT, reg, reg, static_cast<uint16_t>(bits));
   return reg;
 }
 
+uint16_t PouCompiler::rawReg(const Value& v) { return v.kind == Value::Kind::Reg ? v.reg : toReg(v); }
+
+Value PouCompiler::wrappedValue(TypeId type, uint16_t reg) {
+  Value v = regValue(type, reg);
+  v.wrapped = hasExtension(types(), type);
+  return v;
+}
+
 uint16_t PouCompiler::toReg(Value v) {
   switch (v.kind) {
-    case Value::Kind::Reg: return v.reg;
+    case Value::Kind::Reg: return v.wrapped ? normalize(v.reg, v.type) : v.reg;
     case Value::Kind::Const:
       if (v.type != kNoType && types().isReal(v.type)) return loadConstReal(constAsReal(v.c));
       if (v.c.kind == ConstValue::Kind::Real) return loadConstReal(v.c.f);
@@ -526,7 +559,23 @@ void PouCompiler::assignValue(const Place& target, Value v, SourceLocation loc) 
   }
   Value c = coerce(v, tt, loc);
   if (!c.ok()) return;
-  store(target, toReg(c));
+  if (storeConst(target, c)) return;
+  store(target, rawReg(c));  // a store keeps only the low bits of its width
+}
+
+bool PouCompiler::storeConst(const Place& p, const Value& v) {
+  std::optional<int16_t> k = smallConst(v);
+  if (!k || p.base == kAbsolute || p.bit >= 0 || p.valueBit >= 0 || p.offset > 0xffff || types().isReal(p.type))
+    return false;
+  Op op = Op::STK_64;
+  switch (storeOp(types().storageElem(p.type))) {
+    case Op::ST_8: op = Op::STK_8; break;
+    case Op::ST_16: op = Op::STK_16; break;
+    case Op::ST_32: op = Op::STK_32; break;
+    default: break;
+  }
+  emit(op, static_cast<uint16_t>(*k), p.base, static_cast<uint16_t>(p.offset));
+  return true;
 }
 
 void PouCompiler::assign(const Place& target, const Expr& source, SourceLocation loc) {

@@ -202,15 +202,6 @@ std::optional<Place> PouCompiler::memberPlace(const Expr& e, bool forWrite) {
   return std::nullopt;
 }
 
-void PouCompiler::emitScale(uint16_t reg, uint64_t factor) {
-  if (factor <= 0xffff) {
-    emit(Op::MULI, reg, reg, static_cast<uint16_t>(factor));
-  } else {
-    uint16_t k = loadConstInt(static_cast<int64_t>(factor));
-    emit(Op::MUL, reg, reg, k);
-  }
-}
-
 std::optional<Place> PouCompiler::indexPlace(const Expr& e, bool forWrite) {
   auto basePlace = place(*e.lhs, forWrite);
   if (!basePlace) return std::nullopt;
@@ -248,18 +239,10 @@ std::optional<Place> PouCompiler::indexPlace(const Expr& e, bool forWrite) {
       }
       constLinear += (idx.c.i - dim.lo) * static_cast<int64_t>(stride);
     } else {
+      // One INDEX checks the index and scales it to a byte offset.
       uint16_t r = allocReg();
-      uint16_t src = toReg(idx);
-      if (dim.lo != 0 && -dim.lo >= INT16_MIN && -dim.lo <= INT16_MAX) {
-        emit(Op::ADDI, r, src, static_cast<uint16_t>(static_cast<int16_t>(-dim.lo)));
-      } else if (dim.lo != 0) {
-        uint16_t lo = loadConstInt(-dim.lo);
-        emit(Op::ADD, r, src, lo);
-      } else {
-        emit(Op::MOV, r, src, 0);
-      }
-      emitBx(Op::BOUND, r, static_cast<uint32_t>(dim.count()));
-      if (stride != 1) emitScale(r, stride);
+      emit(Op::INDEX, r, toReg(idx), indexDesc({dim.lo, static_cast<uint32_t>(dim.count()),
+                                                static_cast<uint32_t>(stride * elemSize)}));
       if (linear == 0xffff) linear = r;
       else emit(Op::ADD, linear, linear, r);
     }
@@ -267,7 +250,6 @@ std::optional<Place> PouCompiler::indexPlace(const Expr& e, bool forWrite) {
   }
   p.offset += static_cast<uint32_t>(constLinear * elemSize);
   if (linear != 0xffff) {
-    if (elemSize != 1) emitScale(linear, elemSize);
     uint16_t addr = allocReg();
     if (p.base == kAbsolute) {
       uint16_t b = loadConstInt(p.offset);
@@ -525,8 +507,7 @@ Value PouCompiler::unary(const Expr& e, TypeId expected) {
       }
       if (t.isInteger(a.type) || t.isTimeLike(a.type)) {
         emit(Op::NEG, out, src, 0);
-        normalize(out, a.type);
-        return regValue(a.type, out);
+        return wrappedValue(a.type, out);
       }
       diags().error(diag::E210, e.loc, "unary '-' needs a number, found " + describe(t, a.type));
       return Value::error();
@@ -537,8 +518,7 @@ Value PouCompiler::unary(const Expr& e, TypeId expected) {
       }
       if (t.isInteger(a.type)) {
         emit(Op::BNOT, out, src, 0);
-        normalize(out, a.type);
-        return regValue(a.type, out);
+        return wrappedValue(a.type, out);
       }
       diags().error(diag::E210, e.loc, "NOT needs a BOOL or a bit string, found " + describe(t, a.type));
       return Value::error();
@@ -618,12 +598,25 @@ Value PouCompiler::binary(const Expr& e, TypeId expected) {
   return arithmetic(e, a, b);
 }
 
+// `k op x` is `x mirrored(op) k`.
+static BinaryOp mirrored(BinaryOp op) {
+  switch (op) {
+    case BinaryOp::Lt: return BinaryOp::Gt;
+    case BinaryOp::Le: return BinaryOp::Ge;
+    case BinaryOp::Gt: return BinaryOp::Lt;
+    case BinaryOp::Ge: return BinaryOp::Le;
+    default: return op;
+  }
+}
+
 Value PouCompiler::compare(const Expr& e, Value a, Value b) {
   TypeTable& t = types();
   TypeId boolT = TypeTable::elem(ElemType::Bool);
   bool strings = (t.isString(a.type) || (a.kind == Value::Kind::Const && a.c.kind == ConstValue::Kind::String)) &&
                  (t.isString(b.type) || (b.kind == Value::Kind::Const && b.c.kind == ConstValue::Kind::String));
-  uint16_t ra, rb;
+  uint16_t ra, rb = 0;
+  std::optional<int16_t> k;  // the right-hand side as an immediate (a K comparison)
+  BinaryOp op = e.binaryOp;
   Op lt = Op::LT_I, le = Op::LE_I, eq = Op::EQ, ne = Op::NE;
   if (strings) {
     bool wa = a.type != kNoType && t.isWideString(a.type), wb = b.type != kNoType && t.isWideString(b.type);
@@ -634,7 +627,7 @@ Value PouCompiler::compare(const Expr& e, Value a, Value b) {
     uint16_t x = toReg(a), y = toReg(b);
     Value cmp = callNative(wa ? wideNative(bc::Native::STR_CMP) : bc::Native::STR_CMP, {x, y}, TypeTable::elem(ElemType::Dint));
     ra = cmp.reg;
-    rb = loadConstInt(0);
+    k = 0;
   } else {
     TypeId common = commonType(a, b);
     if (common == kNoType && t.isEnum(a.type) && a.type == b.type) common = a.type;
@@ -650,20 +643,42 @@ Value PouCompiler::compare(const Expr& e, Value a, Value b) {
     Value ca = t.isPointer(common) || common == a.type ? a : convert(a, common, e.loc);
     Value cb = t.isPointer(common) || common == b.type ? b : convert(b, common, e.loc);
     if (!ca.ok() || !cb.ok()) return Value::error();
-    ra = toReg(ca);
-    rb = toReg(cb);
+    // The K comparisons are signed: fine for every register except unsigned 64-bit ones.
+    bool unsignedCompare = isUnsigned(t, common) || t.isDateLike(common) || t.isPointer(common);
+    bool immediates = !t.isReal(common) && !(unsignedCompare && t.bits(common) >= 64);
+    if (immediates && smallConst(cb)) {
+      k = smallConst(cb);
+      ra = toReg(ca);
+    } else if (immediates && smallConst(ca)) {
+      k = smallConst(ca);
+      ra = toReg(cb);
+      op = mirrored(op);
+    } else {
+      ra = toReg(ca);
+      rb = toReg(cb);
+    }
     if (t.isReal(common)) {
       lt = Op::LT_F;
       le = Op::LE_F;
       eq = Op::EQ_F;
       ne = Op::NE_F;
-    } else if (isUnsigned(t, common) || t.isDateLike(common) || t.isPointer(common)) {
+    } else if (unsignedCompare) {
       lt = Op::LT_U;
       le = Op::LE_U;
     }
   }
   uint16_t out = allocReg();
-  switch (e.binaryOp) {
+  if (k) {
+    emit(op == BinaryOp::Lt   ? Op::LTK
+         : op == BinaryOp::Le ? Op::LEK
+         : op == BinaryOp::Gt ? Op::GTK
+         : op == BinaryOp::Ge ? Op::GEK
+         : op == BinaryOp::Eq ? Op::EQK
+                              : Op::NEK,
+         out, ra, static_cast<uint16_t>(*k));
+    return regValue(boolT, out);
+  }
+  switch (op) {
     case BinaryOp::Lt: emit(lt, out, ra, rb); break;
     case BinaryOp::Le: emit(le, out, ra, rb); break;
     case BinaryOp::Gt: emit(lt, out, rb, ra); break;
@@ -762,16 +777,26 @@ Value PouCompiler::arithmetic(const Expr& e, Value a, Value b) {
     // x + k / x - k with a small k: one ADDI instead of loading the constant
     int64_t k = op == BinaryOp::Add ? cb.c.i : -cb.c.i;
     if (k >= INT16_MIN && k <= INT16_MAX) {
-      uint16_t x = toReg(ca), out = allocReg();
+      uint16_t x = rawReg(ca), out = allocReg();
       emit(Op::ADDI, out, x, static_cast<uint16_t>(static_cast<int16_t>(k)));
-      normalize(out, common);
-      return regValue(common, out);
+      return wrappedValue(common, out);
     }
   }
-  uint16_t x = toReg(ca), y = toReg(cb);
+  bool uns = isUnsigned(t, common);
+  if (!real && (op == BinaryOp::Div || op == BinaryOp::Mod) && cb.kind == Value::Kind::Const &&
+      cb.c.kind == ConstValue::Kind::Int && cb.c.i >= 1 && cb.c.i <= 0xffff && !(uns && t.bits(common) >= 64)) {
+    // A positive constant divisor: no zero check, and signed division is right for every
+    // register except an unsigned 64-bit one; the result never needs re-extending.
+    uint16_t x = toReg(ca), out = allocReg();
+    emit(op == BinaryOp::Div ? Op::DIVK : Op::MODK, out, x, static_cast<uint16_t>(cb.c.i));
+    return regValue(common, out);
+  }
+  // The low bits of + - * AND OR XOR depend only on the operands' low bits; / and MOD need
+  // extended operands.
+  bool lowBits = !real && op != BinaryOp::Div && op != BinaryOp::Mod;
+  uint16_t x = lowBits ? rawReg(ca) : toReg(ca), y = lowBits ? rawReg(cb) : toReg(cb);
   uint16_t out = allocReg();
   bool f32 = t.isElem(common, ElemType::Real);
-  bool uns = isUnsigned(t, common);
   switch (op) {
     case BinaryOp::Add: emit(real ? (f32 ? Op::ADD_F32 : Op::ADD_F) : Op::ADD, out, x, y); break;
     case BinaryOp::Sub: emit(real ? (f32 ? Op::SUB_F32 : Op::SUB_F) : Op::SUB, out, x, y); break;
@@ -785,9 +810,13 @@ Value PouCompiler::arithmetic(const Expr& e, Value a, Value b) {
       diags().error(diag::E210, e.loc, "unsupported operator");
       return Value::error();
   }
-  if (!real) normalize(out, common);
-  Value r = regValue(common, out);
-  return r;
+  // Bitwise operations on extended operands give an extended result. A remainder and an
+  // unsigned quotient are never larger than the dividend; a signed quotient overflows only
+  // for MIN / -1.
+  bool quotientFits = op == BinaryOp::Div && (uns || (cb.kind == Value::Kind::Const && cb.c.i != -1));
+  if (real || op == BinaryOp::Mod || quotientFits || (logical && !ca.wrapped && !cb.wrapped))
+    return regValue(common, out);
+  return wrappedValue(common, out);
 }
 
 }  // namespace virtcom::st

@@ -108,7 +108,8 @@ void PouCompiler::assignment(const Stmt& s) {
   if (s.kind == StmtKind::SetAssign || s.kind == StmtKind::ResetAssign) {
     uint16_t c = condition(*s.rhs);
     uint32_t skip = emitJump(Op::JZ, c);
-    store(*target, loadConstInt(s.kind == StmtKind::SetAssign ? 1 : 0));
+    Value bit = constInt(TypeTable::elem(ElemType::Bool), s.kind == StmtKind::SetAssign ? 1 : 0);
+    if (!storeConst(*target, bit)) store(*target, toReg(bit));
     patchJump(skip, here());
     return;
   }
@@ -133,7 +134,7 @@ void PouCompiler::ifStatement(const Stmt& s) {
     uint32_t skip = emitJump(Op::JZ, c);
     freeRegs(mark);
     statements(branch.body);
-    toEnd.push_back(emitJump(Op::JMP, 0));
+    if (&branch != &s.branches.back() || s.hasElse) toEnd.push_back(emitJump(Op::JMP, 0));
     patchJump(skip, here());
   }
   if (s.hasElse) statements(s.elseBody);
@@ -169,7 +170,9 @@ void PouCompiler::caseStatement(const Stmt& s) {
   };
   std::vector<uint32_t> toEnd;
   for (const auto& branch : s.cases) {
-    std::vector<uint32_t> toBody;
+    // One label: jump over the body unless it matches; several: jump into the body if any matches.
+    const bool single = branch.labels.size() == 1;
+    std::vector<uint32_t> toBody, toNext;
     for (const auto& label : branch.labels) {
       uint16_t mark = regMark();
       auto lo = labelValue(*label.lo);
@@ -189,23 +192,27 @@ void PouCompiler::caseStatement(const Stmt& s) {
           diags().warning(diag::W302, label.lo->loc, "CASE label can never match a selector of type " + describe(t, sel.type));
       }
       uint16_t c = allocReg();
+      auto compareWith = [&](Op op, Op opK, uint16_t into, int64_t k, bool constFirst) {
+        if (k >= INT16_MIN && k <= INT16_MAX) emit(opK, into, r, static_cast<uint16_t>(k));
+        else if (constFirst) emit(op, into, loadConstInt(k), r);
+        else emit(op, into, r, loadConstInt(k));
+      };
       if (*lo == *hi) {
-        uint16_t k = loadConstInt(*lo);
-        emit(Op::EQ, c, r, k);
+        compareWith(Op::EQ, Op::EQK, c, *lo, false);
       } else {
-        uint16_t k1 = loadConstInt(*lo), k2 = loadConstInt(*hi), c2 = allocReg();
-        emit(Op::LE_I, c, k1, r);
-        emit(Op::LE_I, c2, r, k2);
+        uint16_t c2 = allocReg();
+        compareWith(Op::LE_I, Op::GEK, c, *lo, true);
+        compareWith(Op::LE_I, Op::LEK, c2, *hi, false);
         emit(Op::BAND, c, c, c2);
       }
-      toBody.push_back(emitJump(Op::JNZ, c));
+      (single ? toNext : toBody).push_back(emitJump(single ? Op::JZ : Op::JNZ, c));
       freeRegs(mark);
     }
-    uint32_t skip = emitJump(Op::JMP, 0);
+    if (!single) toNext.push_back(emitJump(Op::JMP, 0));
     for (uint32_t j : toBody) patchJump(j, here());
     statements(branch.body);
-    toEnd.push_back(emitJump(Op::JMP, 0));
-    patchJump(skip, here());
+    if (&branch != &s.cases.back() || s.hasElse) toEnd.push_back(emitJump(Op::JMP, 0));
+    for (uint32_t j : toNext) patchJump(j, here());
   }
   if (s.hasElse) statements(s.elseBody);
   for (uint32_t j : toEnd) patchJump(j, here());
@@ -267,7 +274,9 @@ void PouCompiler::forStatement(const Stmt& s) {
   statements(s.body);
   uint32_t cont = here();
   uint16_t i2 = load(*var);
-  if (step == 0xffff) {
+  if (step == 0xffff && stepConst >= INT16_MIN && stepConst <= INT16_MAX) {
+    emit(Op::ADDI, i2, i2, static_cast<uint16_t>(static_cast<int16_t>(stepConst)));
+  } else if (step == 0xffff) {
     uint16_t k = loadConstInt(stepConst);
     emit(Op::ADD, i2, i2, k);
   } else {

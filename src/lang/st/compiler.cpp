@@ -83,6 +83,19 @@ void fillSymbols(ProgramModel& model, bc::Module& module, TypeTable& types) {
 
 }  // namespace
 
+std::vector<CompilationUnit> parseInputs(const std::vector<SourceInput>& inputs, SourceManager& sources,
+                                         Diagnostics& diags, NodeId& nextNodeId) {
+  std::vector<CompilationUnit> units;
+  for (const auto& in : inputs) {
+    uint32_t id = sources.addFile(in.path, in.text);
+    const FrontEnd& parse = in.frontEnd ? in.frontEnd : FrontEnd(parseFile);
+    units.push_back(parse(id, sources.text(id), diags, nextNodeId));
+    for (auto& gvl : units.back().globals)
+      if (gvl.name.empty()) gvl.name = std::filesystem::path(in.path).stem().string();
+  }
+  return units;
+}
+
 std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& inputs, SourceManager& sources,
                                            Diagnostics& diags) {
   auto module = std::make_unique<bc::Module>();
@@ -91,12 +104,7 @@ std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& input
   uint32_t libraryFile = sources.addFile("<standard library>", std::string(standardLibrarySource()));
   units.push_back(parseFile(libraryFile, sources.text(libraryFile), diags, nextId));
   size_t libraryPous = units.front().pous.size();
-  for (const auto& in : inputs) {
-    uint32_t id = sources.addFile(in.path, in.text);
-    units.push_back(parseFile(id, sources.text(id), diags, nextId));
-    for (auto& gvl : units.back().globals)
-      if (gvl.name.empty()) gvl.name = std::filesystem::path(in.path).stem().string();
-  }
+  for (CompilationUnit& unit : parseInputs(inputs, sources, diags, nextId)) units.push_back(std::move(unit));
   module->files.clear();
   for (uint32_t i = 0; i < sources.fileCount(); ++i) module->files.push_back(sources.path(i));
   if (diags.hasErrors()) {

@@ -1,19 +1,32 @@
 #pragma once
 // The ST compiler's entry point: source files in, a verified program image out.
+#include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "bytecode/module.hpp"
 #include "core/diagnostics.hpp"
 #include "core/source.hpp"
+#include "lang/st/ast.hpp"
 
 namespace virtcom::st {
+
+// Turns one registered file into a syntax tree, like parseFile() (e.g. the PLCopen XML importer).
+using FrontEnd = std::function<CompilationUnit(uint32_t fileId, std::string_view text, Diagnostics& diags,
+                                               NodeId& nextNodeId)>;
 
 struct SourceInput {
   std::string path;  // shown in diagnostics; its stem names a file's global variable list
   std::string text;
+  FrontEnd frontEnd = {};  // empty: the file is Structured Text
 };
+
+// Registers and parses every input with its front end; a file's unnamed VAR_GLOBAL lists are
+// named after its stem. Diagnostics go to `diags`. Never throws on bad input.
+std::vector<CompilationUnit> parseInputs(const std::vector<SourceInput>& inputs, SourceManager& sources,
+                                         Diagnostics& diags, NodeId& nextNodeId);
 
 // Compiles every file as one program (plus the standard library). All diagnostics go to `diags`
 // (sorted by location); the sources are registered in `sources`. Returns the module, or null if

@@ -230,7 +230,8 @@ LiteralFamily literalFamily(std::string_view prefix) {
 
 class Lexer {
  public:
-  Lexer(uint32_t fileId, std::string_view src, Diagnostics& diags) : fileId_(fileId), src_(src), diags_(diags) {}
+  Lexer(uint32_t fileId, std::string_view src, Diagnostics& diags, SourceLocation origin)
+      : fileId_(fileId), src_(src), diags_(diags), line_(origin.line), firstLineShift_(origin.col - 1) {}
 
   std::vector<Token> run() {
     while (!atEnd()) lexOne();
@@ -249,13 +250,16 @@ class Lexer {
     if (src_[pos_] == '\n') {
       ++line_;
       lineStart_ = pos_ + 1;
+      firstLineShift_ = 0;
     }
     ++pos_;
   }
   void bump(size_t n) {
     while (n-- > 0 && !atEnd()) bump();
   }
-  SourceLocation here() const { return {fileId_, line_, static_cast<uint32_t>(pos_ - lineStart_ + 1)}; }
+  SourceLocation here() const {
+    return {fileId_, line_, static_cast<uint32_t>(pos_ - lineStart_ + 1) + firstLineShift_};
+  }
   std::string_view textFrom(size_t start) const { return src_.substr(start, pos_ - start); }
 
   Token& emit(Tok kind, size_t start, SourceLocation loc) {
@@ -607,6 +611,7 @@ class Lexer {
   size_t pos_ = 0;
   uint32_t line_ = 1;
   size_t lineStart_ = 0;
+  uint32_t firstLineShift_ = 0;  // a fragment's first line starts at column origin.col
   std::vector<Token> out_;
 };
 
@@ -640,7 +645,11 @@ bool isKeyword(Tok kind) {
 }
 
 std::vector<Token> lex(uint32_t fileId, std::string_view text, Diagnostics& diags) {
-  return Lexer(fileId, text, diags).run();
+  return Lexer(fileId, text, diags, {fileId, 1, 1}).run();
+}
+
+std::vector<Token> lexFragment(uint32_t fileId, SourceLocation origin, std::string_view text, Diagnostics& diags) {
+  return Lexer(fileId, text, diags, origin).run();
 }
 
 }  // namespace virtcom::st

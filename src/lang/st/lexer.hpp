@@ -16,4 +16,9 @@ namespace virtcom::st {
 // which must outlive the tokens.
 std::vector<Token> lex(uint32_t fileId, std::string_view text, Diagnostics& diags);
 
+// As lex(), for a fragment of a larger file (e.g. ST text embedded in a PLCopen XML file) whose
+// first character sits at `origin` (1-based line and column) of file `fileId`: token and
+// diagnostic locations point into that file.
+std::vector<Token> lexFragment(uint32_t fileId, SourceLocation origin, std::string_view text, Diagnostics& diags);
+
 }  // namespace virtcom::st

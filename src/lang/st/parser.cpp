@@ -304,11 +304,41 @@ CompilationUnit Parser::parseUnit() {
   return unit;
 }
 
+StmtList Parser::parseStatementFragment() {
+  StmtList all;
+  while (!at(Tok::Eof) && !stopped_) {
+    for (StmtPtr& stmt : parseStatementList({})) all.push_back(std::move(stmt));
+    if (at(Tok::Eof) || stopped_) break;
+    errorExpected("a statement", "");  // a declaration keyword or END_xxx has no place here
+    advance();
+  }
+  return all;
+}
+
+ExprPtr Parser::parseExpressionFragment() {
+  ExprPtr expr = parseExpr();
+  if (!expr) expr = errorExpr(cur().loc);
+  if (!at(Tok::Eof) && !stopped_) errorExpected("the end of the expression", "");
+  return expr;
+}
+
 }  // namespace detail
 
 CompilationUnit parseFile(uint32_t fileId, std::string_view text, Diagnostics& diags, NodeId& nextNodeId) {
   detail::Parser parser(fileId, lex(fileId, text, diags), diags, nextNodeId);
   return parser.parseUnit();
+}
+
+StmtList parseStatements(uint32_t fileId, SourceLocation origin, std::string_view text, Diagnostics& diags,
+                         NodeId& nextNodeId) {
+  detail::Parser parser(fileId, lexFragment(fileId, origin, text, diags), diags, nextNodeId);
+  return parser.parseStatementFragment();
+}
+
+ExprPtr parseExpression(uint32_t fileId, SourceLocation origin, std::string_view text, Diagnostics& diags,
+                        NodeId& nextNodeId) {
+  detail::Parser parser(fileId, lexFragment(fileId, origin, text, diags), diags, nextNodeId);
+  return parser.parseExpressionFragment();
 }
 
 }  // namespace virtcom::st

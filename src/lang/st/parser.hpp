@@ -30,11 +30,23 @@ namespace virtcom::st {
 // - The operators in function form, `MOD(a, b)`, `AND(a, b, c)`, `OR(...)`, `XOR(...)`, are Calls
 //   whose callee is a Name with the upper-case spelling ("MOD"); so is `NOT(...)` with named or
 //   several arguments, while `NOT(x)` / `NOT (a OR b)` stay a Unary Not.
+// - Textual SFC (INITIAL_STEP, STEP, TRANSITION) in a PROGRAM or FUNCTION_BLOCK body is lowered
+//   into ordinary variables and statements of that POU (lang/sfc/lower.hpp); chart errors are
+//   E401-E408.
 // - Parentheses leave no node. A syntax error inside an expression leaves a Name node with an
 //   empty text in its place.
 // - Binary, Unary, Index and Deref nodes are located at their operator; Member and BitAccess at
 //   the member name; Call at its callee; statements at their first token; POUs, methods,
 //   properties, types and variables at their name.
 CompilationUnit parseFile(uint32_t fileId, std::string_view text, Diagnostics& diags, NodeId& nextNodeId);
+
+// Fragments of a larger file (ST embedded in PLCopen XML), lexed with lexFragment() so every
+// location points into file `fileId` from `origin` on; same guarantees as parseFile().
+// parseStatements: a statement list (a POU body); anything else is reported (E006) and skipped.
+// parseExpression: exactly one expression; never null (a syntax error leaves an empty Name).
+StmtList parseStatements(uint32_t fileId, SourceLocation origin, std::string_view text, Diagnostics& diags,
+                         NodeId& nextNodeId);
+ExprPtr parseExpression(uint32_t fileId, SourceLocation origin, std::string_view text, Diagnostics& diags,
+                        NodeId& nextNodeId);
 
 }  // namespace virtcom::st

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/diagnostics.hpp"
+#include "lang/sfc/sfc_model.hpp"
 #include "lang/st/ast.hpp"
 #include "lang/st/token.hpp"
 
@@ -23,6 +24,8 @@ class Parser {
  public:
   Parser(uint32_t fileId, std::vector<Token> tokens, Diagnostics& diags, NodeId& nextNodeId);
   CompilationUnit parseUnit();
+  StmtList parseStatementFragment();   // statements up to the end of the tokens
+  ExprPtr parseExpressionFragment();   // exactly one expression
 
  private:
   // ---- tokens (parser.cpp) ----
@@ -108,6 +111,18 @@ class Parser {
   void parseTypeBlock(std::vector<TypeDecl>& out, std::vector<Attribute> attributes);
   std::string parseQualifiedName();
   void addGlobalBlock(CompilationUnit& unit, std::vector<Attribute> attributes);
+
+  // ---- textual SFC (parser_sfc.cpp) ----
+  // INITIAL_STEP, STEP, TRANSITION, FROM, PRIORITY, END_STEP and END_TRANSITION are context
+  // keywords (plain identifiers elsewhere), so programs with a variable `step` still compile.
+  bool atSfcElement() const;  // INITIAL_STEP / STEP name : / TRANSITION ... FROM
+  bool atSfcEnd() const;      // END_STEP / END_TRANSITION
+  void parseSfcElement(sfc::Chart& chart);
+  sfc::Step parseStep();
+  bool parseActionAssociation(sfc::Step& step);
+  sfc::Transition parseTransition();
+  void parseStepNames(std::vector<sfc::NamedRef>& out, std::string_view context);
+  void finishChart(sfc::Chart& chart, Pou& pou, size_t errorsBefore);
 
   // ---- statements (parser_stmts.cpp) ----
   StmtList parseStatementList(std::initializer_list<Tok> ends, bool inCaseBranch = false);

@@ -80,16 +80,23 @@ void Parser::parseVarBlocks(std::vector<VarBlock>& blocks) {
   while (isVarBlockStart(cur().kind) && !stopped_) blocks.push_back(parseVarBlock());
 }
 
-// Var blocks, then statements and (if `allowMembers`) METHODs, PROPERTYs and ACTIONs in any
-// order, then endKind. TwinCAT/CODESYS text exports put the members before the body, others
-// after it: the statements before, between and after the members all go, in order, to the body.
+// Var blocks, then statements, SFC elements and (if `allowMembers`) METHODs, PROPERTYs and
+// ACTIONs in any order, then endKind. TwinCAT/CODESYS text exports put the members before the
+// body, others after it: the statements before, between and after the members all go, in order,
+// to the body; the SFC elements form one chart, lowered after the body (finishChart).
 void Parser::parsePouBody(Pou& pou, Tok endKind, bool allowMembers) {
   std::string_view opener = tokSpelling(endKind).substr(4);  // END_PROGRAM -> PROGRAM
+  size_t errorsBefore = diags_.errorCount();
   parseVarBlocks(pou.varBlocks);
   size_t lastStray = kNoStray;
+  sfc::Chart chart;
   while (!stopped_) {
     for (StmtPtr& stmt : parseStatementList({endKind})) pou.body.push_back(std::move(stmt));
     if (stopped_ || at(endKind) || at(Tok::Eof) || isPouEnd(cur().kind) || isTopLevelStart(cur().kind)) break;
+    if (atSfcElement()) {
+      parseSfcElement(chart);
+      continue;
+    }
     bool atMember = at(Tok::KwMethod) || at(Tok::KwProperty) || at(Tok::KwAction);
     if (atMember && !allowMembers && endKind != Tok::KwEndFunction) break;  // a member's END_xxx is missing
     if (atMember) {
@@ -120,6 +127,7 @@ void Parser::parsePouBody(Pou& pou, Tok endKind, bool allowMembers) {
                              std::string(tokSpelling(endKind)) + "'");
   }
   expectEnd(endKind, opener, pou.loc, &pou.endLoc);
+  finishChart(chart, pou, errorsBefore);
 }
 
 // METHOD [access] [ABSTRACT|FINAL] name [: T] vars body END_METHOD. Methods of interfaces and

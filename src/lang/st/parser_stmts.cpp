@@ -53,7 +53,7 @@ StmtList Parser::parseStatementList(std::initializer_list<Tok> ends, bool inCase
 bool Parser::endsStatementList(std::initializer_list<Tok> ends, bool inCaseBranch) {
   for (;;) {
     Tok kind = cur().kind;
-    if (contains(ends, kind) || isHardStop(kind) || stopped_) return true;
+    if (contains(ends, kind) || isHardStop(kind) || stopped_ || atSfcElement() || atSfcEnd()) return true;
     if (!isSoftEnd(kind)) return inCaseBranch && looksLikeCaseLabel();
     if (openEnds_[static_cast<size_t>(kind)] > 0) return true;
     error(diag::E006, "unexpected " + describe(cur()) + ": there is no open " + std::string(openerOf(kind)));

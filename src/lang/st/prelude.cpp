@@ -4,7 +4,15 @@ namespace virtcom::st {
 
 // CTU/CTD/CTUD count in INT (IEC); CV keeps counting up to the type's limit (not only to PV),
 // as CODESYS/TwinCAT do. F_TRIG's memory starts TRUE so a FALSE CLK on the first call is no edge.
+// SFC_STEP is the type of SFC step variables (lang/sfc/lower.hpp): Step.X, Step.T.
 static constexpr std::string_view kSource = R"ST(
+TYPE SFC_STEP :
+STRUCT
+  X : BOOL;
+  T : TIME;
+END_STRUCT
+END_TYPE
+
 FUNCTION_BLOCK TON
 VAR_INPUT IN : BOOL; PT : TIME; END_VAR
 VAR_OUTPUT Q : BOOL; ET : TIME; END_VAR

@@ -30,19 +30,35 @@ struct Location {
   uint32_t offset;  // byte offset of the register's low byte in its area
 };
 
+// Register `index` of a run of `words`-register values stored little endian from the start of
+// `area`, highest word first on the wire (OpenPLC's order for %MD and %ML). The whole value
+// must lie inside the area.
+std::optional<Location> wordOfValue(const ImageView& image, Area area, uint32_t index, uint32_t words) {
+  uint32_t value = index / words, wordFromHigh = index % words;
+  uint64_t end = static_cast<uint64_t>(value + 1) * 2 * words;
+  if (end > image.bytes(area).size()) return std::nullopt;
+  return Location{area, value * 2 * words + 2 * (words - 1 - wordFromHigh)};
+}
+
 std::optional<Location> inputRegister(const ImageView& image, uint32_t reg) {
-  if (2 * reg + 1 < image.inputs.size()) return Location{Area::Inputs, 2 * reg};
-  return std::nullopt;
+  return wordOfValue(image, image.layout == Layout::Tables ? Area::Registers : Area::Inputs, reg, 1);
 }
 
 std::optional<Location> holdingRegister(const ImageView& image, uint32_t reg) {
-  if (reg < kMemoryRegisterBase) {
-    if (2 * reg + 1 < image.outputs.size()) return Location{Area::Outputs, 2 * reg};
-    return std::nullopt;
-  }
-  uint32_t n = reg - kMemoryRegisterBase;
-  if (2 * n + 1 < image.memory.size()) return Location{Area::Memory, 2 * n};
+  if (image.layout == Layout::Tables) return wordOfValue(image, Area::Memory, reg, 1);
+  if (reg < kMemoryRegisterBase) return wordOfValue(image, Area::Outputs, reg, 1);
+  if (reg < kDoubleRegisterBase) return wordOfValue(image, Area::Memory, reg - kMemoryRegisterBase, 1);
+  if (reg < kLongRegisterBase) return wordOfValue(image, Area::Memory, reg - kDoubleRegisterBase, 2);
+  if (reg < kLongRegisterEnd) return wordOfValue(image, Area::Memory, reg - kLongRegisterBase, 4);
   return std::nullopt;
+}
+
+bool bitSet(std::span<const uint8_t> bits, uint32_t i) { return i / 8 < bits.size() && ((bits[i / 8] >> (i % 8)) & 1); }
+
+bool anyBitSet(std::span<const uint8_t> bits, uint32_t start, uint32_t count) {
+  for (uint32_t i = start; i < start + count; ++i)
+    if (bitSet(bits, i)) return true;
+  return false;
 }
 
 using Locator = std::optional<Location> (*)(const ImageView&, uint32_t);
@@ -51,6 +67,10 @@ bool rangeExists(Locator locate, const ImageView& image, uint32_t start, uint32_
   for (uint32_t r = start; r < start + count; ++r)
     if (!locate(image, r)) return false;
   return true;
+}
+
+bool holdingWritable(const ImageView& image, uint32_t start, uint32_t count) {
+  return rangeExists(holdingRegister, image, start, count) && !anyBitSet(image.readOnlyHolding, start, count);
 }
 
 bool bitRangeExists(std::span<const uint8_t> area, uint32_t start, uint32_t count) {
@@ -121,7 +141,7 @@ Result writeSingleCoil(Context& c) {
   auto addr = c.in.u16(), value = c.in.u16();
   if (!addr || !value || c.in.remaining() != 0) return ExceptionCode::IllegalDataValue;
   if (*value != kCoilOn && *value != kCoilOff) return ExceptionCode::IllegalDataValue;
-  if (!bitRangeExists(c.image.outputs, *addr, 1)) return ExceptionCode::IllegalDataAddress;
+  if (!bitRangeExists(c.image.outputs, *addr, 1) || bitSet(c.image.readOnlyCoils, *addr)) return ExceptionCode::IllegalDataAddress;
   if (!c.edits.hasRoom(1)) return ExceptionCode::ServerDeviceBusy;
   uint8_t bit = static_cast<uint8_t>(1u << (*addr % 8));
   commit(c, {Area::Outputs, *addr / 8u, *value == kCoilOn ? bit : uint8_t{0}, bit});
@@ -134,7 +154,7 @@ Result writeSingleRegister(Context& c) {
   auto addr = c.in.u16();
   auto value = c.in.bytes(2);
   if (!addr || !value || c.in.remaining() != 0) return ExceptionCode::IllegalDataValue;
-  if (!holdingRegister(c.image, *addr)) return ExceptionCode::IllegalDataAddress;
+  if (!holdingWritable(c.image, *addr, 1)) return ExceptionCode::IllegalDataAddress;
   if (!c.edits.hasRoom(2)) return ExceptionCode::ServerDeviceBusy;
   writeRegisters(c, *addr, 1, *value);
   c.out.u16(*addr);
@@ -150,7 +170,8 @@ Result writeMultipleCoils(Context& c) {
   if (*count < 1 || *count > kMaxWriteCoils || *byteCount != (*count + 7) / 8 || c.in.remaining() != *byteCount)
     return ExceptionCode::IllegalDataValue;
   auto values = *c.in.bytes(*byteCount);
-  if (!bitRangeExists(c.image.outputs, *start, *count)) return ExceptionCode::IllegalDataAddress;
+  if (!bitRangeExists(c.image.outputs, *start, *count) || anyBitSet(c.image.readOnlyCoils, *start, *count))
+    return ExceptionCode::IllegalDataAddress;
   uint32_t first = *start / 8u, last = (*start + *count - 1u) / 8u;
   if (!c.edits.hasRoom(last - first + 1)) return ExceptionCode::ServerDeviceBusy;
   for (uint32_t byte = first; byte <= last; ++byte) {
@@ -176,7 +197,7 @@ Result writeMultipleRegisters(Context& c) {
   if (*count < 1 || *count > kMaxWriteRegisters || *byteCount != 2 * *count || c.in.remaining() != *byteCount)
     return ExceptionCode::IllegalDataValue;
   auto values = *c.in.bytes(*byteCount);
-  if (!rangeExists(holdingRegister, c.image, *start, *count)) return ExceptionCode::IllegalDataAddress;
+  if (!holdingWritable(c.image, *start, *count)) return ExceptionCode::IllegalDataAddress;
   if (!c.edits.hasRoom(2u * *count)) return ExceptionCode::ServerDeviceBusy;
   writeRegisters(c, *start, *count, values);
   c.out.u16(*start);
@@ -194,7 +215,7 @@ Result readWriteMultipleRegisters(Context& c) {
     return ExceptionCode::IllegalDataValue;
   auto values = *c.in.bytes(*byteCount);
   if (!rangeExists(holdingRegister, c.image, *readStart, *readCount) ||
-      !rangeExists(holdingRegister, c.image, *writeStart, *writeCount))
+      !holdingWritable(c.image, *writeStart, *writeCount))
     return ExceptionCode::IllegalDataAddress;
   if (!c.edits.hasRoom(2u * *writeCount)) return ExceptionCode::ServerDeviceBusy;
   writeRegisters(c, *writeStart, *writeCount, values);

@@ -1,11 +1,18 @@
 #pragma once
-// Modbus request PDUs answered against a PLC process image with the OpenPLC mapping:
+// Modbus request PDUs answered against byte areas laid out in one of two ways.
+// Layout::OpenPlc, a PLC process image with the OpenPLC mapping:
 //   coils            0..          -> %QX  (coil 8b+k = bit k of Q byte b)
 //   discrete inputs  0..          -> %IX  (read only)
 //   input registers  0..          -> %IW  (register n = I bytes 2n..2n+1, read only)
 //   holding registers 0..1023     -> %QW  (register n = Q bytes 2n..2n+1)
-//   holding registers 1024..65535 -> %MW  (register 1024+n = M bytes 2n..2n+1)
-// The PLC image is little endian; registers go big endian on the wire.
+//   holding registers 1024..2047  -> %MW  (register 1024+n = M bytes 2n..2n+1)
+//   holding registers 2048..4095  -> %MD  (registers 2048+2n, +1 = %MDn high word, low word)
+//   holding registers 4096..8191  -> %ML  (registers 4096+4n..+3 = %MLn, highest word first)
+// Layout::Tables, four independent tables (a served cell's signal map):
+//   coils = bits of `outputs`, discrete inputs = bits of `inputs`, holding registers = words
+//   of `memory`, input registers = words of `registers`; coils and holding registers whose bit
+//   is set in `readOnlyCoils` / `readOnlyHolding` refuse writes (exception 02).
+// Areas are little endian (register n = bytes 2n, 2n+1); registers go big endian on the wire.
 // Pure functions over spans: no sockets, no threads, no allocation.
 #include <array>
 #include <cstddef>
@@ -17,7 +24,11 @@ namespace virtcom::proto::modbus {
 
 // MODBUS Application Protocol V1.1b3 section 4.1: a PDU is at most 253 bytes.
 inline constexpr size_t kMaxPduSize = 253;
-inline constexpr uint16_t kMemoryRegisterBase = 1024;  // OpenPLC: %MW0 is holding register 1024
+// OpenPLC's holding register ranges for the %M area (its modbus server: MIN_16B/32B/64B_RANGE).
+inline constexpr uint16_t kMemoryRegisterBase = 1024;  // %MW0
+inline constexpr uint16_t kDoubleRegisterBase = 2048;  // %MD0
+inline constexpr uint16_t kLongRegisterBase = 4096;    // %ML0
+inline constexpr uint32_t kLongRegisterEnd = 8192;     // one past %ML1023's last register
 
 enum class FunctionCode : uint8_t {
 #define MODBUS_FUNCTION(name, code, handler, text) name = code,
@@ -36,12 +47,24 @@ enum class ExceptionCode : uint8_t {
   ServerDeviceBusy = 0x06,  // the write queue is full until the next scan drains it
 };
 
-enum class Area : uint8_t { Inputs, Outputs, Memory };
+enum class Area : uint8_t { Inputs, Outputs, Memory, Registers };
+enum class Layout : uint8_t { OpenPlc, Tables };
 
-// The three process areas (%I, %Q, %M) a request reads and writes.
+// The areas a request reads and writes (%I, %Q, %M of a PLC; see the layouts above).
 struct ImageView {
   std::span<uint8_t> inputs, outputs, memory;
-  std::span<uint8_t> bytes(Area a) const { return a == Area::Inputs ? inputs : a == Area::Outputs ? outputs : memory; }
+  std::span<uint8_t> registers = {};  // Layout::Tables: the input registers
+  Layout layout = Layout::OpenPlc;
+  std::span<const uint8_t> readOnlyCoils = {}, readOnlyHolding = {};  // Layout::Tables: bit per coil/register
+  std::span<uint8_t> bytes(Area a) const {
+    switch (a) {
+      case Area::Inputs: return inputs;
+      case Area::Outputs: return outputs;
+      case Area::Memory: return memory;
+      case Area::Registers: return registers;
+    }
+    return {};
+  }
 };
 
 // One byte of a write: bits in `mask` take their value from `value`.

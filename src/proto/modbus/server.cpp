@@ -1,8 +1,6 @@
 #include "proto/modbus/server.hpp"
 
-#include <arpa/inet.h>
 #include <fcntl.h>
-#include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -10,7 +8,6 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
-#include <charconv>
 #include <cstring>
 #include <system_error>
 
@@ -29,28 +26,6 @@ struct Connection {
   std::vector<uint8_t> rx;  // received, not yet a whole frame
   std::vector<uint8_t> tx;  // responses not yet sent
 };
-
-std::expected<uint32_t, std::string> parseIpv4(std::string_view text) {
-  std::string host(text);
-  if (host == "localhost") host = "127.0.0.1";
-  in_addr addr{};
-  if (::inet_pton(AF_INET, host.c_str(), &addr) != 1) return std::unexpected("'" + std::string(text) + "' is not an IPv4 address");
-  return ntohl(addr.s_addr);
-}
-
-std::string formatIpv4(uint32_t ipv4) {
-  in_addr addr{htonl(ipv4)};
-  char text[INET_ADDRSTRLEN] = {};
-  ::inet_ntop(AF_INET, &addr, text, sizeof text);
-  return text;
-}
-
-std::string errnoText(const char* what) { return std::string(what) + ": " + std::strerror(errno); }
-
-bool setNonBlocking(int fd) {
-  int flags = ::fcntl(fd, F_GETFL);
-  return flags >= 0 && ::fcntl(fd, F_SETFL, flags | O_NONBLOCK) == 0;
-}
 
 // Reads what is available and answers every whole frame. False: close the connection (peer
 // closed, socket error, or a frame that is not Modbus TCP).
@@ -87,63 +62,25 @@ bool send(Connection& c) {
 
 }  // namespace
 
-std::expected<Endpoint, std::string> parseEndpoint(std::string_view text) {
-  auto colon = text.rfind(':');
-  if (colon == std::string_view::npos) return std::unexpected("expected HOST:PORT, found '" + std::string(text) + "'");
-  auto ip = parseIpv4(text.substr(0, colon));
-  if (!ip) return std::unexpected(ip.error());
-  std::string_view portText = text.substr(colon + 1);
-  unsigned port = 0;
-  auto [end, ec] = std::from_chars(portText.data(), portText.data() + portText.size(), port);
-  if (ec != std::errc{} || end != portText.data() + portText.size() || port > 65535 || portText.empty())
-    return std::unexpected("'" + std::string(portText) + "' is not a port number (0-65535)");
-  return Endpoint{*ip, static_cast<uint16_t>(port)};
-}
-
-std::expected<std::vector<uint32_t>, std::string> parseAllowList(std::string_view text) {
-  std::vector<uint32_t> out;
-  while (!text.empty()) {
-    auto comma = text.find(',');
-    std::string_view item = text.substr(0, comma);
-    if (!item.empty()) {
-      auto ip = parseIpv4(item);
-      if (!ip) return std::unexpected(ip.error());
-      out.push_back(*ip);
-    }
-    if (comma == std::string_view::npos) break;
-    text.remove_prefix(comma + 1);
-  }
-  if (out.empty()) return std::unexpected(std::string("the allow-list names no address"));
-  return out;
-}
-
-std::string formatEndpoint(const Endpoint& e) { return formatIpv4(e.ipv4) + ":" + std::to_string(e.port); }
-
-Server::Server(const ServerConfig& config, AreaSizes sizes)
+Server::Server(const ServerConfig& config, ImageShape shape)
     : config_(config),
-      snapshotInputs_(sizes.inputs, 0),
-      snapshotOutputs_(sizes.outputs, 0),
-      snapshotMemory_(sizes.memory, 0),
-      snapshot_{snapshotInputs_, snapshotOutputs_, snapshotMemory_},
+      shape_(std::move(shape)),
+      snapshotInputs_(shape_.inputs, 0),
+      snapshotOutputs_(shape_.outputs, 0),
+      snapshotMemory_(shape_.memory, 0),
+      snapshotRegisters_(shape_.registers, 0),
+      snapshot_{snapshotInputs_,    snapshotOutputs_,     snapshotMemory_,
+                snapshotRegisters_, shape_.layout,        shape_.readOnlyCoils,
+                shape_.readOnlyHolding},
       pending_(config.pendingEditCapacity) {}
 
-std::expected<std::unique_ptr<Server>, std::string> Server::start(const ServerConfig& config, AreaSizes sizes) {
-  std::unique_ptr<Server> s(new Server(config, sizes));
-  s->listenFd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  if (s->listenFd_ < 0) return std::unexpected(errnoText("socket"));
-  int one = 1;
-  ::setsockopt(s->listenFd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(config.listen.port);
-  addr.sin_addr.s_addr = htonl(config.listen.ipv4);
-  if (::bind(s->listenFd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0)
-    return std::unexpected(errnoText(("cannot bind " + formatEndpoint(config.listen)).c_str()));
-  if (::listen(s->listenFd_, 16) != 0 || !setNonBlocking(s->listenFd_)) return std::unexpected(errnoText("listen"));
-  socklen_t len = sizeof addr;
-  if (::getsockname(s->listenFd_, reinterpret_cast<sockaddr*>(&addr), &len) != 0) return std::unexpected(errnoText("getsockname"));
-  s->bound_ = Endpoint{config.listen.ipv4, ntohs(addr.sin_port)};
-  if (::pipe2(s->wakeFds_, O_CLOEXEC | O_NONBLOCK) != 0) return std::unexpected(errnoText("pipe"));
+std::expected<std::unique_ptr<Server>, std::string> Server::start(const ServerConfig& config, ImageShape shape) {
+  std::unique_ptr<Server> s(new Server(config, std::move(shape)));
+  auto listener = net::listenTcp(config.listen);
+  if (!listener) return std::unexpected(listener.error());
+  s->listenFd_ = listener->fd;
+  s->bound_ = listener->bound;
+  if (::pipe2(s->wakeFds_, O_CLOEXEC | O_NONBLOCK) != 0) return std::unexpected(net::errnoText("pipe"));
   try {
     s->thread_ = std::thread([server = s.get()] { server->run(); });
   } catch (const std::system_error& e) {
@@ -177,7 +114,7 @@ size_t Server::applyPendingWrites(const ImageView& live) {
 
 void Server::publishSnapshot(const ImageView& live) {
   std::lock_guard lock(mutex_);
-  for (Area a : {Area::Inputs, Area::Outputs, Area::Memory}) {
+  for (Area a : {Area::Inputs, Area::Outputs, Area::Memory, Area::Registers}) {
     auto from = live.bytes(a), to = snapshot_.bytes(a);
     std::copy_n(from.begin(), std::min(from.size(), to.size()), to.begin());
   }
@@ -210,7 +147,9 @@ void Server::run() {
         short ev = fds[i + 2].revents;
         bool keep = true;
         if (ev & (POLLIN | POLLHUP | POLLERR)) keep = receive(clients[i], answer);
-        if (keep && (ev & POLLOUT)) keep = send(clients[i]);
+        // Responses go out at once: the socket is nearly always writable, so waiting for POLLOUT
+        // would cost every request another poll round.
+        if (keep && !clients[i].tx.empty()) keep = send(clients[i]);
         if (!keep) {
           ::close(clients[i].fd);
           clients[i].fd = -1;
@@ -218,12 +157,11 @@ void Server::run() {
       }
       std::erase_if(clients, [](const Connection& c) { return c.fd < 0; });
       if (fds[1].revents & POLLIN) {
-        sockaddr_in peer{};
-        socklen_t len = sizeof peer;
-        int fd = ::accept4(listenFd_, reinterpret_cast<sockaddr*>(&peer), &len, SOCK_NONBLOCK | SOCK_CLOEXEC);
+        uint32_t peer = 0;
+        int fd = net::acceptPeer(listenFd_, peer);
         if (fd >= 0) {
           const auto& allow = config_.allowedPeers;
-          bool allowed = allow.empty() || std::find(allow.begin(), allow.end(), ntohl(peer.sin_addr.s_addr)) != allow.end();
+          bool allowed = allow.empty() || std::find(allow.begin(), allow.end(), peer) != allow.end();
           if (!allowed || clients.size() >= config_.maxClients) ::close(fd);
           else clients.push_back(Connection{fd, {}, {}});
         }

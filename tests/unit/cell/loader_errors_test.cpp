@@ -55,14 +55,17 @@ TEST_F(LoaderErrors, UnknownTopLevelKeyListsTheKnownOnes) {
                     "devices: []\n"
                     "devcies: []\n"),
               ElementsAre("cell.yaml:5:1: error[C011]: unknown key 'devcies' in the cell file "
-                          "(expected one of: name, plc, run, zones, world, devices)"));
+                          "(expected one of: name, plc, run, zones, world, devices, modbus)"));
 }
 
-TEST_F(LoaderErrors, MissingPlcSection) {
+TEST_F(LoaderErrors, PlcWithBothSourcesAndModbus) {
   EXPECT_THAT(fails("name: x\n"
+                    "plc:\n"
+                    "  sources: [main.st]\n"
+                    "  modbus: { address: 127.0.0.1:1502 }\n"
                     "devices: []\n"),
-              ElementsAre("cell.yaml:1:1: error[C010]: the cell file needs a 'plc:' section with the PLC program's "
-                          "'sources'"));
+              ElementsAre("cell.yaml:4:11: error[C010]: 'plc' has either 'sources' (the soft PLC) or 'modbus' (an external "
+                          "PLC), not both"));
 }
 
 TEST_F(LoaderErrors, MissingDevicesSection) {
@@ -108,7 +111,7 @@ TEST_F(LoaderErrors, UnknownDeviceTypeAtTheTypeValue) {
                     "  - name: Gizmo\n"
                     "    type: teleporter\n"),
               ElementsAre("cell.yaml:6:11: error[C010]: unknown device type 'teleporter' (expected one of: robot, "
-                          "axis, press, timed, conveyor, sensor)"));
+                          "axis, press, timed, conveyor, sensor, g120, powerflex525, powerflex750, s120_epos)"));
 }
 
 TEST_F(LoaderErrors, DuplicateDeviceNameAtTheSecondEntry) {
@@ -305,7 +308,7 @@ TEST_F(LoaderErrors, AllMistakesOfOneFileInOnePass) {
                           "cell.yaml:15:14: error[C032]: the PLC has no variable 'MAIN.missing' to wire to Clamp.error",
                           "cell.yaml:16:5: error[C010]: a device named 'Clamp' already exists",
                           "cell.yaml:21:11: error[C010]: unknown device type 'teleporter' (expected one of: robot, axis, "
-                          "press, timed, conveyor, sensor)",
+                          "press, timed, conveyor, sensor, g120, powerflex525, powerflex750, s120_epos)",
                           "cell.yaml:24:5: error[C011]: unknown key 'idle_powr' in device (expected one of: name, type, "
                           "wiring, faults, model, description, command_port, idle_power, busy_power, commands, group)",
                           "cell.yaml:26:35: error[C010]: 'duration': '1' needs a unit: expected a duration (e.g. 2 s, "
@@ -313,7 +316,7 @@ TEST_F(LoaderErrors, AllMistakesOfOneFileInOnePass) {
                           "cell.yaml:31:13: error[C030]: no port of 'Lock3' matches a variable under 'MAIN.nothing' "
                           "(expected e.g. MAIN.nothing.programNumber)",
                           "cell.yaml:32:1: error[C011]: unknown key 'extra' in the cell file (expected one of: name, plc, "
-                          "run, zones, world, devices)"));
+                          "run, zones, world, devices, modbus)"));
 }
 
 // Regression test (found by the cell/sim test suite).
@@ -321,7 +324,8 @@ TEST_F(LoaderErrors, DeviceMistakesAreReportedEvenWhenThePlcPartFails) {
   write("broken.st", "PROGRAM MAIN\nx := 1;\nEND_PROGRAM\n");
   const std::string devices = "devices:\n  - name: Gizmo\n    type: teleporter\n";
   const std::string unknownType =
-      "error[C010]: unknown device type 'teleporter' (expected one of: robot, axis, press, timed, conveyor, sensor)";
+      "error[C010]: unknown device type 'teleporter' (expected one of: robot, axis, press, timed, conveyor, sensor, g120, "
+      "powerflex525, powerflex750, s120_epos)";
   {
     SCOPED_TRACE("no plc section");
     auto found = fails("name: x\n" + devices);

@@ -22,11 +22,15 @@ TEST(Disassembler, ListsAPou) {
   b.emit(abc(Op::ADD, 3, 4, 5), 12, 5);
   b.emit(abc(Op::ADDI, 3, 3, static_cast<uint16_t>(-1)));
   b.emit(abc(Op::LD_I16, 2, 1, 24));
+  b.emit(abc(Op::STK_16, static_cast<uint16_t>(-7), 1, 26));
+  b.emit(abc(Op::LTK, 4, 2, static_cast<uint16_t>(-1)));
+  b.emit(abc(Op::INDEX, 4, 2, 3));
   b.emit(abx(Op::STA_32, 2, 100));
   b.emit(asbx(Op::JZ, 2, -3));
   b.emit(abx(Op::ENTER, 4, 1), 13, 3);
   b.emit(abx(Op::CALL, 4, 1));
   b.emit(abx(Op::CALLN, 2, static_cast<uint32_t>(bc::Native::STR_CONCAT)));
+  b.emit(abx(Op::CALLFB, 1, static_cast<uint32_t>(bc::NativeFb::CTUD)));
   b.emit(abx(Op::TRAP, 0, static_cast<uint32_t>(bc::FaultKind::InvalidEnumValue)));
   b.emit(abc(Op::RET), 20, 1);
   b.beginPou("FB_Motor.Start", 4, 16, 512, bc::PouKind::Method);
@@ -38,16 +42,20 @@ TEST(Disassembler, ListsAPou) {
             "  0002  ADD      r3, r4, r5    ; MAIN.st:12:5\n"
             "  0003  ADDI     r3, r3, -1\n"
             "  0004  LD_I16   r2, r1, 24\n"
-            "  0005  STA_32   r2, @100\n"
-            "  0006  JZ       r2, 0004\n"
-            "  0007  ENTER    r4, FB_Motor.Start ; MAIN.st:13:3\n"
-            "  0008  CALL     r4, FB_Motor.Start\n"
-            "  0009  CALLN    r2, STR_CONCAT\n"
-            "  0010  TRAP     6 (invalid enum value)\n"
-            "  0011  RET                    ; MAIN.st:20:1\n");
+            "  0005  STK_16   -7, r1, 26\n"
+            "  0006  LTK      r4, r2, -1\n"
+            "  0007  INDEX    r4, r2, x3\n"
+            "  0008  STA_32   r2, @100\n"
+            "  0009  JZ       r2, 0007\n"
+            "  0010  ENTER    r4, FB_Motor.Start ; MAIN.st:13:3\n"
+            "  0011  CALL     r4, FB_Motor.Start\n"
+            "  0012  CALLN    r2, STR_CONCAT\n"
+            "  0013  CALLFB   r1, CTUD\n"
+            "  0014  TRAP     6 (invalid enum value)\n"
+            "  0015  RET                    ; MAIN.st:20:1\n");
   EXPECT_EQ(bc::disassemble(b.m, 1),
             "FB_Motor.Start (Method, 4 registers, frame 16 bytes @512)\n"
-            "  0012  RET                    ; FB_x.st:2:1\n");
+            "  0016  RET                    ; FB_x.st:2:1\n");
   EXPECT_EQ(bc::disassemble(b.m, 2), "");
 }
 

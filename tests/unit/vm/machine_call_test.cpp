@@ -188,8 +188,9 @@ TEST(MachineCall, AccessAtTheLastValidByte) {
 TEST(MachineCall, BoundFault) {
   ModuleBuilder b;
   b.beginPou("MAIN", 4);
+  b.m.indexes.push_back({0, 10, 4});
   b.emit(asbx(Op::LDI, 2, -1));
-  b.emit(abx(Op::BOUND, 2, 10), 9, 1);
+  b.emit(abc(Op::INDEX, 3, 2, 0), 9, 1);
   b.emit(abc(Op::RET));
   vm::Machine vm(b.m);
   vm.coldStart();

@@ -55,7 +55,6 @@ TEST(MachineCore, IntegerArithmeticWraps) {
   EXPECT_EQ(eval({asbx(Op::LDI, 2, -1), asbx(Op::LDI, 3, 2), abc(Op::DIV_U, 4, 2, 3)}, 4), UINT64_MAX / 2);
   EXPECT_EQ(eval({asbx(Op::LDI, 2, 17), asbx(Op::LDI, 3, 5), abc(Op::MOD_U, 4, 2, 3)}, 4), 2u);
   EXPECT_EQ(evalI({asbx(Op::LDI, 2, 10), abc(Op::ADDI, 3, 2, static_cast<uint16_t>(-3))}, 3), 7);
-  EXPECT_EQ(evalI({asbx(Op::LDI, 2, -10), abc(Op::MULI, 3, 2, 4)}, 3), -40);
   EXPECT_EQ(evalI({asbx(Op::LDI, 2, 9), abc(Op::NEG, 3, 2)}, 3), -9);
   // INT64_MIN / -1 and INT64_MIN * -1 wrap instead of trapping.
   const uint64_t minI = uint64_t{1} << 63;
@@ -106,6 +105,119 @@ TEST(MachineCore, Comparisons) {
   EXPECT_EQ(cmpF(Op::NE_F, NAN, NAN), 1u);
   EXPECT_EQ(cmpF(Op::LT_F, -1.5, 1.0), 1u);
   EXPECT_EQ(cmpF(Op::LE_F, NAN, 1.0), 0u);
+}
+
+TEST(MachineCore, ImmediateOperands) {
+  auto cmpK = [](Op op, int32_t x, int16_t k) {
+    return eval({asbx(Op::LDI, 2, x), abc(op, 3, 2, static_cast<uint16_t>(k))}, 3);
+  };
+  EXPECT_EQ(cmpK(Op::EQK, -3, -3), 1u);
+  EXPECT_EQ(cmpK(Op::NEK, -3, -3), 0u);
+  EXPECT_EQ(cmpK(Op::LTK, -40000, -32768), 1u);  // the register is not truncated to 16 bits
+  EXPECT_EQ(cmpK(Op::LEK, 5, 5), 1u);
+  EXPECT_EQ(cmpK(Op::GTK, 5, 5), 0u);
+  EXPECT_EQ(cmpK(Op::GEK, 70000, 32767), 1u);
+  // DIVK/MODK: C is an unsigned divisor; signed dividends truncate toward zero.
+  EXPECT_EQ(evalI({asbx(Op::LDI, 2, -7), abc(Op::DIVK, 3, 2, 2)}, 3), -3);
+  EXPECT_EQ(evalI({asbx(Op::LDI, 2, -7), abc(Op::MODK, 3, 2, 3)}, 3), -1);
+  EXPECT_EQ(evalI({asbx(Op::LDI, 2, 100000), abc(Op::DIVK, 3, 2, 65535)}, 3), 1);
+  EXPECT_EQ(evalI({asbx(Op::LDI, 2, 100000), abc(Op::MODK, 3, 2, 65535)}, 3), 34465);
+  // STK_*: A is the value (sign-extended), truncated to the width like any store.
+  ModuleBuilder b;
+  b.poke<uint64_t>(120, ~uint64_t{0});
+  b.beginPou("MAIN", 4);
+  b.emit(abc(Op::STK_8, static_cast<uint16_t>(-2), 1, 0));
+  b.emit(abc(Op::STK_16, 300, 1, 2));
+  b.emit(abc(Op::STK_32, static_cast<uint16_t>(-1), 1, 4));
+  b.emit(abc(Op::STK_64, static_cast<uint16_t>(-32768), 1, 8));
+  b.emit(abc(Op::STK_8, 1, 1, 20));  // only the low byte of the 8 at 120
+  b.emit(abc(Op::RET));
+  ASSERT_EQ(bc::verifyModule(b.m), "");
+  vm::Machine vm(b.m);
+  vm.coldStart();
+  ASSERT_TRUE(vm.run(0, 100)) << vm.fault().describe(b.m);
+  auto rd = [&](uint32_t a, auto v) { std::memcpy(&v, vm.memory() + a, sizeof v); return v; };
+  EXPECT_EQ(rd(100, uint8_t{}), 0xfeu);
+  EXPECT_EQ(rd(102, uint16_t{}), 300u);
+  EXPECT_EQ(rd(104, uint32_t{}), 0xffffffffu);
+  EXPECT_EQ(rd(108, int64_t{}), -32768);
+  EXPECT_EQ(rd(120, uint64_t{}), 0xffffffffffffff01u);
+}
+
+TEST(MachineCore, ImmediateStoreIsBoundsChecked) {
+  ModuleBuilder b;
+  b.beginPou("MAIN", 4);
+  b.emit(abc(Op::STK_32, 1, 1, 0), 7, 3);
+  b.emit(abc(Op::RET));
+  vm::Machine vm(b.m);
+  vm.coldStart();
+  EXPECT_FALSE(vm.run(0, 0));  // this = 0: below the null guard
+  EXPECT_EQ(vm.fault().kind, bc::FaultKind::InvalidPointer);
+  EXPECT_EQ(vm.fault().loc.line, 7u);
+}
+
+TEST(MachineCore, NativeFbCallIsBoundsChecked) {
+  ModuleBuilder b;
+  b.poke<uint8_t>(100, 1);  // R_TRIG at 100: CLK = TRUE
+  b.beginPou("MAIN", 4);
+  b.emit(abx(Op::CALLFB, 1, static_cast<uint32_t>(bc::NativeFb::R_TRIG)), 3, 1);
+  b.emit(abc(Op::RET));
+  ASSERT_EQ(bc::verifyModule(b.m), "");
+  vm::Machine vm(b.m);
+  vm.coldStart();
+  ASSERT_TRUE(vm.run(0, 100)) << vm.fault().describe(b.m);
+  EXPECT_EQ(vm.memory()[101], 1u);  // Q: rising edge
+  EXPECT_EQ(vm.memory()[102], 1u);  // M
+  // The instance must lie inside memory: its last byte would be past the end here.
+  EXPECT_FALSE(vm.run(0, vm.memorySize() - 2));
+  EXPECT_EQ(vm.fault().kind, bc::FaultKind::InvalidPointer);
+  EXPECT_EQ(vm.fault().loc.line, 3u);
+}
+
+TEST(MachineCore, NativeTimerReadsTheTaskTime) {
+  ModuleBuilder b;
+  b.poke<uint8_t>(100, 1);      // TON at 100: IN = TRUE
+  b.poke<int32_t>(104, 20);     // PT = T#20ms
+  b.beginPou("MAIN", 4);
+  b.emit(abx(Op::CALLFB, 1, static_cast<uint32_t>(bc::NativeFb::TON)));
+  b.emit(abc(Op::RET));
+  vm::Machine vm(b.m);
+  vm.coldStart();
+  const int64_t ms = 1'000'000;
+  for (int64_t t : {5 * ms, 15 * ms, 25 * ms}) {
+    vm.setTaskTimeNs(t);
+    ASSERT_TRUE(vm.run(0, 100));
+  }
+  int32_t et;
+  std::memcpy(&et, vm.memory() + 112, 4);
+  EXPECT_EQ(et, 20);                // started at 5 ms, 20 ms elapsed
+  EXPECT_EQ(vm.memory()[108], 1u);  // Q
+  EXPECT_EQ(vm.timeReads(), 3u);
+}
+
+TEST(MachineCore, IndexScalesAndChecks) {
+  auto index = [](int32_t i, bc::IndexDesc d) {
+    ModuleBuilder b;
+    b.m.indexes.push_back(d);
+    b.beginPou("MAIN", 4);
+    b.emit(asbx(Op::LDI, 2, i));
+    b.emit(abc(Op::INDEX, 3, 2, 0), 5, 7);
+    b.emit(abx(Op::STA_64, 3, kOut));
+    b.emit(abc(Op::RET));
+    EXPECT_EQ(bc::verifyModule(b.m), "");
+    vm::Machine vm(b.m);
+    vm.coldStart();
+    if (!vm.run(0, 0)) return vm.fault().describe(b.m);
+    uint64_t v;
+    std::memcpy(&v, vm.memory() + kOut, 8);
+    return std::to_string(v);
+  };
+  EXPECT_EQ(index(1, {1, 8, 64}), "0");
+  EXPECT_EQ(index(8, {1, 8, 64}), "448");
+  EXPECT_EQ(index(-3, {-5, 3, 2}), "4");
+  EXPECT_EQ(index(9, {1, 8, 64}), "array index out of range at MAIN.st:5:7");
+  EXPECT_EQ(index(0, {1, 8, 64}), "array index out of range at MAIN.st:5:7");
+  EXPECT_EQ(index(-6, {-5, 3, 2}), "array index out of range at MAIN.st:5:7");
 }
 
 TEST(MachineCore, FloatArithmetic) {
@@ -254,7 +366,7 @@ TEST(MachineCore, AbsoluteLoadsAndStores) {
   EXPECT_EQ(rd(256, uint32_t{}), 0x55667788u);
 }
 
-TEST(MachineCore, CopyHandlesOverlapAndBound) {
+TEST(MachineCore, CopyHandlesOverlap) {
   ModuleBuilder b;
   b.pokeString(100, "abcdef");
   b.beginPou("MAIN", 8);
@@ -262,7 +374,6 @@ TEST(MachineCore, CopyHandlesOverlapAndBound) {
   b.emit(abx(Op::LDI, 3, 100));
   b.emit(abx(Op::LDI, 4, 4));
   b.emit(abc(Op::COPY, 2, 3, 4));  // "ababcd"
-  b.emit(abx(Op::BOUND, 4, 5));    // 4 < 5: fine
   b.emit(abc(Op::RET));
   vm::Machine vm(b.m);
   vm.coldStart();

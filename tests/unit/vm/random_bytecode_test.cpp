@@ -25,6 +25,8 @@ bc::Instr randomInstr(std::mt19937& rng, uint16_t numRegs, uint32_t pc, uint32_t
       case bc::Operand::Reg: c = reg(); break;
       case bc::Operand::BitIndex: c = static_cast<uint16_t>(pick(0, 7) + (rare() ? 8 : 0)); break;
       case bc::Operand::BitCount: c = static_cast<uint16_t>(pick(1, 64) + (rare() ? 64 : 0)); break;
+      case bc::Operand::Divisor: c = static_cast<uint16_t>(rare() ? 0 : pick(1, 0xffff)); break;
+      case bc::Operand::Index: c = static_cast<uint16_t>(pick(0, 2) + (rare() ? 1 : 0)); break;
       default: break;
     }
     return bc::Instr::abc(op, reg(), reg(), c);
@@ -35,6 +37,7 @@ bc::Instr randomInstr(std::mt19937& rng, uint16_t numRegs, uint32_t pc, uint32_t
     case WideOperand::Pou: bx = pick(0, 2) + (rare() ? 1 : 0); break;
     case WideOperand::Const: bx = pick(0, 2) + (rare() ? 1 : 0); break;
     case WideOperand::Native: bx = pick(0, static_cast<uint32_t>(bc::Native::Count_) - 1) + (rare() ? 1 : 0); break;
+    case WideOperand::NativeFb: bx = pick(0, static_cast<uint32_t>(bc::NativeFb::Count_) - 1) + (rare() ? 1 : 0); break;
     case WideOperand::Jump: {
       const int32_t target = static_cast<int32_t>(pick(start, start + size)) - 1;
       return bc::Instr::asbx(op, reg(), target - static_cast<int32_t>(pc) - 1);
@@ -54,6 +57,8 @@ TEST(RandomBytecode, VerifiedModulesRunSafely) {
     b.m.maxCallDepth = 8;
     b.m.registerStackSize = 64;
     for (int k = 0; k < 3; ++k) b.constant(std::uniform_int_distribution<uint64_t>()(rng) % 600);
+    for (int k = 0; k < 3; ++k)
+      b.m.indexes.push_back({static_cast<int64_t>(rng() % 600) - 300, 1 + rng() % 300, rng() % 9});
     for (size_t i = 16; i < b.m.initialImage.size(); ++i) b.m.initialImage[i] = static_cast<uint8_t>(rng() % 4 ? rng() : 0);
     for (int p = 0; p < 3; ++p) {
       const auto regs = static_cast<uint16_t>(2 + rng() % 10);

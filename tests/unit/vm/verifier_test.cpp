@@ -96,6 +96,27 @@ TEST(Verifier, RejectsImmediates) {
   EXPECT_EQ(verifyWith([](bc::Module& m) { m.code[6] = abc(Op::LD_BIT, 3, 2, 8); }), "pou 'MAIN' pc 6: bit index 8 above 7");
   EXPECT_EQ(verifyWith([](bc::Module& m) { m.code[7] = abc(Op::SEXT, 3, 3, 65); }),
             "pou 'MAIN' pc 7: bit count 65 not in 1..64");
+  EXPECT_EQ(verifyWith([](bc::Module& m) { m.code[7] = abc(Op::MODK, 3, 3, 0); }), "pou 'MAIN' pc 7: divisor 0");
+  EXPECT_EQ(verifyWith([](bc::Module& m) { m.code[7] = abc(Op::DIVK, 3, 3, 0); }), "pou 'MAIN' pc 7: divisor 0");
+  // STK_*: A is a value, B still a register of the window.
+  EXPECT_EQ(verifyWith([](bc::Module& m) { m.code[7] = abc(Op::STK_32, 0xffff, 3, 4); }), "");
+  EXPECT_EQ(verifyWith([](bc::Module& m) { m.code[7] = abc(Op::STK_32, 1, 8, 4); }),
+            "pou 'MAIN' pc 7: register 8 outside window of 8");
+  EXPECT_EQ(verifyWith([](bc::Module& m) {
+              m.code[7] = abx(Op::CALLFB, 3, static_cast<uint32_t>(bc::NativeFb::Count_));
+            }),
+            "pou 'MAIN' pc 7: native FB index 10 out of range");
+  EXPECT_EQ(verifyWith([](bc::Module& m) { m.code[7] = abc(Op::INDEX, 3, 3, 0); }),
+            "pou 'MAIN' pc 7: index descriptor 0 out of range");
+  EXPECT_EQ(verifyWith([](bc::Module& m) {
+              m.indexes.push_back({1, 8, 2});
+              m.code[7] = abc(Op::INDEX, 3, 3, 0);
+            }),
+            "");
+  EXPECT_EQ(verifyWith([](bc::Module& m) { m.code[7] = abx(Op::CALLFB, 8, 0); }),
+            "pou 'MAIN' pc 7: register 8 outside window of 8");
+  EXPECT_EQ(verifyWith([](bc::Module& m) { m.code[7] = abc(Op::EQK, 8, 3, 4); }),
+            "pou 'MAIN' pc 7: register 8 outside window of 8");
 }
 
 TEST(Verifier, RejectsPouLayout) {

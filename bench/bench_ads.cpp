@@ -1,0 +1,181 @@
+// virtcom_ads_bench: ADS round trips against virtcom's ADS server on loopback, one connection,
+// as a client sees them (docs/performance.md, section ADS):
+//   ads/read_by_handle   Read 0xF005 of a 4-byte DINT by handle (AdsLib's AdsVariable<DINT>)
+//   ads/sum_read_100     one 0xF080 sum read of 100 DINTs
+//   ads/notification     latency from publishSnapshot (the end of a scan that changed a value)
+//                        to the on-change DeviceNotification arriving at the client
+// One iteration is one round trip; real time is what counts (the server runs on its own thread).
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <vector>
+
+#include "proto/ads/byte_io.hpp"
+#include "proto/ads/server.hpp"
+
+namespace ads = virtcom::proto::ads;
+
+namespace {
+
+using Bytes = std::vector<uint8_t>;
+constexpr uint32_t kVariables = 100;
+constexpr uint32_t kFirstOffset = 64;
+
+// MAIN.v0..MAIN.v99: DINTs at 64, 68, ... in a 1 KB data area.
+const ads::SymbolTable& table() {
+  static const ads::SymbolTable t = [] {
+    std::vector<ads::Symbol> symbols;
+    for (uint32_t i = 0; i < kVariables; ++i)
+      symbols.push_back({"MAIN.v" + std::to_string(i), "DINT", 0x4040, kFirstOffset + 4 * i, 4, ads::adst::kInt32, 0});
+    auto resolver = [symbols](std::string_view path) -> std::optional<ads::Symbol> {
+      for (const auto& s : symbols)
+        if (ads::lowerCase(s.name) == ads::lowerCase(path)) return s;
+      return std::nullopt;
+    };
+    return ads::SymbolTable(symbols, {{"DINT", "", 4, ads::adst::kInt32, ads::kTypeFlagDataType, {}, {}, {}}},
+                            {1024, {0, 16}, {16, 16}, {32, 16}, {}}, resolver);
+  }();
+  return t;
+}
+
+class Connection {
+ public:
+  explicit Connection(uint16_t port) {
+    fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
+    int one = 1;
+    ::setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_port = htons(port);
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ok_ = ::connect(fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) == 0;
+  }
+  ~Connection() { ::close(fd_); }
+  bool ok() const { return ok_; }
+  // Sends `request` (or nothing, if empty) and reads one whole AMS/TCP frame into rx_.
+  bool roundTrip(const Bytes& request) {
+    if (!request.empty() && ::send(fd_, request.data(), request.size(), 0) != static_cast<ssize_t>(request.size()))
+      return false;
+    if (!receive(6)) return false;
+    const uint32_t length = rx_[2] | rx_[3] << 8 | rx_[4] << 16 | static_cast<uint32_t>(rx_[5]) << 24;
+    return receive(length);
+  }
+  uint32_t u32At(size_t offset) const {
+    return rx_[offset] | rx_[offset + 1] << 8 | rx_[offset + 2] << 16 | static_cast<uint32_t>(rx_[offset + 3]) << 24;
+  }
+
+ private:
+  bool receive(size_t n) {
+    rx_.resize(n);
+    size_t got = 0;
+    while (got < n) {
+      ssize_t r = ::recv(fd_, rx_.data() + got, n - got, 0);
+      if (r <= 0) return false;
+      got += static_cast<size_t>(r);
+    }
+    return true;
+  }
+  int fd_ = -1;
+  bool ok_ = false;
+  Bytes rx_;
+};
+
+Bytes request(uint16_t command, const Bytes& data) {
+  ads::AmsHeader h;
+  h.target = {ads::kLocalAliasNetId, ads::kPlcPort};
+  h.source = {{10, 0, 0, 1, 1, 1}, 30000};
+  h.commandId = command;
+  h.stateFlags = 4;
+  h.dataLength = static_cast<uint32_t>(data.size());
+  h.invokeId = 1;
+  Bytes out;
+  ads::writeAmsFrameHeader(out, h);
+  out.insert(out.end(), data.begin(), data.end());
+  return out;
+}
+
+Bytes fields(std::initializer_list<uint32_t> values, const std::string& tail = "") {
+  Bytes out;
+  ads::LittleEndianWriter w(out);
+  for (uint32_t v : values) w.u32(v);
+  out.insert(out.end(), tail.begin(), tail.end());
+  return out;
+}
+
+struct Setup {
+  std::unique_ptr<ads::Server> server;
+  std::unique_ptr<Connection> client;
+  Bytes image = Bytes(1024, 0);
+};
+
+bool start(Setup& s, benchmark::State& state) {
+  ads::ServerConfig config;
+  config.listen.port = 0;
+  auto server = ads::Server::start(config, table());
+  if (!server) {
+    state.SkipWithError(server.error().c_str());
+    return false;
+  }
+  s.server = std::move(*server);
+  s.server->publishSnapshot(s.image, ads::kAdsStateRun);
+  s.client = std::make_unique<Connection>(s.server->endpoint().port);
+  if (!s.client->ok()) state.SkipWithError("cannot connect");
+  return s.client->ok();
+}
+
+void readByHandle(benchmark::State& state) {
+  Setup s;
+  if (!start(s, state)) return;
+  s.client->roundTrip(request(9, fields({0xF003, 0, 4, 7}, "MAIN.v7")));
+  const uint32_t handle = s.client->u32At(46);
+  const Bytes read = request(2, fields({0xF005, handle, 4}));
+  for (auto _ : state)
+    if (!s.client->roundTrip(read)) state.SkipWithError("read failed");
+  state.SetItemsProcessed(state.iterations());
+}
+
+void sumRead100(benchmark::State& state) {
+  Setup s;
+  if (!start(s, state)) return;
+  Bytes items;
+  ads::LittleEndianWriter w(items);
+  for (uint32_t i = 0; i < kVariables; ++i) {
+    w.u32(0x4040);
+    w.u32(kFirstOffset + 4 * i);
+    w.u32(4);
+  }
+  Bytes data = fields({0xF080, kVariables, 8 * kVariables, static_cast<uint32_t>(items.size())});
+  data.insert(data.end(), items.begin(), items.end());
+  const Bytes sum = request(9, data);
+  for (auto _ : state)
+    if (!s.client->roundTrip(sum)) state.SkipWithError("sum read failed");
+  state.SetItemsProcessed(state.iterations() * kVariables);
+}
+
+void notificationLatency(benchmark::State& state) {
+  Setup s;
+  if (!start(s, state)) return;
+  s.client->roundTrip(request(6, fields({0x4040, kFirstOffset, 4, 4, 0, 0, 0, 0, 0, 0})));
+  s.client->roundTrip({});  // the initial sample
+  uint32_t value = 0;
+  for (auto _ : state) {
+    ++value;
+    for (int i = 0; i < 4; ++i) s.image[kFirstOffset + i] = static_cast<uint8_t>(value >> (8 * i));
+    s.server->publishSnapshot(s.image, ads::kAdsStateRun);
+    if (!s.client->roundTrip({})) state.SkipWithError("no notification");
+  }
+}
+
+}  // namespace
+
+BENCHMARK(readByHandle)->Name("ads/read_by_handle")->UseRealTime()->MinTime(1.0);
+BENCHMARK(sumRead100)->Name("ads/sum_read_100")->UseRealTime()->MinTime(1.0);
+BENCHMARK(notificationLatency)->Name("ads/notification")->UseRealTime()->MinTime(1.0);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,15 @@
+#pragma once
+// Cell-file keys shared by every drive type: `step` (integration step) and `load:` (the shaft's
+// mechanical load). Reports through the ConfigReader (file:line:col), never throws.
+#include "core/config_node.hpp"
+#include "drives/telegram_device.hpp"
+
+namespace virtcom::drives {
+
+DriveCommon readDriveCommon(ConfigReader& cfg, TelegramId telegram);
+// A time parameter in seconds that must be > 0 (ramp times, time constants).
+double positiveSeconds(ConfigReader& cfg, const std::string& key, double fallbackS);
+// A plain-number parameter that must be > 0 (reference speed, current, ...).
+double positiveNumber(ConfigReader& cfg, const std::string& key, double fallback);
+
+}  // namespace virtcom::drives

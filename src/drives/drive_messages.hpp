@@ -1,0 +1,102 @@
+#pragma once
+// The SINAMICS message catalogue (drive_messages.def) and the fault/alarm buffers of
+// specs/drives.md §B.5. Buffers are fixed-size arrays: raising, clearing and acknowledging
+// never allocate, so they run on the per-tick path.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace virtcom::drives {
+
+enum class MessageKind : uint8_t { Fault, Alarm };
+enum class Reaction : uint8_t { None, Off1, Off2, Off3 };
+enum class StatusEffect : uint8_t { None, MotorTemp, PowerUnitTemp };
+
+struct MessageDef {
+  uint16_t number;
+  MessageKind kind;
+  Reaction reaction;
+  StatusEffect effect;
+  std::string_view meaning;
+};
+
+std::span<const MessageDef> messageCatalogue();
+const MessageDef* findMessage(MessageKind kind, uint16_t number);
+// "F07900" / "A01920" -> its catalogue entry; error text (expected forms, known codes) if the
+// text is malformed or not in the catalogue.
+const MessageDef* parseMessageCode(const std::string& text, std::string& error);
+// "F07900" for (Fault, 7900).
+std::string messageName(MessageKind kind, uint16_t number);
+
+// PowerFlex fault numbers (powerflex_faults.def), decimal as transmitted.
+struct PowerFlexFaultDef {
+  uint16_t number;
+  std::string_view meaning;
+};
+std::span<const PowerFlexFaultDef> powerFlexFaults();
+const PowerFlexFaultDef* findPowerFlexFault(uint16_t number);
+
+struct DriveMessage {
+  uint16_t number = 0;       // 0 = empty slot
+  int32_t value = 0;
+  int64_t raisedNs = 0;
+  int64_t removedNs = -1;    // -1 while active
+  Reaction reaction = Reaction::None;
+  bool causeActive = false;  // the condition that raised it is still present
+};
+
+// Fault buffer r0945-style: indices 0..7 the current incident in order of arrival, 8..63 the
+// seven previous incidents, most recent first. A 9th fault overwrites index 7.
+class FaultBuffer {
+ public:
+  static constexpr size_t kSlots = 8;
+  static constexpr size_t kSize = 64;
+
+  // Raises `number` (already active: only its cause is renewed). Returns true if it was new.
+  bool raise(uint16_t number, int32_t value, Reaction reaction, int64_t nowNs);
+  // The cause of `number` disappeared (the fault stays until acknowledged).
+  void causeGone(uint16_t number);
+  // Acknowledge (caller detects the 0->1 edge): faults whose cause has gone are removed; the
+  // removed ones move to history as one incident. Returns true if any fault was removed.
+  bool acknowledge(int64_t nowNs);
+  bool active() const { return count_ > 0; }
+  size_t activeCount() const { return count_; }
+  // Number of the fault at index 0, 0 if none (FAULT_CODE, specs/drives.md §A.2).
+  uint16_t firstNumber() const { return count_ ? slots_[0].number : 0; }
+  // Strongest reaction among active faults (OFF2 > OFF3 > OFF1 > none).
+  Reaction reaction() const;
+  // Entry i of the r0945-style view (0..63); empty slots have number 0.
+  const DriveMessage& entry(size_t i) const { return slots_[i]; }
+
+ private:
+  void pushIncident(const std::array<DriveMessage, kSlots>& incident);
+  std::array<DriveMessage, kSize> slots_{};
+  size_t count_ = 0;
+};
+
+// Alarm buffer: indices 0..7 active alarms by arrival (a 9th overwrites index 7), 8..63 the
+// history of cleared alarms, most recently cleared at index 8. No acknowledge: an alarm goes
+// when its cause goes.
+class AlarmBuffer {
+ public:
+  static constexpr size_t kSlots = 8;
+  static constexpr size_t kSize = 64;
+
+  bool raise(uint16_t number, int32_t value, int64_t nowNs);
+  void clear(uint16_t number, int64_t nowNs);
+  bool active() const { return count_ > 0; }
+  bool isActive(uint16_t number) const;
+  size_t activeCount() const { return count_; }
+  // Most recently raised active alarm, 0 if none (WARN_CODE).
+  uint16_t latestNumber() const;
+  const DriveMessage& entry(size_t i) const { return slots_[i]; }
+
+ private:
+  std::array<DriveMessage, kSize> slots_{};
+  size_t count_ = 0;
+};
+
+}  // namespace virtcom::drives

@@ -1,0 +1,247 @@
+// Graphical SFC bodies: steps, transitions, divergences/convergences, jumps and action blocks,
+// connected by localId/refLocalId, into the chart model of lang/sfc, then lowered to ST like a
+// textual chart.
+#include <algorithm>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "lang/plcopen/diagnostic_codes.hpp"
+#include "lang/plcopen/import_internal.hpp"
+#include "lang/plcopen/network_translate.hpp"
+#include "lang/sfc/lower.hpp"
+
+namespace virtcom::plcopen::detail {
+
+namespace {
+
+// Divergences and convergences chain only a few levels deep; a bound stops cyclic junk.
+constexpr int kMaxJunctionDepth = 64;
+
+class ChartReader {
+ public:
+  ChartReader(Importer& imp, pugi::xml_node pouNode, st::Pou& pou) : imp_(imp), pouNode_(pouNode), pou_(pou) {}
+
+  // Fills the chart; false if anything was reported.
+  bool read(pugi::xml_node sfc, sfc::Chart& chart);
+
+ private:
+  std::vector<uint32_t> inputsOf(pugi::xml_node node);
+  // Junctions already walked for the current transition: shared junctions are walked once.
+  using Seen = std::unordered_set<uint32_t>;
+  void stepsBefore(uint32_t localId, pugi::xml_node from, std::vector<sfc::NamedRef>& out, Seen& seen, int depth);
+  void stepsAfter(pugi::xml_node node, std::vector<sfc::NamedRef>& out, Seen& seen, int depth);
+  void transition(pugi::xml_node node, sfc::Chart& chart);
+  void condition(pugi::xml_node cond, sfc::Transition& t);
+  void conditionText(pugi::xml_node body, sfc::Transition& t, bool named);
+  void actionBlock(pugi::xml_node node, sfc::Chart& chart);
+  pugi::xml_node element(uint32_t localId) const {
+    auto it = byId_.find(localId);
+    return it == byId_.end() ? pugi::xml_node() : it->second;
+  }
+  void fail(std::string_view code, pugi::xml_node node, std::string message) {
+    imp_.error(code, node, std::move(message));
+    ok_ = false;
+  }
+
+  Importer& imp_;
+  pugi::xml_node pouNode_;
+  st::Pou& pou_;
+  std::unordered_map<uint32_t, pugi::xml_node> byId_;
+  std::unordered_map<uint32_t, std::vector<pugi::xml_node>> readers_;  // localId -> elements reading it
+  bool ok_ = true;
+};
+
+std::vector<uint32_t> ChartReader::inputsOf(pugi::xml_node node) {
+  std::vector<uint32_t> ids;
+  for (pugi::xml_node in : children(node, "connectionPointIn"))
+    for (pugi::xml_node c : children(in, "connection")) {
+      std::string_view text = c.attribute("refLocalId").value();
+      uint32_t id = 0;
+      bool digits = !text.empty() && text.size() < 10 && std::all_of(text.begin(), text.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+      if (!digits) {
+        fail(diag::X005, c, "<connection> refLocalId '" + std::string(text) + "' is not a whole number");
+        continue;
+      }
+      for (char ch : text) id = id * 10 + static_cast<uint32_t>(ch - '0');
+      ids.push_back(id);
+    }
+  return ids;
+}
+
+void ChartReader::stepsBefore(uint32_t localId, pugi::xml_node from, std::vector<sfc::NamedRef>& out, Seen& seen,
+                              int depth) {
+  pugi::xml_node e = element(localId);
+  if (!e) return fail(diag::X006, from, describe(from) + ": the connection refers to localId " + std::to_string(localId) + ", which is no element of this chart");
+  std::string_view kind = localName(e);
+  if (kind == "step") {
+    out.push_back({e.attribute("name").value(), imp_.xml().at(e)});
+  } else if ((kind == "selectionDivergence" || kind == "simultaneousConvergence") && depth < kMaxJunctionDepth) {
+    if (!seen.insert(localId).second) return;
+    for (uint32_t id : inputsOf(e)) stepsBefore(id, e, out, seen, depth + 1);
+  } else {
+    fail(diag::X006, from, describe(from) + " follows " + describe(e) + "; a transition follows a step, a selection divergence or a simultaneous convergence");
+  }
+}
+
+void ChartReader::stepsAfter(pugi::xml_node node, std::vector<sfc::NamedRef>& out, Seen& seen, int depth) {
+  uint32_t id = static_cast<uint32_t>(node.attribute("localId").as_uint());
+  if (depth > 0 && !seen.insert(id).second) return;
+  for (pugi::xml_node next : readers_[id]) {
+    std::string_view kind = localName(next);
+    if (kind == "step") {
+      out.push_back({next.attribute("name").value(), imp_.xml().at(next)});
+    } else if (kind == "jumpStep") {
+      out.push_back({next.attribute("targetName").value(), imp_.xml().at(next)});
+    } else if ((kind == "simultaneousDivergence" || kind == "selectionConvergence") && depth < kMaxJunctionDepth) {
+      stepsAfter(next, out, seen, depth + 1);
+    } else if (kind != "actionBlock") {
+      fail(diag::X006, next, describe(next) + " follows " + describe(node) + "; a transition leads to a step, a jump, a simultaneous divergence or a selection convergence");
+    }
+  }
+}
+
+// The body of a named transition (<transitions> of the POU) or an inline condition: an ST
+// expression, or ST/LD/FBD statements assigning the transition's name.
+void ChartReader::conditionText(pugi::xml_node body, sfc::Transition& t, bool named) {
+  pugi::xml_node lang = firstElement(body);
+  std::string_view kind = lang ? localName(lang) : std::string_view();
+  if (kind == "ST") {
+    pugi::xml_node text = firstText(lang);
+    if (!text) return fail(diag::X003, body, "the transition condition is empty");
+    if (std::string_view(text.value()).find(":=") != std::string_view::npos && named) t.body = imp_.statementsAt(text);
+    else t.condition = imp_.expressionAt(text);
+  } else if ((kind == "LD" || kind == "FBD") && named) {
+    Network net = readNetwork(imp_, lang, kind == "LD");
+    t.body = translateNetwork(imp_, net, pou_, t.name + "_");
+  } else {
+    imp_.unsupported(lang ? lang : body, "a transition condition in <" + std::string(kind) + ">");
+    ok_ = false;
+  }
+}
+
+void ChartReader::condition(pugi::xml_node cond, sfc::Transition& t) {
+  if (pugi::xml_node inline_ = child(cond, "inline")) return conditionText(inline_, t, false);
+  if (pugi::xml_node ref = child(cond, "reference")) {
+    t.name = ref.attribute("name").value();
+    for (pugi::xml_node def : children(child(pouNode_, "transitions"), "transition"))
+      if (t.name == def.attribute("name").value()) {
+        if (pugi::xml_node body = child(def, "body")) return conditionText(body, t, true);
+      }
+    return fail(diag::X003, ref, "transition '" + t.name + "' is not defined in the POU's <transitions>");
+  }
+  imp_.unsupported(firstElement(cond) ? firstElement(cond) : cond, "this kind of transition condition");
+  ok_ = false;
+}
+
+void ChartReader::transition(pugi::xml_node node, sfc::Chart& chart) {
+  sfc::Transition t;
+  t.loc = imp_.xml().at(node);
+  if (pugi::xml_attribute priority = node.attribute("priority")) t.priority = priority.as_llong();
+  Seen before, after;
+  for (uint32_t id : inputsOf(node)) stepsBefore(id, node, t.from, before, 0);
+  stepsAfter(node, t.to, after, 0);
+  if (t.from.empty()) fail(diag::X008, node, describe(node) + " has no preceding step");
+  if (t.to.empty()) fail(diag::X008, node, describe(node) + " leads to no step");
+  pugi::xml_node cond = child(node, "condition");
+  if (!cond) return fail(diag::X003, node, describe(node) + " has no <condition>");
+  condition(cond, t);
+  chart.transitions.push_back(std::move(t));
+}
+
+void ChartReader::actionBlock(pugi::xml_node node, sfc::Chart& chart) {
+  std::vector<uint32_t> inputs = inputsOf(node);
+  pugi::xml_node stepNode = inputs.size() == 1 ? element(inputs.front()) : pugi::xml_node();
+  if (!stepNode || localName(stepNode) != "step")
+    return fail(diag::X006, node, describe(node) + " must be connected to exactly one step");
+  auto step = std::find_if(chart.steps.begin(), chart.steps.end(),
+                           [&](const sfc::Step& s) { return s.name == stepNode.attribute("name").value(); });
+  if (step == chart.steps.end()) return;
+  for (pugi::xml_node a : children(node, "action")) {
+    sfc::ActionAssociation assoc;
+    assoc.loc = imp_.xml().at(a);
+    std::string_view qualifier = a.attribute("qualifier").value();
+    auto q = sfc::qualifierFromText(qualifier.empty() ? "N" : qualifier);
+    if (!q) {
+      fail(diag::X005, a, describe(a) + ": '" + std::string(qualifier) + "' is not an action qualifier (N, R, S, L, D, P, P0, P1, SD, DS, SL)");
+      continue;
+    }
+    assoc.qualifier = *q;
+    if (a.attribute("duration")) assoc.duration = imp_.expressionAt(a, "duration");
+    if (sfc::qualifierNeedsTime(*q) && !assoc.duration)
+      fail(diag::X003, a, "action qualifier " + std::string(qualifier) + " needs a 'duration' attribute");
+    if (!sfc::qualifierNeedsTime(*q)) assoc.duration = nullptr;
+    if (std::string_view(a.attribute("indicator").value()).size() > 0) imp_.unsupported(a, "an action indicator variable");
+    if (pugi::xml_node ref = child(a, "reference")) {
+      assoc.action = {ref.attribute("name").value(), imp_.xml().at(ref)};
+    } else if (pugi::xml_node inl = child(a, "inline")) {
+      // An inline action body becomes a chart action of its own, named after the block.
+      std::string name = "__" + step->name + "_action" + std::to_string(node.attribute("localId").as_uint()) + "_" +
+                         std::to_string(step->actions.size());
+      pugi::xml_node st = child(inl, "ST");
+      pugi::xml_node text = st ? firstText(st) : pugi::xml_node();
+      if (!text) {
+        imp_.unsupported(firstElement(inl) ? firstElement(inl) : inl, "an inline action that is not ST");
+        ok_ = false;
+        continue;
+      }
+      chart.actions.push_back({name, imp_.xml().at(inl), imp_.statementsAt(text)});
+      assoc.action = {name, imp_.xml().at(inl)};
+    } else {
+      fail(diag::X003, a, describe(a) + " has neither <reference> nor <inline>");
+      continue;
+    }
+    step->actions.push_back(std::move(assoc));
+  }
+}
+
+bool ChartReader::read(pugi::xml_node sfcNode, sfc::Chart& chart) {
+  for (pugi::xml_node e = sfcNode.first_child(); e; e = e.next_sibling()) {
+    if (e.type() != pugi::node_element || !e.attribute("localId")) continue;
+    uint32_t id = e.attribute("localId").as_uint();
+    if (!byId_.emplace(id, e).second) fail(diag::X007, e, describe(e) + ": localId " + std::to_string(id) + " is already used");
+    for (uint32_t in : inputsOf(e)) readers_[in].push_back(e);
+  }
+  chart.loc = imp_.xml().at(sfcNode);
+  for (pugi::xml_node e = sfcNode.first_child(); e; e = e.next_sibling()) {
+    if (e.type() != pugi::node_element) continue;
+    std::string_view kind = localName(e);
+    if (kind == "step") {
+      sfc::Step step;
+      step.name = e.attribute("name").value();
+      step.loc = imp_.xml().at(e, "name");
+      std::string_view initial = e.attribute("initialStep").value();
+      step.initial = initial == "true" || initial == "1";
+      if (step.name.empty()) fail(diag::X003, e, describe(e) + " has no 'name' attribute");
+      chart.steps.push_back(std::move(step));
+    } else if (kind == "macroStep") {
+      imp_.unsupported(e, "a macro step");
+      ok_ = false;
+    } else if (kind != "transition" && kind != "actionBlock" && kind != "selectionDivergence" &&
+               kind != "selectionConvergence" && kind != "simultaneousDivergence" &&
+               kind != "simultaneousConvergence" && kind != "jumpStep" && kind != "comment" &&
+               kind != "addData" && kind != "documentation") {
+      imp_.unsupported(e, "<" + std::string(kind) + "> in an SFC body");
+      ok_ = false;
+    }
+  }
+  for (pugi::xml_node e = sfcNode.first_child(); e; e = e.next_sibling()) {
+    if (localName(e) == "transition") transition(e, chart);
+    else if (localName(e) == "actionBlock") actionBlock(e, chart);
+  }
+  return ok_;
+}
+
+}  // namespace
+
+void Importer::importChart(pugi::xml_node sfcNode, pugi::xml_node pouNode, st::Pou& pou) {
+  if (pou.kind != st::PouKind::Program && pou.kind != st::PouKind::FunctionBlock) {
+    unsupported(sfcNode, "an SFC body outside a PROGRAM or FUNCTION_BLOCK");
+    return;
+  }
+  sfc::Chart chart;
+  size_t errorsBefore = diags_.errorCount();
+  if (!ChartReader(*this, pouNode, pou).read(sfcNode, chart) || diags_.errorCount() != errorsBefore) return;
+  sfc::lowerChart(std::move(chart), pou, diags_, nextNodeId_);
+}
+
+}  // namespace virtcom::plcopen::detail

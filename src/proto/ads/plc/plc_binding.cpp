@@ -1,0 +1,28 @@
+#include "proto/ads/plc/plc_binding.hpp"
+
+namespace virtcom::proto::ads {
+
+uint16_t adsStateOf(plc::PlcState s) {
+  switch (s) {
+    case plc::PlcState::Run: return kAdsStateRun;
+    case plc::PlcState::Stop: return kAdsStateStop;
+    case plc::PlcState::Fault: return kAdsStateError;
+  }
+  return kAdsStateError;
+}
+
+void beforeScan(Server& server, plc::Runtime& runtime) {
+  if (auto state = server.takeStateRequest()) {
+    if (*state == kAdsStateRun) runtime.start();
+    else runtime.stop();
+  }
+  const bc::Module& m = runtime.module();
+  LiveImage live{{runtime.machine().memory(), m.staticSize}, {runtime.inputImage(), m.inputs.size}};
+  if (server.applyPendingWrites(live) > 0) runtime.inputsTouched();
+}
+
+void afterScan(Server& server, plc::Runtime& runtime) {
+  server.publishSnapshot({runtime.machine().memory(), runtime.module().staticSize}, adsStateOf(runtime.state()));
+}
+
+}  // namespace virtcom::proto::ads

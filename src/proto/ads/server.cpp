@@ -1,0 +1,210 @@
+#include "proto/ads/server.hpp"
+
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <limits>
+#include <system_error>
+
+#include "core/clock.hpp"
+#include "proto/ads/session.hpp"
+
+namespace virtcom::proto::ads {
+
+namespace {
+
+constexpr size_t kReadChunk = 16 * 1024;
+// A client that does not read its responses stops being read once this much is unsent, and is
+// dropped once notifications pile up beyond kMaxQueuedBytes (AdsLib's own buffer is 4 MB).
+constexpr size_t kMaxUnsentBytes = 256 * 1024;
+constexpr size_t kMaxQueuedBytes = 16 * 1024 * 1024;
+constexpr uint8_t kWakeStop = 1, kWakePublished = 2;
+// Windows FILETIME (100 ns ticks since 1601) of the Unix epoch (section 5.2).
+constexpr uint64_t kFileTimeUnixEpoch = 116'444'736'000'000'000ull;
+
+struct Connection {
+  int fd = -1;
+  Session session;
+  std::vector<uint8_t> rx, tx;
+};
+
+uint64_t fileTimeNow() { return kFileTimeUnixEpoch + static_cast<uint64_t>(utcNowNs() / 100); }
+
+// Sends what the socket takes. False: close the connection.
+bool flush(Connection& c) {
+  if (c.tx.empty()) return true;
+  ssize_t n = ::send(c.fd, c.tx.data(), c.tx.size(), MSG_NOSIGNAL);
+  if (n < 0) return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR;
+  c.tx.erase(c.tx.begin(), c.tx.begin() + n);
+  return c.tx.size() <= kMaxQueuedBytes;
+}
+
+}  // namespace
+
+Server::Server(const ServerConfig& config, const SymbolTable& table) : config_(config), device_(table, config.device) {}
+
+std::expected<std::unique_ptr<Server>, std::string> Server::start(const ServerConfig& config, const SymbolTable& table) {
+  std::unique_ptr<Server> s(new Server(config, table));
+  auto listener = net::listenTcp(config.listen);
+  if (!listener) return std::unexpected(listener.error());
+  s->listenFd_ = listener->fd;
+  s->bound_ = listener->bound;
+  if (::pipe2(s->wakeFds_, O_CLOEXEC | O_NONBLOCK) != 0) return std::unexpected(net::errnoText("pipe"));
+  try {
+    s->thread_ = std::thread([server = s.get()] { server->run(); });
+  } catch (const std::system_error& e) {
+    return std::unexpected(std::string("cannot start the ADS thread: ") + e.what());
+  }
+  return s;
+}
+
+Server::~Server() {
+  stop();
+  for (int fd : {listenFd_, wakeFds_[0], wakeFds_[1]})
+    if (fd >= 0) ::close(fd);
+}
+
+void Server::wake(uint8_t why) {
+  // A full pipe already holds a wake-up: dropping this one loses nothing.
+  while (::write(wakeFds_[1], &why, 1) < 0 && errno == EINTR) {
+  }
+}
+
+void Server::stop() {
+  if (!thread_.joinable()) return;
+  wake(kWakeStop);
+  thread_.join();
+}
+
+size_t Server::applyPendingWrites(const LiveImage& live) {
+  std::lock_guard lock(mutex_);
+  WriteQueue& q = device_.pendingWrites();
+  const size_t n = q.size();
+  if (n) q.applyTo(live.data, device_.table().layout().inputs, live.inputImage);
+  q.clear();
+  return n;
+}
+
+std::optional<uint16_t> Server::takeStateRequest() {
+  std::lock_guard lock(mutex_);
+  return device_.takeStateRequest();
+}
+
+void Server::publishSnapshot(std::span<const uint8_t> data, uint16_t adsState) {
+  {
+    std::lock_guard lock(mutex_);
+    device_.publish(data, adsState);
+  }
+  if (notifications_.load(std::memory_order_relaxed) > 0) wake(kWakePublished);
+}
+
+void Server::run() {
+  std::vector<std::unique_ptr<Connection>> clients;
+  std::vector<pollfd> fds;
+  std::array<uint8_t, kReadChunk> chunk;
+  // Answers every whole frame in c.rx. False: close the connection.
+  auto receive = [&](Connection& c) {
+    ssize_t n = ::recv(c.fd, chunk.data(), chunk.size(), 0);
+    if (n == 0) return false;
+    if (n < 0) return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR;
+    c.rx.insert(c.rx.end(), chunk.begin(), chunk.begin() + n);
+    size_t used = 0;
+    bool keep = true;
+    std::lock_guard lock(mutex_);
+    while (keep) {
+      auto rest = std::span<const uint8_t>(c.rx).subspan(used);
+      FrameScan scan = scanFrame(rest, config_.maxFrameBytes);
+      if (scan.status == FrameStatus::Malformed) return false;
+      if (scan.status == FrameStatus::NeedMore) break;
+      keep = c.session.handleFrame(rest.first(scan.size), c.tx);
+      used += scan.size;
+    }
+    c.rx.erase(c.rx.begin(), c.rx.begin() + static_cast<ptrdiff_t>(used));
+    c.session.sendDueNotifications(monotonicNowNs(), fileTimeNow(), c.tx);
+    return keep;
+  };
+  auto countNotifications = [&] {
+    size_t total = 0;
+    for (const auto& c : clients) total += c->session.notificationCount();
+    notifications_.store(total, std::memory_order_relaxed);
+  };
+  try {
+    while (true) {
+      fds.clear();
+      fds.push_back({wakeFds_[0], POLLIN, 0});
+      fds.push_back({listenFd_, POLLIN, 0});
+      int64_t nextDue = std::numeric_limits<int64_t>::max();
+      for (const auto& c : clients) {
+        short events = c->tx.size() < kMaxUnsentBytes ? POLLIN : 0;
+        if (!c->tx.empty()) events = static_cast<short>(events | POLLOUT);
+        fds.push_back({c->fd, events, 0});
+        nextDue = std::min(nextDue, c->session.nextCycleDueNs());
+      }
+      int timeoutMs = -1;
+      if (nextDue != std::numeric_limits<int64_t>::max())
+        timeoutMs = static_cast<int>(std::clamp<int64_t>((nextDue - monotonicNowNs() + 999'999) / 1'000'000, 0, 1000));
+      if (::poll(fds.data(), fds.size(), timeoutMs) < 0) {
+        if (errno == EINTR) continue;
+        break;
+      }
+      if (fds[0].revents & POLLIN) {
+        // A publish only needs the loop to run once: every session's notifications are due-checked below.
+        uint8_t why[64];
+        ssize_t n = ::read(wakeFds_[0], why, sizeof why);
+        if (n > 0 && std::find(why, why + n, kWakeStop) != why + n) break;
+      }
+      for (size_t i = 0; i < clients.size(); ++i) {
+        if ((fds[i + 2].revents & (POLLIN | POLLHUP | POLLERR)) && !receive(*clients[i])) {
+          ::close(clients[i]->fd);
+          clients[i]->fd = -1;
+        }
+      }
+      // Before anything is sent: a client that got its AddNotification reply may make the scan
+      // publish at once, and that publish must wake this thread.
+      countNotifications();
+      for (auto& c : clients) {
+        if (c->fd < 0) continue;
+        if (c->session.notificationCount() > 0) {
+          std::lock_guard lock(mutex_);
+          c->session.sendDueNotifications(monotonicNowNs(), fileTimeNow(), c->tx);
+        }
+        if (!flush(*c)) {
+          ::close(c->fd);
+          c->fd = -1;
+        }
+      }
+      std::erase_if(clients, [](const auto& c) { return c->fd < 0; });
+      if (fds[1].revents & POLLIN) {
+        uint32_t peer = 0;
+        int fd = net::acceptPeer(listenFd_, peer);
+        if (fd >= 0) {
+          const auto& allow = config_.allowedPeers;
+          bool allowed = allow.empty() || std::find(allow.begin(), allow.end(), peer) != allow.end();
+          if (!allowed || clients.size() >= config_.maxClients) {
+            ::close(fd);
+          } else {
+            int one = 1;
+            ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+            // Keepalive finds peers that vanished without a FIN (pulled cable, killed VM).
+            ::setsockopt(fd, SOL_SOCKET, SO_KEEPALIVE, &one, sizeof one);
+            clients.push_back(std::make_unique<Connection>(Connection{fd, Session(device_, config_.allowedNetIds), {}, {}}));
+          }
+        }
+      }
+      connections_.store(clients.size());
+    }
+  } catch (const std::bad_alloc&) {
+    // Out of memory on the I/O side: stop serving; the PLC keeps running.
+  }
+  for (auto& c : clients) ::close(c->fd);
+  connections_.store(0);
+}
+
+}  // namespace virtcom::proto::ads

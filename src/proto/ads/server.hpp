@@ -1,0 +1,88 @@
+#pragma once
+// The ADS server: AMS/TCP on one endpoint, answering as a TwinCAT 3 PLC runtime (AMS port 851)
+// and its system service (port 10000). Built so the network never races the scan:
+//  - one I/O thread owns the sockets (poll, non-blocking) and answers every request from the
+//    snapshot of the memory image published after the last scan (consistent, never torn);
+//  - writes are checked, queued and applied by the scan thread before the next scan
+//    (applyPendingWrites), each request whole, in arrival order; RUN/STOP requests likewise;
+//  - notifications are evaluated on the I/O thread after each publish and on their cycle.
+// One mutex guards the device state; it is held while answering one frame or copying the image,
+// never across socket I/O. Neither scan-side call allocates.
+#include <atomic>
+#include <cstdint>
+#include <expected>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <span>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "proto/ads/device.hpp"
+#include "proto/ads/symbol_table.hpp"
+#include "proto/net/endpoint.hpp"
+
+namespace virtcom::proto::ads {
+
+inline constexpr uint16_t kAmsTcpPort = 48898;
+
+struct ServerConfig {
+  net::Endpoint listen{0x7f000001, kAmsTcpPort};
+  std::vector<uint32_t> allowedPeers;   // IPv4 peers; empty: any peer that can reach `listen`
+  std::vector<AmsNetId> allowedNetIds;  // source NetIds; empty: any (no route check, as on localhost)
+  DeviceConfig device;
+  size_t maxClients = 32;               // further connections are accepted and closed at once
+  size_t maxFrameBytes = 1024 * 1024;   // a longer AMS/TCP frame closes its connection
+};
+
+// The scan thread's memory: the data area the symbol table describes, and the external input
+// image the next scan copies into the %I area (writes to %I go to both).
+struct LiveImage {
+  std::span<uint8_t> data;
+  std::span<uint8_t> inputImage;
+};
+
+class Server {
+ public:
+  // Binds, listens and starts the I/O thread. `table` must outlive the server. Error text if
+  // the address cannot be bound or the thread cannot start. The snapshot is all zero until
+  // publishSnapshot().
+  static std::expected<std::unique_ptr<Server>, std::string> start(const ServerConfig& config, const SymbolTable& table);
+  ~Server();  // stop()
+  Server(const Server&) = delete;
+  Server& operator=(const Server&) = delete;
+
+  net::Endpoint endpoint() const { return bound_; }
+
+  // Scan thread, before a scan: applies every queued write to `live`; returns how many edits.
+  size_t applyPendingWrites(const LiveImage& live);
+  // Scan thread, before a scan: a RUN (5) or STOP (6) a client asked for with WriteControl.
+  std::optional<uint16_t> takeStateRequest();
+  // Scan thread, after a scan: copies the data area into the snapshot and wakes the I/O thread
+  // when notifications are registered.
+  void publishSnapshot(std::span<const uint8_t> data, uint16_t adsState);
+
+  // Connections currently open (for tests and diagnostics).
+  size_t connectionCount() const { return connections_.load(); }
+
+  // Closes every connection and joins the I/O thread. Idempotent.
+  void stop();
+
+ private:
+  Server(const ServerConfig& config, const SymbolTable& table);
+  void run();
+  void wake(uint8_t why);
+
+  ServerConfig config_;
+  net::Endpoint bound_;
+  int listenFd_ = -1;
+  int wakeFds_[2] = {-1, -1};
+  std::mutex mutex_;  // guards device_ and every session
+  Device device_;
+  std::atomic<size_t> notifications_{0};
+  std::atomic<size_t> connections_{0};
+  std::thread thread_;
+};
+
+}  // namespace virtcom::proto::ads

@@ -1,0 +1,81 @@
+#pragma once
+// One client connection's protocol state: its symbol handles and notifications, and the
+// answers to its frames. Pure (no sockets): the server feeds it frames and sends what it
+// appends; tests and the fuzz target drive it directly. Not thread-safe: the server calls it
+// with the device lock held.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "proto/ads/ams.hpp"
+#include "proto/ads/device.hpp"
+
+namespace virtcom::proto::ads {
+
+class Session {
+ public:
+  // `allowedNetIds` empty: any source NetId (no route check on localhost, spec section 6).
+  explicit Session(Device& device, std::vector<AmsNetId> allowedNetIds = {});
+
+  // Answers one complete frame (as scanFrame found it), appending the response to `out`.
+  // Returns false when the connection must close: AMS/TCP port close, or a source NetId that
+  // is not allowed (TwinCAT drops a connection without a route the same way).
+  bool handleFrame(std::span<const uint8_t> frame, std::vector<uint8_t>& out);
+
+  // Appends one DeviceNotification frame (section 5.2) per notification that is due at `nowNs`
+  // (monotonic): a new one (its initial sample), a cyclic one whose cycle elapsed, an on-change
+  // one whose value differs from the last sent (checked at most once per cycle).
+  void sendDueNotifications(int64_t nowNs, uint64_t fileTime, std::vector<uint8_t>& out);
+  // Monotonic time at which a cyclic notification is next due; INT64_MAX if none.
+  int64_t nextCycleDueNs() const;
+  size_t notificationCount() const { return notifications_.size(); }
+  size_t handleCount() const;
+
+ private:
+  struct Handle {
+    bool used = false;
+    Symbol symbol;
+  };
+  struct Notification {
+    uint32_t handle = 0;
+    AmsAddress client, server;  // DeviceNotification target / source (section 5.2)
+    uint32_t ig = 0, io = 0, length = 0;
+    bool onChange = true;
+    int64_t cycleNs = 0;
+    int64_t nextCheckNs = 0;
+    bool sent = false;
+    std::vector<uint8_t> last;
+  };
+
+  void answerPacket(const AmsHeader& h, std::span<const uint8_t> data, std::vector<uint8_t>& out);
+  AdsError plcCommand(const AmsHeader& h, std::span<const uint8_t> data);
+  AdsError systemCommand(const AmsHeader& h, std::span<const uint8_t> data);
+
+  // The services; each appends its reply data to `reply` only on success.
+  AdsError read(uint32_t ig, uint32_t io, uint32_t length, std::vector<uint8_t>& reply);
+  AdsError write(uint32_t ig, uint32_t io, std::span<const uint8_t> data);
+  AdsError readWrite(uint32_t ig, uint32_t io, uint32_t readLength, std::span<const uint8_t> data,
+                     std::vector<uint8_t>& reply, bool inSum);
+  AdsError symbolService(uint32_t ig, uint32_t readLength, std::span<const uint8_t> name, std::vector<uint8_t>& reply);
+  AdsError sumRead(uint32_t n, uint32_t readLength, std::span<const uint8_t> data, std::vector<uint8_t>& reply);
+  AdsError sumWrite(uint32_t n, std::span<const uint8_t> data, std::vector<uint8_t>& reply);
+  AdsError sumReadWrite(uint32_t n, std::span<const uint8_t> data, std::vector<uint8_t>& reply);
+  AdsError sumAddNotifications(uint32_t n, std::span<const uint8_t> data, std::vector<uint8_t>& reply);
+  AdsError sumDeleteNotifications(uint32_t n, std::span<const uint8_t> data, std::vector<uint8_t>& reply);
+  AdsError addNotification(std::span<const uint8_t> body, uint32_t& handle);
+  AdsError deleteNotification(uint32_t handle);
+
+  const Handle* findHandle(uint32_t handle) const;
+  AdsError createHandle(const Symbol& s, uint32_t& handle);
+  AdsError releaseHandle(uint32_t handle);
+
+  Device& device_;
+  std::vector<AmsNetId> allowedNetIds_;
+  std::vector<Handle> handles_;  // handle h is handles_[h - 1]: never 0
+  std::vector<Notification> notifications_;
+  uint32_t nextNotificationHandle_ = 1;
+  AmsAddress currentClient_, currentServer_;  // addresses of the request being answered
+  std::vector<uint8_t> reply_, scratch_, value_;
+};
+
+}  // namespace virtcom::proto::ads

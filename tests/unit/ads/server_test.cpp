@@ -1,0 +1,147 @@
+// The ADS server on loopback: reads see the published snapshot, writes wait for the scan
+// thread (and reach the input image for %I), a publish wakes on-change notifications at once,
+// a malformed frame or a refused peer closes only its own connection.
+#include "proto/ads/server.hpp"
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/time.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include "ads_test_support.hpp"
+
+namespace virtcom::proto::ads {
+namespace {
+
+using namespace testing;
+
+// A blocking loopback client whose receives give up after 5 s (so a bug fails, never hangs).
+class Client {
+ public:
+  explicit Client(uint16_t port) {
+    fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
+    timeval timeout{5, 0};
+    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_port = htons(port);
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    connected_ = ::connect(fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) == 0;
+  }
+  ~Client() { ::close(fd_); }
+  bool connected() const { return connected_; }
+  void send(const Bytes& b) { ASSERT_EQ(::send(fd_, b.data(), b.size(), MSG_NOSIGNAL), static_cast<ssize_t>(b.size())); }
+  // The ADS data of the next frame (after its 38 header bytes); empty on close or timeout.
+  Bytes nextData() {
+    Bytes head = receive(kFrameHeaderSize);
+    if (head.size() < kFrameHeaderSize) return {};
+    return receive(head[26] | head[27] << 8 | head[28] << 16 | head[29] << 24);
+  }
+  bool closedByServer() {
+    uint8_t b;
+    return ::recv(fd_, &b, 1, 0) == 0;
+  }
+
+ private:
+  Bytes receive(size_t n) {
+    Bytes out(n);
+    size_t got = 0;
+    while (got < n) {
+      ssize_t r = ::recv(fd_, out.data() + got, n - got, 0);
+      if (r <= 0) break;
+      got += static_cast<size_t>(r);
+    }
+    out.resize(got);
+    return out;
+  }
+  int fd_ = -1;
+  bool connected_ = false;
+};
+
+class ServerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ServerConfig config;
+    config.listen.port = 0;
+    auto s = Server::start(config, table);
+    ASSERT_TRUE(s) << s.error();
+    server = std::move(*s);
+    image[32] = 42;
+    server->publishSnapshot(image, kAdsStateRun);
+  }
+  SymbolTable table = makeTable();
+  std::unique_ptr<Server> server;
+  Bytes image = Bytes(64, 0), inputImage = Bytes(4, 0);
+};
+
+TEST_F(ServerTest, ReadsTheSnapshotAndQueuesWrites) {
+  Client c(server->endpoint().port);
+  ASSERT_TRUE(c.connected());
+  c.send(amsRequest(kPlcPort, 2, u32s({0x4040, 32, 2})));
+  EXPECT_EQ(hex(c.nextData()), "00 00 00 00 02 00 00 00 2a 00");
+  c.send(amsRequest(kPlcPort, 3, u32s({0xF020, 1, 2}, {7, 8})));
+  EXPECT_EQ(hex(c.nextData()), "00 00 00 00");
+  EXPECT_EQ(image[17], 0);  // not before the scan thread takes it
+  EXPECT_EQ(server->applyPendingWrites({image, inputImage}), 1u);
+  EXPECT_EQ(image[17], 7);
+  EXPECT_EQ(image[18], 8);
+  EXPECT_EQ(hex(inputImage), "00 07 08 00");
+  EXPECT_EQ(server->applyPendingWrites({image, inputImage}), 0u);
+}
+
+TEST_F(ServerTest, PublishWakesOnChangeNotifications) {
+  Client c(server->endpoint().port);
+  for (uint8_t value = 43; value < 53; ++value) {
+    c.send(amsRequest(kPlcPort, 6, u32s({0x4040, 32, 1, 4, 0, 0, 0, 0, 0, 0})));
+    Bytes reply = c.nextData();
+    ASSERT_EQ(reply.size(), 8u);
+    EXPECT_EQ(reply[0], 0);
+    Bytes initial = c.nextData();
+    ASSERT_EQ(initial.size(), 29u);
+    EXPECT_EQ(initial[28], value - 1);
+    image[32] = value;
+    server->publishSnapshot(image, kAdsStateRun);  // at once: no polling interval to wait for
+    Bytes change = c.nextData();
+    ASSERT_EQ(change.size(), 29u) << "no notification after publish " << int(value);
+    EXPECT_EQ(change[28], value);
+    c.send(amsRequest(kPlcPort, 7, u32s({reply[4] | reply[5] << 8u})));
+    EXPECT_EQ(hex(c.nextData()), "00 00 00 00");
+  }
+}
+
+TEST_F(ServerTest, MalformedFrameClosesOnlyItsConnection) {
+  Client good(server->endpoint().port), bad(server->endpoint().port);
+  bad.send({0x00, 0x00, 0x05, 0x00, 0x00, 0x00});  // shorter than an AMS header
+  EXPECT_TRUE(bad.closedByServer());
+  good.send(amsRequest(kPlcPort, 4, {}));
+  EXPECT_EQ(hex(good.nextData()), "00 00 00 00 05 00 00 00");
+}
+
+TEST(AdsServerAllowList, RefusedPeerIsClosed) {
+  SymbolTable table = makeTable();
+  ServerConfig config;
+  config.listen.port = 0;
+  config.allowedPeers = {0x0a000001};  // 10.0.0.1: not loopback
+  auto server = Server::start(config, table);
+  ASSERT_TRUE(server);
+  Client c((*server)->endpoint().port);
+  EXPECT_TRUE(c.closedByServer());
+}
+
+TEST(AdsServerStart, BusyPortIsAnError) {
+  SymbolTable table = makeTable();
+  ServerConfig config;
+  config.listen.port = 0;
+  auto first = Server::start(config, table);
+  ASSERT_TRUE(first);
+  config.listen.port = (*first)->endpoint().port;
+  auto second = Server::start(config, table);
+  ASSERT_FALSE(second);
+  EXPECT_NE(second.error().find("cannot bind 127.0.0.1:"), std::string::npos) << second.error();
+}
+
+}  // namespace
+}  // namespace virtcom::proto::ads

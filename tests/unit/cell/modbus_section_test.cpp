@@ -1,0 +1,197 @@
+// The cell file's Modbus parts (docs/modbus.md): the served map (`modbus:` or automatic), the
+// client bridge (`plc: modbus:`), cells without a soft PLC, and every mistake at its position.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "cell_files.hpp"
+#include "proto/modbus/signal_map.hpp"
+
+namespace virtcom::cell::test {
+namespace {
+
+using ::testing::ElementsAre;
+namespace mb = proto::modbus;
+
+// A clamp (command port INT `programNumber`, execute; status done, error, busy) and a press
+// (adds LREAL actualForce and position), no soft PLC.
+constexpr const char* kDevices = R"(devices:
+  - name: Clamp
+    type: timed
+    commands:
+      1: { name: Close, duration: 1 s }
+  - name: Press
+    type: press
+    programs:
+      1: { name: P, press_time: 1 s, force: 1 kN }
+)";
+
+class ModbusSection : public CellFiles {
+ protected:
+  std::unique_ptr<Cell> loads(const std::string& text) {
+    write("cell.yaml", text);
+    auto cell = load();
+    EXPECT_TRUE(cell != nullptr) << rendered();
+    return cell;
+  }
+  std::vector<std::string> fails(const std::string& text) {
+    write("cell.yaml", text);
+    EXPECT_TRUE(load() == nullptr) << "the broken cell loaded";
+    return errors();
+  }
+};
+
+TEST_F(ModbusSection, ACellWithoutPlcHasNoControllerAndAnAutomaticMap) {
+  auto cell = loads(std::string("name: served\n") + kDevices);
+  ASSERT_TRUE(cell);
+  EXPECT_EQ(cell->module, nullptr);
+  EXPECT_FALSE(cell->plcModbus);
+  EXPECT_TRUE(cell->modbus.automatic);
+  EXPECT_EQ(mb::formatMapCsv(cell->modbus),
+            "table,address,type,signal,direction,access,word_order,scale\n"
+            "holding,0,INT,Clamp.programNumber,command,read/write,,1\n"
+            "coil,0,BOOL,Clamp.execute,command,read/write,,\n"
+            "discrete,0,BOOL,Clamp.done,status,read,,\n"
+            "input,0,INT,Clamp.error,status,read,,1\n"
+            "discrete,1,BOOL,Clamp.busy,status,read,,\n"
+            "holding,1,INT,Press.programNumber,command,read/write,,1\n"
+            "coil,1,BOOL,Press.execute,command,read/write,,\n"
+            "discrete,2,BOOL,Press.done,status,read,,\n"
+            "input,1,INT,Press.error,status,read,,1\n"
+            "discrete,3,BOOL,Press.busy,status,read,,\n"
+            "input,2,REAL,Press.actualForce,status,read,high_first,1\n"
+            "input,4,REAL,Press.position,status,read,high_first,1\n");
+}
+
+TEST_F(ModbusSection, AnExplicitMapWithTypesWordOrderScaleAndReadOnly) {
+  auto cell = loads(std::string("plc:\n  cycle_time: 5 ms\n") + kDevices +
+                    "modbus:\n"
+                    "  word_order: low_first\n"
+                    "  map:\n"
+                    "    - { signal: Clamp.execute, table: coil, address: 8, read_only: true }\n"
+                    "    - { signal: Press.actualForce, table: holding, address: 100, type: DINT, scale: 0.5 }\n"
+                    "    - { signal: Press.position, table: input, type: REAL, word_order: high_first }\n"
+                    "    - { signal: Press.position }\n");
+  ASSERT_TRUE(cell);
+  EXPECT_EQ(cell->run.plcCycleNs, 5'000'000);
+  EXPECT_EQ(mb::formatMapMarkdown(cell->modbus),
+            "| table | address | type | signal | direction | access | word order | scale |\n"
+            "| --- | ---: | --- | --- | --- | --- | --- | ---: |\n"
+            "| coil | 8 | BOOL | `Clamp.execute` | command | read |  |  |\n"
+            "| holding | 100 | DINT | `Press.actualForce` | status | read | low_first | 0.5 |\n"
+            "| input | 0 | REAL | `Press.position` | status | read | high_first | 1 |\n"
+            "| input | 2 | REAL | `Press.position` | status | read | low_first | 1 |\n");
+}
+
+TEST_F(ModbusSection, EveryMapMistakeAtItsPosition) {
+  EXPECT_THAT(fails(std::string(kDevices) +                                               // 1-9
+                    "modbus:\n"                                                           // 10
+                    "  word_order: middle\n"                                              // 11
+                    "  map:\n"                                                            // 12
+                    "    - { signal: Clamp.exec }\n"                                      // 13
+                    "    - { signal: Clamp.execute, table: input }\n"                     // 14
+                    "    - { signal: Clamp.done, table: coil, address: 0 }\n"             // 15
+                    "    - { signal: Clamp.busy, table: coil, address: 0 }\n"             // 16
+                    "    - { signal: Press.error, table: coil }\n"                        // 17
+                    "    - { signal: Press.error, type: LREAL }\n"                        // 18
+                    "    - { signal: Press.position, scale: 0 }\n"                        // 19
+                    "    - { signal: Press.done, read_only: false }\n"                    // 20
+                    "    - { signal: Press.busy, adress: 3 }\n"                           // 21
+                    "    - { signal: Press.actualForce, table: holding, address: 65535, type: REAL }\n"  // 22
+                    "    - { signal: Clamp.programNumber }\n"                             // 23
+                    "    - { signal: Clamp.programNumber }\n"),                           // 24
+              ElementsAre("cell.yaml:11:15: error[C010]: 'word_order' must be high_first or low_first, not 'middle'",
+                          "cell.yaml:13:17: error[C010]: no device signal 'Clamp.exec' (signals are DEVICE.PORT, e.g. "
+                          "Clamp.programNumber, Clamp.execute, Clamp.done, ...)",
+                          "cell.yaml:14:39: error[C010]: 'Clamp.execute' is a command the external PLC writes: map it to a "
+                          "coil or holding register, not input",
+                          "cell.yaml:16:7: error[C010]: coil 0 overlaps 'Clamp.done' at 0",
+                          "cell.yaml:17:37: error[C010]: 'Press.error' is INT: map it to a register, a coil holds one bit",
+                          "cell.yaml:18:36: error[C010]: 'type' must be BOOL, INT, UINT, DINT, UDINT or REAL, not 'LREAL'",
+                          "cell.yaml:19:40: error[C010]: 'scale' must be a non-zero number (signal value = register value * "
+                          "scale)",
+                          "cell.yaml:20:40: error[C010]: 'Press.done' is a device status signal: it is always read-only",
+                          "cell.yaml:21:29: error[C011]: unknown key 'adress' in a Modbus map entry (expected one of: signal, "
+                          "table, type, word_order, scale, read_only)",
+                          "cell.yaml:22:61: error[C010]: 'address' must be 0..65534 for a REAL",
+                          "cell.yaml:24:7: error[C010]: 'Clamp.programNumber' is mapped twice: a command has one writer"));
+}
+
+TEST_F(ModbusSection, TheClientBridgeSettingsAndItsMapDefaults) {
+  auto cell = loads(std::string("plc:\n"
+                                "  modbus: { address: 127.0.0.1:1502, unit: 3, poll: 20 ms, on_loss: hold }\n") +
+                    kDevices);
+  ASSERT_TRUE(cell);
+  ASSERT_TRUE(cell->plcModbus);
+  const ModbusClientSettings& s = *cell->plcModbus;
+  EXPECT_EQ(s.address, "127.0.0.1:1502");
+  EXPECT_EQ(s.unit, 3);
+  EXPECT_EQ(s.pollNs, 20'000'000);
+  EXPECT_EQ(s.timeoutNs, 500'000'000);
+  EXPECT_FALSE(s.faultOnLoss);
+  // commands first (read from the PLC), then status (written to it), all to writable tables
+  EXPECT_EQ(mb::formatMapCsv(s.map),
+            "table,address,type,signal,direction,access,word_order,scale\n"
+            "holding,0,INT,Clamp.programNumber,command,read/write,,1\n"
+            "coil,0,BOOL,Clamp.execute,command,read/write,,\n"
+            "holding,1,INT,Press.programNumber,command,read/write,,1\n"
+            "coil,1,BOOL,Press.execute,command,read/write,,\n"
+            "coil,2,BOOL,Clamp.done,status,read/write,,\n"
+            "holding,2,INT,Clamp.error,status,read/write,,1\n"
+            "coil,3,BOOL,Clamp.busy,status,read/write,,\n"
+            "coil,4,BOOL,Press.done,status,read/write,,\n"
+            "holding,3,INT,Press.error,status,read/write,,1\n"
+            "coil,5,BOOL,Press.busy,status,read/write,,\n"
+            "holding,4,REAL,Press.actualForce,status,read/write,high_first,1\n"
+            "holding,6,REAL,Press.position,status,read/write,high_first,1\n");
+}
+
+TEST_F(ModbusSection, ClientBridgeMistakes) {
+  EXPECT_THAT(fails(std::string("plc:\n"
+                                "  modbus:\n"
+                                "    address: 127.0.0.1\n"
+                                "    unit: 300\n"
+                                "    poll: 0.1 ms\n"
+                                "    on_loss: ignore\n"
+                                "    map:\n"
+                                "      - { signal: Clamp.done, table: discrete }\n"
+                                "run:\n"
+                                "  until: MAIN.done\n") +
+                    kDevices),
+              ElementsAre("cell.yaml:3:14: error[C010]: 'address': expected HOST:PORT, found '127.0.0.1' (expected "
+                          "HOST:PORT, e.g. 127.0.0.1:502)",
+                          "cell.yaml:4:11: error[C010]: 'unit' must be 0..255",
+                          "cell.yaml:5:11: error[C010]: 'poll' must be at least 1 ms",
+                          "cell.yaml:6:14: error[C010]: 'on_loss' must be fault or hold, not 'ignore'",
+                          "cell.yaml:8:38: error[C010]: 'Clamp.done' is written to the external PLC: map it to a coil or "
+                          "holding register, not discrete",
+                          "cell.yaml:10:10: error[C010]: 'until' names PLC variables, but the cell has no soft PLC ('plc: "
+                          "sources')"));
+}
+
+TEST_F(ModbusSection, WiringNeedsASoftPlc) {
+  EXPECT_THAT(fails("devices:\n"
+                    "  - name: Clamp\n"
+                    "    type: timed\n"
+                    "    commands:\n"
+                    "      1: { name: Close, duration: 1 s }\n"
+                    "    wiring: MAIN.Clamp\n"),
+              ElementsAre("cell.yaml:6:13: error[C030]: 'wiring' connects ports to soft PLC variables, but the cell has no "
+                          "soft PLC ('plc: sources'); an external PLC reaches the signals through a Modbus map"));
+}
+
+TEST_F(ModbusSection, DetachingTheSoftPlcDropsWhatNamesItsVariables) {
+  write("main.st", kMainSt);
+  auto cell = loads(std::string("plc:\n  sources: [main.st]\nrun:\n  until: MAIN.count >= 3\n  record: [MAIN.count]\n") +
+                    "devices:\n  - name: Clamp\n    type: timed\n" + kClampParams + "    wiring: MAIN.Clamp\n");
+  ASSERT_TRUE(cell);
+  EXPECT_FALSE(cell->wires.empty());
+  detachSoftPlc(*cell);
+  EXPECT_EQ(cell->module, nullptr);
+  EXPECT_TRUE(cell->wires.empty());
+  EXPECT_FALSE(cell->run.until.valid);
+  EXPECT_TRUE(cell->run.recordVars.empty());
+  EXPECT_EQ(busSignals(*cell).size(), 5u);
+}
+
+}  // namespace
+}  // namespace virtcom::cell::test

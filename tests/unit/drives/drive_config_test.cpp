@@ -1,0 +1,137 @@
+// Drive devices from cell-file entries: parameters, diagnostics with file:line:col, ports
+// named like the telegram words, fault and comm-loss injection through step() and the tag bus.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+
+#include "cell/yaml_config.hpp"
+#include "core/diagnostics.hpp"
+#include "core/source.hpp"
+#include "core/trace.hpp"
+#include "drives/drive_registry.hpp"
+#include "drives/speed_axis.hpp"
+
+namespace virtcom::drives {
+namespace {
+
+struct Loaded {
+  SourceManager sources;
+  Diagnostics diags;
+  ConfigNode root;
+  Trace trace;
+  plant::World world{trace};
+  TagBus bus;
+  std::unique_ptr<plant::Device> device;
+  int64_t nowNs = 0;
+
+  explicit Loaded(const std::string& yaml) {
+    if (!cell::parseYaml("drive.yaml", yaml, sources, diags, root)) return;
+    ConfigReader cfg(root, diags, "device");
+    const std::string type = cfg.requireString("type");
+    const ConfigNode* faults = cfg.child("faults");
+    device = plant::createDevice(type, "Drive1", cfg, world, deviceTypes());
+    if (!device) return;
+    if (faults) {
+      ConfigReader f(*faults, diags, "'faults'");
+      device->readFaults(f);
+      f.rejectUnknownKeys();
+    }
+    for (size_t i = 0; i < device->ports().size(); ++i)
+      device->bindPort(i, bus.add("Drive1." + device->ports()[i].name, device->ports()[i].type));
+    device->prepare(world, trace);
+  }
+  std::string errors() const {
+    return diags.render(sources);
+  }
+  TagId tag(const std::string& port) const { return device->tag(static_cast<size_t>(device->portIndex(port))); }
+  void stepFor(int64_t ms, int64_t cycleMs = 2) {
+    for (int64_t t = 0; t < ms; t += cycleMs) {
+      nowNs += cycleMs * 1'000'000;
+      device->step(plant::StepContext{nowNs, cycleMs * 1'000'000, bus, world, trace});
+    }
+  }
+};
+
+TEST(DriveConfig, G120PortsAreTheTelegramWords) {
+  Loaded l("type: g120\ntelegram: 352\np2000: 1500\n");
+  ASSERT_NE(l.device, nullptr) << l.errors();
+  EXPECT_EQ(l.device->portIndex("STW1"), 0);
+  EXPECT_EQ(l.device->ports()[1].type, ElemType::Int);          // NSOLL_A
+  EXPECT_EQ(l.device->ports()[0].dir, plant::PortDir::In);
+  EXPECT_EQ(l.device->ports()[6].name, "ZSW1");
+  EXPECT_EQ(l.device->ports()[6].dir, plant::PortDir::Out);
+  EXPECT_GE(l.device->portIndex("FAULT_CODE"), 0);
+  EXPECT_GE(l.device->portIndex("position"), 0);
+}
+
+TEST(DriveConfig, ReportsWrongValuesWithTheirPosition) {
+  Loaded l("type: g120\ntelegram: 2\np1120: -1 s\ncomm_fault: F1\nload: {gear: 3}\n");
+  EXPECT_EQ(l.device, nullptr);
+  const std::string e = l.errors();
+  EXPECT_NE(e.find("drive.yaml:2:11"), std::string::npos) << e;
+  EXPECT_NE(e.find("must be 1 or 352"), std::string::npos) << e;
+  EXPECT_NE(e.find("'p1120' must be a time greater than 0"), std::string::npos) << e;
+  EXPECT_NE(e.find("'comm_fault' must be F01910"), std::string::npos) << e;
+  EXPECT_NE(e.find("gear"), std::string::npos) << e;
+}
+
+TEST(DriveConfig, UnknownInjectionCodesListTheCatalogue) {
+  Loaded g("type: g120\nfaults:\n  inject:\n    - {code: F99999, at: 1 s}\n");
+  EXPECT_NE(g.errors().find("'F99999' is not a known SINAMICS fault or alarm (expected one of: F01000"), std::string::npos)
+      << g.errors();
+  Loaded p("type: powerflex525\nfaults:\n  inject:\n    - {code: F1}\n");
+  EXPECT_NE(p.errors().find("'F1' is not a PowerFlex fault number"), std::string::npos) << p.errors();
+  Loaded c("type: powerflex525\nc143: explode\n");
+  EXPECT_NE(c.errors().find("'c143' (comm loss action) must be fault, stop or hold_last"), std::string::npos) << c.errors();
+  EXPECT_EQ(Loaded("type: robotdrive\n").errors().find("powerflex525") != std::string::npos, true);
+}
+
+TEST(DriveConfig, InjectedFaultRaisesAndIsAcknowledgedThroughTheBus) {
+  Loaded l("type: g120\nfaults:\n  inject:\n    - {code: F07900, at: 1 s, duration: 100 ms}\n");
+  ASSERT_NE(l.device, nullptr) << l.errors();
+  l.bus.setInt(l.tag("STW1"), 0x047E);
+  l.stepFor(10);
+  l.bus.setInt(l.tag("STW1"), 0x047F);
+  l.bus.setInt(l.tag("NSOLL_A"), 0x2000);
+  l.stepFor(900);
+  EXPECT_EQ(l.bus.getInt(l.tag("ZSW1")) & 0x7F, 0x37);
+  l.stepFor(200);
+  EXPECT_TRUE(l.bus.getInt(l.tag("ZSW1")) & 0x08);  // F07900, OFF2: coasting in S1
+  ASSERT_EQ(l.trace.faults.size(), 1u);
+  EXPECT_EQ(l.trace.faults[0].message, "F07900");
+  l.bus.setInt(l.tag("STW1"), 0x04FF);
+  l.stepFor(2);
+  EXPECT_FALSE(l.bus.getInt(l.tag("ZSW1")) & 0x08);
+  EXPECT_GT(l.bus.getReal(l.tag("speed")), 0.0);      // still coasting
+}
+
+TEST(DriveConfig, InjectedAlarmAtSpeedShowsInWarnCode) {
+  Loaded l("type: g120\ntelegram: 352\nfaults:\n  inject:\n    - {code: A05000, at_speed_rpm: 600, duration: 500 ms}\n");
+  ASSERT_NE(l.device, nullptr) << l.errors();
+  l.bus.setInt(l.tag("STW1"), 0x047E);
+  l.stepFor(10);
+  l.bus.setInt(l.tag("STW1"), 0x047F);
+  l.bus.setInt(l.tag("NSOLL_A"), 0x2000);
+  l.stepFor(400);
+  EXPECT_EQ(l.bus.getInt(l.tag("WARN_CODE")), 0);     // 270 rpm so far
+  l.stepFor(600);
+  EXPECT_EQ(l.bus.getInt(l.tag("WARN_CODE")), 5000);
+  l.stepFor(600);
+  EXPECT_EQ(l.bus.getInt(l.tag("WARN_CODE")), 0);
+}
+
+TEST(DriveConfig, CommLossWindowStopsTheFrames) {
+  Loaded l("type: powerflex525\np041: 1 s\nfaults:\n  comm_loss:\n    - {at: 1 s, duration: 200 ms}\n");
+  ASSERT_NE(l.device, nullptr) << l.errors();
+  l.bus.setInt(l.tag("LogicCommand"), 0x0012);
+  l.bus.setInt(l.tag("FreqCommand"), 1000);
+  l.stepFor(990);
+  EXPECT_EQ(l.bus.getInt(l.tag("OutputFreq")), 1000);
+  l.stepFor(150);
+  EXPECT_TRUE(l.bus.getInt(l.tag("LogicStatus")) & 0x80);
+  EXPECT_GT(l.bus.getReal(l.tag("position")), 5.0) << "no load lead: position in revolutions";
+}
+
+}  // namespace
+}  // namespace virtcom::drives

@@ -1,0 +1,160 @@
+// PowerFlex 525 / 750: the acceptance scenarios of specs/drives.md §E seen from the drive, with
+// raw logic words (P044 = 60 Hz, P041 = P042 = 10 s, one pole pair: 1 Hz = 60 rpm).
+#include <gtest/gtest.h>
+
+#include "drive_rig.hpp"
+
+namespace virtcom::drives {
+namespace {
+
+constexpr uint16_t kStartForward = 0x0012, kStartReverse = 0x0022, kStop = 0x0001, kClearFaults = 0x0008;
+
+TEST(PowerFlex525, E18ForwardAt1188CentiHz) {
+  PowerFlexRig rig;
+  rig.cmd(kClearFaults, 0);
+  rig.cmd(0, 0);
+  EXPECT_EQ(rig.status() & 0x01FF, 0x000D);  // ready, forward (commanded and at standstill), not active
+  rig.cmd(kStartForward, 1188, 1500);        // 11.88 Hz at 6 Hz/s: 2 s
+  EXPECT_EQ(rig.outputFreq(), 1188);
+  EXPECT_EQ(rig.status() & 0x01FF, 0x010F);  // Ready, Active, CommandDir, ActualDir, AtReference
+  EXPECT_NEAR(rig.drive->shaftSpeedRpm(), 712.8, 1e-9);
+}
+
+TEST(PowerFlex525, E19ReverseReportsMagnitudeAndActualDir) {
+  PowerFlexRig rig;
+  rig.cmd(kStartReverse, 1188, 1500);
+  EXPECT_EQ(rig.outputFreq(), 1188);
+  EXPECT_EQ(rig.status() & 0x01FF, 0x0103);  // Ready, Active, AtReference; both directions 0
+  EXPECT_NEAR(rig.drive->shaftSpeedRpm(), -712.8, 1e-9);
+}
+
+TEST(PowerFlex525, E20E21JogSpeedThroughTheSpeedBits) {
+  PowerFlexRig fwd;
+  fwd.cmd(kStartForward, 475, 1000);
+  EXPECT_EQ(fwd.outputFreq(), 475);
+  EXPECT_NEAR(fwd.drive->shaftSpeedRpm(), 285.0, 1e-9);
+  PowerFlexRig rev;
+  rev.cmd(kStartReverse, 475, 1000);
+  EXPECT_EQ(rev.outputFreq(), 475);
+  EXPECT_FALSE(rev.status() & 0x0008);
+  EXPECT_NEAR(rev.drive->shaftSpeedRpm(), -285.0, 1e-9);
+}
+
+TEST(PowerFlex525, RampsWithAccelTimeOneAndReversesThroughZero) {
+  PowerFlexRig rig;
+  rig.cmd(kStartForward, 1000, 250);  // 0.5 s at 6 Hz/s = 3 Hz
+  EXPECT_NEAR(rig.outputFreq(), 300, 1);
+  EXPECT_TRUE(rig.status() & 0x0010);  // accelerating
+  EXPECT_FALSE(rig.status() & 0x0100);
+  rig.cmd(kStartForward, 1000, 1000);
+  rig.cmd(0x0020, 1000, 500);          // reverse only (Start latched): 10 Hz -> 4 Hz
+  EXPECT_NEAR(rig.outputFreq(), 400, 1);
+  EXPECT_TRUE(rig.status() & 0x0008);  // still rotating forward
+  EXPECT_FALSE(rig.status() & 0x0004); // commanded reverse
+  EXPECT_TRUE(rig.status() & 0x0020);  // decelerating
+  rig.cmd(0x0020, 1000, 1500);
+  EXPECT_EQ(rig.outputFreq(), 1000);
+  EXPECT_FALSE(rig.status() & 0x0008);
+}
+
+TEST(PowerFlex525, AccelTimeTwoSelectedByTheRateField) {
+  PowerFlexParams p;
+  p.accel2S = 1.0;  // 60 Hz/s
+  PowerFlexRig rig(TelegramId::Pf525, p);
+  rig.cmd(kStartForward | 0x0200, 1000, 50);  // AccelRate = 10: time 2; 0.1 s -> 6 Hz
+  EXPECT_NEAR(rig.outputFreq(), 600, 15);  // 98 ms of ramp after the first frame
+}
+
+TEST(PowerFlex525, PresetFrequencyByFreqSelect) {
+  PowerFlexRig rig;
+  rig.cmd(kStartForward | 0x6000, 1000, 2000);  // 110: preset 2 (A412 = 10 Hz)
+  EXPECT_EQ(rig.outputFreq(), 1000);
+  EXPECT_FALSE(rig.status() & 0x0200);          // reference not from comm
+  rig.cmd(kStartForward | 0x7000, 1000, 2000);  // 111: preset 3 (A413 = 20 Hz)
+  EXPECT_EQ(rig.outputFreq(), 2000);
+}
+
+TEST(PowerFlex525, StopRampsToZeroThenInactive) {
+  PowerFlexRig rig;
+  rig.cmd(kStartForward, 600, 1000);
+  rig.cmd(kStop, 600, 250);               // 6 Hz at 6 Hz/s decel: 1 s
+  EXPECT_GT(rig.outputFreq(), 0);
+  EXPECT_TRUE(rig.status() & 0x0002);
+  rig.cmd(kStop, 600, 300);
+  EXPECT_EQ(rig.outputFreq(), 0);
+  EXPECT_FALSE(rig.status() & 0x0002);
+  rig.cmd(0, 600, 100);                    // Start latch was cleared by Stop
+  EXPECT_EQ(rig.outputFreq(), 0);
+}
+
+TEST(PowerFlex525, E32StartInterlockAndClearFaultEdge) {
+  PowerFlexRig rig;
+  rig.cmd(kStop | 0x0002 | 0x0010, 600, 100);  // Stop and Start together: stays stopped
+  EXPECT_EQ(rig.outputFreq(), 0);
+  EXPECT_FALSE(rig.status() & 0x0002);
+  rig.cmd(kStartForward, 600, 100);            // Stop 1 -> 0 with Start held: starts
+  EXPECT_GT(rig.outputFreq(), 0);
+  rig.cmd(kStartForward | kClearFaults, 600, 5);  // ClearFaults held at 1 ...
+  rig.drive->raiseFault(7, rig.nowNs);            // ... while a new fault occurs
+  rig.drive->removeFaultCause(7);
+  rig.cmd(kStartForward | kClearFaults, 600, 5);
+  EXPECT_TRUE(rig.status() & 0x0080);
+  EXPECT_FALSE(rig.status() & 0x0001);
+  rig.cmd(kStartForward, 600);
+  rig.cmd(kStartForward | kClearFaults, 600);      // 0 -> 1 clears
+  EXPECT_FALSE(rig.status() & 0x0080);
+  EXPECT_EQ(rig.drive->faultQueue()[0], 7);        // the queue keeps the history
+  rig.cmd(kStartForward, 600, 100);                // Start still held: needs a new Start
+  EXPECT_EQ(rig.outputFreq(), 0);
+  rig.cmd(0x0010, 600);
+  rig.cmd(kStartForward, 600, 100);
+  EXPECT_GT(rig.outputFreq(), 0);
+}
+
+TEST(PowerFlex525, E26CommLossFaultsWithF083AndCoasts) {
+  PowerFlexRig rig;
+  rig.cmd(kStartForward, 1188, 1500);
+  rig.silence(150);
+  EXPECT_TRUE(rig.status() & 0x0080);
+  EXPECT_FALSE(rig.status() & 0x0002);  // Active = 0
+  EXPECT_EQ(rig.outputFreq(), 0);
+  EXPECT_EQ(rig.drive->faultQueue()[0], 83);
+  rig.cmd(0x0000, 1188, 2);
+  rig.cmd(kClearFaults, 1188);          // cause gone once frames are back
+  EXPECT_FALSE(rig.status() & 0x0080);
+}
+
+TEST(PowerFlex525, CommLossActionStopRampsWithoutFault) {
+  PowerFlexParams p;
+  p.commAction = CommLossAction::Stop;
+  PowerFlexRig rig(TelegramId::Pf525, p);
+  rig.cmd(kStartForward, 600, 1000);
+  rig.silence(2000);
+  EXPECT_FALSE(rig.status() & 0x0080);
+  EXPECT_EQ(rig.outputFreq(), 0);
+}
+
+TEST(PowerFlex525, FaultQueueKeepsTenMostRecentFirst) {
+  PowerFlexRig rig;
+  const uint16_t codes[] = {2, 3, 4, 5, 6, 7, 8, 9, 12, 13, 15};
+  for (uint16_t c : codes) rig.drive->raiseFault(c, rig.nowNs);
+  EXPECT_EQ(rig.drive->faultQueue()[0], 15);
+  EXPECT_EQ(rig.drive->faultQueue()[9], 3);
+}
+
+TEST(PowerFlex750, RunsOnARealReferenceWith32BitWords) {
+  PowerFlexRig rig(TelegramId::Pf750);
+  rig.send({0x00000012, rawFromReal(30.0)}, 3000);
+  EXPECT_DOUBLE_EQ(realValue(rig.tx(1)), 30.0);
+  const uint32_t s = rig.tx(0);
+  EXPECT_TRUE(s & (1u << 8));    // at speed
+  EXPECT_TRUE(s & (1u << 16));   // running
+  EXPECT_TRUE(s & (1u << 21));   // speed mode
+  EXPECT_FALSE(s & (1u << 24));  // not at zero speed
+  rig.send({0x00010000, rawFromReal(30.0)}, 1);  // coast stop
+  EXPECT_EQ(realValue(rig.tx(1)), 0.0);
+  EXPECT_FALSE(rig.tx(0) & (1u << 16));
+}
+
+}  // namespace
+}  // namespace virtcom::drives

@@ -26,6 +26,7 @@ struct DeviceConfig {
   size_t maxHandlesPerConnection = 10000;        // beyond: 0x70A
   size_t maxNotificationsPerConnection = 1000;   // beyond: 0x716
   size_t maxSumItems = 4096;                     // sub-commands of one sum command; beyond: 0x706
+  size_t maxSumReadBytes = 1024 * 1024;          // data of one sum read reply; beyond: 0x705
 };
 
 class Device {

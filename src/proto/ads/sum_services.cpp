@@ -18,6 +18,7 @@ AdsError Session::sumRead(uint32_t n, uint32_t readLength, std::span<const uint8
     total += *in.u32();
   }
   if (readLength != kAnyLength && total > readLength) return AdsError::InvalidSize;
+  if (total > device_.config().maxSumReadBytes) return AdsError::InvalidSize;
   const size_t results = reply.size();
   LittleEndianWriter w(reply);
   w.zeros(4ull * n);

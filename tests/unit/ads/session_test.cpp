@@ -345,6 +345,13 @@ TEST_F(SessionTest, SumRead) {
   EXPECT_EQ(hex(readWrite(0xF080, 3, 12, u32s({0x4040, 32, 2, 0x1234, 0, 2}))), "05 07 00 00 00 00 00 00");
 }
 
+// Regression (fuzz_ads_frame OOM): items asking for gigabytes are refused before any reply
+// memory is reserved, also when the client leaves the read length open.
+TEST_F(SessionTest, SumReadLongerThanTheLimitIsRefused) {
+  EXPECT_EQ(hex(readWrite(0xF080, 2, 0xFFFFFFFF, u32s({0x4040, 32, 0x7FFFFFFF, 0x4040, 32, 0x7FFFFFFF}))),
+            "05 07 00 00 00 00 00 00");
+}
+
 TEST_F(SessionTest, SumWrite) {
   EXPECT_EQ(hex(readWrite(0xF081, 2, 8, u32s({0x4040, 32, 2, 0x4040, 36, 4}, {7, 0, 1, 0, 0, 0}))),
             "00 00 00 00 08 00 00 00 00 00 00 00 04 07 00 00");

@@ -10,6 +10,7 @@
 #include "cell/modbus_settings.hpp"
 #include "cell/yaml_config.hpp"
 #include "drives/drive_registry.hpp"
+#include "lang/plcopen/importer.hpp"
 #include "lang/st/compiler.hpp"
 
 namespace virtcom::cell {
@@ -82,7 +83,7 @@ class Loader {
     } else if (plcModbus_ || !srcs) {
       // no soft PLC; `plc: modbus:` is read with the devices' signals, see load()
     } else if (srcs->kind() != ConfigNode::Kind::List || srcs->items().empty()) {
-      plc.error(srcs->loc(), "'sources' must be a list of ST files relative to the cell file");
+      plc.error(srcs->loc(), "'sources' must be a list of ST (.st) or PLCopen XML (.xml) files relative to the cell file");
     } else {
       for (const auto& item : srcs->items()) {
         std::filesystem::path p = cell.file.parent_path() / item.scalar();
@@ -91,7 +92,7 @@ class Loader {
           plc.error(item.loc(), "cannot read PLC source '" + p.string() + "'");
           continue;
         }
-        inputs.push_back({p.lexically_normal().string(), st});
+        inputs.push_back(plcopen::sourceInput(p.lexically_normal().string(), std::move(st)));
       }
     }
     cell.run.plcCycleNs = static_cast<int64_t>(plc.optQuantity("cycle_time", Dimension::Time, 0.01) * 1e9 + 0.5);

@@ -23,9 +23,7 @@ std::optional<std::vector<st::SourceInput>> readSources(const std::vector<std::s
     }
     std::stringstream buf;
     buf << in.rdbuf();
-    st::FrontEnd frontEnd;
-    if (plcopen::isPlcopenPath(path)) frontEnd = plcopen::importProject;
-    inputs.push_back({path, buf.str(), frontEnd});
+    inputs.push_back(plcopen::sourceInput(path, buf.str()));
   }
   return inputs;
 }

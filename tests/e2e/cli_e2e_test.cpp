@@ -562,6 +562,31 @@ TEST_F(CliPlcopen, ExportedStProgramChecksAndRunsAsXml) {
   EXPECT_EQ(r.out, "MAIN.count = 4\n");
 }
 
+// A textual SFC chart is exported as a graphical chart; the XML runs with the same steps.
+TEST_F(CliPlcopen, ExportedSfcChartTracesTheSameSteps) {
+  std::string out = (work_ / "figure8.xml").string();
+  RunResult r = run({"export", "--plcopen", out, "sfc_figure8.st"});
+  ASSERT_EQ(r.exitCode, 0) << show(r);
+  std::string xml = readFile(out);
+  EXPECT_TRUE(contains(xml, "<step localId=\"1\" name=\"Init\" initialStep=\"true\">")) << xml;
+  EXPECT_TRUE(contains(xml, "<simultaneousDivergence")) << xml;
+  RunResult st = run({"exec", "sfc_figure8.st", "--cycles", "8", "--trace-steps"});
+  RunResult fromXml = run({"exec", out, "--cycles", "8", "--trace-steps"});
+  ASSERT_EQ(st.exitCode, 0) << show(st);
+  ASSERT_EQ(fromXml.exitCode, 0) << show(fromXml);
+  EXPECT_TRUE(contains(st.out, "MAIN.Step2_1 MAIN.Step2_2")) << show(st);
+  EXPECT_EQ(fromXml.out, st.out);
+}
+
+// A ladder program in XML and an ST function block checked together (as a cell's sources).
+TEST_F(CliPlcopen, CheckAcceptsXmlAndStMixed) {
+  RunResult r = run({"check", "cells/ld_handshake.xml", "cells/edge_counter.st"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  r = run({"exec", "cells/ld_handshake.xml", "cells/edge_counter.st", "--cycles", "2", "--print", "MAIN.starts.count"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.starts.count = 1\n");
+}
+
 TEST_F(CliPlcopen, ExportRefusesAProgramWithErrors) {
   std::string out = (work_ / "bad.xml").string();
   RunResult r = run({"export", "--plcopen", out, "errors.st"});

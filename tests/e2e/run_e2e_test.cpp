@@ -231,6 +231,20 @@ TEST_F(RunExit, UntilStopsEarly) {
   EXPECT_EQ(csv.find('\n', last), csv.size() - 1) << csv.substr(last > 300 ? last - 300 : 0);
 }
 
+// A cell whose PLC program is a ladder diagram in PLCopen XML, mixed with an ST function block
+// (cells/ld_handshake.yaml): loaded, compiled and run like ST sources.
+TEST_F(RunExit, CellWithAPlcopenLadderProgramRuns) {
+  RunResult r = run({"run", "cells/ld_handshake.yaml", "--csv", out("ld.csv")});
+  ASSERT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.err, "");
+  EXPECT_TRUE(contains(r.out, "Run ended     completed: 1 cycle(s) completed")) << show(r);
+  // the rung `NOT finished -> exec` started the clamp once; the ST block counted that one start
+  const std::string csv = readFile(out("ld.csv"));
+  EXPECT_TRUE(contains(csv, ",MAIN.starts.count,1\n")) << csv;
+  EXPECT_FALSE(contains(csv, ",MAIN.starts.count,2")) << csv;
+  EXPECT_TRUE(contains(csv, ",Clamp.done,1\n")) << csv;
+}
+
 TEST_F(RunExit, QuietPrintsNothing) {
   RunResult r = run({"run", kGearbox, "--set", "MAIN.sequence=4", "--quiet"});
   EXPECT_EQ(r.exitCode, 3) << show(r);

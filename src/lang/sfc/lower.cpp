@@ -6,6 +6,7 @@
 
 #include "lang/sfc/ast_builder.hpp"
 #include "lang/sfc/chart_check.hpp"
+#include "lang/st/ast_clone.hpp"
 
 namespace virtcom::sfc {
 
@@ -316,14 +317,36 @@ class Lowering {
   std::set<size_t> risingFlag_, fallingFlag_;
 };
 
+std::vector<ActionAssociation> copyOf(const std::vector<ActionAssociation>& src) {
+  std::vector<ActionAssociation> out;
+  for (const auto& a : src) out.push_back({a.action, a.qualifier, st::cloneExprOrNull(a.duration), a.indicator, a.loc});
+  return out;
+}
+
+// The chart as written, for the exporter: lowering moves its expressions into the POU.
+std::shared_ptr<const Chart> copyOf(const Chart& src) {
+  auto c = std::make_shared<Chart>();
+  c->loc = src.loc;
+  for (const auto& s : src.steps) c->steps.push_back({s.name, s.loc, s.initial, copyOf(s.actions)});
+  for (const auto& t : src.transitions)
+    c->transitions.push_back({t.name, t.loc, t.priority, t.from, t.to, st::cloneExprOrNull(t.condition), st::cloneStatements(t.body)});
+  for (const auto& a : src.actions) c->actions.push_back({a.name, a.loc, st::cloneStatements(a.body)});
+  return c;
+}
+
 }  // namespace
 
 void lowerChart(Chart chart, st::Pou& pou, Diagnostics& diags, st::NodeId& nextNodeId) {
   std::vector<std::string> pouActions;
   for (const auto& a : pou.actions) pouActions.push_back(a->name);
   std::optional<detail::ResolvedChart> resolved = detail::resolveChart(chart, pouActions, diags);
-  if (!resolved || !detail::analyseChart(chart, *resolved, diags)) return;
+  if (!resolved || !detail::checkStepWrites(chart, pou, diags) || !detail::analyseChart(chart, *resolved, diags)) return;
+  st::ChartSource source{copyOf(chart), {pou.body.size(), 0}, {pou.varBlocks.size(), 0}, {pou.actions.size(), 0}};
   Lowering(chart, *resolved, pou, nextNodeId).run();
+  source.statements.end = pou.body.size();
+  source.varBlocks.end = pou.varBlocks.size();
+  source.actions.end = pou.actions.size();
+  pou.chart = std::move(source);
 }
 
 }  // namespace virtcom::sfc

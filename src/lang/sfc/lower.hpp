@@ -25,6 +25,8 @@ inline constexpr std::string_view kStepTypeName = "SFC_STEP";
 //   clear fires) and fire the clear ones together (deactivate sources, then activate targets:
 //   one evolution per call); (2) action control per IEC 61131-3 for the new activity, then
 //   every action whose Q is set runs (and once more, with Q reset, after a non-pulse Q falls).
+// A copy of the chart as written goes to pou.chart (with the ranges of statements, variable
+// blocks and actions the lowering appended), so the exporter writes it as a chart.
 // Reports chart errors (E401-E407) with the element's location; on any error nothing is
 // appended. New nodes take ids from ++nextNodeId. Never throws on bad input.
 void lowerChart(Chart chart, st::Pou& pou, Diagnostics& diags, st::NodeId& nextNodeId);

@@ -9,6 +9,7 @@
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "lang/sfc/step_monitor.hpp"
+#include "plc/retain_file.hpp"
 #include "plc/runtime.hpp"
 #include "proto/ads/plc/module_symbols.hpp"
 #include "proto/ads/plc/plc_binding.hpp"
@@ -36,10 +37,12 @@ struct ExecOptions {
   bool stats = false;
   std::string modbus;       // HOST:PORT to serve Modbus TCP on; empty: no server
   std::string modbusAllow;  // comma-separated peer addresses; empty: any
+  bool modbusWritableInputs = false;  // %IW also as holding registers 8192.. (docs/modbus.md)
   std::string ads;          // HOST:PORT to serve ADS (AMS/TCP) on; empty: no server
   std::string adsNetId;     // the server's AmsNetId; empty: 127.0.0.1.1.1
   std::string adsAllow;     // comma-separated peer IPv4 addresses and/or client AmsNetIds
   bool adsReadOnly = false;
+  std::string retainFile;   // warm start: RETAIN/PERSISTENT variables loaded from and saved to it
 };
 
 bool resolveAll(const bc::Module& m, const std::vector<std::string>& names, std::vector<bc::VarRef>& out) {
@@ -96,6 +99,7 @@ std::expected<std::unique_ptr<proto::modbus::Server>, std::string> startModbus(c
   shape.inputs = m.inputs.size;
   shape.outputs = m.outputs.size;
   shape.memory = m.memory.size;
+  shape.writableInputs = o.modbusWritableInputs;
   auto server = mb::Server::start(config, shape);
   if (!server) return std::unexpected("--modbus: " + server.error());
   (*server)->publishSnapshot(modbusView(runtime));
@@ -189,6 +193,13 @@ int runExec(const ExecOptions& o) {
     std::cerr << "runtime fault: " << runtime.faultText() << "\n";
     return kExitRuntimeFault;
   }
+  if (!o.retainFile.empty()) {
+    auto restored = plc::loadRetainFile(o.retainFile, *module, runtime.machine().memory());
+    if (!restored) {
+      std::cerr << "error: --retain-file: " << restored.error() << "\n";
+      return kExitUsage;
+    }
+  }
   for (const auto& set : o.sets) {
     std::string problem = presetVariable(*module, set, runtime.machine().memory(), runtime.inputImage());
     if (!problem.empty()) {
@@ -266,6 +277,13 @@ int runExec(const ExecOptions& o) {
   }
   if (modbus) modbus->stop();
   if (ads) ads->stop();
+  if (!o.retainFile.empty() && exitCode == kExitOk) {
+    std::string problem = plc::saveRetainFile(o.retainFile, *module, runtime.machine().memory());
+    if (!problem.empty()) {
+      std::cerr << "error: --retain-file: " << problem << "\n";
+      exitCode = kExitUsage;
+    }
+  }
   for (size_t i = 0; i < o.prints.size(); ++i)
     std::cout << o.prints[i] << " = " << bc::formatValue(*module, printRefs[i], runtime.machine().memory()) << "\n";
   if (o.stats) {
@@ -297,11 +315,13 @@ void addExecCommand(CLI::App& app, std::function<void(int)> setExit) {
   cmd->add_option("--budget", o->budget, "watchdog: max backward jumps + calls per task scan (default 50000000)");
   cmd->add_flag("--stats", o->stats, "print per-task scan statistics to stderr");
   cmd->add_option("--modbus", o->modbus, "serve the process image over Modbus TCP on HOST:PORT (OpenPLC mapping, see docs/modbus.md); implies --speed 1");
+  cmd->add_flag("--modbus-writable-inputs", o->modbusWritableInputs, "let --modbus clients write the inputs: holding register 8192+n is %IWn (and the %IX bits in it); off by default");
   cmd->add_option("--modbus-allow", o->modbusAllow, "comma-separated IPv4 peers allowed to connect to --modbus (default: any)");
   cmd->add_option("--ads", o->ads, "serve the PLC over ADS (AMS/TCP, TwinCAT 3 runtime on AMS port 851) on HOST:PORT, e.g. 127.0.0.1:48898 (see docs/ads.md); implies --speed 1");
   cmd->add_option("--ads-netid", o->adsNetId, "AmsNetId of the --ads server (default 127.0.0.1.1.1; 127.0.0.1.1.1 is always accepted too)");
   cmd->add_option("--ads-allow", o->adsAllow, "comma-separated IPv4 peers and/or client AmsNetIds allowed to use --ads (default: any)");
   cmd->add_flag("--ads-readonly", o->adsReadOnly, "refuse every ADS write and RUN/STOP request (error 0x704)");
+  cmd->add_option("--retain-file", o->retainFile, "warm start: load the RETAIN/PERSISTENT variables from this file after the cold start (if it exists) and save them to it when the run ends without a fault");
   cmd->callback([o, setExit] { setExit(runExec(*o)); });
 }
 

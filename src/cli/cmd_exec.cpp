@@ -43,6 +43,7 @@ struct ExecOptions {
   std::string adsAllow;     // comma-separated peer IPv4 addresses and/or client AmsNetIds
   bool adsReadOnly = false;
   std::string retainFile;   // warm start: RETAIN/PERSISTENT variables loaded from and saved to it
+  std::string backend = "interp";
 };
 
 bool resolveAll(const bc::Module& m, const std::vector<std::string>& names, std::vector<bc::VarRef>& out) {
@@ -189,6 +190,7 @@ int runExec(const ExecOptions& o) {
   plc::RuntimeOptions ropts;
   ropts.instructionBudget = o.budget;
   plc::Runtime runtime(*module, *clock, ropts);
+  runtime.machine().useCompiled(compiledBackend(o.backend, *module));
   if (!runtime.coldStart()) {
     std::cerr << "runtime fault: " << runtime.faultText() << "\n";
     return kExitRuntimeFault;
@@ -313,6 +315,7 @@ void addExecCommand(CLI::App& app, std::function<void(int)> setExit) {
   cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); without --cycles runs until SIGINT/SIGTERM")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--budget", o->budget, "watchdog: max backward jumps + calls per task scan (default 50000000)");
+  addBackendOption(*cmd, o->backend);
   cmd->add_flag("--stats", o->stats, "print per-task scan statistics to stderr");
   cmd->add_option("--modbus", o->modbus, "serve the process image over Modbus TCP on HOST:PORT (OpenPLC mapping, see docs/modbus.md); implies --speed 1");
   cmd->add_flag("--modbus-writable-inputs", o->modbusWritableInputs, "let --modbus clients write the inputs: holding register 8192+n is %IWn (and the %IX bits in it); off by default");

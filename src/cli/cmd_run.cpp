@@ -34,6 +34,7 @@ struct RunOptions {
   double speed = 0;
   bool quiet = false;
   bool step = false;
+  std::string backend = "interp";
 };
 
 // Single-step mode: one PLC base tick per line read from stdin (empty line: one tick, a number N:
@@ -119,6 +120,7 @@ int runCell(const RunOptions& o) {
   sim::SimOptions options;
   options.speed = o.speed;
   options.interrupt = &gStop;
+  if (cell->module) options.compiled = compiledBackend(o.backend, *cell->module);
   if (!o.timeLimit.empty()) {
     auto ns = parseDurationNs(o.timeLimit);
     if (!ns) {
@@ -183,6 +185,7 @@ void addRunCommand(CLI::App& app, std::function<void(int)> setExit) {
   cmd->add_option("--signal", o->signals, "signal shown in the report's timeline (repeatable), e.g. Robot1.busy");
   cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible (1 with 'plc: modbus')")
       ->check(CLI::PositiveNumber);
+  addBackendOption(*cmd, o->backend);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table");
   cmd->add_flag("--step", o->step, "single step: advance one PLC tick per line read from stdin, printing changed signals");
   cmd->callback([o, setExit] { setExit(runCell(*o)); });

@@ -31,6 +31,8 @@ struct SimOptions {
   // Links to external peers (Modbus/ADS), stepped in this order; they must outlive the run.
   // A failed pull() ends the run as a PLC fault (the external PLC is the controller).
   std::vector<BusBridge*> bridges;
+  // Machine code for the soft PLC's module (src/aot); null runs the interpreter.
+  std::shared_ptr<const vm::CompiledCode> compiled;
 };
 
 class Simulation {

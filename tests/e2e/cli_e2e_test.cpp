@@ -108,7 +108,7 @@ TEST_F(CliHelp, ExecListsEveryOption) {
   RunResult r = run({"exec", "--help"});
   EXPECT_EQ(r.exitCode, 0) << show(r);
   for (const char* option : {"files", "--cycles", "--cycle-time", "--set", "--print", "--trace", "--trace-file",
-                             "--speed", "--budget", "--stats", "--retain-file"})
+                             "--speed", "--budget", "--backend", "--stats", "--retain-file"})
     EXPECT_TRUE(contains(r.out, option)) << option << "\n" << show(r);
 }
 
@@ -123,6 +123,57 @@ TEST_F(CliHelp, Version) {
   RunResult r = run({"--version"});
   EXPECT_EQ(r.exitCode, 0) << show(r);
   EXPECT_EQ(r.out, "virtcom 0.1.0\n");
+}
+
+// --backend aot: the same output and fault report as the interpreter; without a working C
+// compiler a one-line notice, then the interpreter. Compiled modules go to the test's folder.
+class CliBackend : public CliTest {
+ protected:
+  void SetUp() override {
+    CliTest::SetUp();
+    ::setenv("VIRTCOM_AOT_CACHE", (work_ / "aot").c_str(), 1);
+  }
+  void TearDown() override {
+    ::unsetenv("VIRTCOM_AOT_CACHE");
+    ::unsetenv("CC");
+    CliTest::TearDown();
+  }
+};
+
+TEST_F(CliBackend, AotPrintsWhatTheInterpreterPrints) {
+  const std::vector<std::string> args{"exec", "ton.st", "--cycles", "40", "--trace", "MAIN.q,MAIN.et"};
+  std::vector<std::string> aot = args;
+  aot.insert(aot.end(), {"--backend", "aot"});
+  RunResult interp = run(args), compiled = run(aot);
+  EXPECT_EQ(compiled.exitCode, 0) << show(compiled);
+  EXPECT_EQ(compiled.out, interp.out) << show(compiled);
+  EXPECT_FALSE(contains(compiled.err, "notice")) << show(compiled);
+  EXPECT_TRUE(fs::exists(work_ / "aot")) << "nothing compiled";
+}
+
+TEST_F(CliBackend, AotReportsTheSameFault) {
+  RunResult interp = run({"exec", "divzero.st", "--cycles", "5"});
+  RunResult compiled = run({"exec", "divzero.st", "--cycles", "5", "--backend", "aot"});
+  EXPECT_EQ(interp.exitCode, 2) << show(interp);
+  EXPECT_EQ(compiled.exitCode, 2) << show(compiled);
+  EXPECT_TRUE(contains(compiled.err, "division by zero at divzero.st:8:")) << show(compiled);
+  EXPECT_EQ(compiled.err, interp.err);
+  EXPECT_EQ(compiled.out, interp.out);
+}
+
+TEST_F(CliBackend, WithoutACompilerFallsBackToTheInterpreter) {
+  ::setenv("CC", "virtcom-no-such-compiler", 1);
+  RunResult r = run({"exec", "counter.st", "--cycles", "5", "--print", "MAIN.count", "--backend", "aot"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.count = 5\n");
+  EXPECT_TRUE(contains(r.err, "notice: --backend aot unavailable, using the interpreter")) << show(r);
+  EXPECT_TRUE(contains(r.err, "virtcom-no-such-compiler")) << show(r);
+}
+
+TEST_F(CliBackend, UnknownBackendIsAUsageError) {
+  RunResult r = run({"exec", "counter.st", "--backend", "jit"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "--backend")) << show(r);
 }
 
 class CliUsage : public CliTest {};

@@ -109,7 +109,7 @@ TEST_F(RunHelp, ListsEveryOption) {
   EXPECT_EQ(r.exitCode, 0) << show(r);
   EXPECT_TRUE(contains(r.out, "Simulate a cell file")) << show(r);
   for (const char* option : {"cell", "--report", "--json", "--vcd", "--csv", "--until", "--time-limit", "--set",
-                             "--signal", "--speed", "--quiet"})
+                             "--signal", "--speed", "--backend", "--quiet"})
     EXPECT_TRUE(contains(r.out, option)) << option << "\n" << show(r);
   EXPECT_EQ(r.err, "");
 }
@@ -158,6 +158,21 @@ TEST_F(RunExit, Sequence3CompletesAndWritesEveryReport) {
             0u)
       << csv.substr(0, 200);
   EXPECT_TRUE(contains(csv, ",MAIN.jobsFinished,")) << "run.record adds MAIN.jobsFinished";
+}
+
+// --backend aot runs the cell's PLC as machine code: the same golden report and VCD as the
+// interpreter. The compiled module is cached in the test's own folder.
+TEST_F(RunExit, AotBackendWritesTheSameReport) {
+  ::setenv("VIRTCOM_AOT_CACHE", out("aot").c_str(), 1);
+  RunResult r = run({"run", kGearbox, "--set", "MAIN.sequence=3", "--json", out("aot.json"), "--vcd", out("aot.vcd"),
+                     "--backend", "aot"});
+  RunResult interp = run({"run", kGearbox, "--set", "MAIN.sequence=3", "--vcd", out("interp.vcd")});
+  ::unsetenv("VIRTCOM_AOT_CACHE");
+  ASSERT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.err, "") << "no fallback notice";
+  EXPECT_TRUE(fs::exists(out("aot"))) << "nothing compiled";
+  EXPECT_EQ(readFile(out("aot.json")), readFile(kGoldenDir + "/gearbox-seq3.json"));
+  EXPECT_EQ(readFile(out("aot.vcd")), readFile(out("interp.vcd")));
 }
 
 // Also shows that --set is applied before the first scan: the program loads its job list in

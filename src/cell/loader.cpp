@@ -50,7 +50,7 @@ class Loader {
       return nullptr;
     }
     ConfigNode root;
-    if (!parseYaml(path, text, sources_, diags_, root)) return nullptr;
+    if (!parseYaml(path, text, sources_, diags_, root) || !takeBaseSections(cell->file, root)) return nullptr;
     ConfigReader top(root, diags_, "the cell file");
     cell->name = top.optString("name", std::filesystem::path(path).parent_path().filename().string());
     // Every part is checked even when an earlier one failed, so one run reports all mistakes;
@@ -63,12 +63,37 @@ class Loader {
     // Maps name device signals, so they are read once the devices exist.
     readModbusSection(*cell, top.child("modbus"), diags_);
     if (plcModbus_) readModbusClient(*cell, *plcModbus_, diags_);
+    top.child("extends");  // applied by takeBaseSections()
     top.rejectUnknownKeys();
     if (diags_.hasErrors()) return nullptr;
     return cell;
   }
 
  private:
+  // `extends: other.yaml` (relative to this file): every top-level section of that cell file
+  // which this one does not have is taken as written there, so variants of a cell (another
+  // PLC program, other run settings) need not repeat its devices. One level only: the base
+  // must not extend another file. Paths inside taken sections stay relative to this file.
+  bool takeBaseSections(const std::filesystem::path& path, ConfigNode& root) {
+    const ConfigNode* ext = root.kind() == ConfigNode::Kind::Map ? root.find("extends") : nullptr;
+    if (!ext) return true;
+    std::filesystem::path basePath = (path.parent_path() / ext->scalar()).lexically_normal();
+    std::string text;
+    if (ext->kind() != ConfigNode::Kind::Scalar || !readText(basePath, text)) {
+      diags_.error("C002", ext->loc(), "cannot read cell file '" + basePath.string() + "' named by 'extends'");
+      return false;
+    }
+    ConfigNode base;
+    if (!parseYaml(basePath.string(), text, sources_, diags_, base)) return false;
+    if (base.find("extends")) {
+      diags_.error("C010", base.keyLoc("extends"), "a cell file named by 'extends' cannot itself extend another file");
+      return false;
+    }
+    for (const auto& [key, value] : base.entries())
+      if (!root.has(key)) root.add(key, base.keyLoc(key), value);
+    return true;
+  }
+
   // True unless there was an error. Without `plc:` or its `sources:` the cell has no controller
   // of its own (it can only be served); `plc: modbus:` makes an external PLC the controller.
   bool compilePlc(Cell& cell, ConfigReader& top) {

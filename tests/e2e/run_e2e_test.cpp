@@ -26,6 +26,7 @@ namespace {
 const char* const kExe = VIRTCOM_EXE;
 const char* const kDataDir = VIRTCOM_E2E_DATA;
 const std::string kGearbox = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell/cell.yaml";
+const std::string kGearboxSfc = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell/cell-sfc.yaml";
 const std::string kGoldenDir = std::string(VIRTCOM_SOURCE_DIR) + "/tests/golden/cells";
 const char* const kChromium = "/usr/bin/chromium";
 
@@ -43,6 +44,24 @@ std::string readFile(const fs::path& p) {
 }
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// Whether the BOOL signals `a` and `b` of a `--csv` trace (time_s,signal,value rows of the
+// changes, in time order) are 1 together after all the changes of some instant.
+bool bothActiveAtSomeTime(const std::string& csv, const std::string& a, const std::string& b) {
+  std::istringstream in(csv);
+  std::string line, time;
+  bool aOn = false, bOn = false;
+  while (std::getline(in, line)) {
+    size_t first = line.find(','), last = line.rfind(',');
+    if (first == std::string::npos || first == last) continue;
+    if (line.substr(0, first) != time && aOn && bOn) return true;
+    time = line.substr(0, first);
+    const std::string signal = line.substr(first + 1, last - first - 1);
+    if (signal == a) aOn = line.substr(last + 1) == "1";
+    if (signal == b) bOn = line.substr(last + 1) == "1";
+  }
+  return aOn && bOn;
+}
 
 std::string show(const RunResult& r) {
   return "exit " + std::to_string(r.exitCode) + "\n--- stdout ---\n" + r.out + "--- stderr ---\n" + r.err;
@@ -291,6 +310,45 @@ PngSize pngSize(const std::string& bytes) {
   s.height = be32(20);
   s.ok = true;
   return s;
+}
+
+// The SFC version of the gearbox program (cell-sfc.yaml, plc/main_sfc.st) against the ST one
+// (cell.yaml): the JSON report holds the measured cycle time and every device operation with
+// its start and end, so equal reports mean the same cycle time and the same Gantt chart.
+class RunSfc : public RunCommand {};
+
+TEST_F(RunSfc, SameCycleTimeAndGanttAsTheStProgramForEverySequence) {
+  for (const std::string sequence : {"1", "2", "3", "4"}) {
+    const std::string set = "MAIN.sequence=" + sequence;
+    RunResult st = run({"run", kGearbox, "--quiet", "--set", set, "--json", out("st" + sequence + ".json")});
+    RunResult sfc = run({"run", kGearboxSfc, "--quiet", "--set", set, "--json", out("sfc" + sequence + ".json")});
+    EXPECT_EQ(sfc.exitCode, st.exitCode) << "sequence " << sequence << "\n" << show(sfc);
+    EXPECT_EQ(sfc.err, "") << show(sfc);
+    const std::string json = readFile(out("sfc" + sequence + ".json"));
+    EXPECT_TRUE(contains(json, "\"activities\": [\n    {")) << "sequence " << sequence << " ran no operation";
+    EXPECT_EQ(json, readFile(out("st" + sequence + ".json"))) << "sequence " << sequence;
+  }
+}
+
+// The chart's steps are PLC variables (MAIN.<Step>.X): cell-sfc.yaml records them, so the CSV
+// shows when each device's branch runs a job, and `--signal` puts them on the report's timeline.
+TEST_F(RunSfc, RecordsTheActiveStepsOfEveryBranch) {
+  const std::vector<std::string> flags{"MAIN.Robot1Work.X", "MAIN.Robot2Work.X", "MAIN.PressWork.X",
+                                       "MAIN.AxisXWork.X", "MAIN.AxisYWork.X"};
+  std::vector<std::string> args{"run", kGearboxSfc, "--set", "MAIN.sequence=3", "--csv", out("seq3.csv"),
+                                "--report", out("seq3.html")};
+  for (const std::string& flag : flags) args.insert(args.end(), {"--signal", flag});
+  RunResult r = run(args);
+  ASSERT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(contains(r.out, "Run ended     completed: 1 cycle(s) completed")) << show(r);
+  const std::string csv = readFile(out("seq3.csv"));
+  const std::string html = readFile(out("seq3.html"));
+  for (const std::string& flag : flags) {
+    EXPECT_TRUE(contains(csv, "," + flag + ",1\n")) << flag << " never became active";
+    EXPECT_TRUE(contains(html, flag)) << flag << " is not in the report";
+  }
+  // Robot2 screws the first studs while Robot1 fetches the bearings: both branches work at once.
+  EXPECT_TRUE(bothActiveAtSomeTime(csv, "MAIN.Robot1Work.X", "MAIN.Robot2Work.X"));
 }
 
 class RunReport : public RunCommand {};

@@ -28,10 +28,16 @@ std::string hiddenName(std::string_view kind, size_t index, std::string_view suf
   return "__sfc_" + std::string(kind) + std::to_string(index) + std::string(suffix);
 }
 
+bool wantsTransientChaining(const st::Pou& pou) {
+  for (const st::Attribute& a : pou.attributes)
+    if (nameKey(a.name) == nameKey(kTransientChainingAttribute)) return true;
+  return false;
+}
+
 class Lowering {
  public:
   Lowering(Chart& chart, const detail::ResolvedChart& r, st::Pou& pou, st::NodeId& nextNodeId)
-      : chart_(chart), r_(r), pou_(pou), b_(nextNodeId) {}
+      : chart_(chart), r_(r), pou_(pou), b_(nextNodeId), chaining_(wantsTransientChaining(pou)) {}
 
   void run() {
     collectActions();
@@ -40,7 +46,14 @@ class Lowering {
     hide("__sfc_now", "LTIME");
     st::StmtList code = clearEdgeFlags();
     code.push_back(b_.assign(b_.name("__sfc_now"), b_.call("__SYSTIME_NS", nullptr)));
-    code.push_back(b_.ifThenElse(b_.notOf(b_.name("__sfc_init")), firstCall(), laterCall()));
+    if (chaining_) {
+      code.push_back(b_.ifThenElse(b_.notOf(b_.name("__sfc_init")), firstCall(), advanceTimes()));
+      code.push_back(chainedEvolution());
+    } else {
+      st::StmtList later = advanceTimes();
+      for (st::StmtPtr& s : evolution()) later.push_back(std::move(s));
+      code.push_back(b_.ifThenElse(b_.notOf(b_.name("__sfc_init")), firstCall(), std::move(later)));
+    }
     for (size_t j = 0; j < actions_.size(); ++j)
       for (st::StmtPtr& s : actionControl(j)) code.push_back(std::move(s));
     declareSteps();
@@ -126,8 +139,7 @@ class Lowering {
     return out;
   }
 
-  st::StmtList laterCall() {
-    b_.at(chart_.loc);
+  st::StmtList advanceTimes() {
     st::StmtList out;
     for (size_t k = 0; k < chart_.steps.size(); ++k) {
       b_.at(chart_.steps[k].loc);
@@ -135,6 +147,29 @@ class Lowering {
       advance.push_back(b_.assign(stepT(k), elapsedSince(hiddenName("s", k, "_start"))));
       out.push_back(b_.ifThen(stepX(k), std::move(advance)));
     }
+    return out;
+  }
+
+  // FOR __sfc_pass := 1 TO <steps> DO <evolution> IF NOT (t0 OR t1 ...) THEN EXIT; END_IF
+  // END_FOR. Bounded by the number of steps: a cycle of always-clear transitions cannot hang
+  // the scan; what is left of it goes on in the next call.
+  st::StmtPtr chainedEvolution() {
+    b_.at(chart_.loc);
+    hide("__sfc_pass", "DINT");
+    st::StmtList pass = evolution();
+    b_.at(chart_.loc);
+    st::ExprPtr fired;
+    for (size_t t : r_.priorityOrder) fired = b_.orElseNull(std::move(fired), b_.name(hiddenName("t", t)));
+    if (!fired) fired = b_.boolLit(false);  // a chart of one step without transitions
+    st::StmtList stop;
+    stop.push_back(b_.exitLoop());
+    pass.push_back(b_.ifThen(b_.notOf(std::move(fired)), std::move(stop)));
+    return b_.forLoop("__sfc_pass", 1, chart_.steps.size(), std::move(pass));
+  }
+
+  // One evolution: every transition evaluated on the activity at its start, then fired.
+  st::StmtList evolution() {
+    st::StmtList out;
     for (size_t t : r_.priorityOrder) evaluate(t, out);
     // All deactivations before all activations: a step both left and entered stays active.
     for (size_t t : r_.priorityOrder) {
@@ -312,6 +347,7 @@ class Lowering {
   const detail::ResolvedChart& r_;
   st::Pou& pou_;
   AstBuilder b_;
+  bool chaining_;
   st::VarBlock hidden_;
   std::vector<ActionUse> actions_;
   std::set<size_t> risingFlag_, fallingFlag_;

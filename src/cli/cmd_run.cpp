@@ -159,7 +159,8 @@ int runCell(const RunOptions& o) {
   if (!o.quiet) std::cout << report::summaryTable(trace, kpis);
   report::HtmlOptions html;
   html.title = cell->name;
-  html.signals = o.signals;
+  // Without --signal the timeline shows what the cell file asked to record.
+  html.signals = o.signals.empty() ? cell->run.recordVars : o.signals;
   bool ok = true;
   if (!o.html.empty()) ok = writeFile(o.html, report::htmlReport(trace, kpis, html)) && ok;
   if (!o.json.empty()) ok = writeFile(o.json, report::jsonReport(trace, kpis)) && ok;
@@ -182,7 +183,7 @@ void addRunCommand(CLI::App& app, std::function<void(int)> setExit) {
   cmd->add_option("--until", o->until, "stop when a PLC condition holds, e.g. \"MAIN.partsDone >= 3\"");
   cmd->add_option("--time-limit", o->timeLimit, "virtual time limit, e.g. 300s (overrides run.time_limit)");
   cmd->add_option("--set", o->sets, "NAME=VALUE set in the PLC before its first scan (repeatable), e.g. MAIN.sequence=3");
-  cmd->add_option("--signal", o->signals, "signal shown in the report's timeline (repeatable), e.g. Robot1.busy");
+  cmd->add_option("--signal", o->signals, "signal shown in the report's timeline (repeatable), e.g. Robot1.busy; default: the cell's run.record variables");
   cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible (1 with 'plc: modbus')")
       ->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);

@@ -196,9 +196,10 @@ int runExec(const ExecOptions& o) {
     return kExitRuntimeFault;
   }
   if (!o.retainFile.empty()) {
-    auto restored = plc::loadRetainFile(o.retainFile, *module, runtime.machine().memory());
-    if (!restored) {
-      std::cerr << "error: --retain-file: " << restored.error() << "\n";
+    size_t restored = 0;
+    std::string problem = plc::loadRetainFile(o.retainFile, *module, runtime.machine().memory(), restored);
+    if (!problem.empty()) {
+      std::cerr << "error: --retain-file: " << problem << "\n";
       return kExitUsage;
     }
   }

@@ -42,16 +42,13 @@ static bool fromHex(const std::string& s, std::vector<uint8_t>& out) {
   return true;
 }
 
-std::expected<size_t, std::string> loadRetainFile(const std::string& path, const bc::Module& m, uint8_t* memory) {
+std::string loadRetainFile(const std::string& path, const bc::Module& m, uint8_t* memory, size_t& restored) {
+  restored = 0;
   std::ifstream in(path);
-  if (!in) {
-    if (!std::filesystem::exists(path)) return 0;
-    return std::unexpected("cannot read " + path);
-  }
+  if (!in) return std::filesystem::exists(path) ? "cannot read " + path : std::string();
   std::map<std::string, const RetainedVariable*> byName;
   const std::vector<RetainedVariable> vars = retainedVariables(m);
   for (const auto& v : vars) byName[v.name] = &v;
-  size_t restored = 0;
   std::string line;
   std::vector<uint8_t> bytes;
   for (int lineNo = 1; std::getline(in, line); ++lineNo) {
@@ -61,7 +58,7 @@ std::expected<size_t, std::string> loadRetainFile(const std::string& path, const
     std::getline(fields >> std::ws, type);
     if (name.empty()) continue;
     if (type.empty() || !fromHex(hex, bytes))
-      return std::unexpected(path + ":" + std::to_string(lineNo) + ": expected NAME HEX TYPE");
+      return path + ":" + std::to_string(lineNo) + ": expected NAME HEX TYPE";
     auto it = byName.find(name);
     if (it == byName.end()) continue;
     const bc::TypeDesc& t = m.types[it->second->type];
@@ -69,7 +66,7 @@ std::expected<size_t, std::string> loadRetainFile(const std::string& path, const
     std::copy(bytes.begin(), bytes.end(), memory + it->second->address);
     ++restored;
   }
-  return restored;
+  return {};
 }
 
 std::string saveRetainFile(const std::string& path, const bc::Module& m, const uint8_t* memory) {

@@ -6,7 +6,7 @@
 // A line whose variable no longer exists, or whose type name or size changed, is skipped: that
 // variable keeps its initial value (as CODESYS does when the retain layout changed).
 #include <cstdint>
-#include <expected>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -24,8 +24,9 @@ struct RetainedVariable {
 std::vector<RetainedVariable> retainedVariables(const bc::Module& m);
 
 // Loads `path` into `memory`. A missing file is not an error (the first run): 0 variables.
-// Returns the number of variables restored, or why the file cannot be read.
-std::expected<size_t, std::string> loadRetainFile(const std::string& path, const bc::Module& m, uint8_t* memory);
+// `restored` counts the variables loaded. Empty on success, else why the file cannot be read.
+// (No std::expected here: the clang fuzz build compiles this library too.)
+std::string loadRetainFile(const std::string& path, const bc::Module& m, uint8_t* memory, size_t& restored);
 
 // Writes the retained variables of `memory` to `path` (replacing it). Empty on success.
 std::string saveRetainFile(const std::string& path, const bc::Module& m, const uint8_t* memory);

@@ -10,6 +10,12 @@ double positiveSeconds(ConfigReader& cfg, const std::string& key, double fallbac
   return v > 0 ? v : fallbackS;
 }
 
+double nonNegativeSeconds(ConfigReader& cfg, const std::string& key, double fallbackS) {
+  const double v = cfg.optQuantity(key, Dimension::Time, fallbackS);
+  if (!(v >= 0)) cfg.error(cfg.node().find(key)->loc(), "'" + key + "' must be a time of 0 or more");
+  return v >= 0 ? v : fallbackS;
+}
+
 double positiveNumber(ConfigReader& cfg, const std::string& key, double fallback) {
   const double v = cfg.optNumber(key, fallback);
   if (!(v > 0)) cfg.error(cfg.node().find(key)->loc(), "'" + key + "' must be a number greater than 0");

@@ -9,6 +9,8 @@ namespace virtcom::drives {
 DriveCommon readDriveCommon(ConfigReader& cfg, TelegramId telegram);
 // A time parameter in seconds that must be > 0 (ramp times, time constants).
 double positiveSeconds(ConfigReader& cfg, const std::string& key, double fallbackS);
+// A time parameter in seconds that may be 0 (delays where 0 means "at once").
+double nonNegativeSeconds(ConfigReader& cfg, const std::string& key, double fallbackS);
 // A plain-number parameter that must be > 0 (reference speed, current, ...).
 double positiveNumber(ConfigReader& cfg, const std::string& key, double fallback);
 

@@ -27,6 +27,8 @@ constexpr BitDef Direction = bitDef(Layout::Pf525Command, "Direction");
 constexpr BitDef AccelRate = bitDef(Layout::Pf525Command, "AccelRate");
 constexpr BitDef DecelRate = bitDef(Layout::Pf525Command, "DecelRate");
 constexpr BitDef FreqSelect = bitDef(Layout::Pf525Command, "FreqSelect");
+constexpr BitDef MopIncrement = bitDef(Layout::Pf525Command, "MopIncrement");
+constexpr BitDef MopDecrement = bitDef(Layout::Pf525Command, "MopDecrement");
 }  // namespace c525
 namespace s525 {
 constexpr BitDef Ready = bitDef(Layout::Pf525Status, "Ready");
@@ -66,6 +68,7 @@ constexpr BitDef Running = bitDef(Layout::Pf750Status, "Running");
 constexpr BitDef Jogging = bitDef(Layout::Pf750Status, "Jogging");
 constexpr BitDef Stopping = bitDef(Layout::Pf750Status, "Stopping");
 constexpr BitDef SpeedMode = bitDef(Layout::Pf750Status, "SpeedMode");
+constexpr BitDef PositionMode = bitDef(Layout::Pf750Status, "PositionMode");
 constexpr BitDef AtZeroSpeed = bitDef(Layout::Pf750Status, "AtZeroSpeed");
 constexpr BitDef EnableOn = bitDef(Layout::Pf750Status, "EnableOn");
 }  // namespace s750
@@ -83,7 +86,12 @@ double approach(double from, double to, double maxStep) {
 PowerFlex::PowerFlex(std::string name, std::string type, DriveCommon common, PowerFlexParams params)
     : TelegramDevice(std::move(name), std::move(type), std::move(common)), p_(params) {
   pf750_ = telegramId() == TelegramId::Pf750;
-  coastFactor_ = std::exp(-static_cast<double>(common_.stepNs) * 1e-9 / p_.tauCoastS);
+  const double dtS = static_cast<double>(common_.stepNs) * 1e-9;
+  coastFactor_ = std::exp(-dtS / p_.tauCoastS);
+  mop_.step = p_.maxHz / p_.mopTimeS * dtS;
+  mop_.maximum = p_.maxHz;
+  // Output Hz -> motor rpm -> load revolutions (gear) -> degrees of the encoder on the load.
+  degPerSPerHz_ = 360.0 / (p_.polePairs * common_.load.gearRatio);
 }
 
 PowerFlex::Command PowerFlex::decodeCommand(std::span<const uint32_t> rx) const {
@@ -93,6 +101,8 @@ PowerFlex::Command PowerFlex::decodeCommand(std::span<const uint32_t> rx) const 
     c = {test(w, c525::Stop), test(w, c525::Start), false, test(w, c525::Jog), test(w, c525::ClearFaults), false,
          field(w, c525::Direction), field(w, c525::AccelRate), field(w, c525::DecelRate), field(w, c525::FreqSelect),
          static_cast<double>(signedValue(WireType::I16, rx[k525Freq])) / 100.0};
+    c.mopIncrement = test(w, c525::MopIncrement);
+    c.mopDecrement = test(w, c525::MopDecrement);
     return c;
   }
   const uint32_t w = rx[k750Command];
@@ -146,13 +156,16 @@ double PowerFlex::targetHz() const {
   const double sign = forward_ ? 1.0 : -1.0;
   if (jogging_) return sign * p_.jogHz;
   if (!startLatched_ && !cmd_.run) return 0;
-  // FreqSelect 000..011: the network reference (P047/P049/P051 set to EtherNet/IP [S]); 100..111: presets.
-  const double ref = cmd_.refSelect >= 4 ? p_.presetHz[cmd_.refSelect - 4] : cmd_.referenceHz;
+  // FreqSelect 000..011: the network reference (P047/P049/P051 set to EtherNet/IP [S], or to the
+  // MOP with `mop: true`); 100..111: presets.
+  const double network = p_.mop ? mop_.value : cmd_.referenceHz;
+  const double ref = cmd_.refSelect >= 4 ? p_.presetHz[cmd_.refSelect - 4] : network;
   const double magnitude = std::clamp(std::abs(ref), p_.minHz, p_.maxHz);
   return (ref < 0 ? -sign : sign) * magnitude;
 }
 
 void PowerFlex::integrate(double dtS) {
+  if (p_.mop && !commLost_) mop_.tick(cmd_.mopIncrement, cmd_.mopDecrement);  // a lost connection holds the MOP
   const double before = outHz_;
   const double target = targetHz();
   const bool away = std::abs(target) > std::abs(outHz_) && target * outHz_ >= 0;
@@ -160,10 +173,10 @@ void PowerFlex::integrate(double dtS) {
   if (jogging_) rampS = p_.jogRampS;
   const double beforeRpm = speedRpm_;
   if (faulted() || coasting_) {
-    outHz_ = 0;  // output off, the motor coasts
-    speedRpm_ *= coastFactor_;
-    if (std::abs(speedRpm_) < 1e-3) speedRpm_ = 0;
-    if (speedRpm_ == 0) coasting_ = false;
+    coastMotor();
+    if (p_.positionMode) profile_.reset(profile_.x() + speedRpm_ / 60.0 * p_.polePairs * degPerSPerHz_ * dtS);
+  } else if (p_.positionMode) {
+    stepPosition(dtS);
   } else {
     outHz_ = approach(outHz_, target, p_.maxHz / rampS * dtS);
     speedRpm_ = outHz_ * 60.0 / p_.polePairs;
@@ -174,10 +187,36 @@ void PowerFlex::integrate(double dtS) {
   torqueNm_ = outHz_ != 0 ? loadTorqueNm(speedRpm_, accel) : 0.0;
 }
 
+void PowerFlex::coastMotor() {
+  outHz_ = 0;  // output off, the motor coasts
+  speedRpm_ *= coastFactor_;
+  if (std::abs(speedRpm_) < 1e-3) speedRpm_ = 0;
+  if (speedRpm_ == 0) coasting_ = false;
+}
+
+// Position mode [S]: a running drive moves the load to Reference (degrees) along a trapezoid with
+// the speed limit P044 and the selected accel/decel times; jog moves at A431; a stop brakes to
+// rest with the decel time wherever the load then is.
+void PowerFlex::stepPosition(double dtS) {
+  const double vMax = p_.maxHz * degPerSPerHz_;
+  const double sign = forward_ ? 1.0 : -1.0;
+  inPosition_ = false;
+  if (jogging_) {
+    profile_.toVelocity(sign * p_.jogHz * degPerSPerHz_, {vMax, vMax / p_.jogRampS, vMax / p_.jogRampS}, dtS);
+  } else {
+    const ProfileLimits lim{vMax, vMax / (useTime2Accel_ ? p_.accel2S : p_.accel1S),
+                            vMax / (useTime2Decel_ ? p_.decel2S : p_.decel1S)};
+    if (startLatched_ || cmd_.run) inPosition_ = profile_.toPosition(cmd_.referenceHz, lim, dtS);
+    else profile_.toVelocity(0, lim, dtS);
+  }
+  outHz_ = profile_.v() / degPerSPerHz_;
+  speedRpm_ = outHz_ * 60.0 / p_.polePairs;
+}
+
 void PowerFlex::encode(RawWords& tx) const {
   const bool active = outHz_ != 0 || startLatched_ || jogging_ || cmd_.run;
   const bool actualForward = outHz_ > 0 || (outHz_ == 0 && forward_);
-  const bool atReference = active && std::abs(outHz_ - targetHz()) <= kAtReferenceHz;
+  const bool atReference = active && (p_.positionMode ? inPosition_ : std::abs(outHz_ - targetHz()) <= kAtReferenceHz);
   const bool commReference = cmd_.refSelect < 4;
   if (!pf750_) {
     uint32_t s = 0;
@@ -207,11 +246,13 @@ void PowerFlex::encode(RawWords& tx) const {
   s = withBit(s, s750::Running, startLatched_ || cmd_.run);
   s = withBit(s, s750::Jogging, jogging_);
   s = withBit(s, s750::Stopping, active && !startLatched_ && !cmd_.run && !jogging_);
-  s = withBit(s, s750::SpeedMode, true);
+  s = withBit(s, s750::SpeedMode, !p_.positionMode);
+  s = withBit(s, s750::PositionMode, p_.positionMode);
   s = withBit(s, s750::AtZeroSpeed, outHz_ == 0);
   s = withBit(s, s750::EnableOn, true);
   tx[k750Status] = s;
-  tx[k750Feedback] = rawFromReal(p_.referenceInRpm ? speedRpm_ : outHz_);
+  const double feedback = p_.positionMode ? profile_.x() : p_.referenceInRpm ? speedRpm_ : outHz_;
+  tx[k750Feedback] = rawFromReal(feedback);
 }
 
 void PowerFlex::raiseFault(uint16_t number, int64_t nowNs) {
@@ -254,7 +295,11 @@ void PowerFlex::clearInjected(Injection& inj, int64_t nowNs) {
   removeFaultCause(inj.number);
 }
 
-bool PowerFlex::settled() const { return outHz_ == targetHz() && !coasting_; }
+bool PowerFlex::settled() const {
+  if (p_.mop && !commLost_ && mop_.moving(cmd_.mopIncrement, cmd_.mopDecrement)) return false;
+  if (p_.positionMode) return !coasting_ && !jogging_ && profile_.v() == 0 && (inPosition_ || (!startLatched_ && !cmd_.run));
+  return outHz_ == targetHz() && !coasting_;
+}
 
 std::string PowerFlex::checkInjection(Injection& inj, const std::string& code) const {
   std::string digits = code;

@@ -3,11 +3,14 @@
 // latching and Stop, jog, direction field, accel/decel time selection, reference select (comm
 // reference or presets), ramped output frequency passing through 0 Hz on reversal, AtReference,
 // ClearFaults on 0->1, a 10-entry fault queue (most recent first) and the comm-loss action of
-// C143 (fault F083/F073, stop, hold last). Both variants share this model; only the words
-// differ (PF525: 16-bit logic words and 0.01 Hz INT; PF750: 32-bit logic words and REAL).
+// C143 (fault F083/F073, stop, hold last), the PF525 MOP (bits 7/15) and the PF750 position mode
+// (Reference/Feedback in degrees of an external load encoder). Both variants share this model;
+// only the words differ (PF525: 16-bit logic words and 0.01 Hz INT; PF750: 32-bit logic words and REAL).
 #include <array>
 #include <memory>
 
+#include "drives/motor_pot.hpp"
+#include "drives/position_profile.hpp"
 #include "drives/telegram_device.hpp"
 
 namespace virtcom::drives {
@@ -28,6 +31,9 @@ struct PowerFlexParams {
   CommLossAction commAction = CommLossAction::Fault;  // C143
   uint16_t commFault = 83;   // F083 EtherNet/IP comm loss (or F073 net loss)
   bool referenceInRpm = false;  // PF750: Reference/Feedback in rpm instead of Hz
+  bool mop = false;          // PF525: the network references (FreqSelect 000..011) come from the MOP
+  double mopTimeS = 10;      // A430 MOP time: 0 -> P044 while MOPIncrement is held [S]
+  bool positionMode = false; // PF750: Reference/Feedback are the external (load) encoder's degrees
 };
 
 class PowerFlex final : public TelegramDevice {
@@ -37,6 +43,8 @@ class PowerFlex final : public TelegramDevice {
 
   bool faulted() const { return activeCount_ > 0; }
   double outputHz() const { return outHz_; }
+  double mopHz() const { return mop_.value; }
+  double encoderDegrees() const { return profile_.x(); }
   // Fault queue, index 0 = most recent (Fault 1 Code); 0 = empty.
   const std::array<uint16_t, kQueueSize>& faultQueue() const { return queue_; }
   void raiseFault(uint16_t number, int64_t nowNs);
@@ -56,15 +64,22 @@ class PowerFlex final : public TelegramDevice {
   struct Command {
     bool stop = false, start = false, run = false, jog = false, clearFaults = false, coastStop = false;
     uint32_t direction = 0, accelSelect = 0, decelSelect = 0, refSelect = 0;
-    double referenceHz = 0;  // as received (PF525: magnitude)
+    double referenceHz = 0;  // as received (PF525: magnitude; PF750 position mode: degrees)
+    bool mopIncrement = false, mopDecrement = false;  // PF525 only; last, after the positional fields
   };
   Command decodeCommand(std::span<const uint32_t> rx) const;
   double targetHz() const;
+  void stepPosition(double dtS);
+  void coastMotor();
   void clearFaults();
 
   bool pf750_ = false;
   PowerFlexParams p_;
   double coastFactor_ = 0;
+  MotorPot mop_;
+  PositionProfile profile_;    // position mode: setpoint = actual position of the load encoder
+  double degPerSPerHz_ = 0;    // load degrees per second at 1 Hz output
+  bool inPosition_ = false;
   Command cmd_;
   bool prevClear_ = false;
   bool startLatched_ = false, startBlocked_ = false, jogging_ = false, coasting_ = false;

@@ -34,10 +34,20 @@ std::unique_ptr<plant::Device> makePowerFlex(const std::string& name, ConfigRead
   if (commFault != 83 && commFault != 73)
     cfg.error(cfg.node().find("comm_fault")->loc(), "'comm_fault' must be 83 (EtherNet/IP comm loss) or 73 (net loss)");
   p.commFault = static_cast<uint16_t>(commFault);
+  if (telegram == TelegramId::Pf525) {
+    p.mop = cfg.optBool("mop", p.mop);
+    p.mopTimeS = positiveSeconds(cfg, "a430", p.mopTimeS);
+  }
   if (telegram == TelegramId::Pf750) {
     const std::string unit = cfg.optString("speed_units", "hz");
     if (unit != "hz" && unit != "rpm") cfg.error(cfg.node().find("speed_units")->loc(), "'speed_units' must be hz or rpm");
     p.referenceInRpm = unit == "rpm";
+    const std::string mode = cfg.optString("control_mode", "speed");
+    if (mode != "speed" && mode != "position")
+      cfg.error(cfg.node().find("control_mode")->loc(), "'control_mode' must be speed or position, not '" + mode + "'");
+    p.positionMode = mode == "position";
+    if (p.positionMode && p.referenceInRpm)
+      cfg.error(cfg.node().find("speed_units")->loc(), "'speed_units' does not apply with 'control_mode: position' (the reference is in degrees)");
   }
   if (p.polePairs < 1) cfg.error(cfg.node().find("pole_pairs")->loc(), "'pole_pairs' must be at least 1");
   if (p.minHz < 0 || p.minHz > p.maxHz) cfg.error(cfg.node().loc(), "'p043' must be between 0 and 'p044'");

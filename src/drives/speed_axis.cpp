@@ -36,6 +36,8 @@ constexpr BitDef AckFault = bitDef(Layout::Stw1Speed, "AckFault");
 constexpr BitDef ControlByPlc = bitDef(Layout::Stw1Speed, "ControlByPlc");
 constexpr BitDef InvertSetpoint = bitDef(Layout::Stw1Speed, "InvertSetpoint");
 constexpr BitDef OpenBrake = bitDef(Layout::Stw1Speed, "OpenBrake");
+constexpr BitDef MopRaise = bitDef(Layout::Stw1Speed, "MopRaise");
+constexpr BitDef MopLower = bitDef(Layout::Stw1Speed, "MopLower");
 }  // namespace stw
 
 namespace zsw {
@@ -76,11 +78,16 @@ SpeedAxis::SpeedAxis(std::string name, DriveCommon common, SpeedAxisParams param
   off3Step_ = p_.p1082 / p_.p1135S * dtS;
   radPerS2PerRpmStep_ = kRadPerRpm / dtS;
   n2PerRpm_ = kN2Full / p_.p2000;
+  // specs/drives.md §B.3.1: the MOP integrates at p1082/p1047 rpm/s.
+  mop_.step = p_.p1082 / p_.p1047S * dtS;
+  mop_.maximum = p_.p1082;
 }
 
 double SpeedAxis::setpointRpm() const {
   if (!test(stw_, stw::EnableSetpoint)) return 0;
-  const double n = rpmFromN2(nsoll_, p_.p2000) * (test(stw_, stw::InvertSetpoint) ? -1.0 : 1.0);
+  // With the MOP configured its output is the main setpoint (p1070 = r1050) and NSOLL_A is unused.
+  const double main = p_.mop ? mop_.value : rpmFromN2(nsoll_, p_.p2000);
+  const double n = main * (test(stw_, stw::InvertSetpoint) ? -1.0 : 1.0);
   return std::clamp(n, -p_.p1082, p_.p1082);
 }
 
@@ -103,6 +110,7 @@ void SpeedAxis::rampRfg() {
 }
 
 void SpeedAxis::integrate(double dtS) {
+  if (mopActive()) mop_.tick(test(stw_, stw::MopRaise), test(stw_, stw::MopLower));
   rampRfg();
   const double before = speedRpm_;
   if (pulsesEnabled(state_)) {
@@ -113,7 +121,7 @@ void SpeedAxis::integrate(double dtS) {
   }
   const double accel = (speedRpm_ - before) * radPerS2PerRpmStep_;
   torqueNm_ = pulsesEnabled(state_) ? loadTorqueNm(speedRpm_, accel) : 0.0;
-  standstillS_ = std::abs(speedRpm_) < p_.p1226 ? standstillS_ + dtS : 0.0;
+  trackStandstillAndTolerance(dtS);
   updateState();
   const double torquePu = torqueNm_ / p_.p2003;
   const double currentA = pulsesEnabled(state_) ? p_.p2002 * std::sqrt(p_.noLoadCurrent * p_.noLoadCurrent + torquePu * torquePu) : 0.0;
@@ -122,13 +130,21 @@ void SpeedAxis::integrate(double dtS) {
   torqueGlatt_ += (torqueNm_ - torqueGlatt_) * alphaGlatt_;
 }
 
+// Timers of §B.2 standstill detection (actual speed: p1228, setpoint: p1227 — the latter ends an
+// OFF1/OFF3 ramp even when the load keeps the motor turning) and of the ZSW1.8 delay p2166.
+void SpeedAxis::trackStandstillAndTolerance(double dtS) {
+  standstillS_ = std::abs(speedRpm_) < p_.p1226 ? standstillS_ + dtS : 0.0;
+  setpointStandstillS_ = std::abs(rfgOut_) < p_.p1226 ? setpointStandstillS_ + dtS : 0.0;
+  withinToleranceS_ = std::abs(rfgOut_ - speedRpm_) <= p_.p2163 ? withinToleranceS_ + dtS : 0.0;
+}
+
 void SpeedAxis::updateState() {
   if (!accepted_) return;  // nothing commanded yet: stay in S1
   StateInputs in;
   in.cmd = {test(stw_, stw::On), test(stw_, stw::NoOff2), test(stw_, stw::NoOff3), test(stw_, stw::EnableOperation)};
   in.faultActive = faults_.active();
   in.faultReaction = faults_.reaction();
-  in.standstill = standstillS_ >= p_.p1228S;
+  in.standstill = standstillS_ >= p_.p1228S || setpointStandstillS_ >= p_.p1227S;
   const DriveState next = nextState(state_, in);
   if (pulsesEnabled(next) && !pulsesEnabled(state_)) rfgOut_ = speedRpm_;  // flying restart from the actual speed
   state_ = next;
@@ -199,7 +215,7 @@ void SpeedAxis::encode(RawWords& tx) const {
   z = withBit(z, zsw::NoOff2Active, test(stw_, stw::NoOff2));
   z = withBit(z, zsw::NoOff3Active, test(stw_, stw::NoOff3));
   z = withBit(z, zsw::AlarmActive, alarms_.active());
-  z = withBit(z, zsw::SpeedWithinTolerance, std::abs(rfgOut_ - speedRpm_) <= p_.p2163);
+  z = withBit(z, zsw::SpeedWithinTolerance, withinToleranceS_ >= p_.p2166S);
   z = withBit(z, zsw::ControlRequested, true);
   z = withBit(z, zsw::ComparisonReached, std::abs(speedRpm_) >= p_.p2141);
   z = withBit(z, zsw::NoLimitReached, std::abs(torqueNm_) < p_.torqueLimitNm);
@@ -230,7 +246,14 @@ void SpeedAxis::clearInjected(Injection& inj, int64_t nowNs) {
   else clearAlarm(inj.number, nowNs);
 }
 
+// Only an accepted command integrates the MOP; a lost connection holds it (the fault stops the drive).
+bool SpeedAxis::mopActive() const { return p_.mop && accepted_ && !commFault_; }
+
 bool SpeedAxis::settled() const {
+  if (mopActive() && mop_.moving(test(stw_, stw::MopRaise), test(stw_, stw::MopLower))) return false;
+  if (withinToleranceS_ < p_.p2166S) return false;  // ZSW1.8 is still to come
+  // The ramp-downs end on the standstill timers (p1228 / p1227), which need the ticks.
+  if (state_ == DriveState::S5aOff1RampDown || state_ == DriveState::S5bOff3QuickStop) return false;
   if (!pulsesEnabled(state_)) return speedRpm_ == 0;
   return rfgOut_ == setpointRpm() && std::abs(speedRpm_ - rfgOut_) < 1e-9;
 }

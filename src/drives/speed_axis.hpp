@@ -3,11 +3,13 @@
 // §A.2, §B.2, §B.3, §B.5, §B.6): the PROFIdrive state machine, the ramp-function generator,
 // a first-order speed response, OFF1/OFF2/OFF3, ZSW1, smoothed actual values, current/torque
 // from the shaft load, fault/alarm buffers with acknowledge on the 0->1 edge of STW1.7, and
-// setpoint-timeout monitoring (F01910 / F08501, A01920 when not under PLC control).
+// setpoint-timeout monitoring (F01910 / F08501, A01920 when not under PLC control), the
+// standstill timers p1228/p1227, the ZSW1.8 delay p2166 and the optional MOP (STW1.13/.14).
 // Parameters keep their SINAMICS numbers; every one is a simulator default [S] set in the cell file.
 #include <memory>
 
 #include "drives/drive_messages.hpp"
+#include "drives/motor_pot.hpp"
 #include "drives/profidrive_state.hpp"
 #include "drives/telegram_device.hpp"
 
@@ -23,8 +25,12 @@ struct SpeedAxisParams {
   double tauCoastS = 2.0;       // run-down time constant with the pulses off
   double p0045S = 0.004;        // smoothing of the *_GLATT actual values
   double p1226 = 20;            // standstill threshold, rpm
-  double p1228S = 0.010;        // standstill delay
+  double p1228S = 0.010;        // standstill delay of the actual speed
+  double p1227S = 300;          // standstill delay of the setpoint (RFG output < p1226)
   double p2163 = 90;            // speed deviation tolerance, rpm (ZSW1.8)
+  double p2166S = 0.2;          // the deviation must stay within p2163 this long before ZSW1.8 [S]
+  bool mop = false;             // STW1.13/.14 drive a motorised potentiometer that is the main setpoint
+  double p1047S = 10;           // MOP ramp time 0 -> p1082 (both directions)
   double p2141 = -1;            // comparison speed, rpm (ZSW1.10); < 0 = 1 % of p2000
   double p2002 = 10;            // reference current, A
   double p2003 = 10;            // reference torque, N*m
@@ -43,6 +49,7 @@ class SpeedAxis final : public TelegramDevice {
   const FaultBuffer& faultBuffer() const { return faults_; }
   const AlarmBuffer& alarmBuffer() const { return alarms_; }
   double rfgOutputRpm() const { return rfgOut_; }
+  double mopRpm() const { return mop_.value; }
   // Test entry points for the §B.5 buffers (the cell file injects through `faults:`).
   void raiseFault(uint16_t number, Reaction reaction, int64_t nowNs);
   void removeFaultCause(uint16_t number);
@@ -63,6 +70,8 @@ class SpeedAxis final : public TelegramDevice {
   double setpointRpm() const;
   void rampRfg();
   void updateState();
+  void trackStandstillAndTolerance(double dtS);
+  bool mopActive() const;
   void updateAlarmEffects();
 
   SpeedAxisParams p_;
@@ -76,7 +85,10 @@ class SpeedAxis final : public TelegramDevice {
   int64_t lastFrameNs_ = 0;
   bool commFault_ = false, commAlarm_ = false;
   double rfgOut_ = 0;
-  double standstillS_ = 0;
+  double standstillS_ = 0;          // |n_act| < p1226 for this long (p1228)
+  double setpointStandstillS_ = 0;  // |RFG output| < p1226 for this long (p1227)
+  double withinToleranceS_ = 0;     // |n_set - n_act| <= p2163 for this long (p2166)
+  MotorPot mop_;
   double nistGlatt_ = 0, currentGlatt_ = 0, torqueGlatt_ = 0;
   bool motorTempAlarm_ = false, powerUnitTempAlarm_ = false;
   FaultBuffer faults_;

@@ -26,7 +26,11 @@ std::unique_ptr<plant::Device> makeSpeedAxis(const std::string& name, ConfigRead
   p.p0045S = positiveSeconds(cfg, "p0045", p.p0045S);
   p.p1226 = positiveNumber(cfg, "p1226", p.p1226);
   p.p1228S = positiveSeconds(cfg, "p1228", p.p1228S);
+  p.p1227S = positiveSeconds(cfg, "p1227", p.p1227S);
   p.p2163 = positiveNumber(cfg, "p2163", p.p2163);
+  p.p2166S = nonNegativeSeconds(cfg, "p2166", p.p2166S);
+  p.mop = cfg.optBool("mop", p.mop);
+  p.p1047S = positiveSeconds(cfg, "p1047", p.p1047S);
   p.p2141 = positiveNumber(cfg, "p2141", 0.01 * p.p2000);
   p.p2002 = positiveNumber(cfg, "p2002", p.p2002);
   p.p2003 = cfg.optQuantity("p2003", Dimension::Torque, p.p2003);

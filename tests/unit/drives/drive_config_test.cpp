@@ -76,6 +76,21 @@ TEST(DriveConfig, ReportsWrongValuesWithTheirPosition) {
   EXPECT_NE(e.find("gear"), std::string::npos) << e;
 }
 
+TEST(DriveConfig, DelayAndMopKeysReportWrongValues) {
+  Loaded g("type: g120\np2166: -1 s\np1227: 0 s\np1047: 0 s\nmop: true\n");
+  EXPECT_EQ(g.device, nullptr);
+  EXPECT_NE(g.errors().find("'p2166' must be a time of 0 or more"), std::string::npos) << g.errors();
+  EXPECT_NE(g.errors().find("'p1227' must be a time greater than 0"), std::string::npos) << g.errors();
+  EXPECT_NE(g.errors().find("'p1047' must be a time greater than 0"), std::string::npos) << g.errors();
+  EXPECT_NE(Loaded("type: g120\np2166: 0 s\nmop: true\n").device, nullptr);
+  Loaded p("type: powerflex525\nmop: true\na430: 0 s\n");
+  EXPECT_NE(p.errors().find("'a430' must be a time greater than 0"), std::string::npos) << p.errors();
+  Loaded m("type: powerflex750\ncontrol_mode: torque\n");
+  EXPECT_NE(m.errors().find("'control_mode' must be speed or position, not 'torque'"), std::string::npos) << m.errors();
+  Loaded u("type: powerflex750\ncontrol_mode: position\nspeed_units: rpm\n");
+  EXPECT_NE(u.errors().find("'speed_units' does not apply"), std::string::npos) << u.errors();
+}
+
 TEST(DriveConfig, UnknownInjectionCodesListTheCatalogue) {
   Loaded g("type: g120\nfaults:\n  inject:\n    - {code: F99999, at: 1 s}\n");
   EXPECT_NE(g.errors().find("'F99999' is not a known SINAMICS fault or alarm (expected one of: F01000"), std::string::npos)

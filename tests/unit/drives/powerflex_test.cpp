@@ -134,6 +134,30 @@ TEST(PowerFlex525, CommLossActionStopRampsWithoutFault) {
   EXPECT_EQ(rig.outputFreq(), 0);
 }
 
+TEST(PowerFlex525, MopIncrementAndDecrementDriveTheNetworkReference) {
+  PowerFlexParams p;
+  p.mop = true;  // A430 = 10 s for P044 = 60 Hz: 6 Hz/s
+  PowerFlexRig rig(TelegramId::Pf525, p);
+  rig.cmd(kStartForward | 0x0080, 1188, 500);  // bit 7 MOPIncrement for 1 s (until the next frame)
+  rig.cmd(kStartForward, 1188, 1000);          // released: the MOP holds; FreqCommand is unused
+  EXPECT_NEAR(rig.drive->mopHz(), 6.0, 1e-6);
+  EXPECT_EQ(rig.outputFreq(), 600);
+  EXPECT_TRUE(rig.status() & 0x0100);          // AtReference on the MOP frequency
+  rig.cmd(kStartForward | 0x8000, 1188, 250);  // bit 15 MOPDecrement for 0.5 s
+  rig.cmd(kStartForward, 1188, 500);
+  EXPECT_EQ(rig.outputFreq(), 300);
+  rig.cmd(kStartForward | 0x4000, 1188, 1500);  // FreqSelect 100: preset A410 = 0 Hz wins
+  EXPECT_EQ(rig.outputFreq(), 0);
+  EXPECT_NEAR(rig.drive->mopHz(), 3.0, 1e-6);
+}
+
+TEST(PowerFlex525, MopBitsAreIgnoredUnlessConfigured) {
+  PowerFlexRig rig;
+  rig.cmd(kStartForward | 0x0080, 1188, 1500);
+  EXPECT_EQ(rig.outputFreq(), 1188);
+  EXPECT_EQ(rig.drive->mopHz(), 0.0);
+}
+
 TEST(PowerFlex525, FaultQueueKeepsTenMostRecentFirst) {
   PowerFlexRig rig;
   const uint16_t codes[] = {2, 3, 4, 5, 6, 7, 8, 9, 12, 13, 15};
@@ -154,6 +178,50 @@ TEST(PowerFlex750, RunsOnARealReferenceWith32BitWords) {
   rig.send({0x00010000, rawFromReal(30.0)}, 1);  // coast stop
   EXPECT_EQ(realValue(rig.tx(1)), 0.0);
   EXPECT_FALSE(rig.tx(0) & (1u << 16));
+}
+
+TEST(PowerFlex750, PositionModeMovesTheEncoderToTheReferenceInDegrees) {
+  PowerFlexParams p;
+  p.positionMode = true;  // 60 Hz = 60 rev/s of the load (gear 1, one pole pair); 10 s accel/decel
+  PowerFlexRig rig(TelegramId::Pf750, p);
+  rig.send({0x00000012, rawFromReal(720.0)}, 1000);  // start: two revolutions, ~1.2 s triangle
+  EXPECT_NEAR(realValue(rig.tx(1)), 720.0, 1e-6);    // Feedback = encoder degrees
+  uint32_t s = rig.tx(0);
+  EXPECT_TRUE(s & (1u << 8));    // at setpoint (in position)
+  EXPECT_TRUE(s & (1u << 22));   // position mode
+  EXPECT_FALSE(s & (1u << 21));  // not speed mode
+  EXPECT_TRUE(s & (1u << 24));   // at zero speed
+  rig.send({0x00000012, rawFromReal(-90.0)}, 1000);  // back past zero
+  EXPECT_NEAR(realValue(rig.tx(1)), -90.0, 1e-6);
+  rig.send({0x00000012, rawFromReal(36000.0)}, 250);  // far target, then a normal stop mid-move
+  EXPECT_FALSE(rig.tx(0) & (1u << 24));
+  rig.send({0x00000001, rawFromReal(36000.0)}, 1000);
+  const double stopped = realValue(rig.tx(1));
+  EXPECT_LT(stopped, 36000.0);
+  EXPECT_GT(stopped, -90.0);
+  s = rig.tx(0);
+  EXPECT_FALSE(s & (1u << 8));   // stopped short of the reference
+  EXPECT_TRUE(s & (1u << 24));
+  rig.send({0x00000001, rawFromReal(36000.0)}, 250);
+  EXPECT_EQ(realValue(rig.tx(1)), stopped);  // at rest where it stopped
+}
+
+TEST(PowerFlex750, PositionModeJogsAndTheEncoderFollowsACoastingMotor) {
+  PowerFlexParams p;
+  p.positionMode = true;
+  PowerFlexRig rig(TelegramId::Pf750, p);
+  rig.send({0x00000024, rawFromReal(0.0)}, 500);  // jog 1 reverse for 1 s: A431 = 10 Hz = 3600 deg/s
+  EXPECT_LT(realValue(rig.tx(1)), 0.0);
+  EXPECT_TRUE(rig.tx(0) & (1u << 17));            // jogging
+  rig.send({0x00000001, rawFromReal(0.0)}, 1000); // released and stopped: brakes to rest
+  const double jogged = realValue(rig.tx(1));
+  rig.send({0x00000012, rawFromReal(36000.0)}, 500);
+  rig.send({0x00010000, rawFromReal(36000.0)});   // coast stop: output off, the load runs on
+  const double atCoast = realValue(rig.tx(1));
+  EXPECT_GT(atCoast, jogged);
+  rig.send({0x00010000, rawFromReal(36000.0)}, 250);
+  EXPECT_GT(realValue(rig.tx(1)), atCoast);
+  EXPECT_FALSE(rig.tx(0) & (1u << 16));           // not running
 }
 
 }  // namespace

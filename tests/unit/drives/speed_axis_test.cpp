@@ -148,6 +148,71 @@ TEST(SpeedAxis, Off1RampsWithP1121ThenS2) {
   EXPECT_EQ(rig.state(), kS4);
 }
 
+TEST(SpeedAxis, Zsw1Bit8WaitsP2166WithinP2163) {
+  SpeedAxisParams p;
+  p.p2163 = 5;  // below the ramp's tracking lag (675 rpm/s x 20 ms = 13.5 rpm)
+  SpeedRig rig(TelegramId::Std1, p);
+  rig.stw(0x047E, 0, 2);
+  rig.stw(0x047F, 0x2000, 250);        // 0.5 s into the 1 s ramp: the lag is outside p2163
+  EXPECT_FALSE(rig.zsw1() & (1u << 8));
+  rig.stw(0x047F, 0x2000, 300);        // ~80 ms within p2163, less than p2166 = 200 ms
+  EXPECT_FALSE(rig.zsw1() & (1u << 8));
+  rig.stw(0x047F, 0x2000, 150);
+  EXPECT_TRUE(rig.zsw1() & (1u << 8));
+  EXPECT_EQ(rig.zsw1(), 0xEF37);
+  p.p2166S = 0;                        // no delay: the bit follows the deviation at once
+  SpeedRig direct(TelegramId::Std1, p);
+  direct.stw(0x047E, 0, 2);
+  direct.stw(0x047F, 0x2000, 550);
+  EXPECT_TRUE(direct.zsw1() & (1u << 8));
+}
+
+TEST(SpeedAxis, Off1EndsOnSetpointStandstillP1227WhileTheMotorStillTurns) {
+  SpeedAxisParams p;
+  p.tauSpeedS = 10;  // a motor that lags far behind its setpoint (e.g. a driving load)
+  p.p1227S = 1;
+  SpeedRig rig(TelegramId::Std1, p);
+  rig.stw(0x047E, 0, 2);
+  rig.stw(0x047F, 0x2000, 1500);
+  rig.stw(0x047E, 0x2000, 750);  // OFF1: RFG output 0 after 1 s, p1227 not yet elapsed
+  EXPECT_EQ(rig.state(), 0x35);  // S5a
+  EXPECT_EQ(rig.drive->rfgOutputRpm(), 0.0);
+  rig.stw(0x047E, 0x2000, 350);
+  EXPECT_EQ(rig.state(), kS2);   // pulses off although |n_act| > p1226
+  EXPECT_GT(rig.drive->shaftSpeedRpm(), 20.0);
+  p.p1227S = 300;                // the default: only the actual speed ends the ramp
+  SpeedRig slow(TelegramId::Std1, p);
+  slow.stw(0x047E, 0, 2);
+  slow.stw(0x047F, 0x2000, 1500);
+  slow.stw(0x047E, 0x2000, 1100);
+  EXPECT_EQ(slow.state(), 0x35);
+}
+
+TEST(SpeedAxis, MopRaiseAndLowerIntegrateTheMainSetpoint) {
+  SpeedAxisParams p;
+  p.mop = true;  // p1047 = 10 s for p1082 = 1350 rpm: 135 rpm/s
+  SpeedRig rig(TelegramId::Std1, p);
+  rig.stw(0x047E, 0x2000, 2);
+  rig.stw(0x247F, 0x2000, 500);   // STW1.13 raise for 1 s (until the next frame); NSOLL_A is not the setpoint
+  rig.stw(0x047F, 0x2000, 750);   // released: the MOP holds
+  EXPECT_NEAR(rig.drive->mopRpm(), 135.0, 1e-6);
+  EXPECT_EQ(rig.nist(), 1638);    // 135 rpm x 16384 / 1350
+  rig.stw(0x647F, 0x2000, 250);   // raise and lower together hold
+  EXPECT_NEAR(rig.drive->mopRpm(), 135.0, 1e-6);
+  rig.stw(0x447F, 0x2000, 250);   // STW1.14 lower for 0.5 s
+  rig.stw(0x0C7F, 0x2000, 750);   // inverted like any setpoint
+  EXPECT_EQ(rig.nist(), -819);
+  rig.stw(0x447F, 0x2000, 1000);  // lowers to 0, not below
+  EXPECT_EQ(rig.drive->mopRpm(), 0.0);
+}
+
+TEST(SpeedAxis, MopBitsAreIgnoredUnlessConfigured) {
+  SpeedRig rig;
+  rig.runAt(0x2000, 0x247F);
+  EXPECT_NEAR(rig.nist(), 8192, 1);
+  EXPECT_EQ(rig.drive->mopRpm(), 0.0);
+}
+
 TEST(SpeedAxis, E30FrameWithoutControlByPlcIsIgnored) {
   SpeedRig rig;
   rig.runAt(0x2000);

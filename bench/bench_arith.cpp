@@ -32,8 +32,8 @@ struct ArithResult {
   return r;
 }
 
-void arithVm(benchmark::State& state) {
-  StProgram prog("arith.st");
+void arithVm(benchmark::State& state, Backend backend) {
+  StProgram prog("arith.st", backend);
   if (!warmUp(state, prog, 1)) return;
   const ArithResult want = arithNative(1000);
   if (!expectValue(state, prog, "MAIN.acc", want.acc) || !expectValue(state, prog, "MAIN.racc", want.racc) ||
@@ -52,7 +52,8 @@ void arithNativeBench(benchmark::State& state) {
   reportNative(state);
 }
 
-BENCHMARK(arithVm)->Name("arith/vm")->Apply(withMinStatistic);
+BENCHMARK_CAPTURE(arithVm, interp, Backend::Interp)->Name("arith/vm")->Apply(withMinStatistic);
+BENCHMARK_CAPTURE(arithVm, aot, Backend::Aot)->Name("arith/aot")->Apply(withMinStatistic);
 BENCHMARK(arithNativeBench)->Name("arith/native")->Apply(withMinStatistic);
 
 }  // namespace

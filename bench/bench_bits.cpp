@@ -53,8 +53,8 @@ bool bit(uint16_t w, unsigned n) { return ((w >> n) & 1u) != 0; }
   }
 }
 
-void bitsVm(benchmark::State& state) {
-  StProgram prog("bits.st");
+void bitsVm(benchmark::State& state, Backend backend) {
+  StProgram prog("bits.st", backend);
   if (!warmUp(state, prog, 1)) return;
   BitsProgram twin;
   bitsScan(twin, 0x1234);
@@ -76,7 +76,8 @@ void bitsNative(benchmark::State& state) {
   reportNative(state);
 }
 
-BENCHMARK(bitsVm)->Name("bits/vm")->Apply(withMinStatistic);
+BENCHMARK_CAPTURE(bitsVm, interp, Backend::Interp)->Name("bits/vm")->Apply(withMinStatistic);
+BENCHMARK_CAPTURE(bitsVm, aot, Backend::Aot)->Name("bits/aot")->Apply(withMinStatistic);
 BENCHMARK(bitsNative)->Name("bits/native")->Apply(withMinStatistic);
 
 }  // namespace

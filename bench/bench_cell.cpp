@@ -158,14 +158,14 @@ bool verifyCell(benchmark::State& state, StProgram& prog) {
          expectValue(state, prog, "MAIN.stations[8].faults", twin.stations[7].faults);
 }
 
-void cellVm(benchmark::State& state) {
-  StProgram prog("cell.st");
+void cellVm(benchmark::State& state, Backend backend) {
+  StProgram prog("cell.st", backend);
   if (!verifyCell(state, prog)) return;
   measureScans(state, prog);
 }
 
-void cellVmMachineRun(benchmark::State& state) {
-  StProgram prog("cell.st");
+void cellVmMachineRun(benchmark::State& state, Backend backend) {
+  StProgram prog("cell.st", backend);
   if (!verifyCell(state, prog)) return;
   measureMachineRuns(state, prog);
 }
@@ -182,8 +182,10 @@ void cellNative(benchmark::State& state) {
   reportNative(state);
 }
 
-BENCHMARK(cellVm)->Name("cell/vm")->Apply(withMinStatistic);
-BENCHMARK(cellVmMachineRun)->Name("cell/vm_machine_run")->Apply(withMinStatistic);
+BENCHMARK_CAPTURE(cellVm, interp, Backend::Interp)->Name("cell/vm")->Apply(withMinStatistic);
+BENCHMARK_CAPTURE(cellVm, aot, Backend::Aot)->Name("cell/aot")->Apply(withMinStatistic);
+BENCHMARK_CAPTURE(cellVmMachineRun, interp, Backend::Interp)->Name("cell/vm_machine_run")->Apply(withMinStatistic);
+BENCHMARK_CAPTURE(cellVmMachineRun, aot, Backend::Aot)->Name("cell/aot_machine_run")->Apply(withMinStatistic);
 BENCHMARK(cellNative)->Name("cell/native")->Apply(withMinStatistic);
 
 }  // namespace

@@ -66,8 +66,8 @@ struct FbCallsProgram {
   }
 }
 
-void fbCallsVm(benchmark::State& state) {
-  StProgram prog("fb_calls.st");
+void fbCallsVm(benchmark::State& state, Backend backend) {
+  StProgram prog("fb_calls.st", backend);
   if (!warmUp(state, prog, kVerifyScans)) return;
   FbCallsProgram twin;
   for (int k = 0; k < kVerifyScans; ++k) fbCallsScan(twin, k * kScanNs);
@@ -89,7 +89,8 @@ void fbCallsNative(benchmark::State& state) {
   reportNative(state);
 }
 
-BENCHMARK(fbCallsVm)->Name("fb_calls/vm")->Apply(withMinStatistic);
+BENCHMARK_CAPTURE(fbCallsVm, interp, Backend::Interp)->Name("fb_calls/vm")->Apply(withMinStatistic);
+BENCHMARK_CAPTURE(fbCallsVm, aot, Backend::Aot)->Name("fb_calls/aot")->Apply(withMinStatistic);
 BENCHMARK(fbCallsNative)->Name("fb_calls/native")->Apply(withMinStatistic);
 
 }  // namespace

@@ -1,6 +1,7 @@
 // virtcom_bench's entry point: Google Benchmark's usual flags and output, followed by a
-// summary of the VM/native ratio for every case that has both a `<case>/vm` and a
-// `<case>/native` benchmark, so both sides come from the same run of the same binary.
+// summary of the interpreter/native and AOT/native ratios for every case that has a
+// `<case>/native` benchmark and a `<case>/vm` or `<case>/aot` one, so all sides come from the
+// same run of the same binary.
 // The ratio uses CPU time per iteration: on a shared machine (other builds running) real time
 // also counts the time the thread waited for a core, which says nothing about either side.
 #include <benchmark/benchmark.h>
@@ -46,22 +47,37 @@ class RatioReporter final : public benchmark::BenchmarkReporter {
     // Only under the console table: JSON/CSV output must stay machine-readable.
     if (dynamic_cast<benchmark::ConsoleReporter*>(display_) == nullptr) return;
     std::ostream& out = GetOutputStream();
-    char line[128];
+    char line[160];
     bool header = false;
-    for (const auto& [name, vm] : best_) {
-      const auto slash = name.rfind("/vm");
-      if (slash == std::string::npos || slash + 3 != name.size()) continue;
+    for (const auto& [name, native] : best_) {
+      const auto slash = name.rfind("/native");
+      if (slash == std::string::npos || slash + 7 != name.size() || native.ns <= 0) continue;
       const std::string caseName = name.substr(0, slash);
-      const auto native = best_.find(caseName + "/native");
-      if (native == best_.end() || native->second.ns <= 0) continue;
+      const auto vm = best_.find(caseName + "/vm");
+      const auto aot = best_.find(caseName + "/aot");
+      if (vm == best_.end() && aot == best_.end()) continue;
       if (!header) {
-        std::snprintf(line, sizeof line, "\nVM/native, CPU time per scan (min over repetitions if any)\n%-12s %14s %14s %10s\n", "case",
-                      "vm ns", "native ns", "vm/native");
+        std::snprintf(line, sizeof line,
+                      "\nVM/native, CPU time per scan (min over repetitions if any)\n%-12s %12s %12s %12s %10s %10s\n",
+                      "case", "vm ns", "aot ns", "native ns", "vm/native", "aot/native");
         out << line;
         header = true;
       }
-      std::snprintf(line, sizeof line, "%-12s %14.1f %14.1f %9.1fx\n", caseName.c_str(), vm.ns,
-                    native->second.ns, vm.ns / native->second.ns);
+      const auto ns = [&](auto it, char* buf, size_t size) {
+        if (it == best_.end()) std::snprintf(buf, size, "%s", "-");
+        else std::snprintf(buf, size, "%.1f", it->second.ns);
+      };
+      const auto ratio = [&](auto it, char* buf, size_t size) {
+        if (it == best_.end()) std::snprintf(buf, size, "%s", "-");
+        else std::snprintf(buf, size, "%.1fx", it->second.ns / native.ns);
+      };
+      char vmNs[24], aotNs[24], vmRatio[24], aotRatio[24];
+      ns(vm, vmNs, sizeof vmNs);
+      ns(aot, aotNs, sizeof aotNs);
+      ratio(vm, vmRatio, sizeof vmRatio);
+      ratio(aot, aotRatio, sizeof aotRatio);
+      std::snprintf(line, sizeof line, "%-12s %12s %12s %12.1f %10s %10s\n", caseName.c_str(), vmNs, aotNs, native.ns,
+                    vmRatio, aotRatio);
       out << line;
     }
     out.flush();

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "aot/compile.hpp"
 #include "core/diagnostics.hpp"
 #include "core/source.hpp"
 #include "lang/st/compiler.hpp"
@@ -14,7 +15,7 @@
 
 namespace virtcom::bench {
 
-StProgram::StProgram(std::string_view fileName) {
+StProgram::StProgram(std::string_view fileName, Backend backend) {
   const std::string path = std::string(VIRTCOM_BENCH_DIR) + "/" + std::string(fileName);
   std::ifstream in(path, std::ios::binary);
   if (!in) {
@@ -47,6 +48,14 @@ StProgram::StProgram(std::string_view fileName) {
   plc::RuntimeOptions options;
   options.skipRepeatedScans = false;
   runtime_ = std::make_unique<plc::Runtime>(*module_, clock_, options);
+  if (backend == Backend::Aot) {
+    aot::CompileResult compiled = aot::compileModule(*module_);
+    if (!compiled.code) {
+      error_ = "AOT backend: " + compiled.error;
+      return;
+    }
+    runtime_->machine().useCompiled(compiled.code);
+  }
   if (!runtime_->coldStart()) error_ = "cold start fault: " + runtime_->faultText();
 }
 

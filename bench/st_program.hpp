@@ -20,12 +20,17 @@
 
 namespace virtcom::bench {
 
+// How the PLC runs the program: the bytecode interpreter (`<case>/vm`) or machine code from
+// the AOT backend, src/aot (`<case>/aot`).
+enum class Backend { Interp, Aot };
+
 class StProgram {
  public:
-  // Reads `fileName` from the bench ST directory (VIRTCOM_BENCH_DIR), compiles it and cold
-  // starts a runtime on a virtual clock. On any failure ok() is false and error() says why
-  // (rendered diagnostics or the fault text). Allocates; never throws on bad input.
-  explicit StProgram(std::string_view fileName);
+  // Reads `fileName` from the bench ST directory (VIRTCOM_BENCH_DIR), compiles it (for
+  // Backend::Aot also to machine code) and cold starts a runtime on a virtual clock. On any
+  // failure ok() is false and error() says why (rendered diagnostics, the C compiler's
+  // complaint or the fault text). Allocates; never throws on bad input.
+  explicit StProgram(std::string_view fileName, Backend backend = Backend::Interp);
 
   bool ok() const { return error_.empty(); }
   const std::string& error() const { return error_; }
@@ -34,7 +39,7 @@ class StProgram {
   // False on a runtime fault; error() then holds the fault text.
   bool scan();
   // Runs the program `MAIN` once through vm::Machine::run with the task time set to `nowNs`
-  // (no process-image copies, no statistics): the bare interpreter cost of one scan.
+  // (no process-image copies, no statistics): the bare interpreter (or AOT code) cost of one scan.
   bool runMain(int64_t nowNs);
 
   plc::Runtime& runtime() { return *runtime_; }

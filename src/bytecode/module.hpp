@@ -42,6 +42,7 @@ struct Field {
   bool readOnly = false;   // CONSTANT, or {attribute 'ads_readonly'}
   bool absolute = false;   // offset is a memory address: a located (AT %IX0.0) member of a POU
   std::string section;     // "VAR_INPUT", "VAR_OUTPUT", "VAR", ... for tools that show interfaces
+  bool retain = false;     // RETAIN or PERSISTENT: kept over a warm start
 };
 
 struct Enumerator {
@@ -96,6 +97,7 @@ struct Symbol {
   TypeId type = kNoType;
   uint32_t address = 0;
   bool readOnly = false;
+  bool retain = false;   // a RETAIN or PERSISTENT global: kept over a warm start
 };
 
 struct ProgramInstance {

@@ -12,6 +12,7 @@
 #include "cell/yaml_config.hpp"
 #include "core/value_codec.hpp"
 #include "drives/drive_registry.hpp"
+#include "lang/plcopen/importer.hpp"
 #include "lang/st/compiler.hpp"
 
 namespace virtcom::cell {
@@ -47,7 +48,7 @@ class Loader {
       return nullptr;
     }
     ConfigNode root;
-    if (!parseYaml(path, text, sources_, diags_, root)) return nullptr;
+    if (!parseYaml(path, text, sources_, diags_, root) || !takeBaseSections(cell->file, root)) return nullptr;
     ConfigReader top(root, diags_, "the cell file");
     cell->name = top.optString("name", std::filesystem::path(path).parent_path().filename().string());
     // Every part is checked even when an earlier one failed, so one run reports all mistakes;
@@ -60,6 +61,7 @@ class Loader {
     // Maps name device signals, so they are read once the devices exist.
     readModbusSection(*cell, top.child("modbus"), diags_);
     if (plcModbus_) readModbusClient(*cell, *plcModbus_, diags_);
+    top.child("extends");  // applied by takeBaseSections()
     if (plcAds_) {
       readAdsClient(*cell->plcAds, *plcAds_, diags_);
       addExternalRunWires(*cell);
@@ -70,6 +72,30 @@ class Loader {
   }
 
  private:
+  // `extends: other.yaml` (relative to this file): every top-level section of that cell file
+  // which this one does not have is taken as written there, so variants of a cell (another
+  // PLC program, other run settings) need not repeat its devices. One level only: the base
+  // must not extend another file. Paths inside taken sections stay relative to this file.
+  bool takeBaseSections(const std::filesystem::path& path, ConfigNode& root) {
+    const ConfigNode* ext = root.kind() == ConfigNode::Kind::Map ? root.find("extends") : nullptr;
+    if (!ext) return true;
+    std::filesystem::path basePath = (path.parent_path() / ext->scalar()).lexically_normal();
+    std::string text;
+    if (ext->kind() != ConfigNode::Kind::Scalar || !readText(basePath, text)) {
+      diags_.error("C002", ext->loc(), "cannot read cell file '" + basePath.string() + "' named by 'extends'");
+      return false;
+    }
+    ConfigNode base;
+    if (!parseYaml(basePath.string(), text, sources_, diags_, base)) return false;
+    if (base.find("extends")) {
+      diags_.error("C010", base.keyLoc("extends"), "a cell file named by 'extends' cannot itself extend another file");
+      return false;
+    }
+    for (const auto& [key, value] : base.entries())
+      if (!root.has(key)) root.add(key, base.keyLoc(key), value);
+    return true;
+  }
+
   // True unless there was an error. Without `plc:` or its `sources:` the cell has no controller
   // of its own (it can only be served); `plc: modbus:` makes an external PLC the controller.
   bool compilePlc(Cell& cell, ConfigReader& top) {
@@ -90,7 +116,7 @@ class Loader {
     } else if (plcModbus_ || plcAds_ || !srcs) {
       // no soft PLC; `plc: modbus:` / `plc: ads:` are read with the devices' signals, see load()
     } else if (srcs->kind() != ConfigNode::Kind::List || srcs->items().empty()) {
-      plc.error(srcs->loc(), "'sources' must be a list of ST files relative to the cell file");
+      plc.error(srcs->loc(), "'sources' must be a list of ST (.st) or PLCopen XML (.xml) files relative to the cell file");
     } else {
       for (const auto& item : srcs->items()) {
         std::filesystem::path p = cell.file.parent_path() / item.scalar();
@@ -99,7 +125,7 @@ class Loader {
           plc.error(item.loc(), "cannot read PLC source '" + p.string() + "'");
           continue;
         }
-        inputs.push_back({p.lexically_normal().string(), st});
+        inputs.push_back(plcopen::sourceInput(p.lexically_normal().string(), std::move(st)));
       }
     }
     cell.run.plcCycleNs = static_cast<int64_t>(plc.optQuantity("cycle_time", Dimension::Time, 0.01) * 1e9 + 0.5);

@@ -10,6 +10,7 @@
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "lang/sfc/step_monitor.hpp"
+#include "plc/retain_file.hpp"
 #include "plc/runtime.hpp"
 #include "proto/modbus/server.hpp"
 
@@ -34,7 +35,10 @@ struct ExecOptions {
   bool stats = false;
   std::string modbus;       // HOST:PORT to serve Modbus TCP on; empty: no server
   std::string modbusAllow;  // comma-separated peer addresses; empty: any
+  bool modbusWritableInputs = false;  // %IW also as holding registers 8192.. (docs/modbus.md)
   AdsServeOptions ads;
+  std::string retainFile;   // warm start: RETAIN/PERSISTENT variables loaded from and saved to it
+  std::string backend = "interp";
 };
 
 bool resolveAll(const bc::Module& m, const std::vector<std::string>& names, std::vector<bc::VarRef>& out) {
@@ -91,6 +95,7 @@ std::expected<std::unique_ptr<proto::modbus::Server>, std::string> startModbus(c
   shape.inputs = m.inputs.size;
   shape.outputs = m.outputs.size;
   shape.memory = m.memory.size;
+  shape.writableInputs = o.modbusWritableInputs;
   auto server = mb::Server::start(config, shape);
   if (!server) return std::unexpected("--modbus: " + server.error());
   (*server)->publishSnapshot(modbusView(runtime));
@@ -139,9 +144,17 @@ int runExec(const ExecOptions& o) {
   plc::RuntimeOptions ropts;
   ropts.instructionBudget = o.budget;
   plc::Runtime runtime(*module, *clock, ropts);
+  runtime.machine().useCompiled(compiledBackend(o.backend, *module));
   if (!runtime.coldStart()) {
     std::cerr << "runtime fault: " << runtime.faultText() << "\n";
     return kExitRuntimeFault;
+  }
+  if (!o.retainFile.empty()) {
+    auto restored = plc::loadRetainFile(o.retainFile, *module, runtime.machine().memory());
+    if (!restored) {
+      std::cerr << "error: --retain-file: " << restored.error() << "\n";
+      return kExitUsage;
+    }
   }
   for (const auto& set : o.sets) {
     std::string problem = presetVariable(*module, set, runtime.machine().memory(), runtime.inputImage());
@@ -217,6 +230,13 @@ int runExec(const ExecOptions& o) {
   }
   if (modbus) modbus->stop();
   if (ads) ads->stop();
+  if (!o.retainFile.empty() && exitCode == kExitOk) {
+    std::string problem = plc::saveRetainFile(o.retainFile, *module, runtime.machine().memory());
+    if (!problem.empty()) {
+      std::cerr << "error: --retain-file: " << problem << "\n";
+      exitCode = kExitUsage;
+    }
+  }
   for (size_t i = 0; i < o.prints.size(); ++i)
     std::cout << o.prints[i] << " = " << bc::formatValue(*module, printRefs[i], runtime.machine().memory()) << "\n";
   if (o.stats) {
@@ -246,10 +266,13 @@ void addExecCommand(CLI::App& app, std::function<void(int)> setExit) {
   cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); without --cycles runs until SIGINT/SIGTERM")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--budget", o->budget, "watchdog: max backward jumps + calls per task scan (default 50000000)");
+  addBackendOption(*cmd, o->backend);
   cmd->add_flag("--stats", o->stats, "print per-task scan statistics to stderr");
   cmd->add_option("--modbus", o->modbus, "serve the process image over Modbus TCP on HOST:PORT (OpenPLC mapping, see docs/modbus.md); implies --speed 1");
+  cmd->add_flag("--modbus-writable-inputs", o->modbusWritableInputs, "let --modbus clients write the inputs: holding register 8192+n is %IWn (and the %IX bits in it); off by default");
   cmd->add_option("--modbus-allow", o->modbusAllow, "comma-separated IPv4 peers allowed to connect to --modbus (default: any)");
   addAdsServeOptions(cmd, o->ads);
+  cmd->add_option("--retain-file", o->retainFile, "warm start: load the RETAIN/PERSISTENT variables from this file after the cold start (if it exists) and save them to it when the run ends without a fault");
   cmd->callback([o, setExit] { setExit(runExec(*o)); });
 }
 

@@ -35,6 +35,7 @@ struct RunOptions {
   double speed = 0;
   bool quiet = false;
   bool step = false;
+  std::string backend = "interp";
 };
 
 // Single-step mode: one PLC base tick per line read from stdin (empty line: one tick, a number N:
@@ -171,6 +172,7 @@ int runCell(const RunOptions& o) {
   sim::SimOptions options;
   options.speed = o.speed;
   options.interrupt = &gStop;
+  if (cell->module) options.compiled = compiledBackend(o.backend, *cell->module);
   if (!o.timeLimit.empty()) {
     auto ns = parseDurationNs(o.timeLimit);
     if (!ns) {
@@ -216,7 +218,8 @@ int runCell(const RunOptions& o) {
   if (!o.quiet) std::cout << report::summaryTable(trace, kpis);
   report::HtmlOptions html;
   html.title = cell->name;
-  html.signals = o.signals;
+  // Without --signal the timeline shows what the cell file asked to record.
+  html.signals = o.signals.empty() ? cell->run.recordVars : o.signals;
   bool ok = true;
   if (!o.html.empty()) ok = writeFile(o.html, report::htmlReport(trace, kpis, html)) && ok;
   if (!o.json.empty()) ok = writeFile(o.json, report::jsonReport(trace, kpis)) && ok;
@@ -239,9 +242,10 @@ void addRunCommand(CLI::App& app, std::function<void(int)> setExit) {
   cmd->add_option("--until", o->until, "stop when a PLC condition holds, e.g. \"MAIN.partsDone >= 3\"");
   cmd->add_option("--time-limit", o->timeLimit, "virtual time limit, e.g. 300s (overrides run.time_limit)");
   cmd->add_option("--set", o->sets, "NAME=VALUE set in the PLC before its first scan (repeatable), e.g. MAIN.sequence=3");
-  cmd->add_option("--signal", o->signals, "signal shown in the report's timeline (repeatable), e.g. Robot1.busy");
+  cmd->add_option("--signal", o->signals, "signal shown in the report's timeline (repeatable), e.g. Robot1.busy; default: the cell's run.record variables");
   cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible (1 with 'plc: modbus' or 'plc: ads')")
       ->check(CLI::PositiveNumber);
+  addBackendOption(*cmd, o->backend);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table");
   cmd->add_flag("--step", o->step, "single step: advance one PLC tick per line read from stdin, printing changed signals");
   cmd->callback([o, setExit] { setExit(runCell(*o)); });

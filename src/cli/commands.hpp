@@ -1,9 +1,13 @@
 #pragma once
 #include <functional>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
 namespace virtcom::cli {
+// `--backend interp|aot` (see compiledBackend in common.hpp), stored into `backend`.
+void addBackendOption(CLI::App& cmd, std::string& backend);
+
 // Each subcommand registers itself and reports its exit code through `setExit`.
 void addCheckCommand(CLI::App& app, std::function<void(int)> setExit);
 void addExecCommand(CLI::App& app, std::function<void(int)> setExit);

@@ -8,6 +8,8 @@
 #include <iostream>
 #include <sstream>
 
+#include "aot/compile.hpp"
+#include "cli/commands.hpp"
 #include "lang/plcopen/importer.hpp"
 #include "lang/st/compiler.hpp"
 
@@ -23,9 +25,7 @@ std::optional<std::vector<st::SourceInput>> readSources(const std::vector<std::s
     }
     std::stringstream buf;
     buf << in.rdbuf();
-    st::FrontEnd frontEnd;
-    if (plcopen::isPlcopenPath(path)) frontEnd = plcopen::importProject;
-    inputs.push_back({path, buf.str(), frontEnd});
+    inputs.push_back(plcopen::sourceInput(path, buf.str()));
   }
   return inputs;
 }
@@ -102,6 +102,20 @@ std::optional<int64_t> parseDurationNs(const std::string& raw) {
   int64_t ns = static_cast<int64_t>(total + 0.5);
   if (ns <= 0) return std::nullopt;
   return ns;
+}
+
+void addBackendOption(CLI::App& cmd, std::string& backend) {
+  cmd.add_option("--backend", backend,
+                 "run the PLC on the bytecode interpreter (interp, default) or as machine code compiled with the "
+                 "system C compiler at load (aot; falls back to interp with a notice), see docs/performance.md")
+      ->check(CLI::IsMember({"interp", "aot"}));
+}
+
+std::shared_ptr<const vm::CompiledCode> compiledBackend(const std::string& backend, const bc::Module& m) {
+  if (backend != "aot") return nullptr;
+  aot::CompileResult r = aot::compileModule(m);
+  if (!r.code) std::cerr << "notice: --backend aot unavailable, using the interpreter: " << r.error << "\n";
+  return r.code;
 }
 
 }  // namespace virtcom::cli

@@ -10,6 +10,7 @@
 #include "core/diagnostics.hpp"
 #include "core/source.hpp"
 #include "lang/st/compiler.hpp"
+#include "vm/compiled.hpp"
 
 namespace virtcom::cli {
 
@@ -31,6 +32,11 @@ std::unique_ptr<cell::Cell> loadCellFile(const std::string& path, SourceManager&
 // the external input image (when given) so the next scan's input copy keeps the value.
 // Returns the error text, empty on success. CONSTANTs are refused.
 std::string presetVariable(const bc::Module& m, const std::string& assignment, uint8_t* memory, uint8_t* inputImage);
+
+// The machine code `--backend` selects for `m`: null for "interp"; for "aot" the module
+// compiled by src/aot, or null after a one-line notice on stderr if that is impossible (no C
+// compiler, compile error), so that the interpreter runs instead.
+std::shared_ptr<const vm::CompiledCode> compiledBackend(const std::string& backend, const bc::Module& m);
 
 // Parses a duration such as "10ms", "1.5s", "250us", "T#1s500ms", "100" (ms). Nullopt if invalid.
 std::optional<int64_t> parseDurationNs(const std::string& text);

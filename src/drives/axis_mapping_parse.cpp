@@ -151,6 +151,14 @@ class Parser {
   }
 
   // --- targets -------------------------------------------------------------------------------
+  std::optional<Target> target(const ConfigNode& node, Dir dir) {
+    if (node.kind() != ConfigNode::Kind::Scalar) {
+      error(node.loc(), "expected a word, bit or bit range of the telegram such as STW1.3, NSOLL_A or LogicCommand[4:5]"
+                        " (options such as invert go in the signal's own entry: Signal: {bit: STW1.3, invert: true})");
+      return std::nullopt;
+    }
+    return target(node.scalar(), node.loc(), dir);
+  }
   std::optional<Target> target(const std::string& text, SourceLocation loc, Dir dir) {
     std::string name = text, rest;
     enum { Word, Bit, Range, S7 } form = Word;
@@ -252,7 +260,7 @@ class Parser {
   void plainBit(const std::string& name, SourceLocation loc, const ConfigNode& targetNode, Dir dir) {
     const AxisSignalDef* s = signal(name, loc, dir);
     if (!s) return;
-    auto t = target(targetNode.scalar(), targetNode.loc(), dir);
+    auto t = target(targetNode, dir);
     if (!t || !checkBitTarget(*s, *t, targetNode.loc()) || !bind(*s, loc)) return;
     addBit(*s, *t, loc, false, false, false);
   }
@@ -302,7 +310,7 @@ class Parser {
         zeroFirst = r.optBool("requires_zero_before_one", false);
       }
       const ConfigNode* tn = r.child("bit");
-      auto t = target(tn->scalar(), tn->loc(), dir);
+      auto t = target(*tn, dir);
       r.rejectUnknownKeys();
       if (!r.ok()) ok_ = false;
       if (!t || !checkBitTarget(*s, *t, tn->loc()) || !bind(*s, loc)) return;
@@ -310,7 +318,7 @@ class Parser {
       return;
     }
     const ConfigNode* tn = r.child(r.has("word") ? "word" : "field");
-    auto t = target(tn->scalar(), tn->loc(), dir);
+    auto t = target(*tn, dir);
     Scale scale = parseScale(r, node);
     int16_t sign = -1;
     const char* signKey = dir == Dir::ToDrive ? "signed_from" : "magnitude_signed_by";
@@ -429,7 +437,7 @@ class Parser {
     }
     ConfigReader r(node, diags_, label);
     const ConfigNode* fn = r.child("field");
-    auto t = target(fn->scalar(), fn->loc(), dir);
+    auto t = target(*fn, dir);
     OutputRule o;
     o.kind = OutputRule::Kind::Field;
     if (const ConfigNode* d = r.child("default"))

@@ -28,7 +28,7 @@ EposAxis::EposAxis(std::string name, DriveCommon common, EposParams params)
 }
 
 bool EposAxis::standstill() const {
-  return std::abs(actualVelocity_ * 60.0 / p_.p2506) < p_.p2161 && profile_.v() == 0;
+  return std::abs(actualLoadRpm_) < p_.p2161 && profile_.v() == 0;
 }
 
 void EposAxis::integrate(double dtS) {
@@ -40,8 +40,8 @@ void EposAxis::integrate(double dtS) {
   checkFlyingProbe(before, machinePos_);  // the probe sees the load, not the setpoint
   const double velocity = (machinePos_ - before) / dtS;
   const double loadRpm = velocity * 60.0 / p_.p2506;
-  const double accel = (loadRpm - actualVelocity_ * 60.0 / p_.p2506) * common_.load.gearRatio * kRadPerRpm / dtS;
-  actualVelocity_ = velocity;
+  const double accel = (loadRpm - actualLoadRpm_) * common_.load.gearRatio * kRadPerRpm / dtS;
+  actualLoadRpm_ = loadRpm;
   speedRpm_ = loadRpm * common_.load.gearRatio;
   torqueNm_ = pulsesEnabled(state_) ? loadTorqueNm(speedRpm_, accel) : 0.0;
   setAccel_ = std::abs(profile_.v()) - std::abs(prevSetVelocity_);
@@ -71,7 +71,7 @@ void EposAxis::updateState() {
   StateInputs in;
   in.cmd = {test(stw1_, stw1::On), test(stw1_, stw1::NoOff2), test(stw1_, stw1::NoOff3), test(stw1_, stw1::EnableOperation)};
   in.faultActive = faults_.active();
-  in.faultReaction = faults_.reaction();
+  in.faultReaction = in.faultActive ? faults_.reaction() : Reaction::None;
   in.standstill = profile_.v() == 0;
   state_ = nextState(state_, in);
   if (state_ != DriveState::S4OperationEnabled) flyingArmed_ = false;
@@ -175,7 +175,7 @@ bool EposAxis::settled() const {
 
 void EposAxis::encode(RawWords& tx) const {
   const double actual = machinePos_ + offset_;
-  const double loadRpm = actualVelocity_ * 60.0 / p_.p2506;
+  const double loadRpm = actualLoadRpm_;
   const bool pulses = pulsesEnabled(state_);
   const bool still = std::abs(loadRpm) < p_.p2161;
   uint32_t z = stateStatusBits(state_);

@@ -9,6 +9,7 @@
 // monitoring. Positions are in LU; parameters keep their SINAMICS numbers and are simulator
 // defaults [S] set in the cell file (docs/drives.md).
 #include <array>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -121,6 +122,7 @@ class EposAxis final : public TelegramDevice {
   void referencingStep(double dtS);
   void updateLimitFlags();
   ProfileLimits limits(double velocity1000LuMin, double accelPercent, double decelPercent) const;
+  const ProfileLimits& taskLimits();
   double clampToSoftwareLimits(double machineTarget) const;
   void moveAtVelocity(double v, const ProfileLimits& lim, double dtS);
   bool taskActive() const { return mode_ != Mode::None; }
@@ -136,7 +138,7 @@ class EposAxis final : public TelegramDevice {
   // motion
   PositionProfile profile_;   // machine coordinates
   double machinePos_ = 0;     // actual load position, machine coordinates (LU)
-  double actualVelocity_ = 0; // LU/s
+  double actualLoadRpm_ = 0;  // actual load speed, rpm (kept: every use needs rpm, dividing once)
   double offset_ = 0;         // reported position = machine + offset
   double prevSetVelocity_ = 0, setAccel_ = 0;
   bool referenced_ = false;
@@ -144,6 +146,13 @@ class EposAxis final : public TelegramDevice {
   double target_ = 0;         // machine coordinates
   double taskVelocity_ = 0;   // 1000 LU/min
   double taskAcc_ = 100, taskDec_ = 100;  // percent
+  // taskLimits() of the last step: the limits change only with a new task or OVERRIDE, so the
+  // divisions are not repeated every step. NaN: nothing computed yet.
+  struct LimitsMemo {
+    double velocity = NAN, acc = NAN, dec = NAN;
+    uint32_t override = 0;
+    ProfileLimits lim;
+  } taskLimits_;
   int direction_ = 0;         // setup / jog / endless: -1, 0, +1
   bool stopping_ = false;     // the task is being cancelled: brake to standstill, then end
   bool setpointStatic_ = true;

@@ -26,6 +26,13 @@ ProfileLimits EposAxis::limits(double velocity1000LuMin, double accelPercent, do
   return l;
 }
 
+const ProfileLimits& EposAxis::taskLimits() {
+  LimitsMemo& m = taskLimits_;
+  if (m.velocity != taskVelocity_ || m.acc != taskAcc_ || m.dec != taskDec_ || m.override != override_)
+    m = {taskVelocity_, taskAcc_, taskDec_, override_, limits(taskVelocity_, taskAcc_, taskDec_)};
+  return m.lim;
+}
+
 double EposAxis::clampToSoftwareLimits(double machineTarget) const {
   if (!test(posStw2_, pos2::SoftwareLimits)) return machineTarget;
   return std::clamp(machineTarget + offset_, p_.p2580, p_.p2581) - offset_;
@@ -292,7 +299,7 @@ void EposAxis::motion(double dtS) {
     setpointStatic_ = true;
     return;
   }
-  ProfileLimits lim = limits(taskVelocity_, taskAcc_, taskDec_);
+  ProfileLimits lim = taskLimits();
   const bool reject = !test(stw1_, stw1::NoReject);
   if (state_ != DriveState::S4OperationEnabled || faults_.active() || stopping_ || reject || mode_ == Mode::None) {
     // Brake: state-machine stops and rejected tasks with 100 % of p2573 (§C.10).

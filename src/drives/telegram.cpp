@@ -70,24 +70,6 @@ std::string_view wireTypeName(WireType t) {
   return "?";
 }
 
-uint32_t readWire(std::span<const uint8_t> image, size_t offset, WireType type, ByteOrder order) {
-  const size_t n = wireBytes(type);
-  uint32_t v = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const size_t byte = order == ByteOrder::Big ? i : n - 1 - i;
-    v = (v << 8) | image[offset + byte];
-  }
-  return v;
-}
-
-void writeWire(std::span<uint8_t> image, size_t offset, WireType type, ByteOrder order, uint32_t raw) {
-  const size_t n = wireBytes(type);
-  for (size_t i = 0; i < n; ++i) {
-    const size_t byte = order == ByteOrder::Big ? n - 1 - i : i;
-    image[offset + byte] = static_cast<uint8_t>(raw >> (8 * i));
-  }
-}
-
 bool encode(TelegramId t, Dir d, std::span<const uint32_t> raw, std::span<uint8_t> image) {
   const auto ws = words(t, d);
   if (image.size() < imageBytes(t, d) || raw.size() < ws.size()) return false;

@@ -17,6 +17,7 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -139,6 +140,18 @@ constexpr size_t wordCount(TelegramId t, Dir d) {
   for (const auto& w : kWords) n += w.telegram == t && w.dir == d;
   return n;
 }
+// Each telegram direction's [first, first + count) in kWords, computed at compile time: words()
+// is on the per-tick path of every drive and must not scan the table.
+struct WordRange {
+  size_t first, count;
+};
+inline constexpr auto kWordRanges = [] {
+  std::array<WordRange, std::size(kTelegrams) * 2> r{};
+  for (size_t t = 0; t < std::size(kTelegrams); ++t)
+    for (Dir d : {Dir::ToDrive, Dir::FromDrive})
+      r[t * 2 + static_cast<size_t>(d)] = {firstWord(kTelegrams[t].id, d), wordCount(kTelegrams[t].id, d)};
+  return r;
+}();
 constexpr size_t firstBit(Layout l) {
   for (size_t i = 0; i < std::size(kBits); ++i)
     if (kBits[i].layout == l) return i;
@@ -162,7 +175,8 @@ constexpr std::span<const UnitDef> units() { return detail::kUnits; }
 
 // The words of one direction of a telegram, in offset order.
 constexpr std::span<const WordDef> words(TelegramId t, Dir d) {
-  return std::span<const WordDef>(detail::kWords).subspan(detail::firstWord(t, d), detail::wordCount(t, d));
+  const detail::WordRange r = detail::kWordRanges[static_cast<size_t>(t) * 2 + static_cast<size_t>(d)];
+  return std::span<const WordDef>(detail::kWords).subspan(r.first, r.count);
 }
 constexpr const WordDef& word(WordSlot s) { return words(s.telegram, s.dir)[s.index]; }
 // The bits and fields of a word layout, in bit order.
@@ -227,9 +241,30 @@ inline double realValue(uint32_t raw) { return std::bit_cast<float>(raw); }
 inline uint32_t rawFromReal(double v) { return std::bit_cast<uint32_t>(static_cast<float>(v)); }
 
 // One value at `offset` of a wire image in `order`. The caller guarantees the bounds (the
-// telegram tables do, and the mapping validator checks user offsets). Never allocates.
-uint32_t readWire(std::span<const uint8_t> image, size_t offset, WireType type, ByteOrder order);
-void writeWire(std::span<uint8_t> image, size_t offset, WireType type, ByteOrder order, uint32_t raw);
+// telegram tables do, and the mapping validator checks user offsets). Never allocates. Inline,
+// one load/store and at most one byte swap: every mapped drive runs them for every word, every tick.
+inline uint32_t readWire(std::span<const uint8_t> image, size_t offset, WireType type, ByteOrder order) {
+  const bool swap = (order == ByteOrder::Big) == (std::endian::native == std::endian::little);
+  if (wireBytes(type) == 2) {
+    uint16_t v;
+    std::memcpy(&v, image.data() + offset, 2);
+    return swap ? std::byteswap(v) : v;
+  }
+  uint32_t v;
+  std::memcpy(&v, image.data() + offset, 4);
+  return swap ? std::byteswap(v) : v;
+}
+inline void writeWire(std::span<uint8_t> image, size_t offset, WireType type, ByteOrder order, uint32_t raw) {
+  const bool swap = (order == ByteOrder::Big) == (std::endian::native == std::endian::little);
+  if (wireBytes(type) == 2) {
+    const auto v = static_cast<uint16_t>(raw);
+    const uint16_t wire = swap ? std::byteswap(v) : v;
+    std::memcpy(image.data() + offset, &wire, 2);
+    return;
+  }
+  const uint32_t wire = swap ? std::byteswap(raw) : raw;
+  std::memcpy(image.data() + offset, &wire, 4);
+}
 
 // Whole-direction codec: words(t, d)[i] <-> raw[i]. The image must hold at least the
 // telegram's byte count for that direction (false, nothing touched, if it is shorter).

@@ -105,11 +105,6 @@ void TelegramDevice::advanceTo(int64_t nowNs) {
   }
 }
 
-double TelegramDevice::loadTorqueNm(double speedRpm, double accelRadS2) const {
-  const double friction = std::abs(speedRpm) > 0.5 ? std::copysign(common_.load.loadTorqueNm, speedRpm) : 0.0;
-  return friction + common_.load.inertiaKgm2 * accelRadS2;
-}
-
 void TelegramDevice::applyInjections(int64_t nowNs) {
   for (Injection& inj : common_.injections) {
     if (!inj.raised) {

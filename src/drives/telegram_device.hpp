@@ -9,6 +9,7 @@
 // steps of `step` (default 1 ms) under the previous command, injections due are applied, then
 // the received frame (or its absence) is processed and the reply words are encoded.
 // Nothing on this path allocates or looks up a name.
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -93,8 +94,12 @@ class TelegramDevice : public plant::Device {
   // Validates an injection's code for this drive family; error text if it is not one.
   virtual std::string checkInjection(Injection& inj, const std::string& code) const = 0;
 
-  // Torque the load needs at the motor for an acceleration (rad/s^2) at speed n (rpm).
-  double loadTorqueNm(double speedRpm, double accelRadS2) const;
+  // Torque the load needs at the motor for an acceleration (rad/s^2) at speed n (rpm). Inline:
+  // every drive calls it every integration step.
+  double loadTorqueNm(double speedRpm, double accelRadS2) const {
+    const double friction = std::abs(speedRpm) > 0.5 ? std::copysign(common_.load.loadTorqueNm, speedRpm) : 0.0;
+    return friction + common_.load.inertiaKgm2 * accelRadS2;
+  }
   // Records a fault for the report (rare event, allocates).
   void noteFault(int64_t nowNs, const std::string& message);
 

@@ -9,6 +9,7 @@ Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), opti
     plc::RuntimeOptions ropts;
     ropts.skipRepeatedScans = options_.skipRepeatedScans;
     runtime_ = std::make_unique<plc::Runtime>(*cell_.module, *clock_, ropts);
+    runtime_->machine().useCompiled(options_.compiled);
   }
   timeLimitNs_ = options_.timeLimitNs >= 0 ? options_.timeLimitNs : cell_.run.timeLimitNs;
   Trace& trace = cell_.trace;

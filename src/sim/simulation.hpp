@@ -36,6 +36,8 @@ struct SimOptions {
   // queued writes and RUN/STOP before, the image snapshot after; its first snapshot is taken
   // in `preset`). Must not allocate.
   std::function<void(plc::Runtime& plc)> beforeScan, afterScan;
+  // Machine code for the soft PLC's module (src/aot); null runs the interpreter.
+  std::shared_ptr<const vm::CompiledCode> compiled;
 };
 
 class Simulation {

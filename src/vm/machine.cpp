@@ -26,7 +26,8 @@ Machine::Machine(const bc::Module& m)
       memory_(m.memorySize(), 0),
       scratch_(m.memorySize() + 1, 0),
       regs_(std::max<uint32_t>(m.registerStackSize, 2), 0),
-      frames_(m.maxCallDepth) {
+      frames_(m.maxCallDepth),
+      compiledCallStack_(m.maxCallDepth) {
   fault_.callStack.reserve(m.maxCallDepth);
   sp_ = m.staticSize;
 }
@@ -62,7 +63,24 @@ bool Machine::run(uint32_t pou, uint32_t thisAddress) {
   regs_[0] = sp_;
   regs_[1] = thisAddress;
   sp_ += p.frameSize;
-  return execute(p.codeStart, startSp);
+  return compiled_ ? executeCompiled(pou, startSp) : execute(p.codeStart, startSp);
+}
+
+bool Machine::executeCompiled(uint32_t pou, uint32_t startSp) {
+  const NativeContext nctx{memory_.data(), static_cast<uint32_t>(memory_.size()), Module::kNullGuard, scratch_.data()};
+  AotContext c{memory_.data(), m_.initialImage.data(), regs_.data(), compiledCallStack_.data(),
+               kNatives,       kNativeFbs,               &nctx,         regs_.size(),
+               sp_,            budget_,                  taskTimeNs_,   timeReads_,
+               static_cast<uint32_t>(frames_.size()), 0, 0};
+  const int kind = compiled_->entries[pou](&c, 0, 0);
+  timeReads_ = c.timeReads;
+  sp_ = startSp;
+  if (kind == 0) return true;
+  fault_.kind = static_cast<FaultKind>(kind);
+  fault_.pc = c.faultPc;
+  fault_.loc = m_.locationOf(c.faultPc);
+  fault_.callStack.assign(compiledCallStack_.begin(), compiledCallStack_.begin() + c.callStackSize);
+  return false;
 }
 
 // The interpreter. Invariants from the verifier: pc stays inside code (every POU ends with an

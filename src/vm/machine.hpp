@@ -2,11 +2,13 @@
 // The bytecode interpreter: one memory image, a register stack and a call stack, all
 // allocated once by the constructor. Modules must have passed bc::verifyModule.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "bytecode/module.hpp"
 #include "core/source.hpp"
+#include "vm/compiled.hpp"
 
 namespace virtcom::vm {
 
@@ -45,6 +47,12 @@ class Machine {
   // Never allocates, never throws, never touches memory outside the image.
   bool run(uint32_t pou, uint32_t thisAddress);
 
+  // Runs every POU with `code` (machine code generated from this module by src/aot/) instead
+  // of the interpreter from now on; null switches back. Results, faults and memory are the
+  // same either way, except that instructionsExecuted() does not count compiled code.
+  void useCompiled(std::shared_ptr<const CompiledCode> code) { compiled_ = std::move(code); }
+  bool usesCompiled() const { return compiled_ != nullptr; }
+
   const FaultInfo& fault() const { return fault_; }
   uint64_t instructionsExecuted() const { return executed_; }  // cumulative since construction
   // How often SYSTIME ran (cumulative): a scan that read no time and changed no memory is
@@ -61,6 +69,7 @@ class Machine {
   };
 
   bool execute(uint32_t pc, uint32_t startSp);
+  bool executeCompiled(uint32_t pou, uint32_t startSp);
   bool raise(bc::FaultKind kind, uint32_t pc, uint32_t depth, uint32_t startSp);
 
   const bc::Module& m_;
@@ -68,6 +77,8 @@ class Machine {
   std::vector<uint8_t> scratch_;
   std::vector<uint64_t> regs_;
   std::vector<CallFrame> frames_;
+  std::vector<uint32_t> compiledCallStack_;  // AotContext::callStack
+  std::shared_ptr<const CompiledCode> compiled_;
   FaultInfo fault_;
   uint32_t sp_ = 0;
   int64_t taskTimeNs_ = 0;

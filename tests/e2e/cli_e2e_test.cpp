@@ -108,7 +108,7 @@ TEST_F(CliHelp, ExecListsEveryOption) {
   RunResult r = run({"exec", "--help"});
   EXPECT_EQ(r.exitCode, 0) << show(r);
   for (const char* option : {"files", "--cycles", "--cycle-time", "--set", "--print", "--trace", "--trace-file",
-                             "--speed", "--budget", "--stats"})
+                             "--speed", "--budget", "--backend", "--stats", "--retain-file"})
     EXPECT_TRUE(contains(r.out, option)) << option << "\n" << show(r);
 }
 
@@ -123,6 +123,57 @@ TEST_F(CliHelp, Version) {
   RunResult r = run({"--version"});
   EXPECT_EQ(r.exitCode, 0) << show(r);
   EXPECT_EQ(r.out, "virtcom 0.1.0\n");
+}
+
+// --backend aot: the same output and fault report as the interpreter; without a working C
+// compiler a one-line notice, then the interpreter. Compiled modules go to the test's folder.
+class CliBackend : public CliTest {
+ protected:
+  void SetUp() override {
+    CliTest::SetUp();
+    ::setenv("VIRTCOM_AOT_CACHE", (work_ / "aot").c_str(), 1);
+  }
+  void TearDown() override {
+    ::unsetenv("VIRTCOM_AOT_CACHE");
+    ::unsetenv("CC");
+    CliTest::TearDown();
+  }
+};
+
+TEST_F(CliBackend, AotPrintsWhatTheInterpreterPrints) {
+  const std::vector<std::string> args{"exec", "ton.st", "--cycles", "40", "--trace", "MAIN.q,MAIN.et"};
+  std::vector<std::string> aot = args;
+  aot.insert(aot.end(), {"--backend", "aot"});
+  RunResult interp = run(args), compiled = run(aot);
+  EXPECT_EQ(compiled.exitCode, 0) << show(compiled);
+  EXPECT_EQ(compiled.out, interp.out) << show(compiled);
+  EXPECT_FALSE(contains(compiled.err, "notice")) << show(compiled);
+  EXPECT_TRUE(fs::exists(work_ / "aot")) << "nothing compiled";
+}
+
+TEST_F(CliBackend, AotReportsTheSameFault) {
+  RunResult interp = run({"exec", "divzero.st", "--cycles", "5"});
+  RunResult compiled = run({"exec", "divzero.st", "--cycles", "5", "--backend", "aot"});
+  EXPECT_EQ(interp.exitCode, 2) << show(interp);
+  EXPECT_EQ(compiled.exitCode, 2) << show(compiled);
+  EXPECT_TRUE(contains(compiled.err, "division by zero at divzero.st:8:")) << show(compiled);
+  EXPECT_EQ(compiled.err, interp.err);
+  EXPECT_EQ(compiled.out, interp.out);
+}
+
+TEST_F(CliBackend, WithoutACompilerFallsBackToTheInterpreter) {
+  ::setenv("CC", "virtcom-no-such-compiler", 1);
+  RunResult r = run({"exec", "counter.st", "--cycles", "5", "--print", "MAIN.count", "--backend", "aot"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.count = 5\n");
+  EXPECT_TRUE(contains(r.err, "notice: --backend aot unavailable, using the interpreter")) << show(r);
+  EXPECT_TRUE(contains(r.err, "virtcom-no-such-compiler")) << show(r);
+}
+
+TEST_F(CliBackend, UnknownBackendIsAUsageError) {
+  RunResult r = run({"exec", "counter.st", "--backend", "jit"});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "--backend")) << show(r);
 }
 
 class CliUsage : public CliTest {};
@@ -240,6 +291,44 @@ TEST_F(CliExec, PrintAfterCycles) {
   EXPECT_EQ(r.exitCode, 0) << show(r);
   EXPECT_EQ(r.out, "MAIN.count = 5\n");
   EXPECT_EQ(r.err, "");
+}
+
+TEST_F(CliExec, RetainFileGivesAWarmStart) {
+  const std::string file = (work_ / "retain.txt").string();
+  const std::vector<std::string> args{"exec", "retain.st", "--cycles", "3", "--retain-file", file, "--print", "MAIN.total",
+                                      "--print", "MAIN.scans", "--print", "gRuns", "--print", "MAIN.history", "--print", "gName"};
+  RunResult first = run(args);
+  EXPECT_EQ(first.exitCode, 0) << show(first);
+  EXPECT_EQ(first.out, "MAIN.total = 3\nMAIN.scans = 3\ngRuns = 1\nMAIN.history = [0, 1]\ngName = 'run1'\n");
+  RunResult second = run(args);
+  EXPECT_EQ(second.exitCode, 0) << show(second);
+  EXPECT_EQ(second.out, "MAIN.total = 6\nMAIN.scans = 3\ngRuns = 2\nMAIN.history = [1, 2]\ngName = 'run2'\n");
+  // Globals are saved under their qualified names: retain.st's globals form the list 'retain'.
+  const std::string saved = readFile(file);
+  EXPECT_TRUE(contains(saved, "retain.gRuns 0200 INT\n")) << saved;
+  EXPECT_TRUE(contains(saved, "MAIN.total 06000000 DINT\n")) << saved;
+}
+
+TEST_F(CliExec, RetainFileSkipsVariablesWhoseTypeChanged) {
+  const std::string file = (work_ / "retain.txt").string();
+  {
+    std::ofstream out(file);
+    out << "MAIN.total 0500000000000000 LINT\nretain.gRuns 0700 INT\nMAIN.gone 01 BOOL\n";
+  }
+  RunResult r = run({"exec", "retain.st", "--cycles", "1", "--retain-file", file, "--print", "MAIN.total", "--print", "gRuns"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.total = 1\ngRuns = 8\n");
+}
+
+TEST_F(CliExec, MalformedRetainFileIsAnError) {
+  const std::string file = (work_ / "retain.txt").string();
+  {
+    std::ofstream out(file);
+    out << "gRuns zz INT\n";
+  }
+  RunResult r = run({"exec", "retain.st", "--retain-file", file});
+  EXPECT_EQ(r.exitCode, 64) << show(r);
+  EXPECT_TRUE(contains(r.err, "retain.txt:1: expected NAME HEX TYPE")) << show(r);
 }
 
 TEST_F(CliExec, DefaultIsOneCycle) {
@@ -560,6 +649,31 @@ TEST_F(CliPlcopen, ExportedStProgramChecksAndRunsAsXml) {
   r = run({"exec", out, "--cycles", "4", "--print", "MAIN.count"});
   EXPECT_EQ(r.exitCode, 0) << show(r);
   EXPECT_EQ(r.out, "MAIN.count = 4\n");
+}
+
+// A textual SFC chart is exported as a graphical chart; the XML runs with the same steps.
+TEST_F(CliPlcopen, ExportedSfcChartTracesTheSameSteps) {
+  std::string out = (work_ / "figure8.xml").string();
+  RunResult r = run({"export", "--plcopen", out, "sfc_figure8.st"});
+  ASSERT_EQ(r.exitCode, 0) << show(r);
+  std::string xml = readFile(out);
+  EXPECT_TRUE(contains(xml, "<step localId=\"1\" name=\"Init\" initialStep=\"true\">")) << xml;
+  EXPECT_TRUE(contains(xml, "<simultaneousDivergence")) << xml;
+  RunResult st = run({"exec", "sfc_figure8.st", "--cycles", "8", "--trace-steps"});
+  RunResult fromXml = run({"exec", out, "--cycles", "8", "--trace-steps"});
+  ASSERT_EQ(st.exitCode, 0) << show(st);
+  ASSERT_EQ(fromXml.exitCode, 0) << show(fromXml);
+  EXPECT_TRUE(contains(st.out, "MAIN.Step2_1 MAIN.Step2_2")) << show(st);
+  EXPECT_EQ(fromXml.out, st.out);
+}
+
+// A ladder program in XML and an ST function block checked together (as a cell's sources).
+TEST_F(CliPlcopen, CheckAcceptsXmlAndStMixed) {
+  RunResult r = run({"check", "cells/ld_handshake.xml", "cells/edge_counter.st"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  r = run({"exec", "cells/ld_handshake.xml", "cells/edge_counter.st", "--cycles", "2", "--print", "MAIN.starts.count"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.starts.count = 1\n");
 }
 
 TEST_F(CliPlcopen, ExportRefusesAProgramWithErrors) {

@@ -41,10 +41,12 @@ constexpr int kSetpointRegister = 1024;  // %MW0
 
 class ModbusE2e : public ::testing::Test {
  protected:
+  virtual std::vector<std::string> execArgs() const {
+    return {"exec", "modbus_io.st", "--modbus", "127.0.0.1:0", "--set", "MAIN.inWord=7"};
+  }
+
   void SetUp() override {
-    plc_ = std::make_unique<ServerProcess>(
-        kExe, std::vector<std::string>{"exec", "modbus_io.st", "--modbus", "127.0.0.1:0", "--set", "MAIN.inWord=7"}, kDataDir,
-        "modbus: serving on ");
+    plc_ = std::make_unique<ServerProcess>(kExe, execArgs(), kDataDir, "modbus: serving on ");
     port_ = plc_->port();
     ASSERT_GT(port_, 0) << "no 'modbus: serving on' line; stderr so far:\n" << plc_->errorOutput();
   }
@@ -137,6 +139,45 @@ TEST_F(ModbusE2e, LibmodbusReadsTheImageAndThePlcReactsToWrites) {
   EXPECT_EQ(errno, EMBXILADD);
   EXPECT_EQ(modbus_read_input_registers(ctx, 60000, 1, &none), -1);
   EXPECT_EQ(errno, EMBXILADD);
+}
+
+// exec --modbus-writable-inputs: a client playing the field writes %IW/%IX through holding
+// registers 8192.. (docs/modbus.md); the FC2/FC4 tables still show the same bytes.
+class ModbusWritableInputsE2e : public ModbusE2e {
+ protected:
+  std::vector<std::string> execArgs() const override {
+    return {"exec", "modbus_io.st", "--modbus", "127.0.0.1:0", "--modbus-writable-inputs"};
+  }
+};
+
+TEST_F(ModbusE2e, InputsAreNotWritableByDefault) {
+  modbus_t* ctx = connect();
+  ASSERT_NE(ctx, nullptr) << modbus_strerror(errno);
+  EXPECT_EQ(modbus_write_register(ctx, 8192, 1), -1);
+  EXPECT_EQ(errno, EMBXILADD);
+}
+
+TEST_F(ModbusWritableInputsE2e, ClientWritesInputsThroughHoldingRegisters) {
+  modbus_t* ctx = connect();
+  ASSERT_NE(ctx, nullptr) << modbus_strerror(errno);
+  ASSERT_GE(awaitRegister(ctx, kCountRegister, 2), 2);
+  uint8_t lamp = 0;
+  ASSERT_EQ(modbus_read_bits(ctx, 1, 1, &lamp), 1);
+  EXPECT_EQ(lamp, 1);  // lamp AT %QX0.1 := NOT inBit, inBit AT %IX0.0 still FALSE
+  uint16_t field[] = {1, 99};  // register 8192 = %IW0 (bit 0 = %IX0.0), 8193 = %IW1 (inWord)
+  ASSERT_EQ(modbus_write_registers(ctx, 8192, 2, field), 2) << modbus_strerror(errno);
+  uint16_t inWord = 0;
+  auto until = std::chrono::steady_clock::now() + kDeadline;
+  while (std::chrono::steady_clock::now() < until) {
+    if (modbus_read_bits(ctx, 1, 1, &lamp) == 1 && lamp == 0) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  EXPECT_EQ(lamp, 0);  // the program saw %IX0.0 = TRUE
+  ASSERT_EQ(modbus_read_input_registers(ctx, 1, 1, &inWord), 1);
+  EXPECT_EQ(inWord, 99);
+  uint8_t inBit = 0;
+  ASSERT_EQ(modbus_read_input_bits(ctx, 0, 1, &inBit), 1);
+  EXPECT_EQ(inBit, 1);
 }
 
 TEST_F(ModbusE2e, ManyClientsAndAbruptDisconnectsDoNotStopTheServer) {

@@ -26,6 +26,7 @@ namespace {
 const char* const kExe = VIRTCOM_EXE;
 const char* const kDataDir = VIRTCOM_E2E_DATA;
 const std::string kGearbox = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell/cell.yaml";
+const std::string kGearboxSfc = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell/cell-sfc.yaml";
 const std::string kGoldenDir = std::string(VIRTCOM_SOURCE_DIR) + "/tests/golden/cells";
 const char* const kChromium = "/usr/bin/chromium";
 
@@ -43,6 +44,24 @@ std::string readFile(const fs::path& p) {
 }
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// Whether the BOOL signals `a` and `b` of a `--csv` trace (time_s,signal,value rows of the
+// changes, in time order) are 1 together after all the changes of some instant.
+bool bothActiveAtSomeTime(const std::string& csv, const std::string& a, const std::string& b) {
+  std::istringstream in(csv);
+  std::string line, time;
+  bool aOn = false, bOn = false;
+  while (std::getline(in, line)) {
+    size_t first = line.find(','), last = line.rfind(',');
+    if (first == std::string::npos || first == last) continue;
+    if (line.substr(0, first) != time && aOn && bOn) return true;
+    time = line.substr(0, first);
+    const std::string signal = line.substr(first + 1, last - first - 1);
+    if (signal == a) aOn = line.substr(last + 1) == "1";
+    if (signal == b) bOn = line.substr(last + 1) == "1";
+  }
+  return aOn && bOn;
+}
 
 std::string show(const RunResult& r) {
   return "exit " + std::to_string(r.exitCode) + "\n--- stdout ---\n" + r.out + "--- stderr ---\n" + r.err;
@@ -109,7 +128,7 @@ TEST_F(RunHelp, ListsEveryOption) {
   EXPECT_EQ(r.exitCode, 0) << show(r);
   EXPECT_TRUE(contains(r.out, "Simulate a cell file")) << show(r);
   for (const char* option : {"cell", "--report", "--json", "--vcd", "--csv", "--until", "--time-limit", "--set",
-                             "--signal", "--speed", "--quiet"})
+                             "--signal", "--speed", "--backend", "--quiet"})
     EXPECT_TRUE(contains(r.out, option)) << option << "\n" << show(r);
   EXPECT_EQ(r.err, "");
 }
@@ -158,6 +177,21 @@ TEST_F(RunExit, Sequence3CompletesAndWritesEveryReport) {
             0u)
       << csv.substr(0, 200);
   EXPECT_TRUE(contains(csv, ",MAIN.jobsFinished,")) << "run.record adds MAIN.jobsFinished";
+}
+
+// --backend aot runs the cell's PLC as machine code: the same golden report and VCD as the
+// interpreter. The compiled module is cached in the test's own folder.
+TEST_F(RunExit, AotBackendWritesTheSameReport) {
+  ::setenv("VIRTCOM_AOT_CACHE", out("aot").c_str(), 1);
+  RunResult r = run({"run", kGearbox, "--set", "MAIN.sequence=3", "--json", out("aot.json"), "--vcd", out("aot.vcd"),
+                     "--backend", "aot"});
+  RunResult interp = run({"run", kGearbox, "--set", "MAIN.sequence=3", "--vcd", out("interp.vcd")});
+  ::unsetenv("VIRTCOM_AOT_CACHE");
+  ASSERT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.err, "") << "no fallback notice";
+  EXPECT_TRUE(fs::exists(out("aot"))) << "nothing compiled";
+  EXPECT_EQ(readFile(out("aot.json")), readFile(kGoldenDir + "/gearbox-seq3.json"));
+  EXPECT_EQ(readFile(out("aot.vcd")), readFile(out("interp.vcd")));
 }
 
 // Also shows that --set is applied before the first scan: the program loads its job list in
@@ -231,6 +265,20 @@ TEST_F(RunExit, UntilStopsEarly) {
   EXPECT_EQ(csv.find('\n', last), csv.size() - 1) << csv.substr(last > 300 ? last - 300 : 0);
 }
 
+// A cell whose PLC program is a ladder diagram in PLCopen XML, mixed with an ST function block
+// (cells/ld_handshake.yaml): loaded, compiled and run like ST sources.
+TEST_F(RunExit, CellWithAPlcopenLadderProgramRuns) {
+  RunResult r = run({"run", "cells/ld_handshake.yaml", "--csv", out("ld.csv")});
+  ASSERT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.err, "");
+  EXPECT_TRUE(contains(r.out, "Run ended     completed: 1 cycle(s) completed")) << show(r);
+  // the rung `NOT finished -> exec` started the clamp once; the ST block counted that one start
+  const std::string csv = readFile(out("ld.csv"));
+  EXPECT_TRUE(contains(csv, ",MAIN.starts.count,1\n")) << csv;
+  EXPECT_FALSE(contains(csv, ",MAIN.starts.count,2")) << csv;
+  EXPECT_TRUE(contains(csv, ",Clamp.done,1\n")) << csv;
+}
+
 TEST_F(RunExit, QuietPrintsNothing) {
   RunResult r = run({"run", kGearbox, "--set", "MAIN.sequence=4", "--quiet"});
   EXPECT_EQ(r.exitCode, 3) << show(r);
@@ -262,6 +310,45 @@ PngSize pngSize(const std::string& bytes) {
   s.height = be32(20);
   s.ok = true;
   return s;
+}
+
+// The SFC version of the gearbox program (cell-sfc.yaml, plc/main_sfc.st) against the ST one
+// (cell.yaml): the JSON report holds the measured cycle time and every device operation with
+// its start and end, so equal reports mean the same cycle time and the same Gantt chart.
+class RunSfc : public RunCommand {};
+
+TEST_F(RunSfc, SameCycleTimeAndGanttAsTheStProgramForEverySequence) {
+  for (const std::string sequence : {"1", "2", "3", "4"}) {
+    const std::string set = "MAIN.sequence=" + sequence;
+    RunResult st = run({"run", kGearbox, "--quiet", "--set", set, "--json", out("st" + sequence + ".json")});
+    RunResult sfc = run({"run", kGearboxSfc, "--quiet", "--set", set, "--json", out("sfc" + sequence + ".json")});
+    EXPECT_EQ(sfc.exitCode, st.exitCode) << "sequence " << sequence << "\n" << show(sfc);
+    EXPECT_EQ(sfc.err, "") << show(sfc);
+    const std::string json = readFile(out("sfc" + sequence + ".json"));
+    EXPECT_TRUE(contains(json, "\"activities\": [\n    {")) << "sequence " << sequence << " ran no operation";
+    EXPECT_EQ(json, readFile(out("st" + sequence + ".json"))) << "sequence " << sequence;
+  }
+}
+
+// The chart's steps are PLC variables (MAIN.<Step>.X): cell-sfc.yaml records them, so the CSV
+// shows when each device's branch runs a job, and `--signal` puts them on the report's timeline.
+TEST_F(RunSfc, RecordsTheActiveStepsOfEveryBranch) {
+  const std::vector<std::string> flags{"MAIN.Robot1Work.X", "MAIN.Robot2Work.X", "MAIN.PressWork.X",
+                                       "MAIN.AxisXWork.X", "MAIN.AxisYWork.X"};
+  std::vector<std::string> args{"run", kGearboxSfc, "--set", "MAIN.sequence=3", "--csv", out("seq3.csv"),
+                                "--report", out("seq3.html")};
+  for (const std::string& flag : flags) args.insert(args.end(), {"--signal", flag});
+  RunResult r = run(args);
+  ASSERT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(contains(r.out, "Run ended     completed: 1 cycle(s) completed")) << show(r);
+  const std::string csv = readFile(out("seq3.csv"));
+  const std::string html = readFile(out("seq3.html"));
+  for (const std::string& flag : flags) {
+    EXPECT_TRUE(contains(csv, "," + flag + ",1\n")) << flag << " never became active";
+    EXPECT_TRUE(contains(html, flag)) << flag << " is not in the report";
+  }
+  // Robot2 screws the first studs while Robot1 fetches the bearings: both branches work at once.
+  EXPECT_TRUE(bothActiveAtSomeTime(csv, "MAIN.Robot1Work.X", "MAIN.Robot2Work.X"));
 }
 
 class RunReport : public RunCommand {};

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "aot/compile.hpp"
 #include "bytecode/module.hpp"
 #include "core/clock.hpp"
 #include "lang/sfc/step_monitor.hpp"
@@ -170,21 +171,50 @@ void checkScan(const bc::Module& module, const Header& h, int64_t scan, const st
 
 void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.name; }
 
+// The case's files and its LIB: files, compiled together. Null on compile errors.
+std::unique_ptr<bc::Module> compileCase(const GoldenCase& c, const Header& h, SourceManager& sources, Diagnostics& diags) {
+  std::vector<st::SourceInput> inputs;
+  for (const auto& f : c.files) inputs.push_back({fs::relative(f, kRoot).string(), readFile(f)});
+  for (const auto& lib : h.libs) {
+    const fs::path libFile = fs::path(VIRTCOM_SOURCE_DIR) / "lib" / lib;
+    if (!fs::exists(libFile)) {
+      ADD_FAILURE() << "LIB: " << libFile << " does not exist";
+      return nullptr;
+    }
+    inputs.push_back({"lib/" + lib, readFile(libFile)});
+  }
+  return st::compileProgram(inputs, sources, diags);
+}
+
+void setCycleTime(bc::Module& module, const Header& h) {
+  for (auto& t : module.tasks)
+    if (t.name == "MainTask" || t.name == "__DEFAULT") t.intervalNs = parseCycleTimeNs(h.cycleTime);
+}
+
+plc::RuntimeOptions runtimeOptions() {
+  plc::RuntimeOptions options;
+  options.instructionBudget = 2'000'000;
+  return options;
+}
+
+// The header's set= presets, written into a cold-started image.
+void applySets(const bc::Module& module, const Header& h, uint8_t* memory) {
+  for (const auto& s : h.sets) {
+    auto eq = s.find('=');
+    auto ref = bc::resolveVariable(module, s.substr(0, eq));
+    ASSERT_TRUE(ref) << "unknown variable in set=" << s;
+    ASSERT_EQ(bc::writeValueFromText(module, *ref, s.substr(eq + 1), memory), "");
+  }
+}
+
 class Golden : public ::testing::TestWithParam<GoldenCase> {};
 
 TEST_P(Golden, Run) {
   const GoldenCase& c = GetParam();
   Header h = parseHeader(readFile(c.headerFile));
-  std::vector<st::SourceInput> inputs;
-  for (const auto& f : c.files) inputs.push_back({fs::relative(f, kRoot).string(), readFile(f)});
-  for (const auto& lib : h.libs) {
-    const fs::path libFile = fs::path(VIRTCOM_SOURCE_DIR) / "lib" / lib;
-    ASSERT_TRUE(fs::exists(libFile)) << "LIB: " << libFile << " does not exist";
-    inputs.push_back({"lib/" + lib, readFile(libFile)});
-  }
   SourceManager sources;
   Diagnostics diags;
-  auto module = st::compileProgram(inputs, sources, diags);
+  auto module = compileCase(c, h, sources, diags);
   std::string rendered = diags.render(sources);
 
   uint32_t headerFileId = 0;
@@ -216,19 +246,11 @@ TEST_P(Golden, Run) {
   ASSERT_NE(module, nullptr) << rendered;
   EXPECT_EQ(warnings, h.warningLines) << rendered;
 
-  for (auto& t : module->tasks)
-    if (t.name == "MainTask" || t.name == "__DEFAULT") t.intervalNs = parseCycleTimeNs(h.cycleTime);
+  setCycleTime(*module, h);
   VirtualClock clock;
-  plc::RuntimeOptions options;
-  options.instructionBudget = 2'000'000;
-  plc::Runtime runtime(*module, clock, options);
+  plc::Runtime runtime(*module, clock, runtimeOptions());
   ASSERT_TRUE(runtime.coldStart()) << runtime.faultText();
-  for (const auto& s : h.sets) {
-    auto eq = s.find('=');
-    auto ref = bc::resolveVariable(*module, s.substr(0, eq));
-    ASSERT_TRUE(ref) << "unknown variable in set=" << s;
-    ASSERT_EQ(bc::writeValueFromText(*module, *ref, s.substr(eq + 1), runtime.machine().memory()), "");
-  }
+  applySets(*module, h, runtime.machine().memory());
   bool faulted = false;
   std::vector<sfc::StepVariable> steps = sfc::findSteps(*module);
   std::map<std::string, std::string> bitsSeen;
@@ -254,6 +276,49 @@ TEST_P(Golden, Run) {
     }
     EXPECT_EQ(bc::formatValue(*module, *ref, runtime.machine().memory()), expected) << name;
   }
+}
+
+// The AOT backend (src/aot) against the interpreter: every program that runs gives the same
+// whole memory image (stack included) after every scan, and faults at the same scan with the
+// same report (kind, file:line:col, call stack).
+TEST_P(Golden, AotMatchesInterpreter) {
+  const GoldenCase& c = GetParam();
+  Header h = parseHeader(readFile(c.headerFile));
+  if (h.expectErrors) GTEST_SKIP() << "does not compile";
+  SourceManager sources;
+  Diagnostics diags;
+  auto module = compileCase(c, h, sources, diags);
+  ASSERT_NE(module, nullptr) << diags.render(sources);
+  setCycleTime(*module, h);
+  aot::CompileOptions aotOptions;
+  aotOptions.cacheDir = VIRTCOM_AOT_TEST_CACHE;
+  const aot::CompileResult compiled = aot::compileModule(*module, aotOptions);
+  ASSERT_TRUE(compiled.code) << compiled.error;
+
+  VirtualClock interpClock, aotClock;
+  plc::Runtime interp(*module, interpClock, runtimeOptions()), native(*module, aotClock, runtimeOptions());
+  native.machine().useCompiled(compiled.code);
+  const bool started = interp.coldStart();
+  ASSERT_EQ(native.coldStart(), started) << native.faultText();
+  const uint32_t size = interp.machine().memorySize();
+  const auto sameImage = [&](int64_t scan) {
+    const uint8_t* a = interp.machine().memory();
+    const uint8_t* b = native.machine().memory();
+    const auto diff = std::mismatch(a, a + size, b);
+    EXPECT_EQ(diff.first, a + size) << "memory differs at address " << (diff.first - a) << " after scan " << scan;
+    return diff.first == a + size;
+  };
+  ASSERT_TRUE(sameImage(0));
+  applySets(*module, h, interp.machine().memory());
+  applySets(*module, h, native.machine().memory());
+  for (int64_t k = 1; started && k <= h.cycles; ++k) {
+    const bool ran = interp.tick();
+    ASSERT_EQ(native.tick(), ran) << "scan " << k << ": " << interp.faultText() << " / " << native.faultText();
+    ASSERT_TRUE(sameImage(k));
+    if (!ran) break;
+  }
+  EXPECT_EQ(native.faultText(), interp.faultText());
+  EXPECT_EQ(native.machine().timeReads(), interp.machine().timeReads());
 }
 
 std::string caseName(const ::testing::TestParamInfo<GoldenCase>& info) {

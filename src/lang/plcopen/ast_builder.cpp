@@ -1,5 +1,7 @@
 #include "lang/plcopen/ast_builder.hpp"
 
+#include "lang/st/ast_clone.hpp"
+
 namespace virtcom::plcopen {
 
 st::ExprPtr AstBuilder::expr(st::ExprKind kind, SourceLocation loc) {
@@ -58,24 +60,7 @@ st::ExprPtr AstBuilder::binary(st::BinaryOp op, st::ExprPtr lhs, st::ExprPtr rhs
   return e;
 }
 
-st::ExprPtr AstBuilder::clone(const st::Expr& src) {
-  auto e = expr(src.kind, src.loc);
-  e->unaryOp = src.unaryOp;
-  e->binaryOp = src.binaryOp;
-  e->wide = src.wide;
-  e->intValue = src.intValue;
-  e->realValue = src.realValue;
-  e->text = src.text;
-  e->typePrefix = src.typePrefix;
-  if (src.lhs) e->lhs = clone(*src.lhs);
-  if (src.rhs) e->rhs = clone(*src.rhs);
-  for (const auto& item : src.items) e->items.push_back(item ? clone(*item) : nullptr);
-  for (const auto& arg : src.args) {
-    st::CallArg copy{arg.name, arg.output, arg.negated, arg.value ? clone(*arg.value) : nullptr, arg.loc};
-    e->args.push_back(std::move(copy));
-  }
-  return e;
-}
+st::ExprPtr AstBuilder::clone(const st::Expr& src) { return st::cloneExpr(src, &nextNodeId_); }
 
 st::StmtPtr AstBuilder::assign(st::ExprPtr lhs, st::ExprPtr rhs, st::StmtKind kind) {
   auto s = makeStmt(kind, lhs->loc);

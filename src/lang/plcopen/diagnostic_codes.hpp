@@ -10,7 +10,4 @@ namespace diag {
 #undef X
 }  // namespace diag
 
-// The short title of a code ("dangling connection"), or empty if unknown.
-std::string_view diagnosticTitle(std::string_view code);
-
 }  // namespace virtcom::plcopen

@@ -2,10 +2,12 @@
 
 #include <pugixml.hpp>
 
+#include <span>
 #include <sstream>
 
 #include "core/iec_value.hpp"
 #include "lang/plcopen/diagnostic_codes.hpp"
+#include "lang/plcopen/export_internal.hpp"
 #include "lang/st/printer.hpp"
 
 namespace virtcom::plcopen {
@@ -79,23 +81,22 @@ class Exporter {
     diags_.error(diag::X004, loc, what + " cannot be written to PLCopen TC6 XML");
   }
   void pou(pugi::xml_node pous, const st::Pou& p);
-  void interface(pugi::xml_node parent, const st::Pou& p);
+  // `lowered`: the variable blocks a chart's lowering added, not written.
+  void interface(pugi::xml_node parent, const st::Pou& p, st::ChartSource::Range lowered = {});
+  void body(pugi::xml_node node, const st::Pou& p);
   void varList(pugi::xml_node parent, const st::VarBlock& block, const char* element);
   void variable(pugi::xml_node list, const st::VarDecl& decl);
   void type(pugi::xml_node holder, const st::TypeSpec& spec);
   void value(pugi::xml_node holder, const st::Expr& init);
-  void stBody(pugi::xml_node parent, const st::StmtList& body);
+  void stBody(pugi::xml_node parent, std::span<const st::StmtPtr> body);
   void configuration(pugi::xml_node configurations, const st::Configuration& cfg);
 
   const ExportOptions& options_;
   Diagnostics& diags_;
 };
 
-void Exporter::stBody(pugi::xml_node parent, const st::StmtList& body) {
-  pugi::xml_node p = parent.append_child("body").append_child("ST").append_child("xhtml:p");
-  std::string text = st::printStatements(body);
-  // A CDATA section cannot hold "]]>"; such text goes escaped instead.
-  p.append_child(text.find("]]>") == std::string::npos ? pugi::node_cdata : pugi::node_pcdata).set_value(text.c_str());
+void Exporter::stBody(pugi::xml_node parent, std::span<const st::StmtPtr> body) {
+  detail::writeStText(parent.append_child("body").append_child("ST"), st::printStatements(body));
 }
 
 void Exporter::type(pugi::xml_node holder, const st::TypeSpec& spec) {
@@ -201,10 +202,12 @@ void Exporter::varList(pugi::xml_node parent, const st::VarBlock& block, const c
   for (const auto& decl : block.vars) variable(list, decl);
 }
 
-void Exporter::interface(pugi::xml_node parent, const st::Pou& p) {
+void Exporter::interface(pugi::xml_node parent, const st::Pou& p, st::ChartSource::Range lowered) {
   pugi::xml_node i = parent.append_child("interface");
   if (p.hasReturnType) type(i.append_child("returnType"), p.returnType);
-  for (const auto& block : p.varBlocks) {
+  for (size_t k = 0; k < p.varBlocks.size(); ++k) {
+    if (lowered.contains(k)) continue;
+    const st::VarBlock& block = p.varBlocks[k];
     const char* element = varListElement(block.section);
     if (!element) unsupported(block.loc, "VAR_INST / VAR_STAT");
     else varList(i, block, element);
@@ -219,16 +222,18 @@ void Exporter::pou(pugi::xml_node pous, const st::Pou& p) {
   pugi::xml_node node = pous.append_child("pou");
   node.append_attribute("name") = p.name.c_str();
   node.append_attribute("pouType") = pouType;
-  interface(node, p);
-  if (!p.actions.empty()) {
-    pugi::xml_node actions = node.append_child("actions");
-    for (const auto& a : p.actions) {
-      pugi::xml_node action = actions.append_child("action");
-      action.append_attribute("name") = a->name.c_str();
-      stBody(action, a->body);
-    }
+  // A chart is written as a chart, without what its lowering added to the POU.
+  st::ChartSource lowered = p.chart.value_or(st::ChartSource{});
+  interface(node, p, lowered.varBlocks);
+  pugi::xml_node actions;
+  for (size_t k = 0; k < p.actions.size(); ++k) {
+    if (lowered.actions.contains(k)) continue;
+    if (!actions) actions = node.append_child("actions");
+    pugi::xml_node action = actions.append_child("action");
+    action.append_attribute("name") = p.actions[k]->name.c_str();
+    stBody(action, p.actions[k]->body);
   }
-  stBody(node, p.body);
+  body(node, p);
   writeAttributes(node, p.attributes);
   for (const auto& m : p.methods) {
     if (m->access != st::Access::Default || m->isAbstract || m->isFinal || !m->hasBody)
@@ -241,6 +246,18 @@ void Exporter::pou(pugi::xml_node pous, const st::Pou& p) {
     interface(method, *m);
     stBody(method, m->body);
   }
+}
+
+// The body; with a chart, the POU's statements before and after the lowered ones become ST
+// bodies around the SFC body (bodies run in document order).
+void Exporter::body(pugi::xml_node node, const st::Pou& p) {
+  if (!p.chart) return stBody(node, p.body);
+  const st::ChartSource& chart = *p.chart;
+  detail::writeChartTransitions(node, *chart.chart);
+  std::span<const st::StmtPtr> all(p.body);
+  if (chart.statements.begin > 0) stBody(node, all.first(chart.statements.begin));
+  detail::writeChartBody(node, *chart.chart);
+  if (chart.statements.end < all.size()) stBody(node, all.subspan(chart.statements.end));
 }
 
 void Exporter::configuration(pugi::xml_node configurations, const st::Configuration& cfg) {
@@ -338,6 +355,12 @@ std::string Exporter::run(const std::vector<const st::CompilationUnit*>& units) 
 }
 
 }  // namespace
+
+void detail::writeStText(pugi::xml_node language, const std::string& text) {
+  pugi::xml_node p = language.append_child("xhtml:p");
+  // A CDATA section cannot hold "]]>"; such text goes escaped instead.
+  p.append_child(text.find("]]>") == std::string::npos ? pugi::node_cdata : pugi::node_pcdata).set_value(text.c_str());
+}
 
 std::string exportProject(const std::vector<const st::CompilationUnit*>& units, const ExportOptions& options,
                           Diagnostics& diags) {

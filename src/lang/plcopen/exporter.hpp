@@ -17,7 +17,8 @@ struct ExportOptions {
 };
 
 // Writes the units as one project: TYPEs as <dataTypes>; POUs with structured interfaces and ST
-// bodies (in CDATA), ACTIONs as <actions>; METHODs and global variable lists as the CODESYS
+// bodies (in CDATA), charts (textual or imported SFC, st::Pou::chart) as graphical <SFC> bodies
+// without their lowered ST, ACTIONs as <actions>; METHODs and global variable lists as the CODESYS
 // vendor data (`.../plcopenxml/method`, `.../plcopenxml/globalvars`) CODESYS and this importer
 // read; CONFIGURATIONs as <instances>. What TC6 cannot hold (INTERFACE, PROPERTY, EXTENDS,
 // REFERENCE TO, ARRAY[*], VAR_INST/VAR_STAT, FB_init arguments) is reported as X004 at the

@@ -329,4 +329,10 @@ bool isPlcopenPath(std::string_view path) {
   return ext[0] == '.' && (ext[1] | 0x20) == 'x' && (ext[2] | 0x20) == 'm' && (ext[3] | 0x20) == 'l';
 }
 
+st::SourceInput sourceInput(std::string path, std::string text) {
+  st::FrontEnd frontEnd;
+  if (isPlcopenPath(path)) frontEnd = importProject;
+  return {std::move(path), std::move(text), std::move(frontEnd)};
+}
+
 }  // namespace virtcom::plcopen

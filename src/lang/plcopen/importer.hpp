@@ -3,10 +3,12 @@
 // Beremiz or the OpenPLC editor) to the same syntax tree the ST parser produces, so the checker,
 // code generator and everything downstream work unchanged.
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 #include "core/diagnostics.hpp"
 #include "lang/st/ast.hpp"
+#include "lang/st/compiler.hpp"
 
 namespace virtcom::plcopen {
 
@@ -21,5 +23,9 @@ st::CompilationUnit importProject(uint32_t fileId, std::string_view text, Diagno
 
 // True for the files importProject() reads: the extension is .xml (any case).
 bool isPlcopenPath(std::string_view path);
+
+// A compiler input for a file of any kind: .xml files get importProject() as front end, all
+// others are Structured Text. Every command and the cell loader pick front ends only here.
+st::SourceInput sourceInput(std::string path, std::string text);
 
 }  // namespace virtcom::plcopen

@@ -44,6 +44,12 @@ st::ExprPtr AstBuilder::timeLit(int64_t ns) {
   return e;
 }
 
+st::ExprPtr AstBuilder::intLit(uint64_t value) {
+  st::ExprPtr e = expr(st::ExprKind::IntLit);
+  e->intValue = value;
+  return e;
+}
+
 st::ExprPtr AstBuilder::notOf(st::ExprPtr operand) {
   st::ExprPtr e = expr(st::ExprKind::Unary);
   e->unaryOp = st::UnaryOp::Not;
@@ -105,6 +111,17 @@ st::StmtPtr AstBuilder::ifThenElse(st::ExprPtr cond, st::StmtList body, st::Stmt
   s->elseBody = std::move(elseBody);
   return s;
 }
+
+st::StmtPtr AstBuilder::forLoop(std::string_view counter, uint64_t from, uint64_t to, st::StmtList body) {
+  st::StmtPtr s = stmt(st::StmtKind::For);
+  s->lhs = name(counter);
+  s->rhs = intLit(from);
+  s->to = intLit(to);
+  s->body = std::move(body);
+  return s;
+}
+
+st::StmtPtr AstBuilder::exitLoop() { return stmt(st::StmtKind::Exit); }
 
 st::VarDecl AstBuilder::varDecl(std::string_view name, std::string_view typeName, bool hidden) {
   st::VarDecl decl;

@@ -17,6 +17,7 @@ class AstBuilder {
   st::ExprPtr member(std::string_view base, std::string_view field);  // base.field
   st::ExprPtr boolLit(bool value);
   st::ExprPtr timeLit(int64_t ns);
+  st::ExprPtr intLit(uint64_t value);
   st::ExprPtr notOf(st::ExprPtr operand);
   st::ExprPtr binary(st::BinaryOp op, st::ExprPtr lhs, st::ExprPtr rhs);
   // lhs OR rhs, where a null side is "no term" (so terms can be collected one by one).
@@ -27,6 +28,9 @@ class AstBuilder {
   st::StmtPtr callStmt(std::string_view callee);  // callee();
   st::StmtPtr ifThen(st::ExprPtr cond, st::StmtList body);
   st::StmtPtr ifThenElse(st::ExprPtr cond, st::StmtList body, st::StmtList elseBody);
+  // FOR counter := from TO to DO body END_FOR
+  st::StmtPtr forLoop(std::string_view counter, uint64_t from, uint64_t to, st::StmtList body);
+  st::StmtPtr exitLoop();
 
   // A variable declaration `name : typeName` with optional {attribute 'hide'}.
   st::VarDecl varDecl(std::string_view name, std::string_view typeName, bool hidden);

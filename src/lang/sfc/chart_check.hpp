@@ -38,4 +38,9 @@ inline constexpr size_t kMaxSituations = 20000;
 inline constexpr size_t kMaxFirings = 1000000;
 bool analyseChart(const Chart& chart, const ResolvedChart& resolved, Diagnostics& diags);
 
+// E409 for every assignment (or call output `=>`) to a step flag `Step.X` / `Step.T` in the
+// POU's statements, ACTIONs and METHODs and the chart's transition bodies and actions: only the
+// chart sets them. Returns false if it reported an error.
+bool checkStepWrites(const Chart& chart, const st::Pou& pou, Diagnostics& diags);
+
 }  // namespace virtcom::sfc::detail

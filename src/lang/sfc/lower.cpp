@@ -6,6 +6,7 @@
 
 #include "lang/sfc/ast_builder.hpp"
 #include "lang/sfc/chart_check.hpp"
+#include "lang/st/ast_clone.hpp"
 
 namespace virtcom::sfc {
 
@@ -27,10 +28,16 @@ std::string hiddenName(std::string_view kind, size_t index, std::string_view suf
   return "__sfc_" + std::string(kind) + std::to_string(index) + std::string(suffix);
 }
 
+bool wantsTransientChaining(const st::Pou& pou) {
+  for (const st::Attribute& a : pou.attributes)
+    if (nameKey(a.name) == nameKey(kTransientChainingAttribute)) return true;
+  return false;
+}
+
 class Lowering {
  public:
   Lowering(Chart& chart, const detail::ResolvedChart& r, st::Pou& pou, st::NodeId& nextNodeId)
-      : chart_(chart), r_(r), pou_(pou), b_(nextNodeId) {}
+      : chart_(chart), r_(r), pou_(pou), b_(nextNodeId), chaining_(wantsTransientChaining(pou)) {}
 
   void run() {
     collectActions();
@@ -39,7 +46,14 @@ class Lowering {
     hide("__sfc_now", "LTIME");
     st::StmtList code = clearEdgeFlags();
     code.push_back(b_.assign(b_.name("__sfc_now"), b_.call("__SYSTIME_NS", nullptr)));
-    code.push_back(b_.ifThenElse(b_.notOf(b_.name("__sfc_init")), firstCall(), laterCall()));
+    if (chaining_) {
+      code.push_back(b_.ifThenElse(b_.notOf(b_.name("__sfc_init")), firstCall(), advanceTimes()));
+      code.push_back(chainedEvolution());
+    } else {
+      st::StmtList later = advanceTimes();
+      for (st::StmtPtr& s : evolution()) later.push_back(std::move(s));
+      code.push_back(b_.ifThenElse(b_.notOf(b_.name("__sfc_init")), firstCall(), std::move(later)));
+    }
     for (size_t j = 0; j < actions_.size(); ++j)
       for (st::StmtPtr& s : actionControl(j)) code.push_back(std::move(s));
     declareSteps();
@@ -125,8 +139,7 @@ class Lowering {
     return out;
   }
 
-  st::StmtList laterCall() {
-    b_.at(chart_.loc);
+  st::StmtList advanceTimes() {
     st::StmtList out;
     for (size_t k = 0; k < chart_.steps.size(); ++k) {
       b_.at(chart_.steps[k].loc);
@@ -134,6 +147,29 @@ class Lowering {
       advance.push_back(b_.assign(stepT(k), elapsedSince(hiddenName("s", k, "_start"))));
       out.push_back(b_.ifThen(stepX(k), std::move(advance)));
     }
+    return out;
+  }
+
+  // FOR __sfc_pass := 1 TO <steps> DO <evolution> IF NOT (t0 OR t1 ...) THEN EXIT; END_IF
+  // END_FOR. Bounded by the number of steps: a cycle of always-clear transitions cannot hang
+  // the scan; what is left of it goes on in the next call.
+  st::StmtPtr chainedEvolution() {
+    b_.at(chart_.loc);
+    hide("__sfc_pass", "DINT");
+    st::StmtList pass = evolution();
+    b_.at(chart_.loc);
+    st::ExprPtr fired;
+    for (size_t t : r_.priorityOrder) fired = b_.orElseNull(std::move(fired), b_.name(hiddenName("t", t)));
+    if (!fired) fired = b_.boolLit(false);  // a chart of one step without transitions
+    st::StmtList stop;
+    stop.push_back(b_.exitLoop());
+    pass.push_back(b_.ifThen(b_.notOf(std::move(fired)), std::move(stop)));
+    return b_.forLoop("__sfc_pass", 1, chart_.steps.size(), std::move(pass));
+  }
+
+  // One evolution: every transition evaluated on the activity at its start, then fired.
+  st::StmtList evolution() {
+    st::StmtList out;
     for (size_t t : r_.priorityOrder) evaluate(t, out);
     // All deactivations before all activations: a step both left and entered stays active.
     for (size_t t : r_.priorityOrder) {
@@ -311,10 +347,28 @@ class Lowering {
   const detail::ResolvedChart& r_;
   st::Pou& pou_;
   AstBuilder b_;
+  bool chaining_;
   st::VarBlock hidden_;
   std::vector<ActionUse> actions_;
   std::set<size_t> risingFlag_, fallingFlag_;
 };
+
+std::vector<ActionAssociation> copyOf(const std::vector<ActionAssociation>& src) {
+  std::vector<ActionAssociation> out;
+  for (const auto& a : src) out.push_back({a.action, a.qualifier, st::cloneExprOrNull(a.duration), a.indicator, a.loc});
+  return out;
+}
+
+// The chart as written, for the exporter: lowering moves its expressions into the POU.
+std::shared_ptr<const Chart> copyOf(const Chart& src) {
+  auto c = std::make_shared<Chart>();
+  c->loc = src.loc;
+  for (const auto& s : src.steps) c->steps.push_back({s.name, s.loc, s.initial, copyOf(s.actions)});
+  for (const auto& t : src.transitions)
+    c->transitions.push_back({t.name, t.loc, t.priority, t.from, t.to, st::cloneExprOrNull(t.condition), st::cloneStatements(t.body)});
+  for (const auto& a : src.actions) c->actions.push_back({a.name, a.loc, st::cloneStatements(a.body)});
+  return c;
+}
 
 }  // namespace
 
@@ -322,8 +376,13 @@ void lowerChart(Chart chart, st::Pou& pou, Diagnostics& diags, st::NodeId& nextN
   std::vector<std::string> pouActions;
   for (const auto& a : pou.actions) pouActions.push_back(a->name);
   std::optional<detail::ResolvedChart> resolved = detail::resolveChart(chart, pouActions, diags);
-  if (!resolved || !detail::analyseChart(chart, *resolved, diags)) return;
+  if (!resolved || !detail::checkStepWrites(chart, pou, diags) || !detail::analyseChart(chart, *resolved, diags)) return;
+  st::ChartSource source{copyOf(chart), {pou.body.size(), 0}, {pou.varBlocks.size(), 0}, {pou.actions.size(), 0}};
   Lowering(chart, *resolved, pou, nextNodeId).run();
+  source.statements.end = pou.body.size();
+  source.varBlocks.end = pou.varBlocks.size();
+  source.actions.end = pou.actions.size();
+  pou.chart = std::move(source);
 }
 
 }  // namespace virtcom::sfc

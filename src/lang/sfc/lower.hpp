@@ -12,6 +12,10 @@ namespace virtcom::sfc {
 // (the step is active) and `T : TIME` (time since its last activation; kept after it ends).
 inline constexpr std::string_view kStepTypeName = "SFC_STEP";
 
+// `{attribute 'sfc_transient_chaining'}` on the POU: a call keeps evolving while transitions
+// fire (through transient steps), up to as many evolutions as the chart has steps.
+inline constexpr std::string_view kTransientChainingAttribute = "sfc_transient_chaining";
+
 // Checks `chart` and, if it is sound, appends its evolution to `pou`, a PROGRAM or
 // FUNCTION_BLOCK whose variables, statements and ACTIONs are already parsed:
 // - every step becomes a variable `Name : SFC_STEP` (so `Name.X`, `Name.T` and
@@ -23,8 +27,12 @@ inline constexpr std::string_view kStepTypeName = "SFC_STEP";
 //   evaluate every transition whose source steps are all active (on the activity at the start
 //   of the call; of the transitions leaving one step only the first in priority order that is
 //   clear fires) and fire the clear ones together (deactivate sources, then activate targets:
-//   one evolution per call); (2) action control per IEC 61131-3 for the new activity, then
+//   one evolution per call). With kTransientChainingAttribute on the POU, every call (the
+//   first one too, after activating the initial step) repeats the evaluate-and-fire on the new
+//   activity while a transition fired, at most once per step of the chart; (2) action control per IEC 61131-3 for the new activity, then
 //   every action whose Q is set runs (and once more, with Q reset, after a non-pulse Q falls).
+// A copy of the chart as written goes to pou.chart (with the ranges of statements, variable
+// blocks and actions the lowering appended), so the exporter writes it as a chart.
 // Reports chart errors (E401-E407) with the element's location; on any error nothing is
 // appended. New nodes take ids from ++nextNodeId. Never throws on bad input.
 void lowerChart(Chart chart, st::Pou& pou, Diagnostics& diags, st::NodeId& nextNodeId);

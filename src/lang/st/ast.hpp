@@ -3,10 +3,15 @@
 // The parser builds it; later passes never edit it but keep side tables keyed by node id.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/source.hpp"
+
+namespace virtcom::sfc {
+struct Chart;  // lang/sfc/sfc_model.hpp
+}
 
 namespace virtcom::st {
 
@@ -212,6 +217,19 @@ struct Property {
   std::unique_ptr<Pou> setter;  // may be null
 };
 
+// A body written as a chart (textual or graphical SFC), kept as written, and what its lowering
+// (lang/sfc/lower.hpp) added to the POU: the statements, variable blocks and actions in these
+// index ranges implement the chart, all others are the POU's own (bodies imported after the
+// chart come after the range). The exporter writes the chart instead of the ranges.
+struct ChartSource {
+  struct Range {
+    size_t begin = 0, end = 0;
+    bool contains(size_t i) const { return i >= begin && i < end; }
+  };
+  std::shared_ptr<const sfc::Chart> chart;
+  Range statements, varBlocks, actions;
+};
+
 struct Pou {
   PouKind kind = PouKind::Program;
   std::string name;
@@ -231,6 +249,7 @@ struct Pou {
   std::vector<std::unique_ptr<Pou>> actions;
   std::vector<Property> properties;
   std::vector<Attribute> attributes;
+  std::optional<ChartSource> chart;  // set when the body is a lowered chart
 };
 
 struct Interface {

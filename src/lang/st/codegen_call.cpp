@@ -599,6 +599,14 @@ Value PouCompiler::call(const Expr& e, TypeId expected) {
                                                  ", not a function block instance");
       return Value::error();
     }
+    // CODESYS lets any POU call a PROGRAM like an FB instance: PRG(in := 1, out => x).
+    for (const auto& inst : model().programInstances)
+      if (upper(inst.name) == key) {
+        Place self;
+        self.type = inst.pou->instanceType;
+        self.offset = inst.address;
+        return callFbInstance(self, *inst.pou, e);
+      }
     PouSym* owner = pou_.kind == PouKind::FunctionBlock || pou_.kind == PouKind::Program ? &pou_ : pou_.owner;
     if (owner) {
       if (owner->methods.count(key)) {

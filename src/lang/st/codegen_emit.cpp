@@ -6,6 +6,7 @@
 
 #include "lang/st/codegen.hpp"
 #include "lang/st/diagnostic_codes.hpp"
+#include "lang/st/lexer.hpp"
 
 namespace virtcom::st {
 
@@ -139,12 +140,16 @@ Place PouCompiler::frameTemp(TypeId type) {
 
 uint32_t PouCompiler::stringLiteral(const std::string& bytes, bool wide) {
   std::string withNul;
-  for (char c : bytes) {
-    withNul.push_back(c);
-    if (wide) withNul.push_back('\0');  // UTF-16LE of the (ASCII/Latin-1) characters
+  if (wide) {
+    for (char16_t unit : utf8ToUtf16(bytes)) {  // UTF-16LE
+      withNul.push_back(static_cast<char>(unit & 0xFF));
+      withNul.push_back(static_cast<char>(unit >> 8));
+    }
+    withNul.push_back('\0');
+  } else {
+    withNul = bytes;
   }
   withNul.push_back('\0');
-  if (wide) withNul.push_back('\0');
   return ctx_.image.addData(withNul.data(), static_cast<uint32_t>(withNul.size()));
 }
 
@@ -548,7 +553,7 @@ void PouCompiler::assignValue(const Place& target, Value v, SourceLocation loc) 
   }
   if (!t.isScalar(tt)) {
     if (!v.ok()) return;
-    if (v.type != tt && !(t[v.type].kind == t[tt].kind && t[v.type].size == t[tt].size && t.isArray(tt))) {
+    if (!sameType(t, v.type, tt)) {
       diags().error(diag::E202, loc, "type mismatch: cannot assign " + describe(t, v.type) + " to " + describe(t, tt));
       return;
     }

@@ -4,6 +4,7 @@
 
 #include "lang/st/codegen.hpp"
 #include "lang/st/diagnostic_codes.hpp"
+#include "lang/st/lexer.hpp"
 
 namespace virtcom::st {
 
@@ -45,7 +46,8 @@ Value PouCompiler::literal(const Expr& e, TypeId expected) {
       }
       break;
     case ExprKind::StringLit: {
-      uint32_t len = static_cast<uint32_t>(std::max<size_t>(c->s.size(), 1));
+      size_t chars = e.wide ? utf8ToUtf16(c->s).size() : c->s.size();
+      uint32_t len = static_cast<uint32_t>(std::max<size_t>(chars, 1));
       v.type = types().stringOf(len, e.wide);
       break;
     }

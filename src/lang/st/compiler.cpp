@@ -6,6 +6,7 @@
 #include "bytecode/verifier.hpp"
 #include "lang/st/codegen.hpp"
 #include "lang/st/diagnostic_codes.hpp"
+#include "lang/st/init_program.hpp"
 #include "lang/st/parser.hpp"
 #include "lang/st/prelude.hpp"
 
@@ -61,6 +62,7 @@ void fillSymbols(ProgramModel& model, bc::Module& module, TypeTable& types) {
     s.type = g.var.type;
     s.address = g.var.offset;
     s.readOnly = g.var.readOnly;
+    s.retain = g.var.retain;
     if (g.var.bit >= 0) continue;  // located single bits are reached through %IX addresses
     module.symbols.push_back(s);
   }
@@ -79,6 +81,39 @@ void fillSymbols(ProgramModel& model, bc::Module& module, TypeTable& types) {
     module.tasks.push_back(std::move(info));
   }
   (void)types;
+}
+
+// Gives every configured program instance with arguments its caller PROGRAM (see
+// configCallerName); the arguments move into the caller's call, where they are checked like
+// the arguments of any call.
+void addConfigCallers(std::vector<CompilationUnit>& units) {
+  for (auto& unit : units)
+    for (auto& cfg : unit.configurations)
+      for (auto& res : cfg.resources)
+        for (auto& p : res.programs) {
+          if (p.args.empty()) continue;
+          auto callee = std::make_unique<Expr>();
+          callee->kind = ExprKind::Name;
+          callee->text = p.instanceName;
+          callee->loc = p.loc;
+          auto call = std::make_unique<Expr>();
+          call->kind = ExprKind::Call;
+          call->loc = p.loc;
+          call->lhs = std::move(callee);
+          call->args = std::move(p.args);
+          auto stmt = std::make_unique<Stmt>();
+          stmt->kind = StmtKind::Call;
+          stmt->loc = p.loc;
+          stmt->expr = std::move(call);
+          auto caller = std::make_unique<Pou>();
+          caller->kind = PouKind::Program;
+          caller->name = configCallerName(p.instanceName);
+          caller->loc = p.loc;
+          caller->endLoc = p.loc;
+          caller->hasBody = true;
+          caller->body.push_back(std::move(stmt));
+          unit.pous.push_back(std::move(caller));
+        }
 }
 
 }  // namespace
@@ -105,6 +140,7 @@ std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& input
   units.push_back(parseFile(libraryFile, sources.text(libraryFile), diags, nextId));
   size_t libraryPous = units.front().pous.size();
   for (CompilationUnit& unit : parseInputs(inputs, sources, diags, nextId)) units.push_back(std::move(unit));
+  addConfigCallers(units);
   module->files.clear();
   for (uint32_t i = 0; i < sources.fileCount(); ++i) module->files.push_back(sources.path(i));
   if (diags.hasErrors()) {
@@ -127,16 +163,26 @@ std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& input
     diags.sortByLocation();
     return nullptr;
   }
+  std::unique_ptr<Pou> initAst = buildInitProgram(model, types);
+  PouSym* initPou = nullptr;
+  if (initAst) {
+    auto sym = std::make_unique<PouSym>();
+    sym->name = sym->qualifiedName = initAst->name;
+    sym->ast = initAst.get();
+    initPou = sym.get();
+    model.pous.push_back(std::move(sym));
+  }
   // Every POU with code gets its slot first, so calls can name any callee.
   for (auto& p : model.pous) {
     if (!hasCode(*p)) continue;
     p->bcIndex = static_cast<uint32_t>(module->pous.size());
     bc::PouInfo info;
     info.name = p->qualifiedName;
-    info.kind = moduleKind(p->kind);
+    info.kind = p.get() == initPou ? bc::PouKind::Init : moduleKind(p->kind);
     info.instanceType = p->kind == PouKind::FunctionBlock || p->kind == PouKind::Program ? p->instanceType : bc::kNoType;
     module->pous.push_back(info);
   }
+  if (initPou) module->initPou = initPou->bcIndex;
   CompileContext ctx{model, types, declarer, *module, image, diags};
   for (auto& p : model.pous) {
     if (!hasCode(*p)) continue;

@@ -59,6 +59,8 @@ class Declarer {
   void linkInheritance();
   void declareInterfaces();
   void declareGlobals();
+  // VAR_EXTERNAL only refers to a global: it must exist with the same type and CONSTANT-ness.
+  void checkExternals();
   void declareConfiguration();
 
  public:
@@ -70,6 +72,10 @@ class Declarer {
   void placeLocated(VarInfo& v, const std::string& address);
   const std::vector<uint8_t>& defaultBytes(TypeId type);
   void applyInit(TypeId type, uint8_t* dst, const Expr& init, const PouSym* pou);
+  void applyMemberInits(TypeId type, uint8_t* dst, const std::vector<CallArg>& args, const PouSym* pou);
+  // `inst : FB_T(a := 1)`: without a METHOD FB_init the arguments initialise the named members;
+  // with one they are FB_init's arguments (see buildInitProgram).
+  void applyDeclarationArgs(TypeId type, uint8_t* dst, const VarDecl& decl, const PouSym* pou);
   std::optional<ConstValue> lookupConstName(const Expr& e, const PouSym* pou);
   std::optional<ConstValue> declaredConstant(const Pou& ast, const std::string& upperName, const PouSym* pou);
 
@@ -82,6 +88,7 @@ class Declarer {
   std::map<std::string, const TypeDecl*> typeDecls_;      // upper-cased
   std::set<std::string> resolving_;                        // cycle detection for types
   std::set<const PouSym*> layingOut_;                      // cycle detection for FB instances
+  std::set<const PouSym*> laidOut_;                        // FB/PROGRAM instances with their layout done
   std::set<TypeId> defaultsInProgress_;                    // cycle guard for defaultBytes
   std::map<TypeId, std::vector<std::pair<size_t, const Expr*>>> fieldInits_;  // struct field inits
   std::map<TypeId, const Expr*> typeInits_;                // TYPE x : T := init

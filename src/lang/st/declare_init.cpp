@@ -6,6 +6,7 @@
 
 #include "lang/st/declare.hpp"
 #include "lang/st/diagnostic_codes.hpp"
+#include "lang/st/lexer.hpp"
 
 namespace virtcom::st {
 
@@ -166,8 +167,12 @@ void Declarer::declareGlobals() {
         if (!listName.empty()) model_.globalIndex[upper(listName) + "." + key] = index;
         model_.globals.push_back(std::move(g));
         const GlobalVar& placed = model_.globals.back();
-        if (placed.var.bit < 0) writeInitial(type, image_.at(placed.var.offset), decl.init.get(), nullptr);
-        else if (decl.init) if (auto c = constant(*decl.init, nullptr)) writeScalar(type, image_.at(placed.var.offset), *c, placed.var.bit);
+        if (placed.var.bit < 0) {
+          writeInitial(type, image_.at(placed.var.offset), decl.init.get(), nullptr);
+          applyDeclarationArgs(type, image_.at(placed.var.offset), decl, nullptr);
+        } else if (decl.init) {
+          if (auto c = constant(*decl.init, nullptr)) writeScalar(type, image_.at(placed.var.offset), *c, placed.var.bit);
+        }
       }
     }
   };
@@ -187,6 +192,33 @@ void Declarer::declareGlobals() {
     for (auto& v : sym->members)
       if (v.storage == Storage::Absolute && v.decl && v.decl->init)
         if (auto c = constant(*v.decl->init, sym.get())) writeScalar(v.type, image_.at(v.offset), *c, v.bit);
+}
+
+void Declarer::checkExternals() {
+  for (const auto& sym : model_.pous) {
+    if (!sym->ast) continue;
+    for (const auto& block : sym->ast->varBlocks) {
+      if (block.section != VarSection::External) continue;
+      for (const auto& decl : block.vars) {
+        TypeId type = resolveType(decl.type, sym.get());
+        for (const auto& n : decl.names) {
+          auto it = model_.globalIndex.find(upper(n.name));
+          if (it == model_.globalIndex.end()) {
+            diags_.error(diag::E201, n.loc, "VAR_EXTERNAL '" + n.name + "' names no global variable; declare it in a VAR_GLOBAL list");
+            continue;
+          }
+          const VarInfo& global = model_.globals[it->second].var;
+          if (type != kNoType && !sameType(types_, type, global.type))
+            diags_.error(diag::E120, n.loc, "VAR_EXTERNAL '" + n.name + "' is declared " + types_.name(type) +
+                                                " but the global variable is " + types_.name(global.type));
+          else if (global.constant && !block.constant)
+            diags_.error(diag::E120, n.loc, "the global variable '" + n.name + "' is CONSTANT; declare it in VAR_EXTERNAL CONSTANT");
+          else if (!global.constant && block.constant)
+            diags_.error(diag::E120, n.loc, "the global variable '" + n.name + "' is not CONSTANT; declare it in VAR_EXTERNAL without CONSTANT");
+        }
+      }
+    }
+  }
 }
 
 static int64_t intervalFromSettings(const TaskDecl& task, Declarer& d, Diagnostics& diags, int32_t& priority) {
@@ -240,6 +272,11 @@ void Declarer::declareConfiguration() {
             continue;
           }
           if (!addInstance(p.instanceName, it->second, p.loc)) continue;
+          std::string scheduled = p.instanceName;
+          if (auto caller = model_.pouByName.find(upper(configCallerName(p.instanceName))); caller != model_.pouByName.end()) {
+            scheduled = caller->second->name;
+            addInstance(scheduled, caller->second, p.loc);
+          }
           TaskSym* task = nullptr;
           for (auto& t : model_.tasks)
             if (upper(t.name) == upper(p.taskName)) task = &t;
@@ -256,7 +293,7 @@ void Declarer::declareConfiguration() {
             }
             task = &model_.tasks.front();
           }
-          task->programInstances.push_back(upper(p.instanceName));
+          task->programInstances.push_back(upper(scheduled));
         }
       }
     }
@@ -279,6 +316,7 @@ void Declarer::buildTemplates() {
     for (const auto& v : sym->locals) {
       if (v.byReference) continue;
       writeInitial(v.type, bytes.data() + v.offset, v.decl ? v.decl->init.get() : nullptr, sym.get());
+      if (v.decl) applyDeclarationArgs(v.type, bytes.data() + v.offset, *v.decl, sym.get());
     }
     sym->frameTemplate = image_.addData(bytes.data(), sym->frameSize, 8);
   }
@@ -321,6 +359,7 @@ const std::vector<uint8_t>& Declarer::defaultBytes(TypeId type) {
           if (md.empty() || m.offset > bytes.size() || md.size() > bytes.size() - m.offset) continue;
           std::memcpy(bytes.data() + m.offset, md.data(), md.size());
           if (m.decl && m.decl->init) applyInit(m.type, bytes.data() + m.offset, *m.decl->init, &pou);
+          if (m.decl) applyDeclarationArgs(m.type, bytes.data() + m.offset, *m.decl, &pou);
         }
       } else {
         for (const auto& f : d.fields) {
@@ -405,16 +444,7 @@ void Declarer::applyInit(TypeId type, uint8_t* dst, const Expr& init, const PouS
       diags_.error(diag::E116, init.loc, "a structure initialiser (a := ...) needs a STRUCT or FUNCTION_BLOCK variable, found " + d.name);
       return;
     }
-    for (const auto& arg : init.args) {
-      const bc::Field* field = nullptr;
-      for (const auto& f : d.fields)
-        if (upper(f.name) == upper(arg.name)) field = &f;
-      if (!field) {
-        diags_.error(diag::E212, arg.loc, "'" + d.name + "' has no member '" + arg.name + "'");
-        continue;
-      }
-      if (arg.value) applyInit(field->type, dst + field->offset, *arg.value, pou);
-    }
+    applyMemberInits(type, dst, init.args, pou);
     return;
   }
   if (d.kind == bc::TypeKind::Array || d.kind == bc::TypeKind::Struct) {
@@ -438,15 +468,16 @@ void Declarer::applyInit(TypeId type, uint8_t* dst, const Expr& init, const PouS
       diags_.error(diag::E116, init.loc, "a " + d.name + " needs a string literal as initial value");
       return;
     }
-    size_t n = std::min<size_t>(v->s.size(), d.stringLength);
     std::memset(dst, 0, d.size);
     if (types_.isWideString(type)) {
+      const std::u16string units = utf8ToUtf16(v->s);
+      size_t n = std::min<size_t>(units.size(), d.stringLength);
       for (size_t i = 0; i < n; ++i) {
-        dst[2 * i] = static_cast<uint8_t>(v->s[i]);
-        dst[2 * i + 1] = 0;
+        dst[2 * i] = static_cast<uint8_t>(units[i] & 0xFF);
+        dst[2 * i + 1] = static_cast<uint8_t>(units[i] >> 8);
       }
     } else {
-      std::memcpy(dst, v->s.data(), n);
+      std::memcpy(dst, v->s.data(), std::min<size_t>(v->s.size(), d.stringLength));
     }
     return;
   }
@@ -466,6 +497,36 @@ void Declarer::applyInit(TypeId type, uint8_t* dst, const Expr& init, const PouS
   }
   checkRange(type, *v, init.loc);
   writeScalar(type, dst, *v, -1);
+}
+
+void Declarer::applyMemberInits(TypeId type, uint8_t* dst, const std::vector<CallArg>& args, const PouSym* pou) {
+  const bc::TypeDesc& d = types_[type];
+  for (const auto& arg : args) {
+    const bc::Field* field = nullptr;
+    for (const auto& f : d.fields)
+      if (upper(f.name) == upper(arg.name)) field = &f;
+    if (!field) {
+      diags_.error(diag::E212, arg.loc, "'" + d.name + "' has no member '" + arg.name + "'");
+      continue;
+    }
+    if (arg.value) applyInit(field->type, dst + field->offset, *arg.value, pou);
+  }
+}
+
+void Declarer::applyDeclarationArgs(TypeId type, uint8_t* dst, const VarDecl& decl, const PouSym* pou) {
+  if (decl.fbInitArgs.empty()) return;
+  auto fb = model_.fbByType.find(type);
+  if (fb == model_.fbByType.end() || fb->second->kind != PouKind::FunctionBlock) {
+    diags_.error(diag::E116, decl.fbInitArgs.front().loc, "arguments in a declaration need a FUNCTION_BLOCK instance, found " + types_.name(type));
+    return;
+  }
+  if (fb->second->methods.count("FB_INIT")) return;  // bound to FB_init's inputs by the init program
+  for (const auto& arg : decl.fbInitArgs)
+    if (arg.name.empty() || arg.output) {
+      diags_.error(diag::E203, arg.loc, "arguments in a declaration are written name := value (inst : " + fb->second->name + "(a := 1))");
+      return;
+    }
+  applyMemberInits(type, dst, decl.fbInitArgs, pou);
 }
 
 void Declarer::writeScalar(TypeId type, uint8_t* dst, const ConstValue& v, int8_t bit) {

@@ -72,6 +72,7 @@ VarInfo makeVar(const DeclName& n, const VarDecl& decl, TypeId type, VarSection 
   v.byReference = section == VarSection::InOut;
   v.readOnly = block.constant || hasAttribute(decl.attributes, "ADS_READONLY");
   v.hidden = hasAttribute(decl.attributes, "HIDE");
+  v.retain = block.retain || block.persistent;
   v.decl = &decl;
   return v;
 }
@@ -138,6 +139,7 @@ void Declarer::addMembers(PouSym& pou, const Pou& ast, bool methodInst) {
           f.offset = v.offset;
           f.hidden = v.hidden;
           f.readOnly = v.readOnly;
+          f.retain = v.retain;
           static const char* kSectionNames[] = {"VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_TEMP",
                                                 "VAR_GLOBAL", "VAR_EXTERNAL", "VAR_INST", "VAR_STAT"};
           f.section = kSectionNames[static_cast<int>(block.section)];
@@ -154,8 +156,7 @@ void Declarer::addMembers(PouSym& pou, const Pou& ast, bool methodInst) {
 }
 
 void Declarer::layoutInstance(PouSym& pou) {
-  if (pou.compiled) return;  // reused as "laid out" marker during this pass
-  pou.compiled = true;
+  if (!laidOut_.insert(&pou).second) return;
   layingOut_.insert(&pou);
   bc::TypeDesc& inst = types_.mut(pou.instanceType);
   inst.align = 1;
@@ -371,7 +372,6 @@ void Declarer::declarePous() {
       default: break;
     }
   }
-  for (PouSym* sym : topLevel) sym->compiled = false;
   // Interface conformance: every method of every implemented interface must exist, and a
   // concrete FB must implement every ABSTRACT method it inherits.
   for (PouSym* sym : topLevel) {

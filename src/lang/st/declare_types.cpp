@@ -15,6 +15,8 @@ std::string upper(std::string_view s) {
   return out;
 }
 
+std::string configCallerName(std::string_view instanceName) { return "__CONFIG_" + std::string(instanceName); }
+
 Declarer::Declarer(const std::vector<CompilationUnit>& units, Diagnostics& diags, TypeTable& types,
                    ProgramModel& model, ImageBuilder& image, bc::Module& module)
     : units_(units), diags_(diags), types_(types), model_(model), image_(image), module_(module) {}
@@ -29,6 +31,7 @@ void Declarer::run() {
   declareTypes();
   declarePous();
   declareGlobals();
+  checkExternals();
   declareConfiguration();
 }
 
@@ -128,7 +131,7 @@ TypeId Declarer::resolveNamed(const TypeSpec& spec, const PouSym* pou) {
   if (auto it = model_.namedTypes.find(key); it != model_.namedTypes.end()) {
     // An FB used as a member or local before its own declaration is laid out first, so the
     // container gets its real size (any declaration order is allowed).
-    if (auto fb = model_.fbByType.find(it->second); fb != model_.fbByType.end() && !fb->second->compiled && layoutStarted_)
+    if (auto fb = model_.fbByType.find(it->second); fb != model_.fbByType.end() && !laidOut_.count(fb->second) && layoutStarted_)
       layoutInstance(*fb->second);
     return it->second;
   }

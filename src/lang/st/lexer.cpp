@@ -652,4 +652,33 @@ std::vector<Token> lexFragment(uint32_t fileId, SourceLocation origin, std::stri
   return Lexer(fileId, text, diags, origin).run();
 }
 
+std::u16string utf8ToUtf16(std::string_view utf8) {
+  std::u16string out;
+  size_t i = 0;
+  while (i < utf8.size()) {
+    const auto lead = static_cast<unsigned char>(utf8[i]);
+    size_t extra = lead >= 0xF0 ? 3 : lead >= 0xE0 ? 2 : lead >= 0xC0 ? 1 : 0;
+    uint32_t cp = extra == 3 ? lead & 0x07u : extra == 2 ? lead & 0x0Fu : extra == 1 ? lead & 0x1Fu : lead;
+    bool wellFormed = i + extra < utf8.size() || extra == 0;
+    for (size_t k = 1; wellFormed && k <= extra; ++k) {
+      const auto cont = static_cast<unsigned char>(utf8[i + k]);
+      wellFormed = (cont & 0xC0) == 0x80;
+      cp = (cp << 6) | (cont & 0x3Fu);
+    }
+    if (!wellFormed) {
+      cp = lead;
+      extra = 0;
+    }
+    i += extra + 1;
+    if (cp > 0xFFFF) {
+      cp -= 0x10000;
+      out += static_cast<char16_t>(0xD800 + (cp >> 10));
+      out += static_cast<char16_t>(0xDC00 + (cp & 0x3FF));
+    } else {
+      out += static_cast<char16_t>(cp);
+    }
+  }
+  return out;
+}
+
 }  // namespace virtcom::st

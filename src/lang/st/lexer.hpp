@@ -1,6 +1,7 @@
 #pragma once
 // The Structured Text lexer: source text to tokens.
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -20,5 +21,10 @@ std::vector<Token> lex(uint32_t fileId, std::string_view text, Diagnostics& diag
 // first character sits at `origin` (1-based line and column) of file `fileId`: token and
 // diagnostic locations point into that file.
 std::vector<Token> lexFragment(uint32_t fileId, SourceLocation origin, std::string_view text, Diagnostics& diags);
+
+// A wide string literal's payload is UTF-8 (so diagnostics can quote it); WSTRING memory holds
+// UTF-16 code units. Characters beyond U+FFFF become surrogate pairs; a malformed byte is
+// taken as the code unit of its value.
+std::u16string utf8ToUtf16(std::string_view utf8);
 
 }  // namespace virtcom::st

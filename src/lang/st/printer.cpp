@@ -115,7 +115,7 @@ void line(std::string& out, int indent, const std::string& text) {
 
 void printStatement(const Stmt& s, int indent, std::string& out);
 
-void printBody(const StmtList& body, int indent, std::string& out) {
+void printBody(std::span<const StmtPtr> body, int indent, std::string& out) {
   for (const auto& s : body)
     if (s) printStatement(*s, indent, out);
 }
@@ -226,7 +226,7 @@ std::string printExpr(const Expr& e) {
   return {};
 }
 
-std::string printStatements(const StmtList& stmts, int indent) {
+std::string printStatements(std::span<const StmtPtr> stmts, int indent) {
   std::string out;
   printBody(stmts, indent, out);
   return out;

@@ -2,6 +2,7 @@
 // Structured Text from the syntax tree: the inverse of the parser, up to layout, comments and
 // redundant parentheses. Used to write ST bodies into exported PLCopen XML and as a normalised
 // form of a program (parse -> print -> parse -> print is a fixed point).
+#include <span>
 #include <string>
 
 #include "lang/st/ast.hpp"
@@ -13,6 +14,6 @@ std::string printExpr(const Expr& expr);
 
 // Statements, one per line, nested bodies indented by one tab per level; `indent` is the level of
 // the outermost statements. Every line ends with '\n'.
-std::string printStatements(const StmtList& stmts, int indent = 0);
+std::string printStatements(std::span<const StmtPtr> stmts, int indent = 0);
 
 }  // namespace virtcom::st

@@ -14,6 +14,11 @@ namespace virtcom::st {
 // Upper-cased name: the key of every case-insensitive lookup.
 std::string upper(std::string_view s);
 
+// The generated PROGRAM that runs a configured program instance with its arguments
+// (`PROGRAM p WITH t : P(in := g, out => h)`): it calls `p` as `p(in := g, out => h)`, so inputs
+// are copied in before every call and outputs out after it. The task runs it in place of `p`.
+std::string configCallerName(std::string_view instanceName);
+
 enum class Storage : uint8_t {
   Absolute,  // address is a memory address (globals, located variables, program members)
   Instance,  // offset from `this` (FB/method/program members reached through an instance)
@@ -41,6 +46,7 @@ struct VarInfo {
   bool byReference = false;     // VAR_IN_OUT: the slot holds an 8-byte address of the actual
   bool readOnly = false;        // {attribute 'ads_readonly'}
   bool hidden = false;          // internal state of a library FB
+  bool retain = false;          // declared in a RETAIN or PERSISTENT block
   const VarDecl* decl = nullptr;
   ConstValue constValue;        // CONSTANT of a scalar type: the folded value (kind != None)
 };

@@ -185,4 +185,25 @@ Conversion classifyConversion(const TypeTable& types, TypeId from, TypeId to) {
   return Conversion::Invalid;
 }
 
+bool sameType(const TypeTable& types, TypeId a, TypeId b) {
+  if (a == b) return true;
+  if (a == kNoType || b == kNoType) return false;
+  const bc::TypeDesc& x = types[a];
+  const bc::TypeDesc& y = types[b];
+  if (x.kind != y.kind) return false;
+  switch (x.kind) {
+    case bc::TypeKind::Elementary: return x.elem == y.elem;
+    case bc::TypeKind::String: return x.elem == y.elem && x.stringLength == y.stringLength;
+    case bc::TypeKind::Pointer:
+    case bc::TypeKind::Reference: return sameType(types, x.element, y.element);
+    case bc::TypeKind::Array: {
+      if (x.dims.size() != y.dims.size()) return false;
+      for (size_t i = 0; i < x.dims.size(); ++i)
+        if (x.dims[i].lo != y.dims[i].lo || x.dims[i].hi != y.dims[i].hi) return false;
+      return sameType(types, x.element, y.element);
+    }
+    default: return false;  // structs, enums, FBs: only the same declaration
+  }
+}
+
 }  // namespace virtcom::st

@@ -64,4 +64,8 @@ class TypeTable {
 enum class Conversion { Same, Widening, Narrowing, Invalid };
 Conversion classifyConversion(const TypeTable& types, TypeId from, TypeId to);
 
+// Structural identity: an alias with its own initial value is the same type as its base, an
+// array is the same only with the same bounds and the same element type.
+bool sameType(const TypeTable& types, TypeId a, TypeId b);
+
 }  // namespace virtcom::st

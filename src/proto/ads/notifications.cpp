@@ -46,7 +46,8 @@ AdsError Session::addNotification(std::span<const uint8_t> body, uint32_t& handl
   n.length = length;
   n.onChange = mode == kServerOnChange || mode == kServerOnChangeInContext;
   n.cycleNs = int64_t{cycle} * kNsPer100Ns;
-  n.last.reserve(length);
+  // Groups like 0xF100 accept any length and answer fewer bytes: size the sample by the answer.
+  n.last.reserve(scratch_.size());
   notifications_.push_back(std::move(n));
   handle = notifications_.back().handle;
   return AdsError::None;

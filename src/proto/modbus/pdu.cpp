@@ -50,6 +50,9 @@ std::optional<Location> holdingRegister(const ImageView& image, uint32_t reg) {
   if (reg < kDoubleRegisterBase) return wordOfValue(image, Area::Memory, reg - kMemoryRegisterBase, 1);
   if (reg < kLongRegisterBase) return wordOfValue(image, Area::Memory, reg - kDoubleRegisterBase, 2);
   if (reg < kLongRegisterEnd) return wordOfValue(image, Area::Memory, reg - kLongRegisterBase, 4);
+  // Discrete inputs and input registers are read-only by function code; a client that plays
+  // the field (a simulated sensor) writes %IW, and the %IX bits in it, through this window.
+  if (image.writableInputs && reg >= kInputHoldingBase) return wordOfValue(image, Area::Inputs, reg - kInputHoldingBase, 1);
   return std::nullopt;
 }
 

@@ -8,6 +8,8 @@
 //   holding registers 1024..2047  -> %MW  (register 1024+n = M bytes 2n..2n+1)
 //   holding registers 2048..4095  -> %MD  (registers 2048+2n, +1 = %MDn high word, low word)
 //   holding registers 4096..8191  -> %ML  (registers 4096+4n..+3 = %MLn, highest word first)
+//   holding registers 8192..      -> %IW  (register 8192+n = I bytes 2n..2n+1) only with
+//                                    writableInputs (exec --modbus-writable-inputs)
 // Layout::Tables, four independent tables (a served cell's signal map):
 //   coils = bits of `outputs`, discrete inputs = bits of `inputs`, holding registers = words
 //   of `memory`, input registers = words of `registers`; coils and holding registers whose bit
@@ -29,6 +31,7 @@ inline constexpr uint16_t kMemoryRegisterBase = 1024;  // %MW0
 inline constexpr uint16_t kDoubleRegisterBase = 2048;  // %MD0
 inline constexpr uint16_t kLongRegisterBase = 4096;    // %ML0
 inline constexpr uint32_t kLongRegisterEnd = 8192;     // one past %ML1023's last register
+inline constexpr uint32_t kInputHoldingBase = 8192;    // %IW0 as a holding register (writableInputs)
 
 enum class FunctionCode : uint8_t {
 #define MODBUS_FUNCTION(name, code, handler, text) name = code,
@@ -56,6 +59,7 @@ struct ImageView {
   std::span<uint8_t> registers = {};  // Layout::Tables: the input registers
   Layout layout = Layout::OpenPlc;
   std::span<const uint8_t> readOnlyCoils = {}, readOnlyHolding = {};  // Layout::Tables: bit per coil/register
+  bool writableInputs = false;  // Layout::OpenPlc: %IW also as holding registers from kInputHoldingBase
   std::span<uint8_t> bytes(Area a) const {
     switch (a) {
       case Area::Inputs: return inputs;

@@ -71,7 +71,7 @@ Server::Server(const ServerConfig& config, ImageShape shape)
       snapshotRegisters_(shape_.registers, 0),
       snapshot_{snapshotInputs_,    snapshotOutputs_,     snapshotMemory_,
                 snapshotRegisters_, shape_.layout,        shape_.readOnlyCoils,
-                shape_.readOnlyHolding},
+                shape_.readOnlyHolding, shape_.writableInputs},
       pending_(config.pendingEditCapacity) {}
 
 std::expected<std::unique_ptr<Server>, std::string> Server::start(const ServerConfig& config, ImageShape shape) {

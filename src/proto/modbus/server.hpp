@@ -40,6 +40,7 @@ struct ImageShape {
   size_t inputs = 0, outputs = 0, memory = 0, registers = 0;
   Layout layout = Layout::OpenPlc;
   std::vector<uint8_t> readOnlyCoils, readOnlyHolding;  // see ImageView
+  bool writableInputs = false;                          // see ImageView
 };
 
 class Server {

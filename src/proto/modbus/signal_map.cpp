@@ -152,7 +152,10 @@ class MapParser {
     if (const ConfigNode* t = r.child("type")) {
       if (auto type = valueTypeFromText(t->scalar())) e.type = *type;
       else {
-        r.error(t->loc(), "'type' must be BOOL, INT, UINT, DINT, UDINT or REAL, not '" + t->scalar() + "'");
+        // Device signals are numbers and bits on the tag bus; none carries text.
+        const bool text = t->scalar() == "STRING" || t->scalar() == "string";
+        r.error(t->loc(), "'type' must be BOOL, INT, UINT, DINT, UDINT or REAL, not '" + t->scalar() + "'" +
+                              (text ? " (no device signal carries text, so a signal cannot be mapped as a STRING)" : ""));
         ok = false;
       }
     }

@@ -115,5 +115,37 @@ TEST_F(ModuleSymbols, ResolvesPathsAndGuardsReadOnlyBytes) {
   EXPECT_TRUE(t.touchesReadOnly(0, 1));  // the null guard
 }
 
+// SFC step flags are ADS symbols like any struct member (MAIN.Step.X / .T, TwinCAT's
+// `MAIN.Step.x` form included); the hidden `__sfc_*` bookkeeping is not in the symbol upload.
+TEST(ModuleSymbolsSfc, StepFlagsAreAddressableAndBookkeepingIsHidden) {
+  const char* chart =
+      "PROGRAM MAIN\nVAR go : BOOL; END_VAR\n"
+      "INITIAL_STEP Idle: END_STEP\nSTEP Busy: END_STEP\n"
+      "TRANSITION FROM Idle TO Busy := go; END_TRANSITION\n"
+      "TRANSITION FROM Busy TO Idle := NOT go; END_TRANSITION\nEND_PROGRAM\n";
+  SourceManager sources;
+  Diagnostics diags;
+  auto module = st::compileProgram({{"main.st", chart}}, sources, diags);
+  ASSERT_TRUE(module) << diags.render(sources);
+  SymbolTable t = buildSymbolTable(*module);
+  std::vector<std::string> names;
+  for (const Symbol& s : t.symbols()) names.push_back(s.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"MAIN.go", "MAIN.Idle", "MAIN.Busy"}));
+  for (const char* step : {"MAIN.Idle", "MAIN.Busy"}) {
+    SCOPED_TRACE(step);
+    auto x = t.find(std::string(step) + ".X");
+    ASSERT_TRUE(x);
+    EXPECT_EQ(x->type, "BOOL");
+    EXPECT_EQ(x->indexOffset, bc::resolveVariable(*module, std::string(step) + ".X")->address);
+    auto time = t.find(std::string(step) + ".t");
+    ASSERT_TRUE(time);
+    EXPECT_EQ(time->type, "TIME");
+    EXPECT_EQ(time->indexOffset, bc::resolveVariable(*module, std::string(step) + ".T")->address);
+  }
+  const DataType* stepType = t.findType("SFC_STEP");
+  ASSERT_TRUE(stepType);
+  ASSERT_EQ(stepType->members.size(), 2u);
+}
+
 }  // namespace
 }  // namespace virtcom::proto::ads

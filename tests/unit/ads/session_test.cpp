@@ -240,6 +240,16 @@ TEST_F(SessionTest, NotificationErrorsAndDelete) {
   EXPECT_EQ(hex(call(kPlcPort, Command::DeleteDeviceNotification, u32s({1}))), "14 07 00 00");
 }
 
+// Regression (fuzz_ads_frame OOM): 0xF100 takes any length >= 4 and answers 4 bytes; a
+// notification asking for ~4 GB of it samples those 4 bytes instead of reserving the request.
+TEST_F(SessionTest, NotificationOnAGroupAnsweringLessThanAskedSendsWhatItAnswers) {
+  EXPECT_EQ(hex(call(kPlcPort, Command::AddDeviceNotification, u32s({0xF100, 0, 0xF7FFFF03, 4, 0, 0, 0, 0, 0, 0}))),
+            "00 00 00 00 01 00 00 00");
+  Bytes out;
+  session.sendDueNotifications(0, 0, out);
+  EXPECT_EQ(out.size(), kFrameHeaderSize + 32);
+}
+
 TEST_F(SessionTest, NotificationLimitPerConnection) {
   DeviceConfig config;
   config.maxNotificationsPerConnection = 1;

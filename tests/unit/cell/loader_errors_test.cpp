@@ -55,7 +55,18 @@ TEST_F(LoaderErrors, UnknownTopLevelKeyListsTheKnownOnes) {
                     "devices: []\n"
                     "devcies: []\n"),
               ElementsAre("cell.yaml:5:1: error[C011]: unknown key 'devcies' in the cell file "
-                          "(expected one of: name, plc, run, zones, world, devices, modbus)"));
+                          "(expected one of: name, plc, run, zones, world, devices, modbus, extends)"));
+}
+
+TEST_F(LoaderErrors, ExtendsNamesAMissingFile) {
+  EXPECT_THAT(fails("extends: nowhere.yaml\ndevices: []\n"),
+              ElementsAre("cell.yaml:1:10: error[C002]: cannot read cell file 'nowhere.yaml' named by 'extends'"));
+}
+
+TEST_F(LoaderErrors, ExtendsDoesNotChain) {
+  write("base.yaml", "extends: cell.yaml\ndevices: []\n");
+  EXPECT_THAT(fails("extends: base.yaml\n"),
+              ElementsAre("base.yaml:1:1: error[C010]: a cell file named by 'extends' cannot itself extend another file"));
 }
 
 TEST_F(LoaderErrors, PlcWithBothSourcesAndModbus) {
@@ -316,7 +327,7 @@ TEST_F(LoaderErrors, AllMistakesOfOneFileInOnePass) {
                           "cell.yaml:31:13: error[C030]: no port of 'Lock3' matches a variable under 'MAIN.nothing' "
                           "(expected e.g. MAIN.nothing.programNumber)",
                           "cell.yaml:32:1: error[C011]: unknown key 'extra' in the cell file (expected one of: name, plc, "
-                          "run, zones, world, devices, modbus)"));
+                          "run, zones, world, devices, modbus, extends)"));
 }
 
 // Regression test (found by the cell/sim test suite).

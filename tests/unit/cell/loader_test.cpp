@@ -178,6 +178,20 @@ TEST_F(Loader, RunPlcAndWorldSettings) {
   EXPECT_TRUE(found);
 }
 
+// `extends`: the sections this file lacks (devices, world, plc) come from the base file; its
+// own sections (name, run) replace the base's.
+TEST_F(Loader, ExtendsTakesTheSectionsTheFileLacksFromTheBase) {
+  write("base.yaml", kTwoDevices);
+  auto cell = loads("extends: base.yaml\nname: variant\nrun:\n  cycle_done: MAIN.done\n");
+  ASSERT_NE(cell, nullptr);
+  EXPECT_EQ(cell->name, "variant");
+  EXPECT_EQ(cell->run.cycleDoneVar, "MAIN.done");
+  EXPECT_EQ(cell->run.cycles, 1u) << "run is this file's, not merged with the base's";
+  EXPECT_EQ(cell->run.plcCycleNs, 5'000'000);
+  ASSERT_EQ(cell->devices.size(), 2u);
+  EXPECT_TRUE(cell->world.hasFact(cell->world.fact("partPresent")));
+}
+
 TEST_F(Loader, NameDefaultsToTheFolderName) {
   auto cell = loads("plc:\n  sources: [main.st]\ndevices: []\n");
   ASSERT_NE(cell, nullptr);

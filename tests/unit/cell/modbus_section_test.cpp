@@ -116,6 +116,12 @@ TEST_F(ModbusSection, EveryMapMistakeAtItsPosition) {
                           "cell.yaml:24:7: error[C010]: 'Clamp.programNumber' is mapped twice: a command has one writer"));
 }
 
+TEST_F(ModbusSection, AStringTypeIsRefusedWithTheReason) {
+  EXPECT_THAT(fails(std::string(kDevices) + "modbus:\n  map:\n    - { signal: Press.error, type: STRING }\n"),
+              ElementsAre("cell.yaml:12:36: error[C010]: 'type' must be BOOL, INT, UINT, DINT, UDINT or REAL, not "
+                          "'STRING' (no device signal carries text, so a signal cannot be mapped as a STRING)"));
+}
+
 TEST_F(ModbusSection, TheClientBridgeSettingsAndItsMapDefaults) {
   auto cell = loads(std::string("plc:\n"
                                 "  modbus: { address: 127.0.0.1:1502, unit: 3, poll: 20 ms, on_loss: hold }\n") +

@@ -297,6 +297,10 @@ TEST(AxisMapping, ReportsMistakesWithPosition) {
        "telegram: siemens_std1\noutputs:\n  bits: {Control_Start: STW1.0}\ninputs:\n  bits: {Status_Blocked: ZSW1.3}\n"
        "  Status_Blocked: {bit: ZSW1.6}\n",
        "m.yaml:6:3: error[C010]: Status_Blocked is mapped twice"},
+      // was "unknown output word ''" (found by fuzz_axis_mapping's seed corpus)
+      {"options inside the bits shorthand",
+       "telegram: siemens_std1\noutputs:\n  bits: {Control_Start: {bit: STW1.0, invert: true}}\ninputs:\n  bits: {Status_Blocked: ZSW1.3}\n",
+       "m.yaml:3:25: error[C010]: expected a word, bit or bit range of the telegram such as STW1.3"},
       {"unknown telegram", "telegram: siemens_std2\n", "m.yaml:1:11: error[C010]: unknown telegram 'siemens_std2'"},
       {"unknown key", "telegram: siemens_std1\noutputz: {}\n", "m.yaml:2:1: error[C011]: unknown key 'outputz'"},
       {"scale needs ref_speed",

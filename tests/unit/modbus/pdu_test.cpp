@@ -50,6 +50,27 @@ TEST_F(PduTest, ReadInputRegistersComeFromTheIArea) {
   EXPECT_EQ(ask({0x04, 0x00, 0x01, 0x00, 0x01}), (Bytes{0x04, 0x02, 0x01, 0x02}));
 }
 
+TEST_F(PduTest, InputsAreWritableHoldingRegistersFrom8192OnlyWhenAsked) {
+  // FC6 holding register 8193 (0x2001) := 16#0102: refused without writableInputs.
+  EXPECT_EQ(ask({0x06, 0x20, 0x01, 0x01, 0x02}), (Bytes{0x86, 0x02}));
+  EXPECT_TRUE(edits_.edits().empty());
+  ImageView writable = view();
+  writable.writableInputs = true;
+  std::array<uint8_t, kMaxPduSize> response{};
+  const Bytes write{0x06, 0x20, 0x01, 0x01, 0x02};
+  ASSERT_EQ(handlePdu(write, writable, edits_, response), 5u);
+  EXPECT_EQ(inputs_, (std::array<uint8_t, 4>{0, 0, 0x02, 0x01}));  // %IW1, little endian
+  ASSERT_EQ(edits_.edits().size(), 2u);
+  EXPECT_EQ(edits_.edits()[0].area, Area::Inputs);
+  // FC3 reads them back; %IW2 does not exist in a 4-byte area.
+  const Bytes read{0x03, 0x20, 0x00, 0x00, 0x02};
+  ASSERT_EQ(handlePdu(read, writable, edits_, response), 6u);
+  EXPECT_EQ(Bytes(response.begin(), response.begin() + 6), (Bytes{0x03, 0x04, 0x00, 0x00, 0x01, 0x02}));
+  const Bytes beyond{0x03, 0x20, 0x02, 0x00, 0x01};
+  ASSERT_EQ(handlePdu(beyond, writable, edits_, response), 2u);
+  EXPECT_EQ(response[1], 0x02);
+}
+
 TEST_F(PduTest, WriteSingleCoilEchoesAndQueuesOneBit) {
   outputs_ = {0x01, 0, 0, 0};
   EXPECT_EQ(ask({0x05, 0x00, 0x03, 0xFF, 0x00}), (Bytes{0x05, 0x00, 0x03, 0xFF, 0x00}));

@@ -1,39 +1,9 @@
 // The per-tick path is real-time clean (STYLE rule 7): once the trace has room for its records,
-// stepping devices through whole commands allocates nothing. Counted with a replaced global
-// operator new that is active only inside the measured region.
+// stepping devices through whole commands allocates nothing (tests/support/allocation_counter).
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <new>
-
 #include "robot_fixture.hpp"
-
-namespace {
-bool gCounting = false;
-size_t gAllocations = 0;
-}  // namespace
-
-// Every non-aligned form is replaced so allocation and release always pair up (ASan checks).
-static void* countedAlloc(size_t size) noexcept {
-  if (gCounting) ++gAllocations;
-  return std::malloc(size ? size : 1);
-}
-void* operator new(size_t size) {
-  if (void* p = countedAlloc(size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](size_t size) {
-  if (void* p = countedAlloc(size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new(size_t size, const std::nothrow_t&) noexcept { return countedAlloc(size); }
-void* operator new[](size_t size, const std::nothrow_t&) noexcept { return countedAlloc(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, size_t) noexcept { std::free(p); }
-void operator delete[](void* p, size_t) noexcept { std::free(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+#include "support/allocation_counter.hpp"
 
 namespace virtcom::plant::test {
 namespace {
@@ -61,8 +31,7 @@ TEST(NoAllocation, SteppingDevicesThroughCommandsDoesNotAllocate) {
   const TagId pressCmd = rig.tagOf("Press.programNumber"), clampCmd = rig.tagOf("Clamp.programNumber");
   const TagId executes[] = {rig.tagOf("R1.execute"), rig.tagOf("AxisX.execute"), rig.tagOf("Press.execute"),
                             rig.tagOf("Clamp.execute")};
-  gAllocations = 0;
-  gCounting = true;
+  const virtcom::test::AllocationCounter allocations;
   for (int n : {1, 4, 7, 2, 8, 3, 99}) {  // moves, tools, grip/release, an unknown number
     rig.bus.setNumber(robotCmd, n);
     rig.bus.setNumber(axisCmd, n * 10.0);
@@ -73,8 +42,7 @@ TEST(NoAllocation, SteppingDevicesThroughCommandsDoesNotAllocate) {
     for (TagId e : executes) rig.bus.setBool(e, false);
     rig.tick();
   }
-  gCounting = false;
-  EXPECT_EQ(gAllocations, 0u);
+  EXPECT_EQ(allocations.count(), 0u);
   EXPECT_GE(rig.trace.activities.size(), 7u * 4);
 }
 

@@ -11,6 +11,7 @@
 
 #include "bytecode/module.hpp"
 #include "core/clock.hpp"
+#include "lang/plcopen/exporter.hpp"
 #include "lang/plcopen/importer.hpp"
 #include "lang/st/compiler.hpp"
 #include "plc/runtime.hpp"
@@ -27,11 +28,7 @@ inline std::string readFile(const std::filesystem::path& p) {
 }
 
 // Inputs named like files: "x.xml" goes through the importer, anything else is ST.
-inline st::SourceInput input(std::string path, std::string text) {
-  st::SourceInput in{std::move(path), std::move(text)};
-  if (isPlcopenPath(in.path)) in.frontEnd = importProject;
-  return in;
-}
+inline st::SourceInput input(std::string path, std::string text) { return sourceInput(std::move(path), std::move(text)); }
 
 struct Compiled {
   SourceManager sources;
@@ -50,6 +47,19 @@ inline std::unique_ptr<Compiled> compileGolden(const std::string& name) {
   return compile({input(name, readFile(kGoldenDir / name))});
 }
 
+// The inputs parsed and exported as one TC6 project (no errors expected).
+inline std::string exportOf(const std::vector<st::SourceInput>& inputs) {
+  SourceManager sources;
+  Diagnostics diags;
+  st::NodeId next = 0;
+  std::vector<st::CompilationUnit> units = st::parseInputs(inputs, sources, diags, next);
+  std::vector<const st::CompilationUnit*> pointers;
+  for (const auto& u : units) pointers.push_back(&u);
+  std::string xml = exportProject(pointers, {}, diags);
+  EXPECT_FALSE(diags.hasErrors()) << diags.render(sources);
+  return xml;
+}
+
 // One PLC running a compiled program: set inputs, scan, read variables in IEC literal form.
 class Plc {
  public:
@@ -66,6 +76,7 @@ class Plc {
     if (!ref) return "<unknown " + name + ">";
     return bc::formatValue(module_, *ref, runtime_.machine().memory());
   }
+  const uint8_t* memory() { return runtime_.machine().memory(); }
   void scan(int count = 1) {
     for (int k = 0; k < count; ++k) ASSERT_TRUE(runtime_.tick()) << runtime_.faultText();
   }

@@ -264,5 +264,21 @@ TEST(DiagnosticCodes, TitlesComeFromTheTable) {
   EXPECT_EQ(diagnosticTitle("Z000"), "");
 }
 
+// A wide literal's payload is UTF-8; WSTRING memory needs UTF-16 code units (bug B7).
+TEST(Utf8ToUtf16, OneUnitPerCharacterOfTheBasicPlane) {
+  EXPECT_EQ(utf8ToUtf16("a\xC3\xA4\xE2\x82\xAC"), (std::u16string{u'a', u'\u00E4', u'\u20AC'}));
+  Lexed l = lexText("\"$00E4$20AC\"");
+  EXPECT_EQ(utf8ToUtf16(l.tokens[0].str), (std::u16string{u'\u00E4', u'\u20AC'}));
+}
+
+TEST(Utf8ToUtf16, CharactersBeyondTheBasicPlaneBecomeSurrogatePairs) {
+  EXPECT_EQ(utf8ToUtf16("\xF0\x9F\x98\x80"), (std::u16string{char16_t(0xD83D), char16_t(0xDE00)}));
+}
+
+TEST(Utf8ToUtf16, MalformedBytesAreTakenAsTheirValue) {
+  EXPECT_EQ(utf8ToUtf16("\xC3x"), (std::u16string{char16_t(0xC3), u'x'}));
+  EXPECT_EQ(utf8ToUtf16("\xE2\x82"), (std::u16string{char16_t(0xE2), char16_t(0x82)}));
+}
+
 }  // namespace
 }  // namespace virtcom::st

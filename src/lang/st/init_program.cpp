@@ -1,0 +1,156 @@
+#include "lang/st/init_program.hpp"
+
+#include <map>
+
+namespace virtcom::st {
+
+namespace {
+
+ExprPtr cloneExpr(const Expr& e);
+
+CallArg cloneArg(const CallArg& a) { return CallArg{a.name, a.output, a.negated, a.value ? cloneExpr(*a.value) : nullptr, a.loc}; }
+
+ExprPtr cloneExpr(const Expr& e) {
+  auto c = std::make_unique<Expr>();
+  c->kind = e.kind;
+  c->loc = e.loc;
+  c->id = e.id;
+  c->unaryOp = e.unaryOp;
+  c->binaryOp = e.binaryOp;
+  c->wide = e.wide;
+  c->intValue = e.intValue;
+  c->realValue = e.realValue;
+  c->text = e.text;
+  c->typePrefix = e.typePrefix;
+  if (e.lhs) c->lhs = cloneExpr(*e.lhs);
+  if (e.rhs) c->rhs = cloneExpr(*e.rhs);
+  for (const auto& item : e.items) c->items.push_back(cloneExpr(*item));
+  for (const auto& a : e.args) c->args.push_back(cloneArg(a));
+  return c;
+}
+
+ExprPtr makeExpr(ExprKind kind, SourceLocation loc, std::string text = {}) {
+  auto e = std::make_unique<Expr>();
+  e->kind = kind;
+  e->loc = loc;
+  e->text = std::move(text);
+  return e;
+}
+
+ExprPtr member(ExprPtr object, const std::string& name) {
+  ExprPtr e = makeExpr(ExprKind::Member, object->loc, name);
+  e->lhs = std::move(object);
+  return e;
+}
+
+ExprPtr intLiteral(int64_t v, SourceLocation loc) {
+  ExprPtr lit = makeExpr(ExprKind::IntLit, loc);
+  lit->intValue = static_cast<uint64_t>(v < 0 ? -v : v);
+  if (v >= 0) return lit;
+  ExprPtr neg = makeExpr(ExprKind::Unary, loc);
+  neg->unaryOp = UnaryOp::Neg;
+  neg->lhs = std::move(lit);
+  return neg;
+}
+
+class InitCalls {
+ public:
+  InitCalls(const ProgramModel& model, const TypeTable& types, StmtList& out) : model_(model), types_(types), out_(out) {}
+
+  // Emits the FB_init calls for the variable at `path` of `type` and everything inside it.
+  void visit(const Expr& path, TypeId type, const std::vector<CallArg>* args, SourceLocation loc) {
+    if (!needsInit(type)) return;  // also keeps arrays of plain values from being walked
+    const bc::TypeDesc& d = types_[type];
+    if (d.kind == bc::TypeKind::Array) {
+      std::vector<int64_t> index;
+      for (const auto& dim : d.dims) index.push_back(dim.lo);
+      while (true) {
+        ExprPtr element = makeExpr(ExprKind::Index, loc);
+        element->lhs = cloneExpr(path);
+        for (int64_t i : index) element->items.push_back(intLiteral(i, loc));
+        visit(*element, d.element, nullptr, loc);
+        size_t k = index.size();
+        while (k > 0 && index[k - 1] == d.dims[k - 1].hi) {
+          index[k - 1] = d.dims[k - 1].lo;
+          --k;
+        }
+        if (k == 0) return;
+        ++index[k - 1];
+      }
+    }
+    auto fb = model_.fbByType.find(type);
+    if (fb == model_.fbByType.end()) {
+      for (const auto& f : d.fields) visit(*member(cloneExpr(path), f.name), f.type, nullptr, loc);
+      return;
+    }
+    for (const auto& m : fb->second->members)
+      if (m.storage == Storage::Instance && !m.byReference && m.name.find('.') == std::string::npos)
+        visit(*member(cloneExpr(path), m.name), m.type, m.decl ? &m.decl->fbInitArgs : nullptr, m.loc);
+    auto init = fb->second->methods.find("FB_INIT");
+    if (init != fb->second->methods.end()) call(path, *init->second, args, loc);
+  }
+
+ private:
+  bool needsInit(TypeId type) {
+    if (type == kNoType) return false;
+    if (auto it = needs_.find(type); it != needs_.end()) return it->second;
+    needs_[type] = false;  // a cycle contributes nothing
+    const bc::TypeDesc& d = types_[type];
+    bool needs = false;
+    if (d.kind == bc::TypeKind::Array) {
+      needs = needsInit(d.element);
+    } else if (auto fb = model_.fbByType.find(type); fb != model_.fbByType.end()) {
+      needs = fb->second->methods.count("FB_INIT") > 0;
+      for (const auto& m : fb->second->members)
+        needs = needs || (m.storage == Storage::Instance && !m.byReference && needsInit(m.type));
+    } else if (d.kind == bc::TypeKind::Struct) {
+      for (const auto& f : d.fields) needs = needs || needsInit(f.type);
+    }
+    return needs_[type] = needs;
+  }
+
+  void call(const Expr& path, const PouSym& init, const std::vector<CallArg>* args, SourceLocation loc) {
+    ExprPtr e = makeExpr(ExprKind::Call, loc);
+    e->lhs = member(cloneExpr(path), init.name);
+    auto flag = [&](const char* name, bool value) {
+      for (const VarInfo* p : init.params)
+        if (upper(p->name) == name) {
+          ExprPtr v = makeExpr(ExprKind::BoolLit, loc);
+          v->intValue = value;
+          e->args.push_back(CallArg{p->name, false, false, std::move(v), loc});
+        }
+    };
+    flag("BINITRETAINS", true);
+    flag("BINCOPYCODE", false);
+    if (args)
+      for (const auto& a : *args) e->args.push_back(cloneArg(a));
+    auto stmt = std::make_unique<Stmt>();
+    stmt->kind = StmtKind::Call;
+    stmt->loc = loc;
+    stmt->expr = std::move(e);
+    out_.push_back(std::move(stmt));
+  }
+
+  const ProgramModel& model_;
+  const TypeTable& types_;
+  StmtList& out_;
+  std::map<TypeId, bool> needs_;
+};
+
+}  // namespace
+
+std::unique_ptr<Pou> buildInitProgram(const ProgramModel& model, const TypeTable& types) {
+  auto pou = std::make_unique<Pou>();
+  pou->kind = PouKind::Program;
+  pou->name = "__INIT";
+  pou->hasBody = true;
+  InitCalls calls(model, types, pou->body);
+  for (const auto& g : model.globals)
+    calls.visit(*makeExpr(ExprKind::Name, g.var.loc, g.var.name), g.var.type, g.var.decl ? &g.var.decl->fbInitArgs : nullptr, g.var.loc);
+  for (const auto& inst : model.programInstances)
+    calls.visit(*makeExpr(ExprKind::Name, inst.pou->ast->loc, inst.name), inst.pou->instanceType, nullptr, inst.pou->ast->loc);
+  if (pou->body.empty()) return nullptr;
+  return pou;
+}
+
+}  // namespace virtcom::st

@@ -1,0 +1,51 @@
+#pragma once
+// Random bytecode for robustness and differential tests (vm/, aot/).
+#include <random>
+
+#include "bytecode/instruction.hpp"
+#include "bytecode/verifier.hpp"
+
+namespace virtcom::test {
+
+using bc::Op;
+using bc::WideOperand;
+
+// A random instruction for a POU with `numRegs` registers whose code is [start, start + size),
+// placed at `pc`, in a module with `pous` POUs, 3 constants and 3 index descriptors. Operands
+// are mostly valid; about one in a hundred is not, for the verifier to catch.
+inline bc::Instr randomInstr(std::mt19937& rng, uint16_t numRegs, uint32_t pc, uint32_t start, uint32_t size,
+                             uint32_t pous = 3) {
+  auto pick = [&rng](uint32_t lo, uint32_t hi) { return std::uniform_int_distribution<uint32_t>(lo, hi)(rng); };
+  const auto op = static_cast<Op>(pick(0, static_cast<uint32_t>(Op::Count_) - 1));
+  const auto rare = [&] { return pick(0, 99) == 0; };  // occasionally an invalid operand
+  const auto reg = [&] { return static_cast<uint16_t>(pick(0, numRegs - 1) + (rare() ? 1 : 0)); };
+  if (bc::opFormat(op) == bc::Format::ABC) {
+    uint16_t c = pick(0, 3) == 0 ? static_cast<uint16_t>(pick(0, 0xffff)) : static_cast<uint16_t>(pick(0, 70));
+    switch (bc::operandRoles(op).c) {
+      case bc::Operand::Reg: c = reg(); break;
+      case bc::Operand::BitIndex: c = static_cast<uint16_t>(pick(0, 7) + (rare() ? 8 : 0)); break;
+      case bc::Operand::BitCount: c = static_cast<uint16_t>(pick(1, 64) + (rare() ? 64 : 0)); break;
+      case bc::Operand::Divisor: c = static_cast<uint16_t>(rare() ? 0 : pick(1, 0xffff)); break;
+      case bc::Operand::Index: c = static_cast<uint16_t>(pick(0, 2) + (rare() ? 1 : 0)); break;
+      default: break;
+    }
+    return bc::Instr::abc(op, reg(), reg(), c);
+  }
+  uint32_t bx = 0;
+  switch (bc::operandRoles(op).bx) {
+    case WideOperand::Abs: bx = rare() ? pick(0, 270) : pick(16, 248); break;
+    case WideOperand::Pou: bx = pick(0, pous - 1) + (rare() ? 1 : 0); break;
+    case WideOperand::Const: bx = pick(0, 2) + (rare() ? 1 : 0); break;
+    case WideOperand::Native: bx = pick(0, static_cast<uint32_t>(bc::Native::Count_) - 1) + (rare() ? 1 : 0); break;
+    case WideOperand::NativeFb: bx = pick(0, static_cast<uint32_t>(bc::NativeFb::Count_) - 1) + (rare() ? 1 : 0); break;
+    case WideOperand::Jump: {
+      const int32_t target = static_cast<int32_t>(pick(start, start + size)) - 1;
+      return bc::Instr::asbx(op, reg(), target - static_cast<int32_t>(pc) - 1);
+    }
+    case WideOperand::Fault: bx = pick(1, 8) + (rare() ? 1 : 0); break;
+    default: bx = pick(0, 3) == 0 ? pick(0, 0xffffffffu) : pick(0, 300); break;
+  }
+  return bc::Instr::abx(op, reg(), bx);
+}
+
+}  // namespace virtcom::test

@@ -4,6 +4,9 @@
 //   ads/sum_read_100     one 0xF080 sum read of 100 DINTs
 //   ads/notification     latency from publishSnapshot (the end of a scan that changed a value)
 //                        to the on-change DeviceNotification arriving at the client
+//   ads/bridge_step      one step of the cell's ADS client bridge (proto/ads/client_bridge) with
+//                        50 PLC outputs read and 50 device outputs of which one changed: a sum
+//                        read and a Write by handle
 // One iteration is one round trip; real time is what counts (the server runs on its own thread).
 #include <arpa/inet.h>
 #include <netinet/in.h>
@@ -17,6 +20,7 @@
 #include <vector>
 
 #include "proto/ads/byte_io.hpp"
+#include "proto/ads/client_bridge.hpp"
 #include "proto/ads/server.hpp"
 
 namespace ads = virtcom::proto::ads;
@@ -172,10 +176,39 @@ void notificationLatency(benchmark::State& state) {
   }
 }
 
+void bridgeStep(benchmark::State& state) {
+  Setup s;
+  if (!start(s, state)) return;
+  virtcom::TagBus bus;
+  ads::BridgeConfig config;
+  config.client.router = s.server->endpoint();
+  for (uint32_t i = 0; i < kVariables; ++i) {
+    const bool toPlc = i >= kVariables / 2;
+    std::string port = "Device.port" + std::to_string(i);
+    config.signals.push_back({"MAIN.v" + std::to_string(i), port, bus.add(port, virtcom::ElemType::Dint), toPlc, false});
+  }
+  const virtcom::TagId changing = config.signals.back().tag;
+  ads::ClientBridge::StartReport report;
+  auto bridge = ads::ClientBridge::start(config, bus, report);
+  if (!bridge) {
+    state.SkipWithError(report.problems.empty() ? "bridge failed" : report.problems[0].text.c_str());
+    return;
+  }
+  int64_t value = 0;
+  for (auto _ : state) {
+    if (!bridge->pull(bus, 0)) state.SkipWithError(bridge->failure().c_str());
+    bus.setInt(changing, ++value);
+    bridge->push(bus, 0);
+    s.server->applyPendingWrites({s.image, {}});  // the PLC's next scan takes the write
+  }
+  if (!bridge->failure().empty()) state.SkipWithError(bridge->failure().c_str());
+}
+
 }  // namespace
 
 BENCHMARK(readByHandle)->Name("ads/read_by_handle")->UseRealTime()->MinTime(1.0);
 BENCHMARK(sumRead100)->Name("ads/sum_read_100")->UseRealTime()->MinTime(1.0);
 BENCHMARK(notificationLatency)->Name("ads/notification")->UseRealTime()->MinTime(1.0);
+BENCHMARK(bridgeStep)->Name("ads/bridge_step")->UseRealTime()->MinTime(1.0);
 
 BENCHMARK_MAIN();

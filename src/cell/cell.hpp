@@ -53,6 +53,7 @@ struct RunSettings {
   bool stopOnCollision = true;
   bool stopOnDeviceError = true;
   std::vector<std::string> recordVars;    // extra PLC variables recorded in the trace
+  TagId cycleDoneTag = kNoTag;            // external PLC: the cycle_done variable as a BOOL tag
 };
 
 // `plc: modbus:` — the cell's controller is an external PLC, polled over Modbus TCP.
@@ -63,6 +64,32 @@ struct ModbusClientSettings {
   int64_t timeoutNs = 500'000'000;     // a request unanswered this long means the link is lost
   bool faultOnLoss = true;             // on_loss: fault (end the run) or hold (keep, reconnect)
   proto::modbus::SignalMap map;        // the PLC's tables (Client role)
+};
+
+// A device port wired to a variable of an external PLC by name (`plc: ads:`): resolved, checked
+// and given a handle when the bridge starts, since the program is not here to check it against.
+struct ExternalWire {
+  TagId tag = kNoTag;                       // kNoTag: a variable only recorded (`run: record`)
+  plant::PortDir dir = plant::PortDir::In;  // In: PLC variable -> tag; Out: tag -> PLC variable
+  std::string variable;                     // "MAIN.Robot1.execute"
+  std::string port;                         // "Robot1.execute"; empty for a run variable
+  SourceLocation loc;                       // the wiring entry (or run key) that names it
+  bool optional = false;                    // wiring by prefix: skipped if the PLC lacks it
+  int prefixGroup = -1;                     // wiring by prefix: one group per device; >= 1 must exist
+};
+
+// `plc: ads:` — the cell's controller is an external PLC reached over ADS (a TwinCAT runtime or
+// `virtcom exec --ads`). Strings are checked by the loader.
+struct AdsClientSettings {
+  std::string address;                 // HOST:PORT of its AMS router (TwinCAT: port 48898)
+  SourceLocation addressLoc;           // where connection problems are reported
+  std::string netId = "127.0.0.1.1.1"; // the target AmsNetId
+  uint16_t port = 851;                 // the target AMS port (851 = PLC runtime 1)
+  std::string localNetId;              // our source AmsNetId; empty: local IPv4 address + .1.1
+  int64_t timeoutNs = 500'000'000;     // connect and each request
+  bool faultOnLoss = true;             // on_loss: fault (end the run) or hold (keep, reconnect)
+  bool disconnectWhenStopped = true;   // release the handles and disconnect when the run ends
+  std::vector<ExternalWire> wires;     // the device wiring, then cycle_done and record
 };
 
 struct Cell {
@@ -77,6 +104,7 @@ struct Cell {
   RunSettings run;
   proto::modbus::SignalMap modbus;     // what `virtcom serve --modbus` serves: `modbus:` or automatic
   std::optional<ModbusClientSettings> plcModbus;
+  std::optional<AdsClientSettings> plcAds;
 };
 
 // Every device port as a signal a protocol map can name ("Press.execute"), in device and port

@@ -5,10 +5,12 @@
 #include <set>
 #include <sstream>
 
+#include "cell/ads_settings.hpp"
 #include "cell/cell.hpp"
 #include "cell/mapping_file.hpp"
 #include "cell/modbus_settings.hpp"
 #include "cell/yaml_config.hpp"
+#include "core/value_codec.hpp"
 #include "drives/drive_registry.hpp"
 #include "lang/plcopen/importer.hpp"
 #include "lang/st/compiler.hpp"
@@ -28,11 +30,7 @@ bool readText(const std::filesystem::path& p, std::string& out) {
 
 bool compatible(ElemType port, const bc::TypeDesc& var) {
   if (var.kind != bc::TypeKind::Elementary && var.kind != bc::TypeKind::Enum) return false;
-  ElemType v = var.elem;
-  if (port == ElemType::Bool) return v == ElemType::Bool;
-  if (v == ElemType::Bool || elemTypeInfo(v).kind == ElemKind::Text) return false;
-  if (isFloat(port)) return isFloat(v) || isInteger(v);
-  return isInteger(v) || var.kind == bc::TypeKind::Enum || isFloat(v);
+  return wireCompatible(port, var.elem, var.kind == bc::TypeKind::Enum);
 }
 
 const char* dirText(plant::PortDir d) { return d == plant::PortDir::In ? "input" : "output"; }
@@ -56,7 +54,7 @@ class Loader {
     // Every part is checked even when an earlier one failed, so one run reports all mistakes;
     // without a compiled PLC program the run settings and wiring cannot be checked.
     bool plcOk = compilePlc(*cell, top);
-    if (plcOk) readRun(*cell, top);
+    if (plcOk || cell->plcAds) readRun(*cell, top);
     else top.child("run");  // known key; its conditions need the compiled program
     readWorld(*cell, top);
     readDevices(*cell, top);
@@ -64,6 +62,10 @@ class Loader {
     readModbusSection(*cell, top.child("modbus"), diags_);
     if (plcModbus_) readModbusClient(*cell, *plcModbus_, diags_);
     top.child("extends");  // applied by takeBaseSections()
+    if (plcAds_) {
+      readAdsClient(*cell->plcAds, *plcAds_, diags_);
+      addExternalRunWires(*cell);
+    }
     top.rejectUnknownKeys();
     if (diags_.hasErrors()) return nullptr;
     return cell;
@@ -103,10 +105,16 @@ class Loader {
     std::vector<st::SourceInput> inputs;
     const ConfigNode* srcs = plc.child("sources");
     plcModbus_ = plcNode->find("modbus");
-    if (srcs && plcModbus_) {
-      plc.error(plcModbus_->loc(), "'plc' has either 'sources' (the soft PLC) or 'modbus' (an external PLC), not both");
-    } else if (plcModbus_ || !srcs) {
-      // no soft PLC; `plc: modbus:` is read with the devices' signals, see load()
+    plcAds_ = plcNode->find("ads");
+    if (plcAds_) cell.plcAds.emplace();
+    if (srcs && (plcModbus_ || plcAds_)) {
+      const ConfigNode* external = plcModbus_ ? plcModbus_ : plcAds_;
+      plc.error(external->loc(), std::string("'plc' has either 'sources' (the soft PLC) or '") + (plcModbus_ ? "modbus" : "ads") +
+                                     "' (an external PLC), not both");
+    } else if (plcModbus_ && plcAds_) {
+      plc.error(plcAds_->loc(), "'plc' has either 'modbus' or 'ads' (one external PLC), not both");
+    } else if (plcModbus_ || plcAds_ || !srcs) {
+      // no soft PLC; `plc: modbus:` / `plc: ads:` are read with the devices' signals, see load()
     } else if (srcs->kind() != ConfigNode::Kind::List || srcs->items().empty()) {
       plc.error(srcs->loc(), "'sources' must be a list of ST (.st) or PLCopen XML (.xml) files relative to the cell file");
     } else {
@@ -125,6 +133,7 @@ class Loader {
       plc.error(plc.node().find("cycle_time") ? plc.node().find("cycle_time")->loc() : plcNode->loc(),
                 "'cycle_time' must be at least 1 us");
     plc.child("modbus");
+    plc.child("ads");
     plc.rejectUnknownKeys();
     if (diags_.hasErrors()) return false;
     if (inputs.empty()) return true;
@@ -153,15 +162,47 @@ class Loader {
     run.rejectUnknownKeys();
   }
 
-  // The run settings among `keys` that name soft PLC variables; refused without a soft PLC.
+  // The run settings among `keys` that name PLC variables: resolved in the soft PLC, or (with
+  // `plc: ads:`) named for the bridge to resolve; refused with no PLC that has variables.
   void readRunVariables(Cell& cell, ConfigReader& run, std::initializer_list<std::string> keys) {
     for (const std::string& key : keys) {
       const ConfigNode* n = run.child(key);
       if (!n) continue;
-      if (!cell.module) run.error(n->loc(), "'" + key + "' names PLC variables, but the cell has no soft PLC ('plc: sources')");
+      if (cell.plcAds) readExternalRunVariable(run, key, *n);
+      else if (!cell.module) run.error(n->loc(), "'" + key + "' names PLC variables, but the cell has no soft PLC ('plc: sources')");
       else if (key == "until") cell.run.until = parseCondition(*cell.module, n->scalar(), n->loc(), diags_);
       else if (key == "cycle_done") readCycleDone(cell, run, *n);
       else readRecord(cell, run, *n);
+    }
+  }
+
+  // `cycle_done` and `record` of a cell whose PLC is reached over ADS: kept by name (tags and
+  // wires are added once the devices have theirs, see addExternalRunWires).
+  void readExternalRunVariable(ConfigReader& run, const std::string& key, const ConfigNode& n) {
+    if (key == "until") {
+      run.error(n.loc(), "'until' needs the soft PLC ('plc: sources'); with 'plc: ads' end the run with 'cycle_done' or 'time_limit'");
+    } else if (key == "cycle_done") {
+      if (n.kind() != ConfigNode::Kind::Scalar || n.scalar().empty()) run.error(n.loc(), "'cycle_done' must name a BOOL PLC variable");
+      else externalRun_.push_back({n.scalar(), n.loc(), true});
+    } else if (n.kind() != ConfigNode::Kind::List) {
+      run.error(n.loc(), "'record' must be a list of PLC variables");
+    } else {
+      for (const auto& item : n.items()) externalRun_.push_back({item.scalar(), item.loc(), false});
+    }
+  }
+
+  void addExternalRunWires(Cell& cell) {
+    for (const ExternalRunVariable& v : externalRun_) {
+      ExternalWire w;
+      w.variable = v.name;
+      w.loc = v.loc;
+      if (v.cycleDone) {
+        // A BOOL tag the bridge reads every step; the simulation counts its rising edges.
+        TagId tag = cell.bus.find(v.name);
+        w.tag = tag != kNoTag ? tag : cell.bus.add(v.name, ElemType::Bool);
+        cell.run.cycleDoneTag = w.tag;
+      }
+      cell.plcAds->wires.push_back(std::move(w));
     }
   }
 
@@ -254,9 +295,13 @@ class Loader {
     const auto& ports = d.ports();
     for (size_t i = 0; i < ports.size(); ++i) d.bindPort(i, cell.bus.add(d.name() + "." + ports[i].name, ports[i].type));
     if (!wiring) return;  // an unwired device still simulates (e.g. driven only by faults, facts or a bridge)
+    if (cell.plcAds) {
+      bindExternal(*cell.plcAds, d, *wiring, static_cast<int>(cell.devices.size()));
+      return;
+    }
     if (!cell.module) {
-      diags_.error("C030", wiring->loc(), "'wiring' connects ports to soft PLC variables, but the cell has no soft PLC ('plc: sources'); "
-                                          "an external PLC reaches the signals through a Modbus map");
+      diags_.error("C030", wiring->loc(), "'wiring' connects ports to PLC variables, but the cell has no soft PLC ('plc: sources') "
+                                          "and no ADS PLC ('plc: ads'); a Modbus PLC reaches the signals through its map");
       return;
     }
     if (wiring->kind() == ConfigNode::Kind::Scalar) {
@@ -293,6 +338,41 @@ class Loader {
     (void)deviceNode;
   }
 
+  // Wiring to an external PLC's variables by name: checked against the PLC when the bridge
+  // starts. The prefix form wires every port to PREFIX.port where the PLC has that variable.
+  void bindExternal(AdsClientSettings& ads, plant::Device& d, const ConfigNode& wiring, int deviceIndex) {
+    const auto& ports = d.ports();
+    auto wire = [&](size_t i, std::string var, SourceLocation loc, bool optional) {
+      ExternalWire w;
+      w.tag = d.tag(i);
+      w.dir = ports[i].dir;
+      w.variable = std::move(var);
+      w.port = d.name() + "." + ports[i].name;
+      w.loc = loc;
+      w.optional = optional;
+      w.prefixGroup = optional ? deviceIndex : -1;
+      ads.wires.push_back(std::move(w));
+    };
+    if (wiring.kind() == ConfigNode::Kind::Scalar) {
+      for (size_t i = 0; i < ports.size(); ++i) wire(i, wiring.scalar() + "." + ports[i].name, wiring.loc(), true);
+      return;
+    }
+    if (wiring.kind() != ConfigNode::Kind::Map) {
+      diags_.error("C030", wiring.loc(), "'wiring' must be a PLC variable prefix (MAIN.Robot1) or a map port: variable");
+      return;
+    }
+    for (const auto& [port, var] : wiring.entries()) {
+      int index = d.portIndex(port);
+      if (index < 0) {
+        std::string known;
+        for (const auto& p : ports) known += (known.empty() ? "" : ", ") + p.name;
+        diags_.error("C031", wiring.keyLoc(port), "device '" + d.name() + "' has no port '" + port + "' (ports: " + known + ")");
+        continue;
+      }
+      wire(static_cast<size_t>(index), var.scalar(), var.loc(), false);
+    }
+  }
+
   size_t connect(Cell& cell, plant::Device& d, size_t port, const std::string& var, SourceLocation loc) {
     const plant::PortSpec& spec = d.ports()[port];
     auto ref = bc::resolveVariable(*cell.module, var);
@@ -313,6 +393,13 @@ class Loader {
   SourceManager& sources_;
   Diagnostics& diags_;
   const ConfigNode* plcModbus_ = nullptr;  // `plc: modbus:` inside the file's tree, read after the devices
+  const ConfigNode* plcAds_ = nullptr;     // `plc: ads:` likewise
+  struct ExternalRunVariable {
+    std::string name;
+    SourceLocation loc;
+    bool cycleDone = false;  // else recorded
+  };
+  std::vector<ExternalRunVariable> externalRun_;  // `run:` variables of the PLC behind `plc: ads:`
 };
 
 }  // namespace

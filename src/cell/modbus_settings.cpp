@@ -23,6 +23,7 @@ void detachSoftPlc(Cell& cell) {
   cell.run.until = {};
   cell.run.cycleDoneVar.clear();
   cell.run.recordVars.clear();
+  cell.run.cycleDoneTag = kNoTag;
 }
 
 void readModbusSection(Cell& cell, const ConfigNode* node, Diagnostics& diags) {

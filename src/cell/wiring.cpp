@@ -2,87 +2,16 @@
 #include <cstring>
 
 #include "cell/cell.hpp"
+#include "core/value_codec.hpp"
 
 namespace virtcom::cell {
 
-namespace {
-
-// The variable's value as a double or an integer, by its storage type.
-bool isReal(ElemType t) { return t == ElemType::Real || t == ElemType::Lreal; }
-
-int64_t loadInt(const uint8_t* p, ElemType t) {
-  switch (t) {
-    case ElemType::Bool: case ElemType::Byte: case ElemType::Usint: return *p;
-    case ElemType::Sint: return static_cast<int8_t>(*p);
-    case ElemType::Int: { int16_t v; std::memcpy(&v, p, 2); return v; }
-    case ElemType::Word: case ElemType::Uint: { uint16_t v; std::memcpy(&v, p, 2); return v; }
-    case ElemType::Dint: case ElemType::Time: { int32_t v; std::memcpy(&v, p, 4); return v; }
-    case ElemType::Dword: case ElemType::Udint: case ElemType::Date: case ElemType::Tod: case ElemType::Dt: {
-      uint32_t v; std::memcpy(&v, p, 4); return v;
-    }
-    default: { int64_t v; std::memcpy(&v, p, 8); return v; }
-  }
-}
-
-double loadReal(const uint8_t* p, ElemType t) {
-  if (t == ElemType::Real) { float f; std::memcpy(&f, p, 4); return f; }
-  double d; std::memcpy(&d, p, 8); return d;
-}
-
-void storeInt(uint8_t* p, ElemType t, int64_t v) {
-  if (t == ElemType::Bool) v = v != 0;
-  std::memcpy(p, &v, elemTypeInfo(t).sizeBytes);  // little endian: the low bytes
-}
-
-void storeReal(uint8_t* p, ElemType t, double v) {
-  if (t == ElemType::Real) { float f = static_cast<float>(v); std::memcpy(p, &f, 4); return; }
-  std::memcpy(p, &v, 8);
-}
-
-
-void storeValue(const Wire& w, const TagBus& bus, uint8_t* p) {
-  if (w.bit >= 0) {
-    if (bus.getBool(w.tag)) *p = static_cast<uint8_t>(*p | (1u << w.bit));
-    else *p = static_cast<uint8_t>(*p & ~(1u << w.bit));
-    return;
-  }
-  ElemType tagType = w.tagType;
-  if (w.varIsReal) {
-    storeReal(p, w.varType, isFloat(tagType) ? bus.getReal(w.tag) : bus.getNumber(w.tag));
-  } else if (isFloat(tagType)) {
-    storeInt(p, w.varType, static_cast<int64_t>(bus.getReal(w.tag) >= 0 ? bus.getReal(w.tag) + 0.5 : bus.getReal(w.tag) - 0.5));
-  } else {
-    storeInt(p, w.varType, bus.getInt(w.tag));
-  }
-}
-
-}  // namespace
-
 void readVariable(const Wire& w, const uint8_t* memory, TagBus& bus) {
-  const uint8_t* p = memory + w.address;
-  if (w.bit >= 0) {
-    bus.setBool(w.tag, (*p >> w.bit) & 1);
-    return;
-  }
-  ElemType tagType = w.tagType;
-  if (w.varIsReal) {
-    double v = loadReal(p, w.varType);
-    if (isFloat(tagType)) bus.setReal(w.tag, v);
-    else bus.setNumber(w.tag, v);
-    return;
-  }
-  int64_t v = loadInt(p, w.varType);
-  if (isFloat(tagType)) bus.setReal(w.tag, static_cast<double>(v));
-  else if (tagType == ElemType::Bool) bus.setBool(w.tag, v != 0);
-  else bus.setInt(w.tag, v);
+  loadVariable(memory + w.address, w.bit, w.varType, bus, w.tag);
 }
 
 bool writeVariable(const Wire& w, const TagBus& bus, uint8_t* memory) {
-  uint8_t* p = memory + w.address;
-  uint64_t before = 0;
-  std::memcpy(&before, p, w.varSize);
-  storeValue(w, bus, p);
-  return std::memcmp(&before, p, w.varSize) != 0;
+  return storeVariable(memory + w.address, w.bit, w.varType, bus, w.tag);
 }
 
 Wire makeWire(TagId tag, ElemType tagType, plant::PortDir dir, const bc::VarRef& ref, ElemType varType, std::string varName) {
@@ -94,7 +23,7 @@ Wire makeWire(TagId tag, ElemType tagType, plant::PortDir dir, const bc::VarRef&
   w.bit = ref.bit;
   w.varType = varType;
   w.varSize = static_cast<uint8_t>(ref.bit >= 0 ? 1 : elemTypeInfo(varType).sizeBytes);
-  w.varIsReal = isReal(varType);
+  w.varIsReal = isRealType(varType);
   w.varName = std::move(varName);
   return w;
 }
@@ -102,7 +31,7 @@ Wire makeWire(TagId tag, ElemType tagType, plant::PortDir dir, const bc::VarRef&
 bool evaluate(const Condition& c, const uint8_t* memory) {
   if (!c.valid) return false;
   const uint8_t* p = memory + c.address;
-  double v = c.bit >= 0 ? ((*p >> c.bit) & 1) : isReal(c.type) ? loadReal(p, c.type) : static_cast<double>(loadInt(p, c.type));
+  double v = c.bit >= 0 ? ((*p >> c.bit) & 1) : isRealType(c.type) ? loadReal(p, c.type) : static_cast<double>(loadInteger(p, c.type));
   switch (c.op) {
     case Condition::Op::Eq: return v == c.value;
     case Condition::Op::Ne: return v != c.value;
@@ -159,8 +88,8 @@ Condition parseCondition(const bc::Module& m, const std::string& text, SourceLoc
   c.bit = ref->bit;
   c.type = t.elem;
   c.value = c.bit >= 0 ? ((scratch[c.address] >> c.bit) & 1)
-            : isReal(c.type) ? loadReal(scratch.data() + c.address, c.type)
-                             : static_cast<double>(loadInt(scratch.data() + c.address, c.type));
+            : isRealType(c.type) ? loadReal(scratch.data() + c.address, c.type)
+                             : static_cast<double>(loadInteger(scratch.data() + c.address, c.type));
   c.valid = true;
   return c;
 }

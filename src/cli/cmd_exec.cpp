@@ -6,14 +6,12 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/ads_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "lang/sfc/step_monitor.hpp"
 #include "plc/retain_file.hpp"
 #include "plc/runtime.hpp"
-#include "proto/ads/plc/module_symbols.hpp"
-#include "proto/ads/plc/plc_binding.hpp"
-#include "proto/ads/ams.hpp"
 #include "proto/modbus/server.hpp"
 
 namespace virtcom::cli {
@@ -38,10 +36,7 @@ struct ExecOptions {
   std::string modbus;       // HOST:PORT to serve Modbus TCP on; empty: no server
   std::string modbusAllow;  // comma-separated peer addresses; empty: any
   bool modbusWritableInputs = false;  // %IW also as holding registers 8192.. (docs/modbus.md)
-  std::string ads;          // HOST:PORT to serve ADS (AMS/TCP) on; empty: no server
-  std::string adsNetId;     // the server's AmsNetId; empty: 127.0.0.1.1.1
-  std::string adsAllow;     // comma-separated peer IPv4 addresses and/or client AmsNetIds
-  bool adsReadOnly = false;
+  AdsServeOptions ads;
   std::string retainFile;   // warm start: RETAIN/PERSISTENT variables loaded from and saved to it
   std::string backend = "interp";
 };
@@ -107,47 +102,6 @@ std::expected<std::unique_ptr<proto::modbus::Server>, std::string> startModbus(c
   return server;
 }
 
-// Splits "--ads-allow A,B,..." into IPv4 peers (4 numbers) and AmsNetIds (6 numbers).
-std::string parseAdsAllow(std::string_view text, proto::ads::ServerConfig& config) {
-  while (!text.empty()) {
-    auto comma = text.find(',');
-    std::string_view item = text.substr(0, comma);
-    if (auto id = proto::ads::parseNetId(item)) {
-      config.allowedNetIds.push_back(*id);
-    } else if (auto ip = proto::net::parseIpv4(item)) {
-      config.allowedPeers.push_back(*ip);
-    } else if (!item.empty()) {
-      return "'" + std::string(item) + "' is neither an IPv4 address nor an AmsNetId (a.b.c.d.e.f)";
-    }
-    if (comma == std::string_view::npos) break;
-    text.remove_prefix(comma + 1);
-  }
-  if (config.allowedPeers.empty() && config.allowedNetIds.empty()) return "the allow-list names no address";
-  return "";
-}
-
-std::expected<std::unique_ptr<proto::ads::Server>, std::string> startAds(const ExecOptions& o,
-                                                                           const proto::ads::SymbolTable& table) {
-  namespace ads = proto::ads;
-  auto endpoint = proto::net::parseEndpoint(o.ads);
-  if (!endpoint) return std::unexpected("--ads: " + endpoint.error());
-  ads::ServerConfig config;
-  config.listen = *endpoint;
-  config.device.readOnly = o.adsReadOnly;
-  if (!o.adsNetId.empty()) {
-    auto id = ads::parseNetId(o.adsNetId);
-    if (!id) return std::unexpected("--ads-netid: '" + o.adsNetId + "' is not an AmsNetId (six numbers 0-255, e.g. 192.168.1.10.1.1)");
-    config.device.netId = *id;
-  }
-  if (!o.adsAllow.empty()) {
-    std::string problem = parseAdsAllow(o.adsAllow, config);
-    if (!problem.empty()) return std::unexpected("--ads-allow: " + problem);
-  }
-  auto server = ads::Server::start(config, table);
-  if (!server) return std::unexpected("--ads: " + server.error());
-  return server;
-}
-
 int runExec(const ExecOptions& o) {
   SourceManager sources;
   Diagnostics diags;
@@ -184,7 +138,7 @@ int runExec(const ExecOptions& o) {
 
   std::unique_ptr<Clock> clock;
   // A Modbus server talks to the real world, so it runs in real time unless told otherwise.
-  double speed = o.speed > 0 ? o.speed : o.modbus.empty() && o.ads.empty() ? 0 : 1;
+  double speed = o.speed > 0 ? o.speed : o.modbus.empty() && !o.ads.enabled() ? 0 : 1;
   if (speed > 0) clock = std::make_unique<PacedClock>(speed);
   else clock = std::make_unique<VirtualClock>();
   plc::RuntimeOptions ropts;
@@ -242,29 +196,26 @@ int runExec(const ExecOptions& o) {
     modbus = std::move(*server);
     std::cerr << "modbus: serving on " << proto::modbus::formatEndpoint(modbus->endpoint()) << "\n";
   }
-  std::optional<proto::ads::SymbolTable> adsSymbols;
-  std::unique_ptr<proto::ads::Server> ads;
-  if (!o.ads.empty()) {
-    adsSymbols.emplace(proto::ads::buildSymbolTable(*module));
-    auto server = startAds(o, *adsSymbols);
+  std::unique_ptr<proto::ads::PlcServer> ads;
+  if (o.ads.enabled()) {
+    auto server = startAdsServer(o.ads, *module);
     if (!server) {
       std::cerr << "error: " << server.error() << "\n";
       return kExitUsage;
     }
     ads = std::move(*server);
-    proto::ads::afterScan(*ads, runtime);
-    std::cerr << "ads: serving on " << proto::net::formatEndpoint(ads->endpoint()) << " as AmsNetId "
-              << (o.adsNetId.empty() ? "127.0.0.1.1.1" : o.adsNetId) << ", AMS ports 851 and 10000\n";
+    ads->afterScan(runtime);
+    announceAdsServer(o.ads, *ads);
   }
   int64_t cycles = o.cycles < 0 ? (forever ? INT64_MAX : 1) : o.cycles;
   int exitCode = kExitOk;
   for (int64_t k = 0; k < cycles && !gInterrupted; ++k) {
     int64_t now = runtime.nextTickNs();
     if (modbus && modbus->applyPendingWrites(modbusView(runtime)) > 0) runtime.inputsTouched();
-    if (ads) proto::ads::beforeScan(*ads, runtime);
+    if (ads) ads->beforeScan(runtime);
     bool ok = runtime.tick();
     if (modbus) modbus->publishSnapshot(modbusView(runtime));
-    if (ads) proto::ads::afterScan(*ads, runtime);
+    if (ads) ads->afterScan(runtime);
     // An ADS client may STOP the PLC (WriteControl): time goes on, only a fault ends the run.
     if (!ok && runtime.state() != plc::PlcState::Fault) ok = true;
     if (!ok) {
@@ -321,10 +272,7 @@ void addExecCommand(CLI::App& app, std::function<void(int)> setExit) {
   cmd->add_option("--modbus", o->modbus, "serve the process image over Modbus TCP on HOST:PORT (OpenPLC mapping, see docs/modbus.md); implies --speed 1");
   cmd->add_flag("--modbus-writable-inputs", o->modbusWritableInputs, "let --modbus clients write the inputs: holding register 8192+n is %IWn (and the %IX bits in it); off by default");
   cmd->add_option("--modbus-allow", o->modbusAllow, "comma-separated IPv4 peers allowed to connect to --modbus (default: any)");
-  cmd->add_option("--ads", o->ads, "serve the PLC over ADS (AMS/TCP, TwinCAT 3 runtime on AMS port 851) on HOST:PORT, e.g. 127.0.0.1:48898 (see docs/ads.md); implies --speed 1");
-  cmd->add_option("--ads-netid", o->adsNetId, "AmsNetId of the --ads server (default 127.0.0.1.1.1; 127.0.0.1.1.1 is always accepted too)");
-  cmd->add_option("--ads-allow", o->adsAllow, "comma-separated IPv4 peers and/or client AmsNetIds allowed to use --ads (default: any)");
-  cmd->add_flag("--ads-readonly", o->adsReadOnly, "refuse every ADS write and RUN/STOP request (error 0x704)");
+  addAdsServeOptions(cmd, o->ads);
   cmd->add_option("--retain-file", o->retainFile, "warm start: load the RETAIN/PERSISTENT variables from this file after the cold start (if it exists) and save them to it when the run ends without a fault");
   cmd->callback([o, setExit] { setExit(runExec(*o)); });
 }

@@ -9,6 +9,7 @@
 #include "cell/cell.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "proto/ads/client_bridge.hpp"
 #include "proto/modbus/client_bridge.hpp"
 #include "report/html_report.hpp"
 #include "report/json_report.hpp"
@@ -96,13 +97,64 @@ std::unique_ptr<proto::modbus::ClientBridge> startClientBridge(const cell::Modbu
   return std::make_unique<proto::modbus::ClientBridge>(std::move(config));
 }
 
+// `plc: ads:`: the external PLC reached over ADS as the cell's controller. Its variables are
+// checked when it connects; problems are reported like the loader's, at the cell file's
+// entries (null then).
+std::unique_ptr<proto::ads::ClientBridge> startAdsBridge(cell::Cell& cell, const SourceManager& sources) {
+  namespace ads = proto::ads;
+  const cell::AdsClientSettings& s = *cell.plcAds;
+  ads::BridgeConfig config;  // the strings were checked by the loader
+  config.client.router = *proto::net::parseEndpoint(s.address);
+  config.client.target = {*ads::parseNetId(s.netId), s.port};
+  if (!s.localNetId.empty()) config.client.localNetId = *ads::parseNetId(s.localNetId);
+  config.client.timeoutNs = s.timeoutNs;
+  config.faultOnLoss = s.faultOnLoss;
+  config.disconnectWhenStopped = s.disconnectWhenStopped;
+  config.report = [](const std::string& line) { std::cerr << line << "\n"; };
+  for (const cell::ExternalWire& w : s.wires)
+    config.signals.push_back({w.variable, w.port, w.tag, w.dir == plant::PortDir::Out, w.optional});
+  ads::ClientBridge::StartReport report;
+  auto bridge = ads::ClientBridge::start(config, cell.bus, report);
+  Diagnostics diags;
+  bool linked = true;
+  for (const auto& p : report.problems) {
+    if (p.signal == ads::ClientBridge::kNoSignal) {
+      diags.error("C034", s.addressLoc, p.text);
+      linked = false;
+      continue;
+    }
+    diags.error(p.kind == ads::ClientBridge::Problem::Kind::Unknown ? "C032" : "C033", s.wires[p.signal].loc, p.text);
+  }
+  // Wiring by prefix: each such device needs at least one port whose variable the PLC has.
+  for (size_t i = 0; linked && i < s.wires.size(); ++i) {
+    const cell::ExternalWire& w = s.wires[i];
+    if (w.prefixGroup < 0 || (i > 0 && s.wires[i - 1].prefixGroup == w.prefixGroup)) continue;  // a group's first port
+    bool any = false;
+    for (size_t j = i; j < s.wires.size() && s.wires[j].prefixGroup == w.prefixGroup; ++j) any |= report.found[j];
+    if (any) continue;
+    std::string device = w.port.substr(0, w.port.find('.'));
+    std::string prefix = w.variable.substr(0, w.variable.size() - (w.port.size() - device.size()));
+    diags.error("C030", w.loc, "ads: no port of '" + device + "' matches a variable under '" + prefix + "' on the PLC at " + s.address +
+                                   " (expected e.g. " + w.variable + ")");
+  }
+  if (diags.hasErrors()) {
+    diags.sortByLocation();
+    std::cerr << diags.render(sources);
+    return nullptr;
+  }
+  size_t wired = 0;
+  for (size_t i = 0; i < s.wires.size(); ++i) wired += report.found[i] && !s.wires[i].port.empty();
+  std::cerr << "ads: " << bridge->peerText() << " is the controller (" << wired << " signals by handle, every step)\n";
+  return bridge;
+}
+
 int runCell(const RunOptions& o) {
   SourceManager sources;
   auto cell = loadCellFile(o.cellFile, sources);
   if (!cell) return kExitCompileError;
-  if (!cell->module && !cell->plcModbus) {
-    std::cerr << "error: " << o.cellFile << ": the cell has no controller: add 'plc: sources' (the soft PLC) or 'plc: modbus' "
-                 "(an external PLC), or serve it to a PLC with virtcom serve\n";
+  if (!cell->module && !cell->plcModbus && !cell->plcAds) {
+    std::cerr << "error: " << o.cellFile << ": the cell has no controller: add 'plc: sources' (the soft PLC), 'plc: modbus' or "
+                 "'plc: ads' (an external PLC), or serve it to a PLC with virtcom serve\n";
     return kExitUsage;
   }
   if (!cell->module && (!o.until.empty() || !o.sets.empty())) {
@@ -150,6 +202,13 @@ int runCell(const RunOptions& o) {
     options.bridges.push_back(bridge.get());
     if (options.speed == 0) options.speed = 1;  // the external PLC runs in real time
   }
+  std::unique_ptr<proto::ads::ClientBridge> adsBridge;
+  if (cell->plcAds) {
+    adsBridge = startAdsBridge(*cell, sources);
+    if (!adsBridge) return kExitCompileError;
+    options.bridges.push_back(adsBridge.get());
+    if (options.speed == 0) options.speed = 1;  // the external PLC runs in real time
+  }
   sim::Simulation simulation(*cell, options);
   std::signal(SIGINT, onRunSignal);
   std::signal(SIGTERM, onRunSignal);
@@ -184,7 +243,7 @@ void addRunCommand(CLI::App& app, std::function<void(int)> setExit) {
   cmd->add_option("--time-limit", o->timeLimit, "virtual time limit, e.g. 300s (overrides run.time_limit)");
   cmd->add_option("--set", o->sets, "NAME=VALUE set in the PLC before its first scan (repeatable), e.g. MAIN.sequence=3");
   cmd->add_option("--signal", o->signals, "signal shown in the report's timeline (repeatable), e.g. Robot1.busy; default: the cell's run.record variables");
-  cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible (1 with 'plc: modbus')")
+  cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible (1 with 'plc: modbus' or 'plc: ads')")
       ->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table");

@@ -1,15 +1,20 @@
-// `virtcom serve`: run a cell paced to the wall clock with an external PLC as its controller,
-// reached through protocol servers (Modbus TCP), until SIGINT/SIGTERM.
+// `virtcom serve`: run a cell paced to the wall clock until SIGINT/SIGTERM and serve it:
+//  - `--modbus`: its device signals, to an external PLC that is the controller (Modbus TCP);
+//  - `--ads`: its soft PLC, which stays the controller, as a TwinCAT 3 runtime (ADS), the same
+//    server as `exec --ads`. With both, the Modbus map serves the device signals for reading,
+//    and only the commands the soft PLC does not drive for writing.
 //
-// A protocol plugs in with an option group in addServeCommand(), a start function returning a
-// BusBridge over the cell's tag bus, and one line in startServers().
+// A signal protocol plugs in with an option group in addServeCommand(), a start function
+// returning a BusBridge over the cell's tag bus, and one line in startServers().
 #include <atomic>
 #include <climits>
+#include <cstdint>
 #include <csignal>
 #include <expected>
 #include <iostream>
 #include <memory>
 
+#include "cli/ads_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "proto/modbus/signal_server.hpp"
@@ -30,6 +35,7 @@ struct ServeOptions {
   bool quiet = false;
   std::string modbus;       // HOST:PORT; empty: no Modbus server
   std::string modbusAllow;  // comma-separated peer addresses; empty: any
+  AdsServeOptions ads;      // the soft PLC over ADS
 };
 
 using Bridges = std::vector<std::unique_ptr<BusBridge>>;
@@ -59,17 +65,44 @@ std::expected<Bridges, std::string> startServers(const ServeOptions& o, const ce
     if (!b) return std::unexpected(b.error());
     bridges.push_back(std::move(*b));
   }
-  if (bridges.empty()) return std::unexpected(std::string("nothing to serve: give --modbus HOST:PORT"));
   return bridges;
 }
 
+// With the soft PLC as the controller, the commands it drives through the wiring are its to
+// write: the Modbus map serves them read-only, as status.
+void keepSoftPlcCommands(cell::Cell& cell) {
+  for (auto& e : cell.modbus.entries) {
+    if (e.dir != proto::modbus::SignalDir::Command) continue;
+    for (const cell::Wire& w : cell.wires)
+      if (w.dir == plant::PortDir::In && w.tag == e.tag) {
+        e.dir = proto::modbus::SignalDir::Status;
+        e.readOnly = true;
+      }
+  }
+}
+
 int serveCell(const ServeOptions& o) {
+  if (o.modbus.empty() && !o.ads.enabled()) {
+    std::cerr << "error: nothing to serve: give --modbus HOST:PORT and/or --ads HOST:PORT\n";
+    return kExitUsage;
+  }
   SourceManager sources;
   auto cell = loadCellFile(o.cellFile, sources);
   if (!cell) return kExitCompileError;
-  // The external PLC is the controller: the cell's own one (soft PLC or client bridge) stays off.
-  if (cell->module) std::cerr << "serve: the soft PLC of " << cell->name << " does not run; the external PLC drives the devices\n";
-  cell::detachSoftPlc(*cell);
+  if (o.ads.enabled()) {
+    // The soft PLC is the controller, served over ADS; it runs until interrupted.
+    if (!cell->module) {
+      std::cerr << "error: --ads serves the cell's soft PLC, but " << o.cellFile << " has none ('plc: sources')\n";
+      return kExitUsage;
+    }
+    cell->run.until = {};
+    cell->run.cycles = UINT32_MAX;  // cycles are counted for the summary, never end the run
+    keepSoftPlcCommands(*cell);
+  } else {
+    // The external PLC is the controller: the cell's own one (soft PLC or client bridge) stays off.
+    if (cell->module) std::cerr << "serve: the soft PLC of " << cell->name << " does not run; the external PLC drives the devices\n";
+    cell::detachSoftPlc(*cell);
+  }
   // Serving lasts until interrupted; a device error or collision is for the PLC to handle.
   cell->run.stopOnDeviceError = false;
   cell->run.stopOnCollision = false;
@@ -81,16 +114,40 @@ int serveCell(const ServeOptions& o) {
     std::cerr << "error: " << bridges.error() << "\n";
     return kExitUsage;
   }
+  std::unique_ptr<proto::ads::PlcServer> ads;
+  if (o.ads.enabled()) {
+    auto server = startAdsServer(o.ads, *cell->module);
+    if (!server) {
+      std::cerr << "error: " << server.error() << "\n";
+      return kExitUsage;
+    }
+    ads = std::move(*server);
+  }
   sim::SimOptions options;
   options.speed = o.speed;
   options.interrupt = &gServeStop;
   options.timeLimitNs = INT64_MAX;
   for (auto& b : *bridges) options.bridges.push_back(b.get());
+  if (ads) {
+    // The first snapshot right after the cold start, then the announcement: a client that
+    // connects at once reads the initial values, never an empty image.
+    options.preset = [&](plc::Runtime& plc) {
+      ads->afterScan(plc);
+      announceAdsServer(o.ads, *ads);
+    };
+    options.beforeScan = [&](plc::Runtime& plc) { ads->beforeScan(plc); };
+    options.afterScan = [&](plc::Runtime& plc) { ads->afterScan(plc); };
+  }
   sim::Simulation simulation(*cell, options);
-  simulation.run();
+  RunEnd end = simulation.run();
   bridges->clear();  // stops the servers before the report
+  if (ads) ads->stop();
   const Trace& trace = simulation.trace();
   if (!o.quiet) std::cout << report::summaryTable(trace, report::computeKpis(trace));
+  if (end == RunEnd::PlcFault) {
+    std::cerr << "runtime fault: " << trace.endMessage << "\n";
+    return kExitRuntimeFault;
+  }
   return kExitOk;
 }
 
@@ -99,12 +156,14 @@ int serveCell(const ServeOptions& o) {
 void addServeCommand(CLI::App& app, std::function<void(int)> setExit) {
   auto o = std::make_shared<ServeOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "serve", "Run a cell paced to the wall clock and serve its device signals to an external PLC (Modbus TCP) until SIGINT/SIGTERM");
+      "serve", "Run a cell paced to the wall clock until SIGINT/SIGTERM, serving its device signals to an external PLC (Modbus TCP) "
+               "and/or its soft PLC as a TwinCAT runtime (ADS)");
   cmd->add_option("cell", o->cellFile, "the cell file (YAML); its 'modbus:' section maps the signals (default: automatic)")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--modbus", o->modbus, "serve the signals over Modbus TCP on HOST:PORT (e.g. 127.0.0.1:1502; see docs/modbus.md)");
   cmd->add_option("--modbus-allow", o->modbusAllow, "comma-separated IPv4 peers allowed to connect to --modbus (default: any)");
+  addAdsServeOptions(cmd, o->ads);
   cmd->add_option("--speed", o->speed, "pace factor against the wall clock (default 1 = real time)")->check(CLI::PositiveNumber);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table when stopped");
   cmd->callback([o, setExit] { setExit(serveCell(*o)); });

@@ -21,6 +21,9 @@ class BusBridge {
   virtual void push(const TagBus& bus, int64_t nowNs) = 0;
   // Why pull() returned false (one line).
   virtual std::string failure() const { return {}; }
+  // The run has ended (called once, on the simulation's thread): a client bridge may release
+  // what it holds at the peer and disconnect.
+  virtual void simulationStopped() {}
 };
 
 }  // namespace virtcom

@@ -62,6 +62,25 @@ void Simulation::finish(RunEnd end, std::string message) {
   trace.endMessage = std::move(message);
   trace.endNs = nowNs_;  // without a completed cycle the window stays empty: reports use the whole run
   for (auto& d : cell_.devices) d->finish(nowNs_, trace);
+  for (BusBridge* b : options_.bridges) b->simulationStopped();
+}
+
+// A level of the cycle marker: its rising edge ends a cycle. True if that ends the run.
+bool Simulation::countCycle(bool done) {
+  bool ends = false;
+  if (done && !lastCycleDone_) {
+    Trace& trace = cell_.trace;
+    trace.cycleStartNs = lastCycleEdgeNs_;
+    trace.cycleEndNs = nowNs_;
+    lastCycleEdgeNs_ = nowNs_;
+    ++trace.cyclesCompleted;
+    if (trace.cyclesCompleted >= cell_.run.cycles && !cell_.run.until.valid) {
+      finish(RunEnd::Completed, std::to_string(trace.cyclesCompleted) + " cycle(s) completed");
+      ends = true;
+    }
+  }
+  lastCycleDone_ = done;
+  return ends;
 }
 
 // The soft PLC's stop conditions: a fault, the cycle count, `until`.
@@ -75,21 +94,7 @@ bool Simulation::checkPlcStop() {
     finish(RunEnd::PlcFault, text);
     return true;
   }
-  if (hasCycleWire_) {
-    bool done = (mem[cycleWire_.address] >> (cycleWire_.bit >= 0 ? cycleWire_.bit : 0)) & 1;
-    if (done && !lastCycleDone_) {
-      Trace& trace = cell_.trace;
-      trace.cycleStartNs = lastCycleEdgeNs_;
-      trace.cycleEndNs = nowNs_;
-      lastCycleEdgeNs_ = nowNs_;
-      ++trace.cyclesCompleted;
-      if (trace.cyclesCompleted >= cell_.run.cycles && !cell_.run.until.valid) {
-        finish(RunEnd::Completed, std::to_string(trace.cyclesCompleted) + " cycle(s) completed");
-        return true;
-      }
-    }
-    lastCycleDone_ = done;
-  }
+  if (hasCycleWire_ && countCycle((mem[cycleWire_.address] >> (cycleWire_.bit >= 0 ? cycleWire_.bit : 0)) & 1)) return true;
   if (cell_.run.until.valid && cell::evaluate(cell_.run.until, mem)) {
     finish(RunEnd::Completed, "'" + cell_.run.until.text + "' became true");
     return true;
@@ -99,6 +104,14 @@ bool Simulation::checkPlcStop() {
 
 bool Simulation::checkStop() {
   if (runtime_ && checkPlcStop()) return true;
+  if (!runtime_ && cell_.run.cycleDoneTag != kNoTag) {
+    // An external PLC ran before the cell did: a marker already set at the first step is its
+    // past, not an edge.
+    bool done = cell_.bus.getBool(cell_.run.cycleDoneTag);
+    if (!cycleTagSeen_) lastCycleDone_ = done;
+    cycleTagSeen_ = true;
+    if (countCycle(done)) return true;
+  }
   if (cell_.run.stopOnCollision && cell_.world.collided()) {
     finish(RunEnd::Collision, "robots collided in a shared zone");
     return true;
@@ -129,7 +142,9 @@ void Simulation::scanPlc() {
   for (const auto& w : cell_.wires)
     if (w.dir == plant::PortDir::Out) touched |= cell::writeVariable(w, cell_.bus, mem);
   if (touched) runtime_->inputsTouched();
+  if (options_.beforeScan) options_.beforeScan(*runtime_);
   runtime_->tick();
+  if (options_.afterScan) options_.afterScan(*runtime_);
   for (const auto& w : cell_.wires)
     if (w.dir == plant::PortDir::In) cell::readVariable(w, mem, cell_.bus);
   for (const auto& w : recordWires_) cell::readVariable(w, mem, cell_.bus);

@@ -6,7 +6,8 @@
 //   (in cell-file order), 6. bridges push (status signals -> external side), 7. recorder stores
 //   changed signals, 8. stop conditions (until, cycles, faults, collisions, time limit).
 // A cell without a soft PLC (no module: its controller is external) skips 1-3 and ticks at the
-// cell's plc cycle time.
+// cell's plc cycle time; its cycles are counted on the tag of run.cycleDoneTag (a variable of
+// the external PLC that a bridge reads), if any.
 // The same cell and options give the same trace, byte for byte.
 #include <atomic>
 #include <functional>
@@ -31,6 +32,10 @@ struct SimOptions {
   // Links to external peers (Modbus/ADS), stepped in this order; they must outlive the run.
   // A failed pull() ends the run as a PLC fault (the external PLC is the controller).
   std::vector<BusBridge*> bridges;
+  // Around every scan of the soft PLC, on the simulation's thread (an ADS server serving it:
+  // queued writes and RUN/STOP before, the image snapshot after; its first snapshot is taken
+  // in `preset`). Must not allocate.
+  std::function<void(plc::Runtime& plc)> beforeScan, afterScan;
   // Machine code for the soft PLC's module (src/aot); null runs the interpreter.
   std::shared_ptr<const vm::CompiledCode> compiled;
 };
@@ -57,6 +62,7 @@ class Simulation {
   void start();
   bool checkStop();
   bool checkPlcStop();
+  bool countCycle(bool done);
   void scanPlc();
   bool pullBridges();
   void recordChanges();
@@ -71,6 +77,7 @@ class Simulation {
   cell::Wire cycleWire_;
   bool hasCycleWire_ = false;
   bool lastCycleDone_ = false;
+  bool cycleTagSeen_ = false;  // run.cycleDoneTag read once (its first level is no edge)
   int64_t lastCycleEdgeNs_ = 0;
   int64_t nowNs_ = 0;
   uint64_t ticks_ = 0;

@@ -1,12 +1,14 @@
 // libFuzzer target for the ADS codec: the input is a receive stream, cut into frames by
 // scanFrame exactly as the server does, each answered by a Session over a small symbol table,
 // with notifications evaluated after every frame. Finds out-of-bounds reads/writes and aborts in
-// the AMS/TCP, AMS and ADS parsers, the sum commands and the notification code.
+// the AMS/TCP, AMS and ADS parsers, the sum commands and the notification code, and in the
+// symbol entry parser the client bridge applies to replies (each frame's ADS data).
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "proto/ads/entries.hpp"
 #include "proto/ads/session.hpp"
 
 namespace ads = virtcom::proto::ads;
@@ -45,6 +47,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   while (true) {
     ads::FrameScan scan = ads::scanFrame(stream, 64 * 1024);
     if (scan.status != ads::FrameStatus::Complete) break;
+    if (scan.size > ads::kFrameHeaderSize)
+      (void)ads::parseSymbolEntry(stream.subspan(ads::kFrameHeaderSize, scan.size - ads::kFrameHeaderSize));
     out.clear();
     if (!session.handleFrame(stream.first(scan.size), out)) break;
     session.sendDueNotifications(now += 1'000'000, 0, out);

@@ -59,6 +59,29 @@ void appendSymbolEntry(std::vector<uint8_t>& out, const Symbol& s) {
   endEntry(w, start);
 }
 
+std::optional<Symbol> parseSymbolEntry(std::span<const uint8_t> entry) {
+  LittleEndianReader r(entry);
+  auto length = r.u32();
+  if (!length || *length > entry.size() || *length < 30) return std::nullopt;
+  LittleEndianReader in(entry.first(*length));
+  in.u32();
+  Symbol s;
+  s.indexGroup = *in.u32();
+  s.indexOffset = *in.u32();
+  s.size = *in.u32();
+  s.adsType = *in.u32();
+  s.flags = *in.u16();
+  in.u16();  // arrayDimension count
+  const uint16_t nameLength = *in.u16(), typeLength = *in.u16();
+  in.u16();  // commentLength
+  auto name = in.bytes(nameLength + 1u);
+  auto type = in.bytes(typeLength + 1u);
+  if (!name || !type) return std::nullopt;
+  s.name.assign(name->begin(), name->end() - 1);
+  s.type.assign(type->begin(), type->end() - 1);
+  return s;
+}
+
 void appendDataTypeEntry(std::vector<uint8_t>& out, const DataType& t) {
   LittleEndianWriter w(out);
   const size_t start = beginTypeEntry(w, t.name, t.baseType, t.size, 0, t.adsType, t.flags, t.dims.size(), t.members.size());

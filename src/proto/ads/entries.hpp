@@ -1,6 +1,8 @@
 #pragma once
 // The byte layouts of symbol and data type descriptions (specs/ads.md sections 3.1-3.4).
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "proto/ads/symbol_table.hpp"
@@ -11,6 +13,12 @@ namespace virtcom::proto::ads {
 // entryLength, IG, IO, size, ADST, u16 flags, u16 arrayDims (0), u16 name/type/comment lengths,
 // then name NUL, type NUL, comment NUL.
 void appendSymbolEntry(std::vector<uint8_t>& out, const Symbol& s);
+
+// Reads one symbol entry (the 0xF009 reply of a TwinCAT or of this server) back: the fields
+// above, with the name and type strings; array info, GUID, attributes and padding that follow
+// are skipped (clients step by entryLength). Nullopt if the entry is shorter than its fields or
+// its lengths disagree. Allocates the two strings.
+std::optional<Symbol> parseSymbolEntry(std::span<const uint8_t> entry);
 
 // One data type entry (0xF00E item, 0xF011 reply) with its array bounds, one DataItem sub-entry
 // per member and its enum infos, padded to a multiple of 4 bytes.

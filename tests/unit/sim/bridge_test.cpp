@@ -70,5 +70,36 @@ TEST_F(ExternalController, AFailingBridgeEndsTheRunAsAPlcFault) {
   EXPECT_EQ(run->trace().faults[0].timeNs, 20 * kMs);
 }
 
+// The external PLC's cycle marker arrives on a tag (as the ADS bridge reads `run: cycle_done`):
+// its rising edges count cycles and end the run; a marker set before the run is no edge.
+class CycleMarker final : public BusBridge {
+ public:
+  explicit CycleMarker(TagId tag) : tag_(tag) {}
+  bool pull(TagBus& bus, int64_t nowNs) override {
+    bus.setBool(tag_, nowNs < 20 * kMs || (nowNs >= 300 * kMs && nowNs < 320 * kMs) || nowNs >= 700 * kMs);
+    return true;
+  }
+  void push(const TagBus&, int64_t) override {}
+  void simulationStopped() override { ++stops_; }
+  TagId tag_;
+  int stops_ = 0;
+};
+
+TEST_F(ExternalController, CyclesAreCountedOnTheExternalPlcsMarkerTag) {
+  auto run = loadCell(kClampCell, {});
+  ASSERT_TRUE(run);
+  run->cell->run.cycleDoneTag = run->cell->bus.add("MAIN.cycleDone", ElemType::Bool);
+  run->cell->run.cycles = 2;
+  CycleMarker plc(run->cell->run.cycleDoneTag);
+  SimOptions options;
+  options.bridges.push_back(&plc);
+  EXPECT_EQ(run->run(options), RunEnd::Completed);
+  EXPECT_EQ(run->trace().cyclesCompleted, 2u);
+  EXPECT_EQ(run->trace().cycleStartNs, 300 * kMs);
+  EXPECT_EQ(run->trace().cycleEndNs, 700 * kMs);
+  EXPECT_EQ(run->trace().endNs, 700 * kMs);
+  EXPECT_EQ(plc.stops_, 1);  // told once that the run ended
+}
+
 }  // namespace
 }  // namespace virtcom::sim::test

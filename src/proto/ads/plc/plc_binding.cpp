@@ -1,5 +1,7 @@
 #include "proto/ads/plc/plc_binding.hpp"
 
+#include "proto/ads/plc/module_symbols.hpp"
+
 namespace virtcom::proto::ads {
 
 uint16_t adsStateOf(plc::PlcState s) {
@@ -23,6 +25,18 @@ void beforeScan(Server& server, plc::Runtime& runtime) {
 
 void afterScan(Server& server, plc::Runtime& runtime) {
   server.publishSnapshot({runtime.machine().memory(), runtime.module().staticSize}, adsStateOf(runtime.state()));
+}
+
+}  // namespace virtcom::proto::ads
+
+namespace virtcom::proto::ads {
+
+std::expected<std::unique_ptr<PlcServer>, std::string> PlcServer::start(const ServerConfig& config, const bc::Module& module) {
+  std::unique_ptr<PlcServer> s(new PlcServer(buildSymbolTable(module)));
+  auto server = Server::start(config, s->table_);
+  if (!server) return std::unexpected(server.error());
+  s->server_ = std::move(*server);
+  return s;
 }
 
 }  // namespace virtcom::proto::ads

@@ -1,0 +1,67 @@
+#include "cli/ads_options.hpp"
+
+#include <iostream>
+
+#include "proto/ads/ams.hpp"
+#include "proto/net/endpoint.hpp"
+
+namespace virtcom::cli {
+
+namespace {
+
+// Splits "--ads-allow A,B,..." into IPv4 peers (4 numbers) and AmsNetIds (6 numbers).
+std::string parseAdsAllow(std::string_view text, proto::ads::ServerConfig& config) {
+  while (!text.empty()) {
+    auto comma = text.find(',');
+    std::string_view item = text.substr(0, comma);
+    if (auto id = proto::ads::parseNetId(item)) {
+      config.allowedNetIds.push_back(*id);
+    } else if (auto ip = proto::net::parseIpv4(item)) {
+      config.allowedPeers.push_back(*ip);
+    } else if (!item.empty()) {
+      return "'" + std::string(item) + "' is neither an IPv4 address nor an AmsNetId (a.b.c.d.e.f)";
+    }
+    if (comma == std::string_view::npos) break;
+    text.remove_prefix(comma + 1);
+  }
+  if (config.allowedPeers.empty() && config.allowedNetIds.empty()) return "the allow-list names no address";
+  return "";
+}
+
+}  // namespace
+
+void addAdsServeOptions(CLI::App* cmd, AdsServeOptions& o) {
+  cmd->add_option("--ads", o.listen, "serve the PLC over ADS (AMS/TCP, TwinCAT 3 runtime on AMS port 851) on HOST:PORT, e.g. 127.0.0.1:48898 (see docs/ads.md); implies --speed 1");
+  cmd->add_option("--ads-netid", o.netId, "AmsNetId of the --ads server (default 127.0.0.1.1.1; 127.0.0.1.1.1 is always accepted too)");
+  cmd->add_option("--ads-allow", o.allow, "comma-separated IPv4 peers and/or client AmsNetIds allowed to use --ads (default: any)");
+  cmd->add_flag("--ads-readonly", o.readOnly, "refuse every ADS write and RUN/STOP request (error 0x704)");
+}
+
+std::expected<std::unique_ptr<proto::ads::PlcServer>, std::string> startAdsServer(const AdsServeOptions& o,
+                                                                                  const bc::Module& module) {
+  namespace ads = proto::ads;
+  auto endpoint = proto::net::parseEndpoint(o.listen);
+  if (!endpoint) return std::unexpected("--ads: " + endpoint.error());
+  ads::ServerConfig config;
+  config.listen = *endpoint;
+  config.device.readOnly = o.readOnly;
+  if (!o.netId.empty()) {
+    auto id = ads::parseNetId(o.netId);
+    if (!id) return std::unexpected("--ads-netid: '" + o.netId + "' is not an AmsNetId (six numbers 0-255, e.g. 192.168.1.10.1.1)");
+    config.device.netId = *id;
+  }
+  if (!o.allow.empty()) {
+    std::string problem = parseAdsAllow(o.allow, config);
+    if (!problem.empty()) return std::unexpected("--ads-allow: " + problem);
+  }
+  auto server = ads::PlcServer::start(config, module);
+  if (!server) return std::unexpected("--ads: " + server.error());
+  return server;
+}
+
+void announceAdsServer(const AdsServeOptions& o, proto::ads::PlcServer& server) {
+  std::cerr << "ads: serving on " << proto::net::formatEndpoint(server.server().endpoint()) << " as AmsNetId "
+            << (o.netId.empty() ? "127.0.0.1.1.1" : o.netId) << ", AMS ports 851 and 10000\n";
+}
+
+}  // namespace virtcom::cli

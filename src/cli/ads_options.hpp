@@ -1,0 +1,35 @@
+#pragma once
+// The ADS server options that `exec` and `serve` share (docs/ads.md): one definition of the
+// flags, their checks and the announcement, so both commands serve the soft PLC alike.
+#include <expected>
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "bytecode/module.hpp"
+#include "proto/ads/plc/plc_binding.hpp"
+
+namespace virtcom::cli {
+
+struct AdsServeOptions {
+  std::string listen;  // --ads HOST:PORT; empty: no server
+  std::string netId;   // --ads-netid; empty: 127.0.0.1.1.1
+  std::string allow;   // --ads-allow: IPv4 peers and/or client AmsNetIds; empty: any
+  bool readOnly = false;
+  bool enabled() const { return !listen.empty(); }
+};
+
+// Adds --ads, --ads-netid, --ads-allow and --ads-readonly to `cmd`.
+void addAdsServeOptions(CLI::App* cmd, AdsServeOptions& o);
+
+// Checks the options and starts the server over `module` (which must outlive it). The error
+// text names the option at fault ("--ads-netid: '1.2.3' is not an AmsNetId ...").
+std::expected<std::unique_ptr<proto::ads::PlcServer>, std::string> startAdsServer(const AdsServeOptions& o,
+                                                                                  const bc::Module& module);
+
+// "ads: serving on 127.0.0.1:48898 as AmsNetId 127.0.0.1.1.1, AMS ports 851 and 10000" on
+// stderr: once the first image is published (e2e tests and scripts wait for it).
+void announceAdsServer(const AdsServeOptions& o, proto::ads::PlcServer& server);
+
+}  // namespace virtcom::cli

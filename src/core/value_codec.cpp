@@ -1,0 +1,87 @@
+#include "core/value_codec.hpp"
+
+#include <cstring>
+
+namespace virtcom {
+
+int64_t loadInteger(const uint8_t* p, ElemType t) {
+  switch (t) {
+    case ElemType::Bool: case ElemType::Byte: case ElemType::Usint: return *p;
+    case ElemType::Sint: return static_cast<int8_t>(*p);
+    case ElemType::Int: { int16_t v; std::memcpy(&v, p, 2); return v; }
+    case ElemType::Word: case ElemType::Uint: { uint16_t v; std::memcpy(&v, p, 2); return v; }
+    case ElemType::Dint: case ElemType::Time: { int32_t v; std::memcpy(&v, p, 4); return v; }
+    case ElemType::Dword: case ElemType::Udint: case ElemType::Date: case ElemType::Tod: case ElemType::Dt: {
+      uint32_t v; std::memcpy(&v, p, 4); return v;
+    }
+    default: { int64_t v; std::memcpy(&v, p, 8); return v; }
+  }
+}
+
+double loadReal(const uint8_t* p, ElemType t) {
+  if (t == ElemType::Real) { float f; std::memcpy(&f, p, 4); return f; }
+  double d; std::memcpy(&d, p, 8); return d;
+}
+
+namespace {
+
+void storeInteger(uint8_t* p, ElemType t, int64_t v) {
+  if (t == ElemType::Bool) v = v != 0;
+  std::memcpy(p, &v, elemTypeInfo(t).sizeBytes);  // little endian: the low bytes
+}
+
+void storeReal(uint8_t* p, ElemType t, double v) {
+  if (t == ElemType::Real) { float f = static_cast<float>(v); std::memcpy(p, &f, 4); return; }
+  std::memcpy(p, &v, 8);
+}
+
+}  // namespace
+
+void loadVariable(const uint8_t* p, int8_t bit, ElemType varType, TagBus& bus, TagId tag) {
+  if (bit >= 0) {
+    bus.setBool(tag, (*p >> bit) & 1);
+    return;
+  }
+  ElemType tagType = bus.type(tag);
+  if (isRealType(varType)) {
+    double v = loadReal(p, varType);
+    if (isFloat(tagType)) bus.setReal(tag, v);
+    else bus.setNumber(tag, v);
+    return;
+  }
+  int64_t v = loadInteger(p, varType);
+  if (isFloat(tagType)) bus.setReal(tag, static_cast<double>(v));
+  else if (tagType == ElemType::Bool) bus.setBool(tag, v != 0);
+  else bus.setInt(tag, v);
+}
+
+bool storeVariable(uint8_t* p, int8_t bit, ElemType varType, const TagBus& bus, TagId tag) {
+  if (bit >= 0) {
+    uint8_t before = *p;
+    if (bus.getBool(tag)) *p = static_cast<uint8_t>(*p | (1u << bit));
+    else *p = static_cast<uint8_t>(*p & ~(1u << bit));
+    return *p != before;
+  }
+  const uint32_t size = elemTypeInfo(varType).sizeBytes;
+  uint64_t before = 0;
+  std::memcpy(&before, p, size);
+  ElemType tagType = bus.type(tag);
+  if (isRealType(varType)) {
+    storeReal(p, varType, isFloat(tagType) ? bus.getReal(tag) : bus.getNumber(tag));
+  } else if (isFloat(tagType)) {
+    double r = bus.getReal(tag);
+    storeInteger(p, varType, static_cast<int64_t>(r >= 0 ? r + 0.5 : r - 0.5));
+  } else {
+    storeInteger(p, varType, bus.getInt(tag));
+  }
+  return std::memcmp(&before, p, size) != 0;
+}
+
+bool wireCompatible(ElemType port, ElemType var, bool isEnum) {
+  if (port == ElemType::Bool) return var == ElemType::Bool && !isEnum;
+  if (var == ElemType::Bool || elemTypeInfo(var).kind == ElemKind::Text) return false;
+  if (isFloat(port)) return isFloat(var) || isInteger(var);
+  return isInteger(var) || isEnum || isFloat(var);
+}
+
+}  // namespace virtcom

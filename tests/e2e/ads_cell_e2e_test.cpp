@@ -1,0 +1,248 @@
+// End-to-end: examples/ads-cell over ADS.
+//  - `virtcom serve cell.yaml --ads`: the cell's soft PLC served to the real npm ads-client while
+//    the cell runs (tests/e2e/ads/check_served_cell.js), also together with --modbus;
+//  - the client bridge: `virtcom exec plc/*.st --ads` in a second process is the PLC of
+//    bridge.yaml (`plc: ads:`), and the cell completes the same cycles as with the soft PLC in
+//    process; connection, name and type problems are reported at start with their position.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/time.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "server_process.hpp"
+#include "shell_command.hpp"
+
+namespace {
+
+using virtcom::e2e::ServerProcess;
+using virtcom::e2e::shell;
+
+const std::string kExe = VIRTCOM_EXE;
+const std::string kClientDir = VIRTCOM_ADS_CLIENT_DIR;
+const std::string kExample = std::string(VIRTCOM_SOURCE_DIR) + "/examples/ads-cell";
+const std::string kAnnounce = "ads: serving on ";
+
+std::string readFile(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The last value of each signal in a `--csv` file (time_s,signal,value).
+std::map<std::string, std::string> finalValues(const std::filesystem::path& csv) {
+  std::map<std::string, std::string> last;
+  std::istringstream in(readFile(csv));
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    size_t a = line.find(','), b = line.rfind(',');
+    if (a != std::string::npos && b > a) last[line.substr(a + 1, b - a - 1)] = line.substr(b + 1);
+  }
+  return last;
+}
+
+// "Cycle time    1.530 s (measured ..." of a summary table, in seconds; -1 if absent.
+double cycleTime(const std::string& summary) {
+  auto at = summary.find("Cycle time");
+  return at == std::string::npos ? -1 : std::atof(summary.c_str() + at + 10);
+}
+
+// One Modbus TCP request (unit 1) on a fresh connection; the response PDU, empty on failure.
+std::vector<uint8_t> modbusRequest(int port, std::vector<uint8_t> pdu) {
+  int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  timeval timeout{5, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<uint16_t>(port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  std::vector<uint8_t> out;
+  if (::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) == 0) {
+    std::vector<uint8_t> frame{0, 1, 0, 0, 0, static_cast<uint8_t>(pdu.size() + 1), 1};
+    frame.insert(frame.end(), pdu.begin(), pdu.end());
+    ::send(fd, frame.data(), frame.size(), MSG_NOSIGNAL);
+    std::array<uint8_t, 260> buf;
+    ssize_t n = ::recv(fd, buf.data(), buf.size(), 0);
+    if (n > 7) out.assign(buf.begin() + 7, buf.begin() + n);
+  }
+  ::close(fd);
+  return out;
+}
+
+TEST(ServeAds, TheServedCellsSoftPlcIsReadByTheNpmAdsClientWhileTheCellRuns) {
+  ASSERT_TRUE(std::filesystem::exists(kClientDir + "/node_modules/ads-client"))
+      << "the npm ads-client is missing: run `npm ci --prefix tests/e2e/ads` (make test does)";
+  ServerProcess cell(kExe, {"serve", kExample + "/cell.yaml", "--ads", "127.0.0.1:0", "--quiet"}, kExample, kAnnounce);
+  ASSERT_GT(cell.port(), 0) << cell.errorOutput();
+  std::string out;
+  EXPECT_EQ(shell("cd '" + kClientDir + "' && node check_served_cell.js " + std::to_string(cell.port()), out), 0) << out;
+  EXPECT_NE(out.find("served cell checks passed"), std::string::npos) << out;
+  EXPECT_EQ(cell.stop(), 0) << cell.errorOutput();
+}
+
+TEST(ServeAds, WithModbusTheCommandsOfTheSoftPlcAreReadOnly) {
+  ServerProcess cell(kExe, {"serve", kExample + "/cell.yaml", "--ads", "127.0.0.1:0", "--modbus", "127.0.0.1:0", "--quiet"}, kExample,
+                     "modbus: serving on ");
+  ASSERT_GT(cell.port(), 0) << cell.errorOutput();
+  // The automatic map: coil 0 = Clamp.execute (the soft PLC's, so read-only), discrete 1 = Clamp.busy.
+  bool executeSeen = false, busySeen = false;
+  auto until = std::chrono::steady_clock::now() + ServerProcess::kDeadline;
+  while (!(executeSeen && busySeen) && std::chrono::steady_clock::now() < until) {
+    auto coils = modbusRequest(cell.port(), {0x01, 0, 0, 0, 1});
+    auto inputs = modbusRequest(cell.port(), {0x02, 0, 1, 0, 1});
+    executeSeen |= coils.size() == 3 && coils[2] == 1;
+    busySeen |= inputs.size() == 3 && inputs[2] == 1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  EXPECT_TRUE(executeSeen && busySeen) << cell.errorOutput();
+  EXPECT_EQ(modbusRequest(cell.port(), {0x05, 0, 0, 0, 0}), (std::vector<uint8_t>{0x85, 0x02}));  // refused
+  EXPECT_EQ(cell.stop(), 0) << cell.errorOutput();
+  EXPECT_NE(cell.errorOutput().find(kAnnounce + "127.0.0.1:"), std::string::npos) << cell.errorOutput();  // ADS too
+}
+
+TEST(ServeAds, MistakesAreUsageErrors) {
+  std::string out;
+  // A cell made for an external PLC has no soft PLC to serve.
+  EXPECT_EQ(shell(kExe + " serve " + std::string(VIRTCOM_SOURCE_DIR) + "/examples/modbus-cell/cell.yaml --ads 127.0.0.1:0", out), 64);
+  EXPECT_NE(out.find("error: --ads serves the cell's soft PLC, but "), std::string::npos) << out;
+  for (auto [option, value] : std::vector<std::pair<std::string, std::string>>{
+           {"--ads-netid", "1.2.3"}, {"--ads-allow", "nobody"}, {"--ads", "127.0.0.1"}}) {
+    out.clear();
+    std::string args = option == "--ads" ? "--ads " + value : "--ads 127.0.0.1:0 " + option + " " + value;
+    EXPECT_EQ(shell(kExe + " serve " + kExample + "/cell.yaml " + args, out), 64) << option;
+    EXPECT_NE(out.find("error: " + option + ": "), std::string::npos) << out;
+  }
+}
+
+// The client bridge: the cell against the soft PLC running plc/*.st in another process.
+class AdsBridgeE2e : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::path(::testing::TempDir()) / ("virtcom_ads_bridge_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::unique_ptr<ServerProcess> startPlc() {
+    return std::make_unique<ServerProcess>(kExe, std::vector<std::string>{"exec", "plc/types.st", "plc/main.st", "--ads", "127.0.0.1:0"},
+                                           kExample, kAnnounce);
+  }
+  // bridge.yaml with the PLC's port, and `from` replaced by `to` (if given); its path.
+  std::string bridgeCell(int port, const std::string& from = "", const std::string& to = "") {
+    std::string text = readFile(kExample + "/bridge.yaml");
+    text.replace(text.find("127.0.0.1:48898\n    netid"), 15, "127.0.0.1:" + std::to_string(port));
+    if (!from.empty()) text.replace(text.find(from), from.size(), to);
+    std::ofstream(dir_ / "bridge.yaml") << text;
+    return (dir_ / "bridge.yaml").string();
+  }
+
+  std::filesystem::path dir_;
+};
+
+TEST_F(AdsBridgeE2e, TheCellCompletesTheSameCyclesAsWithTheSoftPlcInProcess) {
+  std::string inProcess;
+  ASSERT_EQ(shell(kExe + " run " + kExample + "/cell.yaml --csv " + (dir_ / "soft.csv").string(), inProcess), 0) << inProcess;
+  auto plc = startPlc();
+  ASSERT_GT(plc->port(), 0) << plc->errorOutput();
+  std::string bridged;
+  EXPECT_EQ(shell(kExe + " run " + bridgeCell(plc->port()) + " --csv " + (dir_ / "ads.csv").string(), bridged), 0) << bridged;
+  EXPECT_NE(bridged.find("ads: the PLC at 127.0.0.1:" + std::to_string(plc->port()) +
+                         " (AmsNetId 127.0.0.1.1.1, port 851) is the controller (12 signals by handle, every step)"),
+            std::string::npos)
+      << bridged;
+  for (const std::string* out : {&inProcess, &bridged})
+    EXPECT_NE(out->find("Run ended     completed: 2 cycle(s) completed"), std::string::npos) << *out;
+  auto soft = finalValues(dir_ / "soft.csv"), ads = finalValues(dir_ / "ads.csv");
+  EXPECT_EQ(soft["MAIN.cycles"], "2");
+  EXPECT_EQ(ads["MAIN.cycles"], "2");
+  EXPECT_EQ(ads["MAIN.maxForce"], soft["MAIN.maxForce"]);
+  EXPECT_EQ(ads["Press.actualForce"], soft["Press.actualForce"]);
+  // The same cycle, give or take the ticks each handshake waits for the other process.
+  double softCycle = cycleTime(inProcess), adsCycle = cycleTime(bridged);
+  EXPECT_GT(softCycle, 1.0) << inProcess;
+  EXPECT_NEAR(adsCycle, softCycle, 0.25 * softCycle) << bridged;
+  EXPECT_EQ(plc->stop(), 0) << plc->errorOutput();
+}
+
+TEST_F(AdsBridgeE2e, ProblemsAreReportedAtStartWithTheirPosition) {
+  int closedPort = 0;
+  {  // a port that was free a moment ago: nothing listens there any more
+    auto plc = startPlc();
+    closedPort = plc->port();
+    ASSERT_GT(closedPort, 0) << plc->errorOutput();
+    EXPECT_EQ(plc->stop(), 0);
+  }
+  std::string out;
+  EXPECT_EQ(shell(kExe + " run " + bridgeCell(closedPort), out), 1) << out;
+  EXPECT_NE(out.find("bridge.yaml:12:14: error[C034]: ads: cannot connect to the PLC at 127.0.0.1:" + std::to_string(closedPort) +
+                     " (AmsNetId 127.0.0.1.1.1, port 851): Connection refused"),
+            std::string::npos)
+      << out;
+
+  auto plc = startPlc();
+  ASSERT_GT(plc->port(), 0) << plc->errorOutput();
+  out.clear();
+  std::string cell = bridgeCell(plc->port(), "    wiring: MAIN.Press\n",
+                                "    wiring: { execute: MAIN.Press.exec, done: MAIN.step, programNumber: MAIN.Press }\n");
+  EXPECT_EQ(shell(kExe + " run " + cell, out), 1) << out;
+  EXPECT_NE(out.find("error[C032]: ads: the PLC has no variable 'MAIN.Press.exec' to wire to Press.execute"), std::string::npos) << out;
+  EXPECT_NE(out.find("error[C033]: ads: 'MAIN.step' is INT on the PLC but output 'Press.done' is BOOL"), std::string::npos) << out;
+  EXPECT_NE(out.find("error[C033]: ads: 'MAIN.Press' is a ST_PressIO on the PLC; only BOOL, numeric and enum variables can be wired"),
+            std::string::npos)
+      << out;
+  out.clear();
+  EXPECT_EQ(shell(kExe + " run " + bridgeCell(plc->port(), "wiring: MAIN.Clamp", "wiring: MAIN.Clmap"), out), 1) << out;
+  EXPECT_NE(out.find("error[C030]: ads: no port of 'Clamp' matches a variable under 'MAIN.Clmap' on the PLC at"), std::string::npos)
+      << out;
+  EXPECT_EQ(plc->stop(), 0) << plc->errorOutput();
+}
+
+// The seed's setting: the gearbox cell against its PLC program over ADS, the signals named like
+// the PLC's variables (`wiring: MAIN.Robot1` -> MAIN.Robot1.busy, ...), both sides at 10x speed.
+TEST_F(AdsBridgeE2e, TheGearboxCellCommissionsAgainstItsProgramInAnotherProcess) {
+  const std::string gearbox = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell";
+  std::string inProcess;
+  ASSERT_EQ(shell(kExe + " run " + gearbox + "/cell.yaml --set MAIN.sequence=3", inProcess), 0) << inProcess;
+  std::string text = readFile(gearbox + "/cell.yaml");
+  const std::string sources = "  sources: [plc/types.st, plc/GVL.st, plc/handshake.st, plc/sequences.st, plc/main.st]\n";
+  ASSERT_NE(text.find(sources), std::string::npos);
+  ServerProcess plc(kExe, {"exec", "plc/types.st", "plc/GVL.st", "plc/handshake.st", "plc/sequences.st", "plc/main.st", "--ads",
+                           "127.0.0.1:0", "--set", "MAIN.sequence=3", "--speed", "10"},
+                    gearbox, kAnnounce);
+  ASSERT_GT(plc.port(), 0) << plc.errorOutput();
+  text.replace(text.find(sources), sources.size(), "  ads: { address: 127.0.0.1:" + std::to_string(plc.port()) + " }\n");
+  std::ofstream(dir_ / "gearbox.yaml") << text;
+  std::string bridged;
+  EXPECT_EQ(shell(kExe + " run " + (dir_ / "gearbox.yaml").string() + " --speed 10", bridged), 0) << bridged;
+  EXPECT_NE(bridged.find("is the controller (28 signals by handle, every step)"), std::string::npos) << bridged;
+  for (const std::string* out : {&inProcess, &bridged}) {
+    EXPECT_NE(out->find("Run ended     completed: 1 cycle(s) completed"), std::string::npos) << *out;
+    EXPECT_NE(out->find("Collisions    0\n"), std::string::npos) << *out;
+  }
+  EXPECT_NEAR(cycleTime(bridged), cycleTime(inProcess), 0.1 * cycleTime(inProcess)) << bridged;
+  EXPECT_EQ(plc.stop(), 0) << plc.errorOutput();
+}
+
+TEST_F(AdsBridgeE2e, APlcLostMidRunEndsTheRunAsAFault) {
+  auto plc = startPlc();
+  ASSERT_GT(plc->port(), 0) << plc->errorOutput();
+  ServerProcess run(kExe, {"run", bridgeCell(plc->port(), "cycles: 2", "cycles: 1000"), "--quiet"}, dir_.string(), "ads: the PLC at ");
+  ASSERT_EQ(run.port(), plc->port()) << run.errorOutput();
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(plc->stop(), 0);
+  EXPECT_EQ(run.waitExit(), 2) << run.errorOutput();
+}
+
+}  // namespace

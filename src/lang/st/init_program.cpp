@@ -1,33 +1,14 @@
 #include "lang/st/init_program.hpp"
 
+#include "lang/st/ast_clone.hpp"
+
 #include <map>
 
 namespace virtcom::st {
 
 namespace {
 
-ExprPtr cloneExpr(const Expr& e);
-
-CallArg cloneArg(const CallArg& a) { return CallArg{a.name, a.output, a.negated, a.value ? cloneExpr(*a.value) : nullptr, a.loc}; }
-
-ExprPtr cloneExpr(const Expr& e) {
-  auto c = std::make_unique<Expr>();
-  c->kind = e.kind;
-  c->loc = e.loc;
-  c->id = e.id;
-  c->unaryOp = e.unaryOp;
-  c->binaryOp = e.binaryOp;
-  c->wide = e.wide;
-  c->intValue = e.intValue;
-  c->realValue = e.realValue;
-  c->text = e.text;
-  c->typePrefix = e.typePrefix;
-  if (e.lhs) c->lhs = cloneExpr(*e.lhs);
-  if (e.rhs) c->rhs = cloneExpr(*e.rhs);
-  for (const auto& item : e.items) c->items.push_back(cloneExpr(*item));
-  for (const auto& a : e.args) c->args.push_back(cloneArg(a));
-  return c;
-}
+CallArg cloneArg(const CallArg& a) { return CallArg{a.name, a.output, a.negated, cloneExprOrNull(a.value), a.loc}; }
 
 ExprPtr makeExpr(ExprKind kind, SourceLocation loc, std::string text = {}) {
   auto e = std::make_unique<Expr>();

@@ -9,6 +9,7 @@
 #include "cli/ads_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "cli/modbus_options.hpp"
 #include "lang/sfc/step_monitor.hpp"
 #include "plc/retain_file.hpp"
 #include "plc/runtime.hpp"
@@ -81,15 +82,9 @@ proto::modbus::ImageView modbusView(plc::Runtime& runtime) {
 
 std::expected<std::unique_ptr<proto::modbus::Server>, std::string> startModbus(const ExecOptions& o, plc::Runtime& runtime) {
   namespace mb = proto::modbus;
-  auto endpoint = mb::parseEndpoint(o.modbus);
-  if (!endpoint) return std::unexpected("--modbus: " + endpoint.error());
-  mb::ServerConfig config;
-  config.listen = *endpoint;
-  if (!o.modbusAllow.empty()) {
-    auto allow = mb::parseAllowList(o.modbusAllow);
-    if (!allow) return std::unexpected("--modbus-allow: " + allow.error());
-    config.allowedPeers = *allow;
-  }
+  auto settings = modbusServerConfig(o.modbus, o.modbusAllow);
+  if (!settings) return std::unexpected(settings.error());
+  mb::ServerConfig config = *settings;
   const bc::Module& m = runtime.module();
   mb::ImageShape shape;
   shape.inputs = m.inputs.size;

@@ -17,6 +17,7 @@
 #include "cli/ads_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "cli/modbus_options.hpp"
 #include "proto/modbus/signal_server.hpp"
 #include "report/kpis.hpp"
 #include "report/summary.hpp"
@@ -42,15 +43,9 @@ using Bridges = std::vector<std::unique_ptr<BusBridge>>;
 
 std::expected<std::unique_ptr<BusBridge>, std::string> startModbus(const ServeOptions& o, const cell::Cell& cell) {
   namespace mb = proto::modbus;
-  auto endpoint = mb::parseEndpoint(o.modbus);
-  if (!endpoint) return std::unexpected("--modbus: " + endpoint.error());
-  mb::ServerConfig config;
-  config.listen = *endpoint;
-  if (!o.modbusAllow.empty()) {
-    auto allow = mb::parseAllowList(o.modbusAllow);
-    if (!allow) return std::unexpected("--modbus-allow: " + allow.error());
-    config.allowedPeers = *allow;
-  }
+  auto settings = modbusServerConfig(o.modbus, o.modbusAllow);
+  if (!settings) return std::unexpected(settings.error());
+  mb::ServerConfig config = *settings;
   auto server = mb::SignalServer::start(config, cell.modbus);
   if (!server) return std::unexpected("--modbus: " + server.error());
   std::cerr << "modbus: serving on " << mb::formatEndpoint((*server)->endpoint()) << " (" << cell.modbus.entries.size()

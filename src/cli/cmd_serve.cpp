@@ -37,6 +37,7 @@ struct ServeOptions {
   std::string modbus;       // HOST:PORT; empty: no Modbus server
   std::string modbusAllow;  // comma-separated peer addresses; empty: any
   AdsServeOptions ads;      // the soft PLC over ADS
+  std::string backend = "interp";
 };
 
 using Bridges = std::vector<std::unique_ptr<BusBridge>>;
@@ -123,6 +124,7 @@ int serveCell(const ServeOptions& o) {
   options.interrupt = &gServeStop;
   options.timeLimitNs = INT64_MAX;
   for (auto& b : *bridges) options.bridges.push_back(b.get());
+  if (cell->module) options.compiled = compiledBackend(o.backend, *cell->module);
   if (ads) {
     // The first snapshot right after the cold start, then the announcement: a client that
     // connects at once reads the initial values, never an empty image.
@@ -160,6 +162,7 @@ void addServeCommand(CLI::App& app, std::function<void(int)> setExit) {
   cmd->add_option("--modbus-allow", o->modbusAllow, "comma-separated IPv4 peers allowed to connect to --modbus (default: any)");
   addAdsServeOptions(cmd, o->ads);
   cmd->add_option("--speed", o->speed, "pace factor against the wall clock (default 1 = real time)")->check(CLI::PositiveNumber);
+  addBackendOption(*cmd, o->backend);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table when stopped");
   cmd->callback([o, setExit] { setExit(serveCell(*o)); });
 }

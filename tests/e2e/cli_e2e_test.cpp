@@ -112,6 +112,14 @@ TEST_F(CliHelp, ExecListsEveryOption) {
     EXPECT_TRUE(contains(r.out, option)) << option << "\n" << show(r);
 }
 
+TEST_F(CliHelp, ServeListsEveryOption) {
+  RunResult r = run({"serve", "--help"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  for (const char* option : {"cell", "--modbus", "--modbus-allow", "--ads", "--ads-netid", "--ads-allow",
+                             "--ads-readonly", "--speed", "--backend", "--quiet"})
+    EXPECT_TRUE(contains(r.out, option)) << option << "\n" << show(r);
+}
+
 TEST_F(CliHelp, CheckDescribesItsFilesAndExitCodes) {
   RunResult r = run({"check", "--help"});
   EXPECT_EQ(r.exitCode, 0) << show(r);

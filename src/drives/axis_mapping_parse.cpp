@@ -49,12 +49,13 @@ class Parser {
     if (auto t = findTelegram(key)) {
       spec_.telegram = *t;
       spec_.order = telegram(*t).order;
-    } else if (!key.empty()) {
-      std::string keys;
-      for (const auto& t : telegrams()) keys += (keys.empty() ? "" : ", ") + std::string(t.key);
-      cfg.error(root.find("telegram")->loc(), "unknown telegram '" + key + "' (expected one of: " + keys + ")");
-      return false;
     } else {
+      // An empty value (e.g. only a YAML tag) is not reported by requireString: say it here.
+      if (!key.empty() || cfg.ok()) {
+        std::string keys;
+        for (const auto& t : telegrams()) keys += (keys.empty() ? "" : ", ") + std::string(t.key);
+        cfg.error(root.find("telegram")->loc(), "unknown telegram '" + key + "' (expected one of: " + keys + ")");
+      }
       return false;
     }
     parseByteOrder(cfg);

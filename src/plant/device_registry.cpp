@@ -29,7 +29,7 @@ constexpr DeviceType kDeviceTypes[] = {
 }  // namespace
 
 std::unique_ptr<Device> createDevice(const std::string& type, const std::string& name, ConfigReader& cfg, World& world,
-                                     std::span<const DeviceType> extra) {
+                                     std::span<const DeviceType> extra, bool* invalid) {
   cfg.child("type");
   cfg.child("name");
   std::vector<DeviceType> all(std::begin(kDeviceTypes), std::end(kDeviceTypes));
@@ -40,7 +40,11 @@ std::unique_ptr<Device> createDevice(const std::string& type, const std::string&
     std::unique_ptr<Device> device = t.factory(name, cfg, world);
     const std::string group = cfg.optString("group", "");
     cfg.rejectUnknownKeys();
-    if (!device || cfg.diags().errorCount() > errorsBefore) return nullptr;
+    if (!device) return nullptr;
+    if (cfg.diags().errorCount() > errorsBefore) {
+      if (!invalid) return nullptr;
+      *invalid = true;
+    }
     device->setGroup(group);
     return device;
   }

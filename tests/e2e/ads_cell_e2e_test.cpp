@@ -216,9 +216,10 @@ TEST_F(AdsBridgeE2e, TheGearboxCellCommissionsAgainstItsProgramInAnotherProcess)
   std::string inProcess;
   ASSERT_EQ(shell(kExe + " run " + gearbox + "/cell.yaml --set MAIN.sequence=3", inProcess), 0) << inProcess;
   std::string text = readFile(gearbox + "/cell.yaml");
-  const std::string sources = "  sources: [plc/types.st, plc/GVL.st, plc/handshake.st, plc/sequences.st, plc/main.st]\n";
+  const std::string sources =
+      "  sources: [plc/types.st, plc/GVL.st, plc/handshake.st, plc/sequences.st, plc/jobs.st, plc/main.st]\n";
   ASSERT_NE(text.find(sources), std::string::npos);
-  ServerProcess plc(kExe, {"exec", "plc/types.st", "plc/GVL.st", "plc/handshake.st", "plc/sequences.st", "plc/main.st", "--ads",
+  ServerProcess plc(kExe, {"exec", "plc/types.st", "plc/GVL.st", "plc/handshake.st", "plc/sequences.st", "plc/jobs.st", "plc/main.st", "--ads",
                            "127.0.0.1:0", "--set", "MAIN.sequence=3", "--speed", "10"},
                     gearbox, kAnnounce);
   ASSERT_GT(plc.port(), 0) << plc.errorOutput();

@@ -177,7 +177,8 @@ TEST(Aot, ReusesTheCachedObject) {
   const aot::CompileResult second = aot::compileModule(tinyModule(), o);
   ASSERT_TRUE(second.code) << second.error;
   EXPECT_TRUE(second.fromCache);
-  vm::Machine vm(tinyModule());
+  const bc::Module module = tinyModule();  // the Machine keeps a reference: not a temporary
+  vm::Machine vm(module);
   vm.useCompiled(second.code);
   EXPECT_TRUE(vm.run(0, 0));
   fs::remove_all(o.cacheDir);

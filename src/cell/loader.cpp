@@ -271,12 +271,11 @@ class Loader {
       cfg.optString("model", "");        // informational: the real device's make and type
       cfg.optString("description", "");
       // the factory reads the device's own parameters and rejects unknown keys
-      bool invalid = false;
-      auto device = plant::createDevice(type, name, cfg, cell.world, drives::deviceTypes(), &invalid);
+      auto device = plant::createDevice(type, name, cfg, cell.world, drives::deviceTypes());
       if (!device) continue;
       if (faults) readFaults(*device, *faults);
-      bindPorts(cell, *device, wiring, node);  // checked even when the parameters had mistakes
-      if (!invalid) cell.devices.push_back(std::move(device));
+      bindPorts(cell, *device, wiring, node);
+      cell.devices.push_back(std::move(device));
     }
   }
 

@@ -106,12 +106,9 @@ struct DeviceType {
 
 // Creates a device of `type` from its cell-file entry; reports every problem through `cfg`
 // (file:line:col) and returns null if the type is unknown or the entry invalid. `extra` adds
-// the types of higher layers (the drives library's table) to this library's own. With
-// `invalid`, an entry whose parameters have mistakes still yields its device (*invalid = true)
-// so that a loader can check the rest of the entry (its wiring) in the same run; such a device
-// must not be simulated.
+// the types of higher layers (the drives library's table) to this library's own.
 std::unique_ptr<Device> createDevice(const std::string& type, const std::string& name, ConfigReader& cfg, World& world,
-                                     std::span<const DeviceType> extra = {}, bool* invalid = nullptr);
+                                     std::span<const DeviceType> extra = {});
 // The registered device types with a one-line description each (for errors and docs).
 std::vector<std::pair<std::string, std::string>> deviceTypes();
 

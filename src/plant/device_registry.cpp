@@ -29,7 +29,7 @@ constexpr DeviceType kDeviceTypes[] = {
 }  // namespace
 
 std::unique_ptr<Device> createDevice(const std::string& type, const std::string& name, ConfigReader& cfg, World& world,
-                                     std::span<const DeviceType> extra, bool* invalid) {
+                                     std::span<const DeviceType> extra) {
   cfg.child("type");
   cfg.child("name");
   std::vector<DeviceType> all(std::begin(kDeviceTypes), std::end(kDeviceTypes));
@@ -40,11 +40,7 @@ std::unique_ptr<Device> createDevice(const std::string& type, const std::string&
     std::unique_ptr<Device> device = t.factory(name, cfg, world);
     const std::string group = cfg.optString("group", "");
     cfg.rejectUnknownKeys();
-    if (!device) return nullptr;
-    if (cfg.diags().errorCount() > errorsBefore) {
-      if (!invalid) return nullptr;
-      *invalid = true;
-    }
+    if (!device || cfg.diags().errorCount() > errorsBefore) return nullptr;
     device->setGroup(group);
     return device;
   }

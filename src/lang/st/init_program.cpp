@@ -34,12 +34,21 @@ ExprPtr intLiteral(int64_t v, SourceLocation loc) {
   return neg;
 }
 
+// Where an instance is declared: its declaration arguments may name the container's other
+// variables (`state : INT; sm : FB_Sm(state);`), which the init program reaches as
+// `<container path>.state`. Globals have no container.
+struct Container {
+  const Expr* path = nullptr;
+  const PouSym* pou = nullptr;
+};
+
 class InitCalls {
  public:
   InitCalls(const ProgramModel& model, const TypeTable& types, StmtList& out) : model_(model), types_(types), out_(out) {}
 
   // Emits the FB_init calls for the variable at `path` of `type` and everything inside it.
-  void visit(const Expr& path, TypeId type, const std::vector<CallArg>* args, SourceLocation loc) {
+  void visit(const Expr& path, TypeId type, const std::vector<CallArg>* args, SourceLocation loc,
+             Container container = {}) {
     if (!needsInit(type)) return;  // also keeps arrays of plain values from being walked
     const bc::TypeDesc& d = types_[type];
     if (d.kind == bc::TypeKind::Array) {
@@ -66,9 +75,10 @@ class InitCalls {
     }
     for (const auto& m : fb->second->members)
       if (m.storage == Storage::Instance && !m.byReference && m.name.find('.') == std::string::npos)
-        visit(*member(cloneExpr(path), m.name), m.type, m.decl ? &m.decl->fbInitArgs : nullptr, m.loc);
+        visit(*member(cloneExpr(path), m.name), m.type, m.decl ? &m.decl->fbInitArgs : nullptr, m.loc,
+              Container{&path, fb->second});
     auto init = fb->second->methods.find("FB_INIT");
-    if (init != fb->second->methods.end()) call(path, *init->second, args, loc);
+    if (init != fb->second->methods.end()) call(path, *init->second, args, loc, container);
   }
 
  private:
@@ -90,21 +100,44 @@ class InitCalls {
     return needs_[type] = needs;
   }
 
-  void call(const Expr& path, const PouSym& init, const std::vector<CallArg>* args, SourceLocation loc) {
+  static void qualifyContainerNames(ExprPtr& e, Container container) {
+    if (!container.pou) return;
+    if (e->kind == ExprKind::Name && container.pou->memberIndex.count(upper(e->text))) {
+      e = member(cloneExpr(*container.path), e->text);
+      return;
+    }
+    if (e->lhs) qualifyContainerNames(e->lhs, container);
+    if (e->rhs) qualifyContainerNames(e->rhs, container);
+    for (auto& item : e->items)
+      if (item) qualifyContainerNames(item, container);
+    for (auto& arg : e->args)
+      if (arg.value) qualifyContainerNames(arg.value, container);
+  }
+
+  void call(const Expr& path, const PouSym& init, const std::vector<CallArg>* args, SourceLocation loc,
+            Container container) {
     ExprPtr e = makeExpr(ExprKind::Call, loc);
     e->lhs = member(cloneExpr(path), init.name);
+    // Positional declaration arguments (`inst : FB_T('a', 1)`, as TwinCAT libraries write
+    // them) follow bInitRetains and bInCopyCode, FB_init's first two inputs; the flags are then
+    // passed by position too, so the call is in one form and the ordinary argument binding
+    // reports a wrong count.
+    bool positional = args && !args->empty() && args->front().name.empty();
     auto flag = [&](const char* name, bool value) {
       for (const VarInfo* p : init.params)
         if (upper(p->name) == name) {
           ExprPtr v = makeExpr(ExprKind::BoolLit, loc);
           v->intValue = value;
-          e->args.push_back(CallArg{p->name, false, false, std::move(v), loc});
+          e->args.push_back(CallArg{positional ? std::string() : p->name, false, false, std::move(v), loc});
         }
     };
     flag("BINITRETAINS", true);
     flag("BINCOPYCODE", false);
     if (args)
-      for (const auto& a : *args) e->args.push_back(cloneArg(a));
+      for (const auto& a : *args) {
+        e->args.push_back(cloneArg(a));
+        if (e->args.back().value) qualifyContainerNames(e->args.back().value, container);
+      }
     auto stmt = std::make_unique<Stmt>();
     stmt->kind = StmtKind::Call;
     stmt->loc = loc;

@@ -116,7 +116,7 @@ class Loader {
     } else if (plcModbus_ || plcAds_ || !srcs) {
       // no soft PLC; `plc: modbus:` / `plc: ads:` are read with the devices' signals, see load()
     } else if (srcs->kind() != ConfigNode::Kind::List || srcs->items().empty()) {
-      plc.error(srcs->loc(), "'sources' must be a list of ST (.st) or PLCopen XML (.xml) files relative to the cell file");
+      plc.error(srcs->loc(), "'sources' must be a list of ST (.st), PLCopen XML (.xml) or TwinCAT 3 (.TcPOU, .TcGVL, .TcDUT, .TcIO) files relative to the cell file");
     } else {
       for (const auto& item : srcs->items()) {
         std::filesystem::path p = cell.file.parent_path() / item.scalar();

@@ -8,7 +8,7 @@ namespace virtcom::cli {
 void addCheckCommand(CLI::App& app, std::function<void(int)> setExit) {
   auto files = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand("check", "Compile ST files and report every diagnostic (exit 0 clean, 1 on errors)");
-  cmd->add_option("files", *files, "ST (.st) and PLCopen XML (.xml) files compiled together as one program")->required()->check(CLI::ExistingFile);
+  cmd->add_option("files", *files, kSourceFilesHelp)->required()->check(CLI::ExistingFile);
   cmd->callback([files, setExit] {
     SourceManager sources;
     Diagnostics diags;

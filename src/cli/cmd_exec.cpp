@@ -250,7 +250,7 @@ int runExec(const ExecOptions& o) {
 void addExecCommand(CLI::App& app, std::function<void(int)> setExit) {
   auto o = std::make_shared<ExecOptions>();
   CLI::App* cmd = app.add_subcommand("exec", "Run ST programs on the soft PLC for N scans in virtual time and print variables");
-  cmd->add_option("files", o->files, "ST (.st) and PLCopen XML (.xml) files compiled together as one program")->required()->check(CLI::ExistingFile);
+  cmd->add_option("files", o->files, kSourceFilesHelp)->required()->check(CLI::ExistingFile);
   cmd->add_option("--cycles", o->cycles, "number of scheduler ticks (scans of the fastest task) to run; default 1, or forever with --speed")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--cycle-time", o->cycleTime, "interval of the default task, e.g. 10ms (default 10ms)");

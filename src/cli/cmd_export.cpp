@@ -68,7 +68,7 @@ void addExportCommand(CLI::App& app, std::function<void(int)> setExit) {
   CLI::App* cmd = app.add_subcommand("export", "Write the program (ST and PLCopen XML files) as a PLCopen TC6 XML 2.01 project");
   cmd->add_option("--plcopen", *out, "The PLCopen XML file to write")->required();
   cmd->add_option("--name", *name, "Project name in the contentHeader (default: the output file's stem)");
-  cmd->add_option("files", *files, "Source files (.st, .xml) compiled together as one program")->required()->check(CLI::ExistingFile);
+  cmd->add_option("files", *files, kSourceFilesHelp)->required()->check(CLI::ExistingFile);
   cmd->callback([files, out, name, setExit] { setExit(exportPlcopen(*out, *name, *files)); });
 }
 

@@ -21,7 +21,11 @@ enum ExitCode { kExitOk = 0, kExitCompileError = 1, kExitRuntimeFault = 2, kExit
 std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, SourceManager& sources,
                                          Diagnostics& diags, bool printWarnings = true);
 
-// Reads the files as compiler inputs; .xml files get the PLCopen XML importer as front end.
+// The help text of every command's FILES argument.
+inline constexpr const char* kSourceFilesHelp =
+    "ST (.st), PLCopen XML (.xml) and TwinCAT 3 (.TcPOU, .TcGVL, .TcDUT, .TcIO) files compiled together as one program";
+
+// Reads the files as compiler inputs, each with its front end (plcopen::sourceInput).
 // Prints an error and returns nullopt if a file cannot be read.
 std::optional<std::vector<st::SourceInput>> readSources(const std::vector<std::string>& paths);
 

@@ -699,3 +699,98 @@ TEST_F(CliHelp, ExportDescribesItsOptions) {
 }
 
 }  // namespace
+
+// TwinCAT 3 source files (tests/e2e/data/twincat: a POU with FB_init, a method, a property and
+// an action, a program, an interface, a DUT and a GVL written with CRLF) are read as the ST in
+// their CDATA sections; diagnostics point into the XML file.
+class CliTwinCat : public CliTest {
+ protected:
+  const std::vector<std::string> files_{"twincat/MAIN.TcPOU", "twincat/FB_Station.TcPOU", "twincat/I_Resettable.TcIO",
+                                        "twincat/E_Mode.TcDUT", "twincat/GVL_Cell.TcGVL"};
+
+  // The project with one file replaced by `text`, written to the test's folder.
+  std::vector<std::string> withFile(const std::string& name, const std::string& text) {
+    std::vector<std::string> out;
+    for (const auto& f : files_) {
+      if (fs::path(f).filename() != name) {
+        out.push_back(f);
+        continue;
+      }
+      out.push_back((work_ / name).string());
+      std::ofstream(out.back(), std::ios::binary) << text;
+    }
+    return out;
+  }
+
+  static std::string replaced(std::string text, const std::string& from, const std::string& to) {
+    size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+  }
+};
+
+TEST_F(CliTwinCat, ExecRunsTheProject) {
+  std::vector<std::string> args{"exec"};
+  args.insert(args.end(), files_.begin(), files_.end());
+  for (const char* a : {"--cycles", "7", "--print", "MAIN.fbStation.nParts", "--print", "MAIN.bResetDone", "--print",
+                        "MAIN.fbStation.eMode"})
+    args.push_back(a);
+  RunResult r = run(args);
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  // Counts to the limit bound by FB_init (3), is reset through the interface in scan 5, counts on.
+  EXPECT_EQ(r.out, "MAIN.fbStation.nParts = 2\nMAIN.bResetDone = TRUE\nMAIN.fbStation.eMode = E_Mode#Running\n");
+}
+
+TEST_F(CliTwinCat, AnErrorInAnActionPointsAtItsLineInTheXml) {
+  std::string pou = readFile(fs::path(kDataDir) / "twincat/FB_Station.TcPOU");
+  std::vector<std::string> args{"check"};
+  for (const auto& f : withFile("FB_Station.TcPOU", replaced(pou, "nParts := nParts + 1;", "nParts := nParts + ;")))
+    args.push_back(f);
+  RunResult r = run(args);
+  EXPECT_EQ(r.exitCode, 1) << show(r);
+  EXPECT_TRUE(contains(r.err, "FB_Station.TcPOU:58:41: error[E006]: expected an expression, found ';'")) << show(r);
+  EXPECT_TRUE(contains(r.err, "<ST><![CDATA[nParts := nParts + ;]]></ST>")) << show(r);
+}
+
+TEST_F(CliTwinCat, AnErrorInACrlfFileKeepsItsColumn) {
+  std::string gvl = readFile(fs::path(kDataDir) / "twincat/GVL_Cell.TcGVL");
+  ASSERT_TRUE(contains(gvl, "\r\n"));
+  std::vector<std::string> args{"check"};
+  for (const auto& f : withFile("GVL_Cell.TcGVL", replaced(gvl, "BOOL := TRUE", "BOOL := 5 TRUE"))) args.push_back(f);
+  RunResult r = run(args);
+  EXPECT_EQ(r.exitCode, 1) << show(r);
+  EXPECT_TRUE(contains(r.err, "GVL_Cell.TcGVL:6:23: error[E006]: expected ';' after variable declaration")) << show(r);
+}
+
+TEST_F(CliTwinCat, AGraphicalBodyIsNamedNotRead) {
+  std::string pou = readFile(fs::path(kDataDir) / "twincat/FB_Station.TcPOU");
+  std::vector<std::string> args{"check"};
+  for (const auto& f :
+       withFile("FB_Station.TcPOU", replaced(pou, "<ST><![CDATA[nParts := nParts + 1;]]></ST>", "<LD>...</LD>")))
+    args.push_back(f);
+  RunResult r = run(args);
+  EXPECT_EQ(r.exitCode, 1) << show(r);
+  EXPECT_TRUE(contains(r.err, "FB_Station.TcPOU:58:9: error[X004]: Action 'Count' is written in LD")) << show(r);
+}
+
+TEST_F(CliTwinCat, AFileThatIsNotTwinCatIsRefused) {
+  std::vector<std::string> args{"check"};
+  for (const auto& f : withFile("E_Mode.TcDUT", "<project/>\n")) args.push_back(f);
+  RunResult r = run(args);
+  EXPECT_EQ(r.exitCode, 1) << show(r);
+  EXPECT_TRUE(contains(r.err, "E_Mode.TcDUT:1:1: error[X002]: the root element is <project>")) << show(r);
+}
+
+TEST_F(CliTwinCat, ATaskFileIsAWarningNotAnError) {
+  std::string task = (work_ / "PlcTask.TcTTO").string();
+  std::ofstream(task) << "<?xml version=\"1.0\"?>\n<TcPlcObject>\n  <Task Name=\"PlcTask\">\n"
+                         "    <CycleTime>10000</CycleTime>\n  </Task>\n</TcPlcObject>\n";
+  std::vector<std::string> args{"check"};
+  args.insert(args.end(), files_.begin(), files_.end());
+  args.push_back(task);
+  RunResult r = run(args);
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(contains(r.err, "PlcTask.TcTTO:3:3: warning[X101]: Task 'PlcTask': TwinCAT task settings are not read"))
+      << show(r);
+}

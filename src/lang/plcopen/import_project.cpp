@@ -5,6 +5,7 @@
 #include "lang/plcopen/diagnostic_codes.hpp"
 #include "lang/plcopen/import_internal.hpp"
 #include "lang/plcopen/importer.hpp"
+#include "lang/plcopen/twincat_file.hpp"
 #include "lang/st/parser.hpp"
 
 namespace virtcom::plcopen {
@@ -332,6 +333,7 @@ bool isPlcopenPath(std::string_view path) {
 st::SourceInput sourceInput(std::string path, std::string text) {
   st::FrontEnd frontEnd;
   if (isPlcopenPath(path)) frontEnd = importProject;
+  else if (isTwinCatPath(path)) frontEnd = importTwinCatFile;
   return {std::move(path), std::move(text), std::move(frontEnd)};
 }
 

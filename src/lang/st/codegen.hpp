@@ -183,6 +183,7 @@ class PouCompiler {
   bool accessible(const PouSym& method, SourceLocation loc);
   // The declared type of a bare name or THIS^/SUPER^ without generating code; kNoType otherwise.
   TypeId staticTypeOf(const Expr& object);
+  TypeId staticMemberType(const Expr& member);  // staticTypeOf of `a.b`
 
   struct Loop {
     std::vector<uint32_t> breaks;

@@ -370,8 +370,13 @@ bool PouCompiler::accessible(const PouSym& method, SourceLocation loc) {
   const PouSym* caller = pou_.kind == PouKind::FunctionBlock ? &pou_ : pou_.owner;
   const PouSym* owner = method.owner;
   bool allowed = caller == owner;
-  if (access == Access::Protected)
+  // PROTECTED: from the declaring FB and FBs derived from it. The method may be the override of
+  // a derived FB that a base FB's code dispatches to (a template method calling an ABSTRACT
+  // step), so the caller may also be a base of the method's owner.
+  if (access == Access::Protected) {
     for (const PouSym* c = caller; c && !allowed; c = c->base) allowed = c == owner;
+    for (const PouSym* o = owner; o && !allowed; o = o->base) allowed = o == caller;
+  }
   if (!allowed)
     diags().error(diag::E216, loc, "METHOD " + method.qualifiedName + " is " +
                                        (access == Access::Private ? "PRIVATE" : "PROTECTED") + " and cannot be called from here");
@@ -467,12 +472,39 @@ TypeId PouCompiler::staticTypeOf(const Expr& object) {
     if (object.lhs->kind == ExprKind::Super) return owner->base ? owner->base->instanceType : kNoType;
     return owner->instanceType;
   }
+  // Paths to an instance (`devs[i]`, `cell.station`, `pDev^`, `GVL.dev`), typed without code.
+  if (object.kind == ExprKind::Index && object.lhs) {
+    TypeId t = staticTypeOf(*object.lhs);
+    return t != kNoType && types()[t].kind == bc::TypeKind::Array ? types()[t].element : kNoType;
+  }
+  if (object.kind == ExprKind::Deref && object.lhs) {
+    TypeId t = staticTypeOf(*object.lhs);
+    return t != kNoType && types()[t].kind == bc::TypeKind::Pointer ? types()[t].element : kNoType;
+  }
+  if (object.kind == ExprKind::Member && object.lhs) return staticMemberType(object);
   if (object.kind != ExprKind::Name) return kNoType;
   std::string n = upper(object.text);
   if (auto it = pou_.localIndex.find(n); it != pou_.localIndex.end()) return pou_.locals[it->second].type;
   if (owner)
     if (auto it = owner->memberIndex.find(n); it != owner->memberIndex.end()) return owner->members[it->second].type;
   if (auto g = model().globalIndex.find(n); g != model().globalIndex.end()) return model().globals[g->second].var.type;
+  return kNoType;
+}
+
+TypeId PouCompiler::staticMemberType(const Expr& member) {
+  std::string key = upper(member.text);
+  TypeId t = staticTypeOf(*member.lhs);
+  if (t == kNoType && member.lhs->kind == ExprKind::Name) {  // GVL.x, PROGRAM.x
+    std::string base = upper(member.lhs->text);
+    if (auto g = model().globalIndex.find(base + "." + key); g != model().globalIndex.end())
+      return model().globals[g->second].var.type;
+    for (const auto& inst : model().programInstances)
+      if (upper(inst.name) == base) t = inst.pou->instanceType;
+  }
+  if (t != kNoType && types()[t].kind == bc::TypeKind::Reference) t = types()[t].element;
+  if (t == kNoType || types()[t].kind != bc::TypeKind::Struct) return kNoType;
+  for (const auto& f : types()[t].fields)
+    if (upper(f.name) == key) return f.type;
   return kNoType;
 }
 
@@ -525,7 +557,6 @@ std::optional<Value> PouCompiler::memberProperty(const Expr& e) {
       return itf->second->properties.count(key) > 0;
     return false;
   };
-  if (object.kind != ExprKind::Name && object.kind != ExprKind::Deref) return std::nullopt;
   TypeId objectType = staticTypeOf(object);
   if (objectType == kNoType || !staticTypeHasProperty(objectType)) return std::nullopt;
   Receiver recv;

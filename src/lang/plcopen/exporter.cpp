@@ -150,6 +150,7 @@ void Exporter::type(pugi::xml_node holder, const st::TypeSpec& spec) {
     }
     case st::TypeSpecKind::Struct: {
       if (!spec.name.empty()) unsupported(spec.loc, "STRUCT EXTENDS");
+      if (spec.isUnion) unsupported(spec.loc, "UNION");
       pugi::xml_node s = holder.append_child("struct");
       for (const auto& field : spec.fields) variable(s, field);
       break;

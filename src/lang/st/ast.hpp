@@ -40,7 +40,7 @@ enum class TypeSpecKind : uint8_t {
   Reference,  // REFERENCE TO / REF_TO element
   Subrange,   // base (lo..hi), e.g. INT (0..100)
   Enum,       // (a, b := 5, c) [base type name in `name`, may be empty]
-  Struct,     // STRUCT fields END_STRUCT (only inside TYPE; `name` holds EXTENDS base, may be empty)
+  Struct,     // STRUCT fields END_STRUCT or UNION fields END_UNION (only inside TYPE; `name` holds EXTENDS base, may be empty)
 };
 
 struct VarDecl;
@@ -67,6 +67,7 @@ struct TypeSpec {
   ExprPtr lo, hi;                 // Subrange
   std::vector<EnumValueDecl> enumValues;  // Enum
   std::vector<VarDecl> fields;    // Struct
+  bool isUnion = false;           // Struct written as UNION ... END_UNION: every field at offset 0
 };
 
 // ---- Expressions ------------------------------------------------------------------------

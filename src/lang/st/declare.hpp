@@ -49,7 +49,9 @@ class Declarer {
   void fillTypeDecl(const TypeDecl& decl, TypeId id);
   void fillEnum(TypeId id, const TypeSpec& spec, const PouSym* pou);
   TypeId resolveNamed(const TypeSpec& spec, const PouSym* pou);
-  void layoutStruct(TypeId id, const std::vector<VarDecl>& fields, const std::string& base, SourceLocation loc);
+  void layoutStruct(TypeId id, const std::vector<VarDecl>& fields, const std::string& base, bool isUnion,
+                    SourceLocation loc);
+  bool overlayable(TypeId type) const;  // may share its bytes with another UNION member
   void declarePous();
   void layoutInstance(PouSym& pou);
   bool layoutFbOf(const TypeSpec& spec, VarSection section);

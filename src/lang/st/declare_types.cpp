@@ -117,7 +117,7 @@ void Declarer::declareTypes() {
 void Declarer::fillTypeDecl(const TypeDecl& decl, TypeId id) {
   const TypeSpec& spec = decl.spec;
   if (spec.kind == TypeSpecKind::Struct) {
-    layoutStruct(id, spec.fields, spec.name, decl.loc);
+    layoutStruct(id, spec.fields, spec.name, spec.isUnion, decl.loc);
   } else if (spec.kind == TypeSpecKind::Enum) {
     fillEnum(id, spec, nullptr);
   }
@@ -276,8 +276,12 @@ TypeId Declarer::resolveType(const TypeSpec& spec, const PouSym* pou) {
   return kNoType;
 }
 
-void Declarer::layoutStruct(TypeId id, const std::vector<VarDecl>& fields, const std::string& base, SourceLocation loc) {
-  uint32_t offset = 0, align = 1;
+// A UNION is laid out as a STRUCT whose fields all start at offset 0, its size the largest
+// field's. It may not overlay an FB instance, interface or reference with other bytes: their
+// class ids and addresses must only be written by the compiler's own code.
+void Declarer::layoutStruct(TypeId id, const std::vector<VarDecl>& fields, const std::string& base, bool isUnion,
+                            SourceLocation loc) {
+  uint32_t offset = 0, align = 1, unionSize = 0;
   std::vector<bc::Field> out;
   if (!base.empty()) {
     TypeSpec b;
@@ -312,6 +316,11 @@ void Declarer::layoutStruct(TypeId id, const std::vector<VarDecl>& fields, const
         continue;
       }
       if (ft == kNoType) continue;
+      if (isUnion && !overlayable(ft)) {
+        diags_.error(diag::E108, n.loc, "UNION member '" + n.name + "' cannot be an FB instance, interface or reference");
+        continue;
+      }
+      if (isUnion) offset = 0;
       uint32_t a = std::min<uint32_t>(types_[ft].align, 8);
       offset = (offset + a - 1) / a * a;
       align = std::max(align, a);
@@ -322,12 +331,24 @@ void Declarer::layoutStruct(TypeId id, const std::vector<VarDecl>& fields, const
       if (decl.init) fieldInits_[id].push_back({out.size(), decl.init.get()});
       out.push_back(std::move(field));
       offset += types_[ft].size;
+      unionSize = std::max(unionSize, offset);
     }
   }
+  if (isUnion) offset = unionSize;
   bc::TypeDesc& d = types_.mut(id);
   d.fields = std::move(out);
   d.align = align;
   d.size = (offset + align - 1) / align * align;
+}
+
+bool Declarer::overlayable(TypeId type) const {
+  const bc::TypeDesc& d = types_[type];
+  if (d.kind == bc::TypeKind::Reference || model_.fbByType.count(type) || model_.interfaceByType.count(type)) return false;
+  if (d.kind == bc::TypeKind::Array) return overlayable(d.element);
+  if (d.kind == bc::TypeKind::Struct)
+    for (const auto& f : d.fields)
+      if (!overlayable(f.type)) return false;
+  return true;
 }
 
 void Declarer::fillEnum(TypeId id, const TypeSpec& spec, const PouSym* pou) {

@@ -197,7 +197,7 @@ bool Parser::isHardStop(Tok kind) const {
   if (isTopLevelStart(kind) || isPouEnd(kind) || isVarBlockStart(kind)) return true;
   switch (kind) {
     case Tok::Eof: case Tok::KwMethod: case Tok::KwProperty: case Tok::KwAction: case Tok::KwEndVar:
-    case Tok::KwEndType: case Tok::KwEndStruct: case Tok::KwEndConfiguration: case Tok::KwEndResource:
+    case Tok::KwEndType: case Tok::KwEndStruct: case Tok::KwEndUnion: case Tok::KwEndConfiguration: case Tok::KwEndResource:
       return true;
     default:
       return false;

@@ -83,7 +83,7 @@ bool Parser::parseVarDecl(VarDecl& decl, bool allowLocation) {
   // Keep going if the next declaration (or END_VAR) already starts; otherwise resynchronise.
   bool nextDeclStarts = atName() && (peekTok(1).kind == Tok::Colon || peekTok(1).kind == Tok::Comma ||
                                      peekTok(1).kind == Tok::KwAt);
-  if (!nextDeclStarts && !at(Tok::KwEndVar) && !at(Tok::KwEndStruct)) skipPastSemicolon(false);
+  if (!nextDeclStarts && !at(Tok::KwEndVar) && !at(Tok::KwEndStruct) && !at(Tok::KwEndUnion)) skipPastSemicolon(false);
   return true;
 }
 
@@ -135,9 +135,8 @@ TypeSpec Parser::parseTypeSpec(bool allowStruct, std::vector<CallArg>* fbInitArg
       parseStructType(spec);
       return spec;
     case Tok::KwUnion:
-      error(diag::E011, "UNION is not supported; use a STRUCT");
-      while (!at(Tok::KwEndUnion) && !at(Tok::KwEndType) && !at(Tok::Eof)) advance();
-      accept(Tok::KwEndUnion);
+      if (!allowStruct) error(diag::E006, "UNION is only allowed in a TYPE declaration; declare a named type");
+      parseStructType(spec);
       return spec;
     default: break;
   }
@@ -236,19 +235,21 @@ void Parser::parseEnumType(TypeSpec& spec) {
   if (atName()) spec.name = parseQualifiedName();
 }
 
-// STRUCT [EXTENDS Base] fields END_STRUCT
+// STRUCT [EXTENDS Base] fields END_STRUCT, or UNION fields END_UNION
 void Parser::parseStructType(TypeSpec& spec) {
   spec.kind = TypeSpecKind::Struct;
+  spec.isUnion = at(Tok::KwUnion);
+  Tok end = spec.isUnion ? Tok::KwEndUnion : Tok::KwEndStruct;
   SourceLocation loc = cur().loc;
   advance();
-  if (accept(Tok::KwExtends)) spec.name = parseQualifiedName();
-  while (!at(Tok::KwEndStruct) && !isHardStop(cur().kind) && !stopped_) {
+  if (!spec.isUnion && accept(Tok::KwExtends)) spec.name = parseQualifiedName();
+  while (!at(end) && !isHardStop(cur().kind) && !stopped_) {
     size_t before = pos_;
     VarDecl field;
     if (parseVarDecl(field, true)) spec.fields.push_back(std::move(field));
     if (pos_ == before) advance();
   }
-  expectEnd(Tok::KwEndStruct, "STRUCT", loc);
+  expectEnd(end, spec.isUnion ? "UNION" : "STRUCT", loc);
 }
 
 // TYPE Name [EXTENDS Base] : spec [:= init]; ... END_TYPE. Attributes written before TYPE go to
@@ -272,7 +273,7 @@ void Parser::parseTypeBlock(std::vector<TypeDecl>& out, std::vector<Attribute> a
     }
     decl.spec = parseTypeSpec(true, nullptr);
     if (!extends.empty()) {
-      if (decl.spec.kind == TypeSpecKind::Struct)
+      if (decl.spec.kind == TypeSpecKind::Struct && !decl.spec.isUnion)
         decl.spec.name = extends;
       else
         diags_.error(diag::E006, decl.loc, "only a STRUCT type can EXTENDS another type");

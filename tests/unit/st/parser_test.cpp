@@ -465,9 +465,13 @@ TEST(ParserDecl, Types) {
   EXPECT_EQ(show(types[7].spec), "STRING(32)");
 }
 
-TEST(ParserDecl, UnionIsReportedAsUnsupported) {
-  EXPECT_EQ(diags("TYPE U : UNION a : INT; b : REAL; END_UNION END_TYPE"),
-            "1:10 E011 UNION is not supported; use a STRUCT\n");
+TEST(ParserDecl, UnionIsAStructMarkedAsUnion) {
+  auto p = parse("TYPE U : UNION a : INT; b : REAL; END_UNION END_TYPE");
+  ASSERT_EQ(p->unit.types.size(), 1u);
+  EXPECT_EQ(p->unit.types[0].spec.kind, TypeSpecKind::Struct);
+  EXPECT_TRUE(p->unit.types[0].spec.isUnion);
+  EXPECT_EQ(p->unit.types[0].spec.fields.size(), 2u);
+  EXPECT_EQ(diags("TYPE U : UNION a : INT; END_STRUCT END_TYPE"), "1:25 E007 expected 'END_UNION' to close 'UNION' at line 1, found 'END_STRUCT'\n");
 }
 
 TEST(ParserDecl, Attributes) {

@@ -2,8 +2,10 @@
 #include <algorithm>
 #include <fstream>
 #include <initializer_list>
+#include <optional>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include "cell/ads_settings.hpp"
 #include "cell/cell.hpp"
@@ -61,7 +63,8 @@ class Loader {
     // Maps name device signals, so they are read once the devices exist.
     readModbusSection(*cell, top.child("modbus"), diags_);
     if (plcModbus_) readModbusClient(*cell, *plcModbus_, diags_);
-    top.child("extends");  // applied by takeBaseSections()
+    top.child("extends");          // applied by takeBaseSections()
+    top.child("replace_devices");  // applied by takeBaseSections()
     if (plcAds_) {
       readAdsClient(*cell->plcAds, *plcAds_, diags_);
       addExternalRunWires(*cell);
@@ -76,8 +79,16 @@ class Loader {
   // which this one does not have is taken as written there, so variants of a cell (another
   // PLC program, other run settings) need not repeat its devices. One level only: the base
   // must not extend another file. Paths inside taken sections stay relative to this file.
+  // `replace_devices:` swaps single devices of the base's list (replacedDevices()).
   bool takeBaseSections(const std::filesystem::path& path, ConfigNode& root) {
     const ConfigNode* ext = root.kind() == ConfigNode::Kind::Map ? root.find("extends") : nullptr;
+    const ConfigNode* replacements = root.kind() == ConfigNode::Kind::Map ? root.find("replace_devices") : nullptr;
+    if (replacements && !ext)
+      diags_.error("C010", root.keyLoc("replace_devices"),
+                   "'replace_devices' replaces devices of the cell file named by 'extends', but this file has no 'extends'");
+    if (replacements && root.has("devices"))
+      diags_.error("C010", root.keyLoc("replace_devices"),
+                   "'replace_devices' replaces devices of the base file, but this file has its own 'devices'");
     if (!ext) return true;
     std::filesystem::path basePath = (path.parent_path() / ext->scalar()).lexically_normal();
     std::string text;
@@ -91,9 +102,46 @@ class Loader {
       diags_.error("C010", base.keyLoc("extends"), "a cell file named by 'extends' cannot itself extend another file");
       return false;
     }
+    // built before root grows: `replacements` points into root
+    const ConfigNode* baseDevices = base.find("devices");
+    std::optional<ConfigNode> devices;
+    if (replacements && baseDevices && !root.has("devices")) devices = replacedDevices(*baseDevices, *replacements);
     for (const auto& [key, value] : base.entries())
-      if (!root.has(key)) root.add(key, base.keyLoc(key), value);
+      if (!root.has(key)) root.add(key, base.keyLoc(key), key == "devices" && devices ? *devices : value);
     return true;
+  }
+
+  // The base's `devices` list with the variant's `replace_devices` entries in place of the
+  // devices of the same name (the list keeps its order: devices step in file order), so a
+  // variant that swaps one device (the ideal table axes for drives) need not repeat the others.
+  ConfigNode replacedDevices(const ConfigNode& devices, const ConfigNode& replacements) {
+    if (devices.kind() != ConfigNode::Kind::List) return devices;  // readDevices() reports it
+    if (replacements.kind() != ConfigNode::Kind::List) {
+      diags_.error("C010", replacements.loc(), "'replace_devices' must be a list of devices, each named like a device of the base file");
+      return devices;
+    }
+    std::vector<const ConfigNode*> chosen;
+    for (const ConfigNode& d : devices.items()) chosen.push_back(&d);
+    for (const ConfigNode& r : replacements.items()) {
+      const ConfigNode* name = r.kind() == ConfigNode::Kind::Map ? r.find("name") : nullptr;
+      auto same = [&](const ConfigNode& d) {
+        const ConfigNode* n = d.kind() == ConfigNode::Kind::Map ? d.find("name") : nullptr;
+        return name && n && n->scalar() == name->scalar();
+      };
+      const auto it = std::find_if(devices.items().begin(), devices.items().end(), same);
+      const size_t at = static_cast<size_t>(it - devices.items().begin());
+      if (it == devices.items().end())
+        diags_.error("C010", name ? name->loc() : r.loc(),
+                     name ? "'replace_devices': the base file has no device '" + name->scalar() + "' to replace"
+                          : std::string("'replace_devices': every entry needs the 'name' of the base file's device it replaces"));
+      else if (chosen[at] != &*it)
+        diags_.error("C010", name->loc(), "'replace_devices': device '" + name->scalar() + "' is replaced twice");
+      else
+        chosen[at] = &r;
+    }
+    ConfigNode out = ConfigNode::makeList(devices.loc());
+    for (const ConfigNode* d : chosen) out.push(*d);
+    return out;
   }
 
   // True unless there was an error. Without `plc:` or its `sources:` the cell has no controller

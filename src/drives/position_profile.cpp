@@ -16,8 +16,12 @@ void PositionProfile::approach(double vDesired, const ProfileLimits& lim, double
 bool PositionProfile::toPosition(double target, const ProfileLimits& lim, double dtS) {
   const double s = target - x_;
   if (s == 0 && v_ == 0) return true;
-  // The fastest speed from which the axis still stops at the target.
-  const double reachable = std::sqrt(2.0 * lim.decel * std::abs(s));
+  // The fastest speed from which the axis still stops at the target in this stepping: braking
+  // from v by decel x dt per step, moving at each step's new speed, covers v^2/(2 decel) +
+  // v dt/2. (Braking along the continuous sqrt(2 decel s), the stepped speed trails that curve:
+  // a target approached at full speed was passed and then approached from the other side.)
+  const double halfStep = 0.5 * lim.decel * dtS;
+  const double reachable = std::sqrt(halfStep * halfStep + 2.0 * lim.decel * std::abs(s)) - halfStep;
   approach(std::copysign(std::min(lim.vMax, reachable), s), lim, dtS);
   const double next = x_ + v_ * dtS;
   // Arrival: the step would reach or pass the target while approaching it slowly enough that

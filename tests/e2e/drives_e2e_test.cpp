@@ -14,6 +14,8 @@
 #include <sstream>
 #include <string>
 
+#include "csv_trace.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -51,19 +53,6 @@ CellRun runCell(const std::string& cell) {
   r.html = readFile(dir / "run.html");
   fs::remove_all(dir);
   return r;
-}
-
-// Every value the CSV records for `signal`, in time order (the initial value first).
-std::vector<double> values(const std::string& csv, const std::string& signal) {
-  std::vector<double> out;
-  std::istringstream in(csv);
-  for (std::string line; std::getline(in, line);) {
-    const size_t a = line.find(',');
-    const size_t b = line.find(',', a + 1);
-    if (a == std::string::npos || b == std::string::npos || line.substr(a + 1, b - a - 1) != signal) continue;
-    out.push_back(std::stod(line.substr(b + 1)));
-  }
-  return out;
 }
 
 double lastValue(const std::string& csv, const std::string& signal) {

@@ -11,6 +11,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -18,6 +20,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "csv_trace.hpp"
 
 namespace fs = std::filesystem;
 
@@ -27,6 +31,7 @@ const char* const kExe = VIRTCOM_EXE;
 const char* const kDataDir = VIRTCOM_E2E_DATA;
 const std::string kGearbox = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell/cell.yaml";
 const std::string kGearboxSfc = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell/cell-sfc.yaml";
+const std::string kGearboxDrives = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell/cell-drives.yaml";
 const std::string kGoldenDir = std::string(VIRTCOM_SOURCE_DIR) + "/tests/golden/cells";
 const char* const kChromium = "/usr/bin/chromium";
 
@@ -349,6 +354,77 @@ TEST_F(RunSfc, RecordsTheActiveStepsOfEveryBranch) {
   }
   // Robot2 screws the first studs while Robot1 fetches the bearings: both branches work at once.
   EXPECT_TRUE(bothActiveAtSomeTime(csv, "MAIN.Robot1Work.X", "MAIN.Robot2Work.X"));
+}
+
+// The gearbox cell with its X/Y table on S120 EPos drives (cell-drives.yaml: the same PLC
+// program plus plc/table_drives.st, robots and press taken from cell.yaml) against the ideal
+// axes of cell.yaml.
+class RunDrives : public RunCommand {
+ protected:
+  // The measured cycle time (s) of a JSON report, NAN if it has none.
+  static double cycleTimeS(const std::string& json) {
+    const size_t cycle = json.find("\"cycle\": {");
+    const size_t time = json.find("\"time_s\": ", cycle);
+    return cycle == std::string::npos || time == std::string::npos ? NAN : std::stod(json.substr(time + 10));
+  }
+};
+
+// The drives follow the ideal axes' trapezoid (250 mm/s, 500 mm/s^2); on top come only the
+// position loop's lag settling into the 40 LU positioning window (about 40 ms) and at most one
+// more scan (10 ms) per handshake edge through TABLE: well under 100 ms per move, and at most
+// eight moves lie on the critical path, so the cycle is at most 1 % (0.95 s of sequence 3's
+// 94.6 s) longer, and never shorter. Every move ends at its target: X at 420 mm and Y at 180 mm
+// under the press, both back at 0 mm at the end, without passing a target.
+TEST_F(RunDrives, CycleTimeWithinOnePercentOfTheIdealAxesAndTargetsReached) {
+  for (const std::string sequence : {"1", "2", "3"}) {
+    SCOPED_TRACE("sequence " + sequence);
+    const std::string set = "MAIN.sequence=" + sequence;
+    RunResult ideal = run({"run", kGearbox, "--quiet", "--set", set, "--json", out("ideal.json")});
+    RunResult drives = run({"run", kGearboxDrives, "--set", set, "--json", out("drives.json"), "--csv", out("drives.csv")});
+    ASSERT_EQ(ideal.exitCode, 0) << show(ideal);
+    ASSERT_EQ(drives.exitCode, 0) << show(drives);
+    EXPECT_EQ(drives.err, "");
+    EXPECT_TRUE(contains(drives.out, "Run ended     completed: 1 cycle(s) completed")) << show(drives);
+    const double idealS = cycleTimeS(readFile(out("ideal.json"))), drivesS = cycleTimeS(readFile(out("drives.json")));
+    EXPECT_GE(drivesS, idealS);
+    EXPECT_LE(drivesS, 1.01 * idealS);
+    ::testing::Test::RecordProperty("cycle_time_ms_drives_sequence" + sequence, std::to_string(std::lround(drivesS * 1000)));
+
+    const std::string csv = readFile(out("drives.csv"));
+    struct Axis {
+      const char* name;
+      double pressMm;  // plc/jobs.st TableX/TableY(POS_PRESS)
+    };
+    for (const Axis& axis : {Axis{"AxisX", 420.0}, Axis{"AxisY", 180.0}}) {
+      SCOPED_TRACE(axis.name);
+      const std::vector<double> mm = values(csv, std::string(axis.name) + ".position");  // the lead screw's load
+      ASSERT_FALSE(mm.empty());
+      constexpr double kWindowMm = 0.04;  // p2544 = 40 LU
+      EXPECT_NEAR(*std::max_element(mm.begin(), mm.end()), axis.pressMm, kWindowMm);
+      EXPECT_GE(*std::min_element(mm.begin(), mm.end()), -kWindowMm);
+      EXPECT_NEAR(mm.back(), 0.0, kWindowMm);
+      // the PLC's view through the telegram (XIST_A in LU, scaled by table_drives.st)
+      const std::vector<double> plc = values(csv, "MAIN." + std::string(axis.name) + ".actualPosition");
+      ASSERT_FALSE(plc.empty());
+      EXPECT_NEAR(*std::max_element(plc.begin(), plc.end()), axis.pressMm, kWindowMm);
+    }
+    if (sequence == "3") {
+      EXPECT_EQ(readFile(out("drives.json")), readFile(kGoldenDir + "/gearbox-drives-seq3.json"));
+    }
+  }
+}
+
+// Sequence 4 lets both robots into the shared table zone together: the drive variant detects
+// the same collision as the ideal cell.
+TEST_F(RunDrives, Sequence4StillCollides) {
+  const std::string collision = "zone SharedTable: Robot1 (PlaceBearing) <-> Robot2 (ScrewStud)";
+  RunResult ideal = run({"run", kGearbox, "--set", "MAIN.sequence=4"});
+  RunResult drives = run({"run", kGearboxDrives, "--set", "MAIN.sequence=4"});
+  EXPECT_EQ(ideal.exitCode, 3) << show(ideal);
+  EXPECT_TRUE(contains(ideal.out, collision)) << show(ideal);
+  EXPECT_EQ(drives.exitCode, 3) << show(drives);
+  EXPECT_TRUE(contains(drives.out, "Run ended     collision: robots collided in a shared zone")) << show(drives);
+  EXPECT_TRUE(contains(drives.out, collision)) << show(drives);
 }
 
 class RunReport : public RunCommand {};

@@ -55,7 +55,7 @@ TEST_F(LoaderErrors, UnknownTopLevelKeyListsTheKnownOnes) {
                     "devices: []\n"
                     "devcies: []\n"),
               ElementsAre("cell.yaml:5:1: error[C011]: unknown key 'devcies' in the cell file "
-                          "(expected one of: name, plc, run, zones, world, devices, modbus, extends)"));
+                          "(expected one of: name, plc, run, zones, world, devices, modbus, extends, replace_devices)"));
 }
 
 TEST_F(LoaderErrors, ExtendsNamesAMissingFile) {
@@ -67,6 +67,29 @@ TEST_F(LoaderErrors, ExtendsDoesNotChain) {
   write("base.yaml", "extends: cell.yaml\ndevices: []\n");
   EXPECT_THAT(fails("extends: base.yaml\n"),
               ElementsAre("base.yaml:1:1: error[C010]: a cell file named by 'extends' cannot itself extend another file"));
+}
+
+TEST_F(LoaderErrors, ReplaceDevicesNamesDevicesOfTheBase) {
+  write("base.yaml", "plc:\n  sources: [main.st]\ndevices:\n  - name: Lock\n    type: timed\n"
+                     "    commands: { 1: { name: Lock, duration: 1 s } }\n");
+  EXPECT_THAT(fails("extends: base.yaml\n"
+                    "replace_devices:\n"
+                    "  - name: Lokc\n"
+                    "  - type: timed\n"
+                    "  - { name: Lock, type: timed, commands: { 1: { name: A, duration: 1 s } } }\n"
+                    "  - { name: Lock, type: timed, commands: { 1: { name: B, duration: 1 s } } }\n"),
+              ElementsAre("cell.yaml:3:11: error[C010]: 'replace_devices': the base file has no device 'Lokc' to replace",
+                          "cell.yaml:4:5: error[C010]: 'replace_devices': every entry needs the 'name' of the base "
+                          "file's device it replaces",
+                          "cell.yaml:6:13: error[C010]: 'replace_devices': device 'Lock' is replaced twice"));
+}
+
+TEST_F(LoaderErrors, ReplaceDevicesNeedsExtendsAndTheBasesDevices) {
+  EXPECT_THAT(fails("plc:\n  sources: [main.st]\ndevices: []\nreplace_devices: []\n"),
+              ElementsAre("cell.yaml:4:1: error[C010]: 'replace_devices' replaces devices of the cell file named by "
+                          "'extends', but this file has no 'extends'",
+                          "cell.yaml:4:1: error[C010]: 'replace_devices' replaces devices of the base file, but this file "
+                          "has its own 'devices'"));
 }
 
 TEST_F(LoaderErrors, PlcWithBothSourcesAndModbus) {
@@ -327,7 +350,7 @@ TEST_F(LoaderErrors, AllMistakesOfOneFileInOnePass) {
                           "cell.yaml:31:13: error[C030]: no port of 'Lock3' matches a variable under 'MAIN.nothing' "
                           "(expected e.g. MAIN.nothing.programNumber)",
                           "cell.yaml:32:1: error[C011]: unknown key 'extra' in the cell file (expected one of: name, plc, "
-                          "run, zones, world, devices, modbus, extends)"));
+                          "run, zones, world, devices, modbus, extends, replace_devices)"));
 }
 
 // Regression test (found by the cell/sim test suite).

@@ -192,6 +192,26 @@ TEST_F(Loader, ExtendsTakesTheSectionsTheFileLacksFromTheBase) {
   EXPECT_TRUE(cell->world.hasFact(cell->world.fact("partPresent")));
 }
 
+// `replace_devices`: a variant swaps single devices of the base's list by name, in their place
+// (devices step in file order); the others stay as the base writes them.
+TEST_F(Loader, ReplaceDevicesSwapsBaseDevicesByName) {
+  write("base.yaml", kTwoDevices);
+  auto cell = loads("extends: base.yaml\n"
+                    "replace_devices:\n"
+                    "  - name: Clamp\n"
+                    "    type: axis\n"
+                    "    max_speed: 100 mm/s\n"
+                    "    acceleration: 1000 mm/s^2\n"
+                    "    min_position: 0 mm\n"
+                    "    max_position: 100 mm\n");
+  ASSERT_NE(cell, nullptr);
+  ASSERT_EQ(cell->devices.size(), 2u);
+  EXPECT_EQ(cell->devices[0]->name(), "Clamp");
+  EXPECT_EQ(cell->devices[0]->type(), "axis");
+  EXPECT_EQ(cell->devices[1]->name(), "Lock");
+  EXPECT_EQ(cell->devices[1]->type(), "timed");
+}
+
 TEST_F(Loader, NameDefaultsToTheFolderName) {
   auto cell = loads("plc:\n  sources: [main.st]\ndevices: []\n");
   ASSERT_NE(cell, nullptr);

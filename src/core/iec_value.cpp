@@ -43,34 +43,67 @@ uint32_t bitWidth(ElemType t) {
   return elemTypeInfo(t).sizeBytes * 8;
 }
 
-static void appendUnit(std::string& out, uint64_t& rest, uint64_t unit, const char* suffix) {
+namespace {
+
+// Appends to a caller's buffer of kIecTextMax bytes; every text here is far shorter.
+struct TextBuf {
+  char* p;
+  size_t n = 0;
+  void add(std::string_view s) {
+    for (char c : s) p[n++] = c;
+  }
+  void addNumber(uint64_t v, int minDigits = 1) {
+    char digits[24];
+    char* end = std::to_chars(digits, digits + sizeof digits, v).ptr;
+    for (int pad = minDigits - static_cast<int>(end - digits); pad > 0; --pad) p[n++] = '0';
+    add(std::string_view(digits, static_cast<size_t>(end - digits)));
+  }
+};
+
+void addUnit(TextBuf& out, uint64_t& rest, uint64_t unit, const char* suffix) {
   if (rest >= unit) {
-    out += std::to_string(rest / unit) + suffix;
+    out.addNumber(rest / unit);
+    out.add(suffix);
     rest %= unit;
   }
 }
 
-static std::string formatDuration(const char* prefix, int64_t value, bool nanos) {
-  std::string out = prefix;
+size_t formatDurationInto(char* buf, const char* prefix, int64_t value, bool nanos) {
+  TextBuf out{buf};
+  out.add(prefix);
   // the magnitude as unsigned, so INT64_MIN has one too
   uint64_t rest = value < 0 ? 0 - static_cast<uint64_t>(value) : static_cast<uint64_t>(value);
-  if (value < 0) out += '-';
-  if (value == 0) return out + (nanos ? "0ns" : "0ms");
-  uint64_t ms = nanos ? 1000000 : 1;
-  appendUnit(out, rest, 86400000 * ms, "d");
-  appendUnit(out, rest, 3600000 * ms, "h");
-  appendUnit(out, rest, 60000 * ms, "m");
-  appendUnit(out, rest, 1000 * ms, "s");
-  appendUnit(out, rest, ms, "ms");
-  if (nanos) {
-    appendUnit(out, rest, 1000, "us");
-    appendUnit(out, rest, 1, "ns");
+  if (value < 0) out.add("-");
+  if (value == 0) {
+    out.add(nanos ? "0ns" : "0ms");
+    return out.n;
   }
-  return out;
+  const uint64_t ms = nanos ? 1000000 : 1;
+  addUnit(out, rest, 86400000 * ms, "d");
+  addUnit(out, rest, 3600000 * ms, "h");
+  addUnit(out, rest, 60000 * ms, "m");
+  addUnit(out, rest, 1000 * ms, "s");
+  addUnit(out, rest, ms, "ms");
+  if (nanos) {
+    addUnit(out, rest, 1000, "us");
+    addUnit(out, rest, 1, "ns");
+  }
+  return out.n;
 }
 
-std::string formatTimeMs(int64_t ms) { return formatDuration("T#", ms, false); }
-std::string formatLtimeNs(int64_t ns) { return formatDuration("LTIME#", ns, true); }
+}  // namespace
+
+size_t formatTimeMsInto(char* buf, int64_t ms) { return formatDurationInto(buf, "T#", ms, false); }
+size_t formatLtimeNsInto(char* buf, int64_t ns) { return formatDurationInto(buf, "LTIME#", ns, true); }
+
+template <typename T>
+static std::string asString(size_t (*formatInto)(char*, T), T value) {
+  char buf[kIecTextMax];
+  return std::string(buf, formatInto(buf, value));
+}
+
+std::string formatTimeMs(int64_t ms) { return asString(formatTimeMsInto, ms); }
+std::string formatLtimeNs(int64_t ns) { return asString(formatLtimeNsInto, ns); }
 
 int64_t daysFromCivil(int64_t y, unsigned m, unsigned d) {
   y -= m <= 2;
@@ -94,50 +127,79 @@ void civilFromDays(int64_t z, int64_t& y, unsigned& m, unsigned& d) {
   y += m <= 2;
 }
 
-static std::string dateText(int64_t seconds) {
+static void addDate(TextBuf& out, int64_t seconds) {
   int64_t days = seconds >= 0 ? seconds / 86400 : -((-seconds + 86399) / 86400);
   int64_t y;
   unsigned m, d;
   civilFromDays(days, y, m, d);
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%04lld-%02u-%02u", static_cast<long long>(y), m, d);
-  return buf;
+  if (y < 0) out.add("-");
+  out.addNumber(static_cast<uint64_t>(y < 0 ? -y : y), 4);
+  out.add("-");
+  out.addNumber(m, 2);
+  out.add("-");
+  out.addNumber(d, 2);
 }
 
-static std::string clockText(int64_t msOfDay) {
-  char buf[32];
+static void addClock(TextBuf& out, int64_t msOfDay) {
   int64_t s = msOfDay / 1000;
-  std::snprintf(buf, sizeof buf, "%02lld:%02lld:%02lld", static_cast<long long>(s / 3600),
-                static_cast<long long>((s / 60) % 60), static_cast<long long>(s % 60));
-  std::string out = buf;
+  out.addNumber(static_cast<uint64_t>(s / 3600), 2);
+  out.add(":");
+  out.addNumber(static_cast<uint64_t>((s / 60) % 60), 2);
+  out.add(":");
+  out.addNumber(static_cast<uint64_t>(s % 60), 2);
   if (int64_t frac = msOfDay % 1000) {
-    std::snprintf(buf, sizeof buf, ".%03lld", static_cast<long long>(frac));
-    out += buf;
-    while (out.back() == '0') out.pop_back();
+    out.add(".");
+    out.addNumber(static_cast<uint64_t>(frac), 3);
+    while (out.p[out.n - 1] == '0') --out.n;
   }
-  return out;
 }
 
-std::string formatDate(int64_t seconds) { return "D#" + dateText(seconds); }
-std::string formatTimeOfDay(int64_t ms) { return "TOD#" + clockText(ms); }
-std::string formatDateAndTime(int64_t seconds) {
-  int64_t secOfDay = ((seconds % 86400) + 86400) % 86400;
-  return "DT#" + dateText(seconds) + "-" + clockText(secOfDay * 1000);
+size_t formatDateInto(char* buf, int64_t seconds) {
+  TextBuf out{buf};
+  out.add("D#");
+  addDate(out, seconds);
+  return out.n;
+}
+
+size_t formatTimeOfDayInto(char* buf, int64_t ms) {
+  TextBuf out{buf};
+  out.add("TOD#");
+  addClock(out, ms);
+  return out.n;
+}
+
+size_t formatDateAndTimeInto(char* buf, int64_t seconds) {
+  TextBuf out{buf};
+  out.add("DT#");
+  addDate(out, seconds);
+  out.add("-");
+  addClock(out, (((seconds % 86400) + 86400) % 86400) * 1000);
+  return out.n;
 }
 
 template <typename F>
-static std::string formatFloat(F v) {
-  char buf[64];
-  auto res = std::to_chars(buf, buf + sizeof buf, v);
-  std::string out(buf, res.ptr);
-  if (out.find_first_of(".eEn") == std::string::npos) out += ".0";  // nan/inf contain 'n'
-  for (auto& c : out)
-    if (c == 'e') c = 'E';
-  return out;
+static size_t formatFloatInto(char* buf, F v) {
+  size_t n = static_cast<size_t>(std::to_chars(buf, buf + kIecTextMax - 2, v).ptr - buf);
+  bool marked = false;  // a '.', an exponent, or nan/inf (which contain 'n')
+  for (size_t i = 0; i < n; ++i) {
+    if (buf[i] == 'e') buf[i] = 'E';
+    marked = marked || buf[i] == '.' || buf[i] == 'E' || buf[i] == 'n';
+  }
+  if (!marked) {
+    buf[n++] = '.';
+    buf[n++] = '0';
+  }
+  return n;
 }
 
-std::string formatReal(float v) { return formatFloat(v); }
-std::string formatLreal(double v) { return formatFloat(v); }
+size_t formatRealInto(char* buf, float v) { return formatFloatInto(buf, v); }
+size_t formatLrealInto(char* buf, double v) { return formatFloatInto(buf, v); }
+
+std::string formatDate(int64_t seconds) { return asString(formatDateInto, seconds); }
+std::string formatTimeOfDay(int64_t ms) { return asString(formatTimeOfDayInto, ms); }
+std::string formatDateAndTime(int64_t seconds) { return asString(formatDateAndTimeInto, seconds); }
+std::string formatReal(float v) { return asString(formatRealInto, v); }
+std::string formatLreal(double v) { return asString(formatLrealInto, v); }
 
 std::string quoteString(std::string_view raw) {
   std::string out = "'";

@@ -1,5 +1,6 @@
 #pragma once
 // IEC 61131-3 elementary types and the textual (IEC literal) form of their values.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -39,6 +40,16 @@ std::string formatTimeOfDay(int64_t msSinceMidnight);  // TOD#12:30:00.5
 std::string formatDateAndTime(int64_t secondsSince1970);  // DT#2024-01-02-12:30:00
 std::string formatReal(float v);    // shortest round-trip form with a decimal point: 1.5, 2.0, 1E+20
 std::string formatLreal(double v);
+// The same texts written into `buf` (at least kIecTextMax bytes) without allocating, for the
+// VM's *_TO_STRING conversions; each returns the length.
+inline constexpr size_t kIecTextMax = 64;
+size_t formatTimeMsInto(char* buf, int64_t ms);
+size_t formatLtimeNsInto(char* buf, int64_t ns);
+size_t formatDateInto(char* buf, int64_t secondsSince1970);
+size_t formatTimeOfDayInto(char* buf, int64_t msSinceMidnight);
+size_t formatDateAndTimeInto(char* buf, int64_t secondsSince1970);
+size_t formatRealInto(char* buf, float v);
+size_t formatLrealInto(char* buf, double v);
 // Quotes a STRING value with IEC $-escapes: 'it$'s'.
 std::string quoteString(std::string_view raw);
 

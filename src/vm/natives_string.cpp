@@ -16,6 +16,7 @@
 #include <charconv>
 #include <cstring>
 
+#include "core/iec_value.hpp"
 #include "vm/natives.hpp"
 #include "vm/value.hpp"
 
@@ -230,45 +231,6 @@ FaultKind writeText(uint64_t* a, const NativeContext& c, const char* text, uint6
   });
 }
 
-// T#1d2h3m4s5ms, like core formatTimeMs, into buf (>= 48 bytes); returns the length.
-size_t formatTimeMsInto(char* buf, int64_t ms) {
-  size_t n = 0;
-  buf[n++] = 'T';
-  buf[n++] = '#';
-  uint64_t rest = ms < 0 ? 0 - static_cast<uint64_t>(ms) : static_cast<uint64_t>(ms);
-  if (ms < 0) buf[n++] = '-';
-  if (rest == 0) {
-    std::memcpy(buf + n, "0ms", 3);
-    return n + 3;
-  }
-  static constexpr struct { uint64_t unit; const char* suffix; } kUnits[] = {
-      {86400000, "d"}, {3600000, "h"}, {60000, "m"}, {1000, "s"}, {1, "ms"}};
-  for (const auto& u : kUnits) {
-    if (rest < u.unit) continue;
-    n = static_cast<size_t>(std::to_chars(buf + n, buf + 40, rest / u.unit).ptr - buf);
-    for (const char* s = u.suffix; *s; ++s) buf[n++] = *s;
-    rest %= u.unit;
-  }
-  return n;
-}
-
-// Shortest round-trip text with a decimal point, like core formatReal/formatLreal.
-template <typename F>
-size_t formatFloatInto(char* buf, F v) {
-  char* end = std::to_chars(buf, buf + 60, v).ptr;
-  size_t n = static_cast<size_t>(end - buf);
-  bool marked = false;
-  for (size_t i = 0; i < n; ++i) {
-    if (buf[i] == 'e') buf[i] = 'E';
-    if (buf[i] == '.' || buf[i] == 'E' || buf[i] == 'n') marked = true;
-  }
-  if (!marked) {
-    buf[n++] = '.';
-    buf[n++] = '0';
-  }
-  return n;
-}
-
 bool isSpace(uint8_t ch) { return ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r'; }
 
 }  // namespace
@@ -334,19 +296,27 @@ FaultKind native_STR_FROM_U(uint64_t* a, const NativeContext& c) {
   return writeText(a, c, buf, static_cast<uint64_t>(end - buf));
 }
 
+// The IEC literal texts of core/iec_value.hpp, written without allocating.
+template <typename T>
+FaultKind writeFormatted(uint64_t* a, const NativeContext& c, size_t (*formatInto)(char*, T), T value) {
+  char buf[kIecTextMax];
+  return writeText(a, c, buf, formatInto(buf, value));
+}
+
 FaultKind native_STR_FROM_REAL(uint64_t* a, const NativeContext& c) {
-  char buf[64];
-  return writeText(a, c, buf, formatFloatInto(buf, static_cast<float>(asF(a[2]))));
+  return writeFormatted(a, c, formatRealInto, static_cast<float>(asF(a[2])));
 }
-
-FaultKind native_STR_FROM_LREAL(uint64_t* a, const NativeContext& c) {
-  char buf[64];
-  return writeText(a, c, buf, formatFloatInto(buf, asF(a[2])));
+FaultKind native_STR_FROM_LREAL(uint64_t* a, const NativeContext& c) { return writeFormatted(a, c, formatLrealInto, asF(a[2])); }
+FaultKind native_STR_FROM_TIME(uint64_t* a, const NativeContext& c) { return writeFormatted(a, c, formatTimeMsInto, asI(a[2])); }
+FaultKind native_STR_FROM_LTIME(uint64_t* a, const NativeContext& c) {
+  return writeFormatted(a, c, formatLtimeNsInto, asI(a[2]));
 }
-
-FaultKind native_STR_FROM_TIME(uint64_t* a, const NativeContext& c) {
-  char buf[64];
-  return writeText(a, c, buf, formatTimeMsInto(buf, asI(a[2])));
+FaultKind native_STR_FROM_DATE(uint64_t* a, const NativeContext& c) { return writeFormatted(a, c, formatDateInto, asI(a[2])); }
+FaultKind native_STR_FROM_TOD(uint64_t* a, const NativeContext& c) {
+  return writeFormatted(a, c, formatTimeOfDayInto, asI(a[2]));
+}
+FaultKind native_STR_FROM_DT(uint64_t* a, const NativeContext& c) {
+  return writeFormatted(a, c, formatDateAndTimeInto, asI(a[2]));
 }
 
 FaultKind native_STR_FROM_BOOL(uint64_t* a, const NativeContext& c) {

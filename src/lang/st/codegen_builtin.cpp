@@ -216,6 +216,10 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
                  : t.isElem(v.type, ElemType::Real) ? Native::STR_FROM_REAL
                  : t.isElem(v.type, ElemType::Lreal) ? Native::STR_FROM_LREAL
                  : t.isElem(v.type, ElemType::Time) ? Native::STR_FROM_TIME
+                 : t.isElem(v.type, ElemType::Ltime) ? Native::STR_FROM_LTIME
+                 : t.isElem(v.type, ElemType::Date) ? Native::STR_FROM_DATE
+                 : t.isElem(v.type, ElemType::Tod) ? Native::STR_FROM_TOD
+                 : t.isElem(v.type, ElemType::Dt) ? Native::STR_FROM_DT
                  : t.isSignedInt(v.type) ? Native::STR_FROM_I
                                          : Native::STR_FROM_U;
       return stringResult(n, {x}, to);

@@ -16,6 +16,7 @@
 #include <charconv>
 #include <cstring>
 
+#include "core/iec_literal.hpp"
 #include "core/iec_value.hpp"
 #include "vm/natives.hpp"
 #include "vm/value.hpp"
@@ -32,6 +33,8 @@ struct Text {
   const uint8_t* p = nullptr;
   uint64_t len = 0;
 };
+
+std::string_view asView(const Text<1>& s) { return {reinterpret_cast<const char*>(s.p), s.len}; }
 
 template <unsigned W>
 uint32_t unitAt(const uint8_t* p, uint64_t i) {
@@ -323,23 +326,45 @@ FaultKind native_STR_FROM_BOOL(uint64_t* a, const NativeContext& c) {
   return a[2] != 0 ? writeText(a, c, "TRUE", 4) : writeText(a, c, "FALSE", 5);
 }
 
-// Leading blanks, an optional sign, then decimal digits; saturates on overflow.
+// STRING_TO_<integer>: IEC integer text (42, -7, 16#FF, INT#5), 0 if there is none.
 FaultKind native_STR_TO_I(uint64_t* a, const NativeContext& c) {
   Text<1> s;
   if (!readText<1>(c, a[0], s)) return FaultKind::InvalidPointer;
-  uint64_t i = 0;
-  while (i < s.len && isSpace(s.p[i])) ++i;
-  bool negative = false;
-  if (i < s.len && (s.p[i] == '-' || s.p[i] == '+')) negative = s.p[i++] == '-';
-  const uint64_t limit = negative ? uint64_t{1} << 63 : (uint64_t{1} << 63) - 1;
-  uint64_t v = 0;
-  for (; i < s.len && s.p[i] >= '0' && s.p[i] <= '9'; ++i) {
-    const uint64_t d = s.p[i] - '0';
-    v = v > (limit - d) / 10 ? limit : v * 10 + d;
-  }
-  a[0] = negative ? 0 - v : v;
+  int64_t v = 0;
+  if (!parseIntegerText(asView(s), v)) v = 0;
+  a[0] = static_cast<uint64_t>(v);
   return FaultKind::None;
 }
+
+// STRING_TO_BOOL: TRUE/FALSE in any case, or an integer (non-zero is TRUE).
+FaultKind native_STR_TO_BOOL(uint64_t* a, const NativeContext& c) {
+  Text<1> s;
+  if (!readText<1>(c, a[0], s)) return FaultKind::InvalidPointer;
+  std::string_view text = asView(s);
+  while (!text.empty() && isSpace(static_cast<uint8_t>(text.front()))) text.remove_prefix(1);
+  int64_t v = 0;
+  bool isTrue = text.size() >= 4 && (text[0] | 0x20) == 't' && (text[1] | 0x20) == 'r' && (text[2] | 0x20) == 'u' &&
+                (text[3] | 0x20) == 'e';
+  a[0] = isTrue || (parseIntegerText(text, v) && v != 0) ? 1 : 0;
+  return FaultKind::None;
+}
+
+// STRING_TO_TIME and friends: the literal text with or without its prefix, 0 if malformed.
+template <LiteralFamily F>
+FaultKind timeOrDateFromText(uint64_t* a, const NativeContext& c) {
+  Text<1> s;
+  if (!readText<1>(c, a[0], s)) return FaultKind::InvalidPointer;
+  int64_t v = 0;
+  if (!parseTimeOrDateText(asView(s), F, v)) v = 0;
+  a[0] = static_cast<uint64_t>(v);
+  return FaultKind::None;
+}
+
+FaultKind native_STR_TO_TIME(uint64_t* a, const NativeContext& c) { return timeOrDateFromText<LiteralFamily::Time>(a, c); }
+FaultKind native_STR_TO_LTIME(uint64_t* a, const NativeContext& c) { return timeOrDateFromText<LiteralFamily::Ltime>(a, c); }
+FaultKind native_STR_TO_DATE(uint64_t* a, const NativeContext& c) { return timeOrDateFromText<LiteralFamily::Date>(a, c); }
+FaultKind native_STR_TO_TOD(uint64_t* a, const NativeContext& c) { return timeOrDateFromText<LiteralFamily::Tod>(a, c); }
+FaultKind native_STR_TO_DT(uint64_t* a, const NativeContext& c) { return timeOrDateFromText<LiteralFamily::Dt>(a, c); }
 
 // Leading blanks, then the longest prefix that parses as a decimal real (1.5, -2E3).
 FaultKind native_STR_TO_F(uint64_t* a, const NativeContext& c) {

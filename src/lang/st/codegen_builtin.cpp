@@ -58,6 +58,17 @@ std::optional<ElemType> typeFromName(const std::string& name) {
   return std::nullopt;
 }
 
+// The native reading run-time text as a value of `to` where that is not a number's digits.
+std::optional<bc::Native> textParser(const TypeTable& t, TypeId to) {
+  if (t.isBool(to)) return bc::Native::STR_TO_BOOL;
+  if (t.isElem(to, ElemType::Time)) return bc::Native::STR_TO_TIME;
+  if (t.isElem(to, ElemType::Ltime)) return bc::Native::STR_TO_LTIME;
+  if (t.isElem(to, ElemType::Date)) return bc::Native::STR_TO_DATE;
+  if (t.isElem(to, ElemType::Tod)) return bc::Native::STR_TO_TOD;
+  if (t.isElem(to, ElemType::Dt)) return bc::Native::STR_TO_DT;
+  return std::nullopt;
+}
+
 }  // namespace
 
 bc::Native wideNative(bc::Native narrow) {
@@ -208,6 +219,7 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
         return stringResult(fromWide ? Native::STR_FROM_WSTR : Native::WSTR_FROM_STR, {toReg(v)}, to);
       uint16_t s = toReg(v);
       if (t.isReal(to)) return convert(callNative(Native::STR_TO_F, {s}, elemId(ElemType::Lreal)), to, e.loc);
+      if (auto parse = textParser(t, to)) return callNative(*parse, {s}, to);
       return convert(callNative(Native::STR_TO_I, {s}, elemId(ElemType::Lint)), to, e.loc);
     }
     if (t.isString(to)) {

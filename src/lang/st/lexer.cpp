@@ -6,6 +6,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "core/iec_literal.hpp"
 #include "core/iec_value.hpp"
 #include "lang/st/diagnostic_codes.hpp"
 
@@ -47,20 +48,6 @@ int digitValue(char c) {
   return -1;
 }
 
-// Parses decimal digits (underscores ignored) without overflow; false if empty or too large.
-bool parseDecimal(std::string_view s, uint64_t& out) {
-  out = 0;
-  bool any = false;
-  for (char c : s) {
-    if (c == '_') continue;
-    if (!isDigit(c)) return false;
-    if (__builtin_mul_overflow(out, 10u, &out) || __builtin_add_overflow(out, uint64_t(c - '0'), &out))
-      return false;
-    any = true;
-  }
-  return any;
-}
-
 void appendUtf8(std::string& out, uint32_t cp) {
   if (cp < 0x80) {
     out += static_cast<char>(cp);
@@ -88,142 +75,6 @@ const std::unordered_map<std::string, Tok>& keywordTable() {
     return t;
   }();
   return table;
-}
-
-// ---- Time and date literal bodies ---------------------------------------------------------
-
-struct DurationUnit {
-  std::string_view name;
-  uint64_t ns;
-};
-constexpr DurationUnit kDurationUnits[] = {
-    {"d", 86'400'000'000'000ull}, {"h", 3'600'000'000'000ull}, {"m", 60'000'000'000ull},
-    {"s", 1'000'000'000ull},      {"ms", 1'000'000ull},        {"us", 1'000ull},
-    {"ns", 1ull},
-};
-
-// Decodes what follows `T#`: an optional sign, then groups of number and unit such as
-// `1h2m3s4ms`, `1.5s` or `1_000ms`. The magnitude must fit in int64 nanoseconds.
-bool decodeDuration(std::string_view body, uint64_t& ns, bool& negative, std::string& why) {
-  ns = 0;
-  negative = false;
-  size_t i = 0;
-  if (i < body.size() && (body[i] == '-' || body[i] == '+')) negative = body[i++] == '-';
-  if (i >= body.size()) return why = "no value", false;
-  while (i < body.size()) {
-    size_t numStart = i;
-    while (i < body.size() && (isDigit(body[i]) || body[i] == '_')) ++i;
-    uint64_t whole = 0;
-    if (!parseDecimal(body.substr(numStart, i - numStart), whole)) return why = "expected a number", false;
-    std::string_view fraction;
-    if (i < body.size() && body[i] == '.') {
-      size_t fracStart = ++i;
-      while (i < body.size() && isDigit(body[i])) ++i;
-      fraction = body.substr(fracStart, i - fracStart);
-    }
-    size_t unitStart = i;
-    while (i < body.size() && isAlpha(body[i])) ++i;
-    std::string unitName = upper(body.substr(unitStart, i - unitStart));
-    const DurationUnit* unit = nullptr;
-    for (const DurationUnit& u : kDurationUnits)
-      if (equalsNoCase(u.name, unitName)) unit = &u;
-    if (unit == nullptr)
-      return why = unitName.empty() ? "missing unit (d, h, m, s, ms, us, ns)" : "unknown unit '" + unitName + "'", false;
-    uint64_t part = 0;
-    if (__builtin_mul_overflow(whole, unit->ns, &part)) return why = "value too large", false;
-    if (!fraction.empty()) {
-      long double frac = 0, scale = 1;
-      for (char c : fraction.substr(0, 18)) frac += (c - '0') * (scale /= 10);
-      uint64_t fracNs = static_cast<uint64_t>(std::llround(frac * static_cast<long double>(unit->ns)));
-      if (__builtin_add_overflow(part, fracNs, &part)) return why = "value too large", false;
-    }
-    if (__builtin_add_overflow(ns, part, &ns)) return why = "value too large", false;
-    while (i < body.size() && body[i] == '_') ++i;
-  }
-  if (ns > static_cast<uint64_t>(std::numeric_limits<int64_t>::max())) return why = "value too large", false;
-  return true;
-}
-
-// Splits `s` at `sep` into at most `maxParts` pieces.
-size_t splitParts(std::string_view s, char sep, std::string_view* parts, size_t maxParts) {
-  size_t count = 0;
-  while (count < maxParts) {
-    size_t at = s.find(sep);
-    parts[count++] = s.substr(0, at);
-    if (at == std::string_view::npos) return count;
-    s.remove_prefix(at + 1);
-  }
-  return maxParts + 1;  // too many separators
-}
-
-bool decodeDate(std::string_view body, int64_t& seconds, std::string& why) {
-  std::string_view parts[3];
-  uint64_t y = 0, m = 0, d = 0;
-  if (splitParts(body, '-', parts, 3) != 3 || !parseDecimal(parts[0], y) || !parseDecimal(parts[1], m) ||
-      !parseDecimal(parts[2], d))
-    return why = "expected yyyy-mm-dd", false;
-  static constexpr unsigned kDaysInMonth[] = {31, 29, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
-  bool leap = (y % 4 == 0 && y % 100 != 0) || y % 400 == 0;
-  if (y < 1970 || y > 9999 || m < 1 || m > 12 || d < 1 || d > kDaysInMonth[m - 1] || (m == 2 && d == 29 && !leap))
-    return why = "no such date", false;
-  seconds = daysFromCivil(static_cast<int64_t>(y), static_cast<unsigned>(m), static_cast<unsigned>(d)) * 86400;
-  return true;
-}
-
-// hh:mm[:ss[.fff]] to milliseconds since midnight.
-bool decodeTimeOfDay(std::string_view body, int64_t& ms, std::string& why) {
-  std::string_view parts[3];
-  size_t n = splitParts(body, ':', parts, 3);
-  uint64_t h = 0, m = 0, s = 0, fracMs = 0;
-  if (n < 2 || n > 3 || !parseDecimal(parts[0], h) || !parseDecimal(parts[1], m)) return why = "expected hh:mm:ss", false;
-  if (n == 3) {
-    std::string_view secPart = parts[2];
-    size_t dot = secPart.find('.');
-    if (!parseDecimal(secPart.substr(0, dot), s)) return why = "expected hh:mm:ss", false;
-    if (dot != std::string_view::npos) {
-      std::string_view frac = secPart.substr(dot + 1);
-      uint64_t scale = 100;
-      for (char c : frac) {
-        if (!isDigit(c)) return why = "malformed fraction of a second", false;
-        fracMs += static_cast<uint64_t>(c - '0') * scale;
-        scale /= 10;
-      }
-    }
-  }
-  if (h > 23 || m > 59 || s > 59) return why = "no such time of day", false;
-  ms = static_cast<int64_t>(((h * 60 + m) * 60 + s) * 1000 + fracMs);
-  return true;
-}
-
-// yyyy-mm-dd-hh:mm:ss[.f] to seconds since 1970 (the fraction is dropped: DT counts seconds).
-bool decodeDateAndTime(std::string_view body, int64_t& seconds, std::string& why) {
-  size_t dash = std::string_view::npos, count = 0;
-  for (size_t i = 0; i < body.size() && count < 3; ++i)
-    if (body[i] == '-' && ++count == 3) dash = i;
-  if (dash == std::string_view::npos) return why = "expected yyyy-mm-dd-hh:mm:ss", false;
-  int64_t daySeconds = 0, ms = 0;
-  if (!decodeDate(body.substr(0, dash), daySeconds, why) || !decodeTimeOfDay(body.substr(dash + 1), ms, why))
-    return false;
-  seconds = daySeconds + ms / 1000;
-  return true;
-}
-
-enum class LiteralFamily { None, Time, Ltime, Date, Tod, Dt };
-
-LiteralFamily literalFamily(std::string_view prefix) {
-  struct Entry {
-    std::string_view prefix;
-    LiteralFamily family;
-  };
-  static constexpr Entry kEntries[] = {
-      {"T", LiteralFamily::Time},  {"TIME", LiteralFamily::Time},         {"LT", LiteralFamily::Ltime},
-      {"LTIME", LiteralFamily::Ltime}, {"D", LiteralFamily::Date},         {"DATE", LiteralFamily::Date},
-      {"TOD", LiteralFamily::Tod}, {"TIME_OF_DAY", LiteralFamily::Tod},   {"DT", LiteralFamily::Dt},
-      {"DATE_AND_TIME", LiteralFamily::Dt},
-  };
-  for (const Entry& e : kEntries)
-    if (equalsNoCase(e.prefix, prefix)) return e.family;
-  return LiteralFamily::None;
 }
 
 // ---- The lexer ------------------------------------------------------------------------------
@@ -369,9 +220,8 @@ class Lexer {
     std::string_view body = textFrom(bodyStart);
     Token& t = emit(Tok::TimeLiteral, start, loc);
     t.str = typeName;
-    std::string why;
-    if (!decodeDuration(body, t.intValue, t.negative, why))
-      error(diag::E005, loc, "malformed " + std::string(typeName) + " literal '" + std::string(t.text) + "': " + why);
+    LiteralError why;
+    if (!decodeDuration(body, t.intValue, t.negative, why)) malformedLiteral(loc, typeName, t.text, why);
   }
 
   void lexDateLike(size_t start, SourceLocation loc, std::string_view typeName) {
@@ -383,12 +233,18 @@ class Lexer {
     Token& t = emit(Tok::DateLiteral, start, loc);
     t.str = typeName;
     int64_t value = 0;
-    std::string why;
+    LiteralError why;
     bool ok = typeName == "DATE" ? decodeDate(body, value, why)
               : typeName == "TOD" ? decodeTimeOfDay(body, value, why)
                                   : decodeDateAndTime(body, value, why);
     t.intValue = static_cast<uint64_t>(value);
-    if (!ok) error(diag::E005, loc, "malformed " + std::string(typeName) + " literal '" + std::string(t.text) + "': " + why);
+    if (!ok) malformedLiteral(loc, typeName, t.text, why);
+  }
+
+  void malformedLiteral(SourceLocation loc, std::string_view typeName, std::string_view text, const LiteralError& why) {
+    std::string message = "malformed " + std::string(typeName) + " literal '" + std::string(text) + "': " + why.what;
+    if (!why.quoted.empty()) message += " '" + upper(why.quoted) + "'";
+    error(diag::E005, loc, message);
   }
 
   // Consumes digits (of any base up to 36 when `alnum`) and underscores; returns them without

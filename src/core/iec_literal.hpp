@@ -1,0 +1,46 @@
+#pragma once
+// The bodies of IEC time and date literals (what follows T#, LTIME#, D#, TOD#, DT#) and IEC
+// integer texts (42, -7, 16#FF, 2#1010_1010), decoded without allocating: the ST lexer decodes
+// literals with them, and the VM's STRING_TO_* conversions decode run-time text the same way.
+#include <cstdint>
+#include <string_view>
+
+namespace virtcom {
+
+// Why a body was refused: a fixed text, and the part of the input it is about (the unit of
+// `T#5x`), empty when there is none.
+struct LiteralError {
+  const char* what = "";
+  std::string_view quoted;
+};
+
+enum class LiteralFamily { None, Time, Ltime, Date, Tod, Dt };
+
+// The family of a literal prefix: T, TIME, LT, LTIME, D, DATE, TOD, TIME_OF_DAY, DT,
+// DATE_AND_TIME (any case); None for others (INT, a type name).
+LiteralFamily literalFamily(std::string_view prefix);
+
+// `1h2m3s4ms`, `-1.5s`, `1_000ms`: the magnitude in nanoseconds (must fit in int64) and sign.
+bool decodeDuration(std::string_view body, uint64_t& ns, bool& negative, LiteralError& why);
+// yyyy-mm-dd (1970..9999) to seconds since 1970.
+bool decodeDate(std::string_view body, int64_t& seconds, LiteralError& why);
+// hh:mm[:ss[.fff]] to milliseconds since midnight.
+bool decodeTimeOfDay(std::string_view body, int64_t& ms, LiteralError& why);
+// yyyy-mm-dd-hh:mm:ss[.f] to seconds since 1970 (the fraction is dropped: DT counts seconds).
+bool decodeDateAndTime(std::string_view body, int64_t& seconds, LiteralError& why);
+
+// Decimal digits, underscores ignored; false if empty, not a digit, or beyond 64 bits.
+bool parseDecimal(std::string_view digits, uint64_t& out);
+
+// Run-time text to a value of the family, as STRING_TO_TIME and friends read it: leading and
+// trailing blanks ignored, the prefix optional (`T#1s`, `TIME#1s` or `1s`; `DT#...`). TIME and
+// TOD give milliseconds, LTIME nanoseconds, DATE and DT seconds since 1970. False if malformed.
+bool parseTimeOrDateText(std::string_view text, LiteralFamily family, int64_t& value);
+
+// Run-time text to an integer: blanks, an optional sign, decimal digits or BASE#digits
+// (2#, 8#, 16#; underscores ignored), an optional type prefix (`INT#5`). Digits after the
+// number end it (`42abc` is 42), as CODESYS reads them; saturates at the int64 range. False if
+// there is no number at all.
+bool parseIntegerText(std::string_view text, int64_t& value);
+
+}  // namespace virtcom

@@ -318,9 +318,11 @@ class Loader {
       const ConfigNode* faults = cfg.child("faults");
       cfg.optString("model", "");        // informational: the real device's make and type
       cfg.optString("description", "");
-      // the factory reads the device's own parameters and rejects unknown keys
+      // the factory reads the device's own parameters and rejects unknown keys; an entry with
+      // parameter mistakes still yields its device, so its wiring and signals are checked in the
+      // same run (load() then fails, so such a device never runs)
       auto device = plant::createDevice(type, name, cfg, cell.world, drives::deviceTypes());
-      if (!device) continue;
+      if (!device) continue;  // unknown type
       if (faults) readFaults(*device, *faults);
       bindPorts(cell, *device, wiring, node);
       cell.devices.push_back(std::move(device));

@@ -97,7 +97,6 @@ void readBlocks(ConfigReader& cfg, EposParams& p) {
 
 std::unique_ptr<plant::Device> makeEposAxis(const std::string& name, ConfigReader& cfg, plant::World& world) {
   (void)world;
-  const size_t errorsBefore = cfg.diags().errorCount();
   if (cfg.optInt("telegram", 111) != 111) cfg.error(cfg.node().find("telegram")->loc(), "'telegram' of an s120_epos axis must be 111");
   DriveCommon common = readDriveCommon(cfg, TelegramId::Std111);
   EposParams p;
@@ -119,7 +118,6 @@ std::unique_ptr<plant::Device> makeEposAxis(const std::string& name, ConfigReade
   if (ack != "toggle" && ack != "mirror") cfg.error(cfg.node().find("ack_mode")->loc(), "'ack_mode' must be toggle or mirror");
   if (p.p2580 > p.p2581) cfg.error(cfg.node().find("p2581") ? cfg.node().find("p2581")->loc() : cfg.node().loc(), "'p2581' (software limit plus) must not be below 'p2580'");
   readBlocks(cfg, p);
-  if (cfg.diags().errorCount() > errorsBefore) return nullptr;
   return std::make_unique<EposAxis>(name, std::move(common), std::move(p));
 }
 

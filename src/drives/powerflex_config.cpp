@@ -9,7 +9,6 @@ namespace {
 
 std::unique_ptr<plant::Device> makePowerFlex(const std::string& name, ConfigReader& cfg, TelegramId telegram,
                                              const char* type) {
-  const size_t errorsBefore = cfg.diags().errorCount();
   DriveCommon common = readDriveCommon(cfg, telegram);
   PowerFlexParams p;
   p.maxHz = positiveNumber(cfg, "p044", p.maxHz);
@@ -51,7 +50,6 @@ std::unique_ptr<plant::Device> makePowerFlex(const std::string& name, ConfigRead
   }
   if (p.polePairs < 1) cfg.error(cfg.node().find("pole_pairs")->loc(), "'pole_pairs' must be at least 1");
   if (p.minHz < 0 || p.minHz > p.maxHz) cfg.error(cfg.node().loc(), "'p043' must be between 0 and 'p044'");
-  if (cfg.diags().errorCount() > errorsBefore) return nullptr;
   return std::make_unique<PowerFlex>(name, type, std::move(common), p);
 }
 

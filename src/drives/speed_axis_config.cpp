@@ -7,7 +7,6 @@ namespace virtcom::drives {
 
 std::unique_ptr<plant::Device> makeSpeedAxis(const std::string& name, ConfigReader& cfg, plant::World& world) {
   (void)world;
-  const size_t errorsBefore = cfg.diags().errorCount();
   const int64_t telegramNumber = cfg.optInt("telegram", 1);
   TelegramId telegram = TelegramId::Std1;
   if (telegramNumber == 352) telegram = TelegramId::Siemens352;
@@ -43,7 +42,6 @@ std::unique_ptr<plant::Device> makeSpeedAxis(const std::string& name, ConfigRead
   else if (commFault != "F01910")
     cfg.error(cfg.node().find("comm_fault")->loc(), "'comm_fault' must be F01910 (integrated fieldbus) or F08501 (PROFINET), not '" + commFault + "'");
   if (p.p2003 <= 0 || p.torqueLimitNm <= 0) cfg.error(cfg.node().loc(), "'p2003' and 'torque_limit' must be greater than 0 Nm");
-  if (cfg.diags().errorCount() > errorsBefore) return nullptr;
   return std::make_unique<SpeedAxis>(name, std::move(common), p);
 }
 

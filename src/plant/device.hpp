@@ -97,6 +97,10 @@ class Device {
 };
 
 // One row of a device-type table: cell-file type name, one-line description, factory.
+// A factory reports every mistake of the entry through `cfg` and still returns its device, built
+// from what it could read (the readers' fallbacks where a value is unreadable), so that the
+// wiring of an entry with parameter mistakes is checked in the same run. Device constructors
+// therefore accept any parameter values: nothing is sized or indexed by an unchecked parameter.
 using DeviceFactory = std::unique_ptr<Device> (*)(const std::string& name, ConfigReader& cfg, World& world);
 struct DeviceType {
   const char* name;
@@ -105,8 +109,10 @@ struct DeviceType {
 };
 
 // Creates a device of `type` from its cell-file entry; reports every problem through `cfg`
-// (file:line:col) and returns null if the type is unknown or the entry invalid. `extra` adds
-// the types of higher layers (the drives library's table) to this library's own.
+// (file:line:col) and returns null only if the type is unknown. An entry with mistakes still
+// yields its device, for checking the rest of the entry (wiring, maps); it must not be
+// simulated: a caller runs nothing while `cfg.diags()` has errors. `extra` adds the types of
+// higher layers (the drives library's table) to this library's own.
 std::unique_ptr<Device> createDevice(const std::string& type, const std::string& name, ConfigReader& cfg, World& world,
                                      std::span<const DeviceType> extra = {});
 // The registered device types with a one-line description each (for errors and docs).

@@ -36,12 +36,9 @@ std::unique_ptr<Device> createDevice(const std::string& type, const std::string&
   all.insert(all.end(), extra.begin(), extra.end());
   for (const auto& t : all) {
     if (type != t.name) continue;
-    const size_t errorsBefore = cfg.diags().errorCount();
     std::unique_ptr<Device> device = t.factory(name, cfg, world);
-    const std::string group = cfg.optString("group", "");
+    device->setGroup(cfg.optString("group", ""));
     cfg.rejectUnknownKeys();
-    if (!device || cfg.diags().errorCount() > errorsBefore) return nullptr;
-    device->setGroup(group);
     return device;
   }
   std::vector<std::string> names;

@@ -82,7 +82,6 @@ void Press::writeOutputs(const StepContext& ctx) {
 }
 
 std::unique_ptr<Device> makePress(const std::string& name, ConfigReader& cfg, World& world) {
-  const size_t errorsBefore = cfg.diags().errorCount();
   Press::Params p;
   p.insertFact = world.fact(cfg.optString("insert_fact", "insertLocked"));
   p.strokeM = cfg.optQuantity("stroke", Dimension::Length, 0);
@@ -111,7 +110,6 @@ std::unique_ptr<Device> makePress(const std::string& name, ConfigReader& cfg, Wo
     }
     std::stable_sort(p.programs.begin(), p.programs.end(), [](const auto& a, const auto& b) { return a.number < b.number; });
   }
-  if (cfg.diags().errorCount() > errorsBefore) return nullptr;
   return std::make_unique<Press>(name, std::move(p));
 }
 

@@ -278,9 +278,7 @@ class RobotLoader {
 
 std::unique_ptr<Device> makeRobot(const std::string& name, ConfigReader& cfg, World& world) {
   Robot::Params p;
-  const size_t errorsBefore = cfg.diags().errorCount();
   RobotLoader(name, cfg, world).load(p);
-  if (cfg.diags().errorCount() > errorsBefore) return nullptr;
   return std::make_unique<Robot>(name, std::move(p));
 }
 

@@ -33,13 +33,11 @@ void Sensor::step(const StepContext& ctx) {
 int64_t Sensor::nextEventNs() const { return pending_ ? pendingSinceNs_ + delayNs_ : INT64_MAX; }
 
 std::unique_ptr<Device> makeSensor(const std::string& name, ConfigReader& cfg, World& world) {
-  const size_t errorsBefore = cfg.diags().errorCount();
   const std::string fact = cfg.requireString("fact");
   const int64_t delayNs = optDurationNs(cfg, "delay", 0);
   const bool invert = cfg.optBool("invert", false);
   if (delayNs < 0) cfg.error(cfg.node().find("delay")->loc(), "'delay' must not be negative");
   if (cfg.has("fact") && fact.empty()) cfg.error(cfg.node().find("fact")->loc(), "'fact' needs a fact name");
-  if (cfg.diags().errorCount() > errorsBefore) return nullptr;
   return std::make_unique<Sensor>(name, world.fact(fact), delayNs, invert);
 }
 

@@ -48,7 +48,6 @@ SequencedDevice::Progress TimedDevice::advance(const StepContext& ctx, int64_t& 
 }
 
 std::unique_ptr<Device> makeTimed(const std::string& name, ConfigReader& cfg, World& world) {
-  const size_t errorsBefore = cfg.diags().errorCount();
   TimedDevice::Params p;
   p.commandPort = cfg.optString("command_port", "programNumber");
   if (p.commandPort.empty() || p.commandPort == "execute" || p.commandPort == "done" || p.commandPort == "error" ||
@@ -73,7 +72,6 @@ std::unique_ptr<Device> makeTimed(const std::string& name, ConfigReader& cfg, Wo
       p.commands.push_back(std::move(c));
     }
   }
-  if (cfg.diags().errorCount() > errorsBefore) return nullptr;
   return std::make_unique<TimedDevice>(name, std::move(p));
 }
 

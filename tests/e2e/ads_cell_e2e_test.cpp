@@ -4,41 +4,34 @@
 //  - the client bridge: `virtcom exec plc/*.st --ads` in a second process is the PLC of
 //    bridge.yaml (`plc: ads:`), and the cell completes the same cycles as with the soft PLC in
 //    process; connection, name and type problems are reported at start with their position.
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <sys/time.h>
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <chrono>
 #include <thread>
 
 #include "server_process.hpp"
 #include "shell_command.hpp"
+#include "support/eventually.hpp"
+#include "support/loopback_client.hpp"
+#include "support/read_file.hpp"
 
 namespace {
 
 using virtcom::e2e::ServerProcess;
 using virtcom::e2e::shell;
+using virtcom::test::eventually;
+using virtcom::test::LoopbackClient;
+using virtcom::test::readFile;
 
 const std::string kExe = VIRTCOM_EXE;
 const std::string kClientDir = VIRTCOM_ADS_CLIENT_DIR;
 const std::string kExample = std::string(VIRTCOM_SOURCE_DIR) + "/examples/ads-cell";
 const std::string kAnnounce = "ads: serving on ";
-
-std::string readFile(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // The last value of each signal in a `--csv` file (time_s,signal,value).
 std::map<std::string, std::string> finalValues(const std::filesystem::path& csv) {
@@ -61,24 +54,13 @@ double cycleTime(const std::string& summary) {
 
 // One Modbus TCP request (unit 1) on a fresh connection; the response PDU, empty on failure.
 std::vector<uint8_t> modbusRequest(int port, std::vector<uint8_t> pdu) {
-  int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  timeval timeout{5, 0};
-  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(static_cast<uint16_t>(port));
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  std::vector<uint8_t> out;
-  if (::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) == 0) {
-    std::vector<uint8_t> frame{0, 1, 0, 0, 0, static_cast<uint8_t>(pdu.size() + 1), 1};
-    frame.insert(frame.end(), pdu.begin(), pdu.end());
-    ::send(fd, frame.data(), frame.size(), MSG_NOSIGNAL);
-    std::array<uint8_t, 260> buf;
-    ssize_t n = ::recv(fd, buf.data(), buf.size(), 0);
-    if (n > 7) out.assign(buf.begin() + 7, buf.begin() + n);
-  }
-  ::close(fd);
-  return out;
+  LoopbackClient c(port);
+  std::vector<uint8_t> frame{0, 1, 0, 0, 0, static_cast<uint8_t>(pdu.size() + 1), 1};
+  frame.insert(frame.end(), pdu.begin(), pdu.end());
+  if (!c.connected() || !c.send(frame)) return {};
+  std::vector<uint8_t> head = c.receive(7);  // MBAP header; bytes 4-5: the length from the unit id on
+  if (head.size() < 7) return {};
+  return c.receive(static_cast<size_t>(head[4] << 8 | head[5]) - 1);
 }
 
 TEST(ServeAds, TheServedCellsSoftPlcIsReadByTheNpmAdsClientWhileTheCellRuns) {
@@ -98,15 +80,13 @@ TEST(ServeAds, WithModbusTheCommandsOfTheSoftPlcAreReadOnly) {
   ASSERT_GT(cell.port(), 0) << cell.errorOutput();
   // The automatic map: coil 0 = Clamp.execute (the soft PLC's, so read-only), discrete 1 = Clamp.busy.
   bool executeSeen = false, busySeen = false;
-  auto until = std::chrono::steady_clock::now() + ServerProcess::kDeadline;
-  while (!(executeSeen && busySeen) && std::chrono::steady_clock::now() < until) {
+  EXPECT_TRUE(eventually([&] {
     auto coils = modbusRequest(cell.port(), {0x01, 0, 0, 0, 1});
     auto inputs = modbusRequest(cell.port(), {0x02, 0, 1, 0, 1});
     executeSeen |= coils.size() == 3 && coils[2] == 1;
     busySeen |= inputs.size() == 3 && inputs[2] == 1;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  EXPECT_TRUE(executeSeen && busySeen) << cell.errorOutput();
+    return executeSeen && busySeen;
+  })) << cell.errorOutput();
   EXPECT_EQ(modbusRequest(cell.port(), {0x05, 0, 0, 0, 0}), (std::vector<uint8_t>{0x85, 0x02}));  // refused
   EXPECT_EQ(cell.stop(), 0) << cell.errorOutput();
   EXPECT_NE(cell.errorOutput().find(kAnnounce + "127.0.0.1:"), std::string::npos) << cell.errorOutput();  // ADS too

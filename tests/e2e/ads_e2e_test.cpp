@@ -1,17 +1,9 @@
 // End-to-end: `virtcom exec ads/GVL.st ads/MAIN.st --ads 127.0.0.1:0` in its own process, driven
 // by the real npm ads-client (tests/e2e/ads, installed by `make test` with npm ci) and by raw AMS
 // frames for what a well-behaved client never does: abrupt disconnects, garbage, half frames.
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <sys/time.h>
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
 #include <array>
-#include <chrono>
-#include <thread>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -19,11 +11,15 @@
 #include <vector>
 
 #include "server_process.hpp"
+#include "support/eventually.hpp"
+#include "support/loopback_client.hpp"
 
 namespace {
 
 using Bytes = std::vector<uint8_t>;
 using virtcom::e2e::ServerProcess;
+using virtcom::test::eventually;
+using virtcom::test::LoopbackClient;
 
 const std::string kExe = VIRTCOM_EXE;
 const std::string kDataDir = VIRTCOM_E2E_DATA;
@@ -70,62 +66,22 @@ Bytes byName(uint32_t ig, const std::string& name, uint32_t readLength) {
   return amsPacket(9, d);
 }
 
-// A blocking loopback socket whose receives give up after 5 s.
-class RawClient {
- public:
-  explicit RawClient(int port) {
-    fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
-    timeval timeout{5, 0};
-    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_port = htons(static_cast<uint16_t>(port));
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    connected_ = ::connect(fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) == 0;
-  }
-  ~RawClient() { close(); }
-  void close() {
-    if (fd_ >= 0) ::close(fd_);
-    fd_ = -1;
-  }
-  bool connected() const { return connected_; }
-  bool send(const Bytes& b) { return ::send(fd_, b.data(), b.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(b.size()); }
-  // One whole AMS/TCP frame; empty if the server closed or timed out.
-  Bytes frame() {
-    Bytes head = receive(6);
-    if (head.size() < 6) return {};
-    Bytes rest = receive(get32(head, 2));
-    head.insert(head.end(), rest.begin(), rest.end());
-    return head;
-  }
-  bool closedByServer() {
-    uint8_t b;
-    return ::recv(fd_, &b, 1, 0) == 0;
-  }
-
- private:
-  Bytes receive(size_t n) {
-    Bytes out(n);
-    size_t got = 0;
-    while (got < n) {
-      ssize_t r = ::recv(fd_, out.data() + got, n - got, 0);
-      if (r <= 0) break;
-      got += static_cast<size_t>(r);
-    }
-    out.resize(got);
-    return out;
-  }
-  int fd_ = -1;
-  bool connected_ = false;
-};
+// One whole AMS/TCP frame; empty if the server closed or timed out.
+Bytes frame(LoopbackClient& c) {
+  Bytes head = c.receive(6);
+  if (head.size() < 6) return {};
+  Bytes rest = c.receive(get32(head, 2));
+  head.insert(head.end(), rest.begin(), rest.end());
+  return head;
+}
 
 // The result field (first u32 of the ADS data) of a response frame.
 uint32_t adsResult(const Bytes& frame) { return frame.size() >= 42 ? get32(frame, 38) : 0xFFFFFFFF; }
 
 // MAIN.ticks read by name (0xF004): the scans so far.
-uint32_t ticks(RawClient& c) {
+uint32_t ticks(LoopbackClient& c) {
   EXPECT_TRUE(c.send(byName(0xF004, "MAIN.ticks", 4)));
-  Bytes r = c.frame();
+  Bytes r = frame(c);
   EXPECT_EQ(adsResult(r), 0u);
   return r.size() >= 50 ? get32(r, 46) : 0;
 }
@@ -150,20 +106,20 @@ TEST(AdsE2e, NpmAdsClientScenario) {
 TEST(AdsE2e, AbruptDisconnectsAndGarbageLeaveOthersServed) {
   auto server = startServer();
   ASSERT_GT(server->port(), 0) << server->errorOutput();
-  RawClient steady(server->port());
+  LoopbackClient steady(server->port());
   ASSERT_TRUE(steady.connected());
   const uint32_t before = ticks(steady);
   for (int round = 0; round < 3; ++round) {
-    std::vector<std::unique_ptr<RawClient>> crowd;
+    std::vector<std::unique_ptr<LoopbackClient>> crowd;
     for (int i = 0; i < 24; ++i) {
-      auto c = std::make_unique<RawClient>(server->port());
+      auto c = std::make_unique<LoopbackClient>(server->port());
       ASSERT_TRUE(c->connected());
       Bytes request = amsPacket(4, {}, static_cast<uint32_t>(i));
       switch (i % 4) {
-        case 0: c->send(Bytes(request.begin(), request.begin() + 20)); break;  // half a frame, then gone
-        case 1: c->send({0x00, 0x00, 0x1f, 0x00, 0x00, 0x00}); break;            // too short for an AMS header
-        case 2: c->send({0x00, 0x00, 0xff, 0xff, 0xff, 0x7f}); break;            // 2 GB frame announced
-        default: c->send(byName(0xF003, "MAIN.level", 4)); break;                // a handle, never released
+        case 0: EXPECT_TRUE(c->send(Bytes(request.begin(), request.begin() + 20))); break;  // half a frame, then gone
+        case 1: EXPECT_TRUE(c->send({0x00, 0x00, 0x1f, 0x00, 0x00, 0x00})); break;            // too short for an AMS header
+        case 2: EXPECT_TRUE(c->send({0x00, 0x00, 0xff, 0xff, 0xff, 0x7f})); break;            // 2 GB frame announced
+        default: EXPECT_TRUE(c->send(byName(0xF003, "MAIN.level", 4))); break;                // a handle, never released
       }
       crowd.push_back(std::move(c));
     }
@@ -171,24 +127,21 @@ TEST(AdsE2e, AbruptDisconnectsAndGarbageLeaveOthersServed) {
     crowd.clear();  // everyone leaves at once, without AMS/TCP port close
   }
   EXPECT_TRUE(steady.send(amsPacket(4, {})));
-  Bytes state = steady.frame();
+  Bytes state = frame(steady);
   ASSERT_EQ(state.size(), 46u);
   EXPECT_EQ(state[42], 5);  // still RUN
   // The PLC keeps scanning: MAIN.ticks grows (polled: the rounds above may take less than a scan).
   uint32_t now = before;
-  auto until = std::chrono::steady_clock::now() + ServerProcess::kDeadline;
-  while ((now = ticks(steady)) <= before && std::chrono::steady_clock::now() < until)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  EXPECT_GT(now, before);
+  EXPECT_TRUE(eventually([&] { return (now = ticks(steady)) > before; })) << "MAIN.ticks stays at " << now;
   EXPECT_EQ(server->stop(), 0) << server->errorOutput();
 }
 
 TEST(AdsE2e, ReadOnlyServerRefusesWrites) {
   auto server = startServer({"--ads-readonly"});
   ASSERT_GT(server->port(), 0) << server->errorOutput();
-  RawClient c(server->port());
+  LoopbackClient c(server->port());
   ASSERT_TRUE(c.send(byName(0xF003, "MAIN.level", 4)));
-  Bytes handle = c.frame();
+  Bytes handle = frame(c);
   ASSERT_EQ(adsResult(handle), 0u);
   Bytes write;
   put32(write, 0xF005);
@@ -197,9 +150,9 @@ TEST(AdsE2e, ReadOnlyServerRefusesWrites) {
   write.push_back(1);
   write.push_back(0);
   ASSERT_TRUE(c.send(amsPacket(3, write)));
-  EXPECT_EQ(adsResult(c.frame()), 0x704u);
+  EXPECT_EQ(adsResult(frame(c)), 0x704u);
   ASSERT_TRUE(c.send(amsPacket(5, {6, 0, 0, 0, 0, 0, 0, 0})));  // WriteControl STOP
-  EXPECT_EQ(adsResult(c.frame()), 0x704u);
+  EXPECT_EQ(adsResult(frame(c)), 0x704u);
   EXPECT_EQ(server->stop(), 0) << server->errorOutput();
 }
 

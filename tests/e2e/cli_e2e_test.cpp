@@ -14,9 +14,13 @@
 #include <string>
 #include <vector>
 
+#include "support/read_file.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
+
+using virtcom::test::readFile;
 
 const char* const kExe = VIRTCOM_EXE;
 const char* const kDataDir = VIRTCOM_E2E_DATA;
@@ -26,13 +30,6 @@ struct RunResult {
   std::string out;
   std::string err;
 };
-
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 class CliTest : public ::testing::Test {
  protected:

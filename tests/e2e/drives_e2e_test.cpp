@@ -15,10 +15,13 @@
 #include <string>
 
 #include "csv_trace.hpp"
+#include "support/read_file.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
+
+using virtcom::test::readFile;
 
 const std::string kExamples = std::string(VIRTCOM_SOURCE_DIR) + "/examples/drives";
 constexpr double kCommandedRpm = 675.0;  // 50 % of IN_SpeedMax = 1350 rpm in main.st
@@ -27,13 +30,6 @@ struct CellRun {
   int exitCode = -1;
   std::string out, csv, json, html;
 };
-
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 CellRun runCell(const std::string& cell) {
   const fs::path dir = fs::path(::testing::TempDir()) / ("virtcom_drives_e2e_" + cell + "_" + std::to_string(::getpid()));

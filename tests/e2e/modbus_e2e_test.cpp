@@ -2,19 +2,11 @@
 // libmodbus client API and by Debian's mbpoll over loopback. Port 0 lets the server pick a free
 // port, which it announces on stderr ("modbus: serving on 127.0.0.1:PORT"). Every wait polls
 // with a deadline; every test ends with SIGTERM and expects exit status 0.
-#include <arpa/inet.h>
-#include <fcntl.h>
 #include <modbus.h>
-#include <netinet/in.h>
-#include <poll.h>
-#include <signal.h>
-#include <sys/socket.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -22,14 +14,19 @@
 #include <thread>
 #include <vector>
 
+#include "modbus_client.hpp"
 #include "server_process.hpp"
 #include "shell_command.hpp"
+#include "support/eventually.hpp"
+#include "support/loopback_client.hpp"
 
 namespace {
 
+using virtcom::e2e::connectModbus;
 using virtcom::e2e::ServerProcess;
 using virtcom::e2e::shell;
-constexpr auto kDeadline = ServerProcess::kDeadline;
+using virtcom::test::eventually;
+using virtcom::test::LoopbackClient;
 
 const char* const kExe = VIRTCOM_EXE;
 const char* const kDataDir = VIRTCOM_E2E_DATA;
@@ -58,14 +55,8 @@ class ModbusE2e : public ::testing::Test {
   }
 
   modbus_t* connect() {
-    modbus_t* ctx = modbus_new_tcp("127.0.0.1", port_);
-    if (!ctx) return nullptr;
-    modbus_set_response_timeout(ctx, 5, 0);
-    if (modbus_connect(ctx) != 0) {
-      modbus_free(ctx);
-      return nullptr;
-    }
-    contexts_.push_back(ctx);
+    modbus_t* ctx = connectModbus(port_);
+    if (ctx) contexts_.push_back(ctx);
     return ctx;
   }
 
@@ -73,11 +64,7 @@ class ModbusE2e : public ::testing::Test {
   // the last value read.
   int awaitRegister(modbus_t* ctx, int reg, int want) {
     uint16_t v = 0;
-    auto until = std::chrono::steady_clock::now() + kDeadline;
-    while (std::chrono::steady_clock::now() < until) {
-      if (modbus_read_registers(ctx, reg, 1, &v) == 1 && v >= want) break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
+    eventually([&] { return modbus_read_registers(ctx, reg, 1, &v) == 1 && v >= want; });
     return v;
   }
 
@@ -167,11 +154,7 @@ TEST_F(ModbusWritableInputsE2e, ClientWritesInputsThroughHoldingRegisters) {
   uint16_t field[] = {1, 99};  // register 8192 = %IW0 (bit 0 = %IX0.0), 8193 = %IW1 (inWord)
   ASSERT_EQ(modbus_write_registers(ctx, 8192, 2, field), 2) << modbus_strerror(errno);
   uint16_t inWord = 0;
-  auto until = std::chrono::steady_clock::now() + kDeadline;
-  while (std::chrono::steady_clock::now() < until) {
-    if (modbus_read_bits(ctx, 1, 1, &lamp) == 1 && lamp == 0) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
+  eventually([&] { return modbus_read_bits(ctx, 1, 1, &lamp) == 1 && lamp == 0; });
   EXPECT_EQ(lamp, 0);  // the program saw %IX0.0 = TRUE
   ASSERT_EQ(modbus_read_input_registers(ctx, 1, 1, &inWord), 1);
   EXPECT_EQ(inWord, 99);
@@ -189,16 +172,10 @@ TEST_F(ModbusE2e, ManyClientsAndAbruptDisconnectsDoNotStopTheServer) {
   // A client that sends half a frame and resets the connection, and one that sends garbage.
   for (const std::vector<uint8_t>& bytes : {std::vector<uint8_t>{0, 1, 0, 0, 0, 6, 1, 3},
                                             std::vector<uint8_t>{'G', 'E', 'T', ' ', '/', '\r', '\n'}}) {
-    int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_port = htons(static_cast<uint16_t>(port_));
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    ASSERT_EQ(::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr), 0);
-    ASSERT_EQ(::send(fd, bytes.data(), bytes.size(), MSG_NOSIGNAL), static_cast<ssize_t>(bytes.size()));
-    linger reset{1, 0};
-    ::setsockopt(fd, SOL_SOCKET, SO_LINGER, &reset, sizeof reset);
-    ::close(fd);
+    LoopbackClient c(port_);
+    ASSERT_TRUE(c.connected());
+    ASSERT_TRUE(c.send(bytes));
+    c.reset();
   }
   std::vector<std::thread> threads;
   std::vector<int> ok(clients.size(), 0);

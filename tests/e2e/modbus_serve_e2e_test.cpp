@@ -2,27 +2,31 @@
 // driven by libmodbus and mbpoll as the external PLC would, and the client bridge
 // (examples/modbus-cell/bridge.yaml) commissioning the cell against virtcom's own soft PLC
 // (`virtcom exec controller.st --modbus`) in another process.
-#include <arpa/inet.h>
 #include <modbus.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
-#include <cstring>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <thread>
 
+#include "modbus_client.hpp"
 #include "server_process.hpp"
 #include "shell_command.hpp"
+#include "support/eventually.hpp"
+#include "support/loopback_client.hpp"
+#include "support/read_file.hpp"
 
 namespace {
 
+using virtcom::e2e::connectModbus;
 using virtcom::e2e::ServerProcess;
 using virtcom::e2e::shell;
-constexpr auto kDeadline = ServerProcess::kDeadline;
+using virtcom::test::eventually;
+using virtcom::test::LoopbackClient;
+using virtcom::test::readFile;
 const std::string kAnnounce = "modbus: serving on ";
 
 const char* const kExe = VIRTCOM_EXE;
@@ -34,33 +38,6 @@ constexpr int kClampProgramHolding = 0, kPressProgramHolding = 1;
 constexpr int kClampDoneInput = 0, kClampBusyInput = 1, kPressDoneInput = 2;
 constexpr int kPressForceInputReg = 2, kPressPositionInputReg = 4;
 constexpr int kPressDoneHolding = 10, kPressForceHolding = 11;
-
-std::string readFile(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-modbus_t* connectTo(int port) {
-  modbus_t* ctx = modbus_new_tcp("127.0.0.1", port);
-  if (!ctx) return nullptr;
-  modbus_set_response_timeout(ctx, 5, 0);
-  if (modbus_connect(ctx) == 0) return ctx;
-  modbus_free(ctx);
-  return nullptr;
-}
-
-// Polls `read` (true when the condition holds) until the deadline.
-template <class F>
-bool eventually(F&& read) {
-  auto until = std::chrono::steady_clock::now() + kDeadline;
-  while (std::chrono::steady_clock::now() < until) {
-    if (read()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
-  return false;
-}
 
 class ServeE2e : public ::testing::Test {
  protected:
@@ -80,7 +57,7 @@ class ServeE2e : public ::testing::Test {
     }
   }
   modbus_t* connect() {
-    modbus_t* ctx = connectTo(port_);
+    modbus_t* ctx = connectModbus(port_);
     if (ctx) contexts_.push_back(ctx);
     return ctx;
   }
@@ -170,16 +147,10 @@ TEST_F(ServeE2e, ManyClientsAndAbruptDisconnectsDoNotStopTheCell) {
   }
   for (const std::vector<uint8_t>& bytes : {std::vector<uint8_t>{0, 1, 0, 0, 0, 6, 1, 3},
                                             std::vector<uint8_t>{'G', 'E', 'T', ' ', '/', '\r', '\n'}}) {
-    int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_port = htons(static_cast<uint16_t>(port_));
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    ASSERT_EQ(::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr), 0);
-    ASSERT_EQ(::send(fd, bytes.data(), bytes.size(), MSG_NOSIGNAL), static_cast<ssize_t>(bytes.size()));
-    linger reset{1, 0};
-    ::setsockopt(fd, SOL_SOCKET, SO_LINGER, &reset, sizeof reset);
-    ::close(fd);
+    LoopbackClient c(port_);
+    ASSERT_TRUE(c.connected());
+    ASSERT_TRUE(c.send(bytes));
+    c.reset();
   }
   std::vector<std::thread> threads;
   std::vector<int> ok(clients.size(), 0);
@@ -251,7 +222,7 @@ TEST_F(BridgeE2e, TheCellCommissionsAgainstTheSoftPlcInAnotherProcess) {
   EXPECT_EQ(shell(std::string(kExe) + " run " + bridgeCell(plc.port()) + " --time-limit 3s", out), 3) << out;
   EXPECT_NE(out.find("is the controller (polled every 10 ms)"), std::string::npos) << out;
   EXPECT_NE(out.find("Press   press"), std::string::npos) << out;
-  modbus_t* ctx = connectTo(plc.port());
+  modbus_t* ctx = connectModbus(plc.port());
   ASSERT_NE(ctx, nullptr);
   uint16_t cycles = 0, force[2] = {};
   EXPECT_EQ(modbus_read_registers(ctx, 1044, 1, &cycles), 1);  // %MW20

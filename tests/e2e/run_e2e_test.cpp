@@ -22,10 +22,13 @@
 #include <vector>
 
 #include "csv_trace.hpp"
+#include "support/read_file.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
+
+using virtcom::test::readFile;
 
 const char* const kExe = VIRTCOM_EXE;
 const char* const kDataDir = VIRTCOM_E2E_DATA;
@@ -40,13 +43,6 @@ struct RunResult {
   std::string out;
   std::string err;
 };
-
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 

@@ -14,11 +14,13 @@
 #include <thread>
 #include <vector>
 
+#include "support/eventually.hpp"
+
 namespace virtcom::e2e {
 
 class ServerProcess {
  public:
-  static constexpr auto kDeadline = std::chrono::seconds(20);  // generous: sanitizer builds start slowly
+  static constexpr auto kDeadline = test::kDeadline;  // generous: sanitizer builds start slowly
 
   // Runs `exe args...` in `dir`. Check started() / port().
   ServerProcess(const std::string& exe, std::vector<std::string> args, const std::string& dir,

@@ -3,6 +3,7 @@
 
 #include "lang/st/codegen.hpp"
 #include "lang/st/diagnostic_codes.hpp"
+#include "lang/st/init_program.hpp"
 
 namespace virtcom::st {
 
@@ -12,7 +13,11 @@ void PouCompiler::compile() {
   codeStart_ = here();
   tempTop_ = 0;
   tempMax_ = 0;
-  if (pou_.ast->hasBody || !pou_.ast->body.empty()) statements(pou_.ast->body);
+  if (pou_.ast->hasBody || !pou_.ast->body.empty()) {
+    const StmtList frameInits = buildFrameInitCalls(model(), types(), pou_);
+    statements(frameInits);
+    statements(pou_.ast->body);
+  }
   uint32_t end = here();
   for (uint32_t r : returns_) patchJump(r, end);
   emit(Op::RET, 0, 0, 0);

@@ -167,4 +167,13 @@ std::unique_ptr<Pou> buildInitProgram(const ProgramModel& model, const TypeTable
   return pou;
 }
 
+StmtList buildFrameInitCalls(const ProgramModel& model, const TypeTable& types, const PouSym& pou) {
+  StmtList body;
+  InitCalls calls(model, types, body);
+  for (const VarInfo& v : pou.locals)
+    if ((v.section == VarSection::Var || v.section == VarSection::Temp) && !v.byReference)
+      calls.visit(*makeExpr(ExprKind::Name, v.loc, v.name), v.type, v.decl ? &v.decl->fbInitArgs : nullptr, v.loc);
+  return body;
+}
+
 }  // namespace virtcom::st

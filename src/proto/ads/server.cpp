@@ -1,6 +1,5 @@
 #include "proto/ads/server.hpp"
 
-#include <fcntl.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <poll.h>
@@ -11,7 +10,6 @@
 #include <array>
 #include <cerrno>
 #include <limits>
-#include <system_error>
 
 #include "core/clock.hpp"
 #include "proto/ads/session.hpp"
@@ -25,7 +23,7 @@ constexpr size_t kReadChunk = 16 * 1024;
 // dropped once notifications pile up beyond kMaxQueuedBytes (AdsLib's own buffer is 4 MB).
 constexpr size_t kMaxUnsentBytes = 256 * 1024;
 constexpr size_t kMaxQueuedBytes = 16 * 1024 * 1024;
-constexpr uint8_t kWakeStop = 1, kWakePublished = 2;
+constexpr uint8_t kWakePublished = 2;  // besides net::ServerThread::kWakeStop
 // Windows FILETIME (100 ns ticks since 1601) of the Unix epoch (section 5.2).
 constexpr uint64_t kFileTimeUnixEpoch = 116'444'736'000'000'000ull;
 
@@ -52,36 +50,14 @@ Server::Server(const ServerConfig& config, const SymbolTable& table) : config_(c
 
 std::expected<std::unique_ptr<Server>, std::string> Server::start(const ServerConfig& config, const SymbolTable& table) {
   std::unique_ptr<Server> s(new Server(config, table));
-  auto listener = net::listenTcp(config.listen);
-  if (!listener) return std::unexpected(listener.error());
-  s->listenFd_ = listener->fd;
-  s->bound_ = listener->bound;
-  if (::pipe2(s->wakeFds_, O_CLOEXEC | O_NONBLOCK) != 0) return std::unexpected(net::errnoText("pipe"));
-  try {
-    s->thread_ = std::thread([server = s.get()] { server->run(); });
-  } catch (const std::system_error& e) {
-    return std::unexpected(std::string("cannot start the ADS thread: ") + e.what());
-  }
+  auto started = s->io_.start(config.listen, "ADS", [server = s.get()] { server->run(); });
+  if (!started) return std::unexpected(started.error());
   return s;
 }
 
-Server::~Server() {
-  stop();
-  for (int fd : {listenFd_, wakeFds_[0], wakeFds_[1]})
-    if (fd >= 0) ::close(fd);
-}
+Server::~Server() { stop(); }
 
-void Server::wake(uint8_t why) {
-  // A full pipe already holds a wake-up: dropping this one loses nothing.
-  while (::write(wakeFds_[1], &why, 1) < 0 && errno == EINTR) {
-  }
-}
-
-void Server::stop() {
-  if (!thread_.joinable()) return;
-  wake(kWakeStop);
-  thread_.join();
-}
+void Server::stop() { io_.stop(); }
 
 size_t Server::applyPendingWrites(const LiveImage& live) {
   std::lock_guard lock(mutex_);
@@ -102,7 +78,7 @@ void Server::publishSnapshot(std::span<const uint8_t> data, uint16_t adsState) {
     std::lock_guard lock(mutex_);
     device_.publish(data, adsState);
   }
-  if (notifications_.load(std::memory_order_relaxed) > 0) wake(kWakePublished);
+  if (notifications_.load(std::memory_order_relaxed) > 0) io_.wake(kWakePublished);
 }
 
 void Server::run() {
@@ -138,8 +114,8 @@ void Server::run() {
   try {
     while (true) {
       fds.clear();
-      fds.push_back({wakeFds_[0], POLLIN, 0});
-      fds.push_back({listenFd_, POLLIN, 0});
+      fds.push_back({io_.wakeFd(), POLLIN, 0});
+      fds.push_back({io_.listenFd(), POLLIN, 0});
       int64_t nextDue = std::numeric_limits<int64_t>::max();
       for (const auto& c : clients) {
         short events = c->tx.size() < kMaxUnsentBytes ? POLLIN : 0;
@@ -154,12 +130,8 @@ void Server::run() {
         if (errno == EINTR) continue;
         break;
       }
-      if (fds[0].revents & POLLIN) {
-        // A publish only needs the loop to run once: every session's notifications are due-checked below.
-        uint8_t why[64];
-        ssize_t n = ::read(wakeFds_[0], why, sizeof why);
-        if (n > 0 && std::find(why, why + n, kWakeStop) != why + n) break;
-      }
+      // A publish only needs the loop to run once: every session's notifications are due-checked below.
+      if ((fds[0].revents & POLLIN) && io_.takeStopRequest()) break;
       for (size_t i = 0; i < clients.size(); ++i) {
         if ((fds[i + 2].revents & (POLLIN | POLLHUP | POLLERR)) && !receive(*clients[i])) {
           ::close(clients[i]->fd);
@@ -182,20 +154,13 @@ void Server::run() {
       }
       std::erase_if(clients, [](const auto& c) { return c->fd < 0; });
       if (fds[1].revents & POLLIN) {
-        uint32_t peer = 0;
-        int fd = net::acceptPeer(listenFd_, peer);
+        int fd = io_.acceptClient(config_.allowedPeers, clients.size() >= config_.maxClients);
         if (fd >= 0) {
-          const auto& allow = config_.allowedPeers;
-          bool allowed = allow.empty() || std::find(allow.begin(), allow.end(), peer) != allow.end();
-          if (!allowed || clients.size() >= config_.maxClients) {
-            ::close(fd);
-          } else {
-            int one = 1;
-            ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-            // Keepalive finds peers that vanished without a FIN (pulled cable, killed VM).
-            ::setsockopt(fd, SOL_SOCKET, SO_KEEPALIVE, &one, sizeof one);
-            clients.push_back(std::make_unique<Connection>(Connection{fd, Session(device_, config_.allowedNetIds), {}, {}}));
-          }
+          int one = 1;
+          ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+          // Keepalive finds peers that vanished without a FIN (pulled cable, killed VM).
+          ::setsockopt(fd, SOL_SOCKET, SO_KEEPALIVE, &one, sizeof one);
+          clients.push_back(std::make_unique<Connection>(Connection{fd, Session(device_, config_.allowedNetIds), {}, {}}));
         }
       }
       connections_.store(clients.size());

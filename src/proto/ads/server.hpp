@@ -16,12 +16,12 @@
 #include <optional>
 #include <span>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "proto/ads/device.hpp"
 #include "proto/ads/symbol_table.hpp"
 #include "proto/net/endpoint.hpp"
+#include "proto/net/server_thread.hpp"
 
 namespace virtcom::proto::ads {
 
@@ -53,7 +53,7 @@ class Server {
   Server(const Server&) = delete;
   Server& operator=(const Server&) = delete;
 
-  net::Endpoint endpoint() const { return bound_; }
+  net::Endpoint endpoint() const { return io_.bound(); }
 
   // Scan thread, before a scan: applies every queued write to `live`; returns how many edits.
   size_t applyPendingWrites(const LiveImage& live);
@@ -72,17 +72,13 @@ class Server {
  private:
   Server(const ServerConfig& config, const SymbolTable& table);
   void run();
-  void wake(uint8_t why);
 
   ServerConfig config_;
-  net::Endpoint bound_;
-  int listenFd_ = -1;
-  int wakeFds_[2] = {-1, -1};
   std::mutex mutex_;  // guards device_ and every session
   Device device_;
   std::atomic<size_t> notifications_{0};
   std::atomic<size_t> connections_{0};
-  std::thread thread_;
+  net::ServerThread io_;  // runs run(); last, so its thread ends before the members it uses
 };
 
 }  // namespace virtcom::proto::ads

@@ -1,6 +1,5 @@
 #include "proto/modbus/server.hpp"
 
-#include <fcntl.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -9,7 +8,6 @@
 #include <array>
 #include <cerrno>
 #include <cstring>
-#include <system_error>
 
 #include "proto/modbus/mbap.hpp"
 
@@ -76,32 +74,14 @@ Server::Server(const ServerConfig& config, ImageShape shape)
 
 std::expected<std::unique_ptr<Server>, std::string> Server::start(const ServerConfig& config, ImageShape shape) {
   std::unique_ptr<Server> s(new Server(config, std::move(shape)));
-  auto listener = net::listenTcp(config.listen);
-  if (!listener) return std::unexpected(listener.error());
-  s->listenFd_ = listener->fd;
-  s->bound_ = listener->bound;
-  if (::pipe2(s->wakeFds_, O_CLOEXEC | O_NONBLOCK) != 0) return std::unexpected(net::errnoText("pipe"));
-  try {
-    s->thread_ = std::thread([server = s.get()] { server->run(); });
-  } catch (const std::system_error& e) {
-    return std::unexpected(std::string("cannot start the Modbus thread: ") + e.what());
-  }
+  auto started = s->io_.start(config.listen, "Modbus", [server = s.get()] { server->run(); });
+  if (!started) return std::unexpected(started.error());
   return s;
 }
 
-Server::~Server() {
-  stop();
-  for (int fd : {listenFd_, wakeFds_[0], wakeFds_[1]})
-    if (fd >= 0) ::close(fd);
-}
+Server::~Server() { stop(); }
 
-void Server::stop() {
-  if (!thread_.joinable()) return;
-  uint8_t byte = 1;
-  while (::write(wakeFds_[1], &byte, 1) < 0 && errno == EINTR) {
-  }
-  thread_.join();
-}
+void Server::stop() { io_.stop(); }
 
 size_t Server::applyPendingWrites(const ImageView& live) {
   std::lock_guard lock(mutex_);
@@ -131,8 +111,8 @@ void Server::run() {
   try {
     while (true) {
       fds.clear();
-      fds.push_back({wakeFds_[0], POLLIN, 0});
-      fds.push_back({listenFd_, POLLIN, 0});
+      fds.push_back({io_.wakeFd(), POLLIN, 0});
+      fds.push_back({io_.listenFd(), POLLIN, 0});
       for (const Connection& c : clients) {
         short events = c.tx.size() < kMaxUnsentBytes ? POLLIN : 0;
         if (!c.tx.empty()) events = static_cast<short>(events | POLLOUT);
@@ -142,7 +122,7 @@ void Server::run() {
         if (errno == EINTR) continue;
         break;
       }
-      if (fds[0].revents) break;  // stop()
+      if ((fds[0].revents & POLLIN) && io_.takeStopRequest()) break;
       for (size_t i = 0; i < clients.size(); ++i) {
         short ev = fds[i + 2].revents;
         bool keep = true;
@@ -157,14 +137,8 @@ void Server::run() {
       }
       std::erase_if(clients, [](const Connection& c) { return c.fd < 0; });
       if (fds[1].revents & POLLIN) {
-        uint32_t peer = 0;
-        int fd = net::acceptPeer(listenFd_, peer);
-        if (fd >= 0) {
-          const auto& allow = config_.allowedPeers;
-          bool allowed = allow.empty() || std::find(allow.begin(), allow.end(), peer) != allow.end();
-          if (!allowed || clients.size() >= config_.maxClients) ::close(fd);
-          else clients.push_back(Connection{fd, {}, {}});
-        }
+        int fd = io_.acceptClient(config_.allowedPeers, clients.size() >= config_.maxClients);
+        if (fd >= 0) clients.push_back(Connection{fd, {}, {}});
       }
     }
   } catch (const std::bad_alloc&) {

@@ -12,11 +12,11 @@
 #include <mutex>
 #include <string>
 #include <string_view>
-#include <thread>
 #include <vector>
 
 #include "proto/modbus/pdu.hpp"
 #include "proto/net/endpoint.hpp"
+#include "proto/net/server_thread.hpp"
 
 namespace virtcom::proto::modbus {
 
@@ -53,7 +53,7 @@ class Server {
   Server& operator=(const Server&) = delete;
 
   // The bound endpoint (the real port when 0 was asked for).
-  Endpoint endpoint() const { return bound_; }
+  Endpoint endpoint() const { return io_.bound(); }
 
   // Scan thread, between scans: applies every queued write to `live` and empties the queue.
   // Returns the number of byte edits applied. No allocation; locks only to copy.
@@ -71,14 +71,11 @@ class Server {
 
   ServerConfig config_;
   ImageShape shape_;
-  Endpoint bound_;
-  int listenFd_ = -1;
-  int wakeFds_[2] = {-1, -1};
   std::mutex mutex_;  // guards snapshot_* and pending_
   std::vector<uint8_t> snapshotInputs_, snapshotOutputs_, snapshotMemory_, snapshotRegisters_;
   ImageView snapshot_;
   EditQueue pending_;
-  std::thread thread_;
+  net::ServerThread io_;  // runs run(); last, so its thread ends before the members it uses
 };
 
 }  // namespace virtcom::proto::modbus

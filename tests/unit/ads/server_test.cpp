@@ -3,63 +3,24 @@
 // a malformed frame or a refused peer closes only its own connection.
 #include "proto/ads/server.hpp"
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <sys/time.h>
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
 #include "ads_test_support.hpp"
+#include "support/loopback_client.hpp"
 
 namespace virtcom::proto::ads {
 namespace {
 
 using namespace testing;
 
-// A blocking loopback client whose receives give up after 5 s (so a bug fails, never hangs).
-class Client {
- public:
-  explicit Client(uint16_t port) {
-    fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
-    timeval timeout{5, 0};
-    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_port = htons(port);
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    connected_ = ::connect(fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) == 0;
-  }
-  ~Client() { ::close(fd_); }
-  bool connected() const { return connected_; }
-  void send(const Bytes& b) { ASSERT_EQ(::send(fd_, b.data(), b.size(), MSG_NOSIGNAL), static_cast<ssize_t>(b.size())); }
-  // The ADS data of the next frame (after its 38 header bytes); empty on close or timeout.
-  Bytes nextData() {
-    Bytes head = receive(kFrameHeaderSize);
-    if (head.size() < kFrameHeaderSize) return {};
-    return receive(head[26] | head[27] << 8 | head[28] << 16 | head[29] << 24);
-  }
-  bool closedByServer() {
-    uint8_t b;
-    return ::recv(fd_, &b, 1, 0) == 0;
-  }
+using virtcom::test::LoopbackClient;
 
- private:
-  Bytes receive(size_t n) {
-    Bytes out(n);
-    size_t got = 0;
-    while (got < n) {
-      ssize_t r = ::recv(fd_, out.data() + got, n - got, 0);
-      if (r <= 0) break;
-      got += static_cast<size_t>(r);
-    }
-    out.resize(got);
-    return out;
-  }
-  int fd_ = -1;
-  bool connected_ = false;
-};
+// The ADS data of the next frame (after its 38 header bytes); empty on close or timeout.
+Bytes nextData(LoopbackClient& c) {
+  Bytes head = c.receive(kFrameHeaderSize);
+  if (head.size() < kFrameHeaderSize) return {};
+  return c.receive(head[26] | head[27] << 8 | head[28] << 16 | head[29] << 24);
+}
 
 class ServerTest : public ::testing::Test {
  protected:
@@ -78,12 +39,12 @@ class ServerTest : public ::testing::Test {
 };
 
 TEST_F(ServerTest, ReadsTheSnapshotAndQueuesWrites) {
-  Client c(server->endpoint().port);
+  LoopbackClient c(server->endpoint().port);
   ASSERT_TRUE(c.connected());
-  c.send(amsRequest(kPlcPort, 2, u32s({0x4040, 32, 2})));
-  EXPECT_EQ(hex(c.nextData()), "00 00 00 00 02 00 00 00 2a 00");
-  c.send(amsRequest(kPlcPort, 3, u32s({0xF020, 1, 2}, {7, 8})));
-  EXPECT_EQ(hex(c.nextData()), "00 00 00 00");
+  ASSERT_TRUE(c.send(amsRequest(kPlcPort, 2, u32s({0x4040, 32, 2}))));
+  EXPECT_EQ(hex(nextData(c)), "00 00 00 00 02 00 00 00 2a 00");
+  ASSERT_TRUE(c.send(amsRequest(kPlcPort, 3, u32s({0xF020, 1, 2}, {7, 8}))));
+  EXPECT_EQ(hex(nextData(c)), "00 00 00 00");
   EXPECT_EQ(image[17], 0);  // not before the scan thread takes it
   EXPECT_EQ(server->applyPendingWrites({image, inputImage}), 1u);
   EXPECT_EQ(image[17], 7);
@@ -93,31 +54,31 @@ TEST_F(ServerTest, ReadsTheSnapshotAndQueuesWrites) {
 }
 
 TEST_F(ServerTest, PublishWakesOnChangeNotifications) {
-  Client c(server->endpoint().port);
+  LoopbackClient c(server->endpoint().port);
   for (uint8_t value = 43; value < 53; ++value) {
-    c.send(amsRequest(kPlcPort, 6, u32s({0x4040, 32, 1, 4, 0, 0, 0, 0, 0, 0})));
-    Bytes reply = c.nextData();
+    ASSERT_TRUE(c.send(amsRequest(kPlcPort, 6, u32s({0x4040, 32, 1, 4, 0, 0, 0, 0, 0, 0}))));
+    Bytes reply = nextData(c);
     ASSERT_EQ(reply.size(), 8u);
     EXPECT_EQ(reply[0], 0);
-    Bytes initial = c.nextData();
+    Bytes initial = nextData(c);
     ASSERT_EQ(initial.size(), 29u);
     EXPECT_EQ(initial[28], value - 1);
     image[32] = value;
     server->publishSnapshot(image, kAdsStateRun);  // at once: no polling interval to wait for
-    Bytes change = c.nextData();
+    Bytes change = nextData(c);
     ASSERT_EQ(change.size(), 29u) << "no notification after publish " << int(value);
     EXPECT_EQ(change[28], value);
-    c.send(amsRequest(kPlcPort, 7, u32s({reply[4] | reply[5] << 8u})));
-    EXPECT_EQ(hex(c.nextData()), "00 00 00 00");
+    ASSERT_TRUE(c.send(amsRequest(kPlcPort, 7, u32s({reply[4] | reply[5] << 8u}))));
+    EXPECT_EQ(hex(nextData(c)), "00 00 00 00");
   }
 }
 
 TEST_F(ServerTest, MalformedFrameClosesOnlyItsConnection) {
-  Client good(server->endpoint().port), bad(server->endpoint().port);
-  bad.send({0x00, 0x00, 0x05, 0x00, 0x00, 0x00});  // shorter than an AMS header
+  LoopbackClient good(server->endpoint().port), bad(server->endpoint().port);
+  ASSERT_TRUE(bad.send({0x00, 0x00, 0x05, 0x00, 0x00, 0x00}));  // shorter than an AMS header
   EXPECT_TRUE(bad.closedByServer());
-  good.send(amsRequest(kPlcPort, 4, {}));
-  EXPECT_EQ(hex(good.nextData()), "00 00 00 00 05 00 00 00");
+  ASSERT_TRUE(good.send(amsRequest(kPlcPort, 4, {})));
+  EXPECT_EQ(hex(nextData(good)), "00 00 00 00 05 00 00 00");
 }
 
 TEST(AdsServerAllowList, RefusedPeerIsClosed) {
@@ -127,7 +88,7 @@ TEST(AdsServerAllowList, RefusedPeerIsClosed) {
   config.allowedPeers = {0x0a000001};  // 10.0.0.1: not loopback
   auto server = Server::start(config, table);
   ASSERT_TRUE(server);
-  Client c((*server)->endpoint().port);
+  LoopbackClient c((*server)->endpoint().port);
   EXPECT_TRUE(c.closedByServer());
 }
 

@@ -23,20 +23,7 @@ constexpr const char* kDevices = R"(devices:
       1: { name: P, press_time: 1 s, force: 1 kN }
 )";
 
-class AdsSection : public CellFiles {
- protected:
-  std::unique_ptr<Cell> loads(const std::string& text) {
-    write("cell.yaml", text);
-    auto cell = load();
-    EXPECT_TRUE(cell != nullptr) << rendered();
-    return cell;
-  }
-  std::vector<std::string> fails(const std::string& text) {
-    write("cell.yaml", text);
-    EXPECT_TRUE(load() == nullptr) << "the broken cell loaded";
-    return errors();
-  }
-};
+using AdsSection = CellFiles;
 
 TEST_F(AdsSection, TheSettingsAndTheWiringByNameAreKeptForTheBridge) {
   auto cell = loads(std::string("plc:\n  ads:\n    address: 10.1.2.3:48898\n    netid: 10.1.2.3.1.1\n    port: 852\n"

@@ -89,6 +89,20 @@ class CellFiles : public ::testing::Test {
     return loadCell(path(name), sources_, diags_);
   }
 
+  // Writes `text` as cell.yaml and loads it; the load must succeed.
+  std::unique_ptr<Cell> loads(const std::string& text) {
+    write("cell.yaml", text);
+    auto cell = load();
+    EXPECT_TRUE(cell != nullptr) << rendered();
+    return cell;
+  }
+  // Writes `text` as cell.yaml and loads it; the load must fail. Its errors (see errors()).
+  std::vector<std::string> fails(const std::string& text) {
+    write("cell.yaml", text);
+    EXPECT_TRUE(load() == nullptr) << "the broken cell loaded";
+    return errors();
+  }
+
   // `file:line:col: error[CODE]: message` per diagnostic, in report order, folder stripped.
   std::vector<std::string> errors() const {
     std::vector<std::string> out;

@@ -18,10 +18,9 @@ class Loader : public CellFiles {
     CellFiles::SetUp();
     write("main.st", kMainSt);
   }
+  // Loads cell.yaml = `text`; the load must succeed without any diagnostic.
   std::unique_ptr<Cell> loads(const std::string& text) {
-    write("cell.yaml", text);
-    auto cell = load();
-    EXPECT_NE(cell, nullptr) << rendered();
+    auto cell = CellFiles::loads(text);
     EXPECT_EQ(diags_.all().size(), 0u) << rendered();
     return cell;
   }

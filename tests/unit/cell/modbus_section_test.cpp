@@ -25,20 +25,7 @@ constexpr const char* kDevices = R"(devices:
       1: { name: P, press_time: 1 s, force: 1 kN }
 )";
 
-class ModbusSection : public CellFiles {
- protected:
-  std::unique_ptr<Cell> loads(const std::string& text) {
-    write("cell.yaml", text);
-    auto cell = load();
-    EXPECT_TRUE(cell != nullptr) << rendered();
-    return cell;
-  }
-  std::vector<std::string> fails(const std::string& text) {
-    write("cell.yaml", text);
-    EXPECT_TRUE(load() == nullptr) << "the broken cell loaded";
-    return errors();
-  }
-};
+using ModbusSection = CellFiles;
 
 TEST_F(ModbusSection, ACellWithoutPlcHasNoControllerAndAnAutomaticMap) {
   auto cell = loads(std::string("name: served\n") + kDevices);

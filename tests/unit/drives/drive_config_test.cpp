@@ -31,6 +31,7 @@ struct Loaded {
     const std::string type = cfg.requireString("type");
     const ConfigNode* faults = cfg.child("faults");
     device = plant::createDevice(type, "Drive1", cfg, world, deviceTypes());
+    if (diags.hasErrors()) device = nullptr;  // a device with parameter mistakes must not run
     if (!device) return;
     if (faults) {
       ConfigReader f(*faults, diags, "'faults'");

@@ -33,6 +33,34 @@ TEST(DeviceConfig, EveryTypeIsListedWithADescription) {
   for (const auto& [name, doc] : types) EXPECT_FALSE(doc.empty()) << name;
 }
 
+// The loader checks the wiring of an entry with parameter mistakes in the same run, so every
+// factory yields its device, with its ports, even then (and its constructor copes with the
+// wrong values, e.g. a negative conveyor length).
+TEST(DeviceConfig, AnEntryWithMistakesStillYieldsItsDeviceWithItsPorts) {
+  struct Case {
+    const char* type;
+    const char* yaml;
+    const char* port;
+  };
+  for (const Case& k : {Case{"robot", "max_speed: -1 mm/s\n", "procedureNumber"},
+                        Case{"axis", "max_speed: 0 mm/s\n", "targetPosition"},
+                        Case{"press", "stroke: 5 W\n", "actualForce"}, Case{"timed", "busy_power: 5 mm\n", "done"},
+                        Case{"conveyor", "speed: 1 m/s\nlength: -1 m\n", "moving"},
+                        Case{"sensor", "delay: -1 s\n", "value"}}) {
+    SCOPED_TRACE(k.type);
+    SourceManager sources;
+    Diagnostics diags;
+    Trace trace;
+    World world(trace);
+    const ConfigNode node = MiniYaml::parse(k.yaml, sources.addFile("d.yaml", k.yaml));
+    ConfigReader reader(node, diags, "device");
+    std::unique_ptr<Device> d = createDevice(k.type, "D", reader, world);
+    EXPECT_TRUE(diags.hasErrors());
+    ASSERT_NE(d, nullptr);
+    EXPECT_GE(d->portIndex(k.port), 0);
+  }
+}
+
 TEST(DeviceConfig, MinimalRobotLoads) {
   PlantRig rig;
   Device* d = rig.add("robot", "R", kMinimalRobot);

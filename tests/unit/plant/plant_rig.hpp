@@ -30,8 +30,9 @@ class PlantRig {
     uint32_t file = sources.addFile(name + ".yaml", yaml);
     nodes_.push_back(std::make_unique<ConfigNode>(MiniYaml::parse(yaml, file)));
     ConfigReader reader(*nodes_.back(), diags, "device '" + name + "'");
+    const size_t errorsBefore = diags.errorCount();
     std::unique_ptr<Device> d = createDevice(type, name, reader, world);
-    if (!d) return nullptr;
+    if (!d || diags.errorCount() > errorsBefore) return nullptr;  // a device with mistakes must not run
     for (size_t i = 0; i < d->ports().size(); ++i) d->bindPort(i, bus.add(name + "." + d->ports()[i].name, d->ports()[i].type));
     devices_.push_back(std::move(d));
     return devices_.back().get();

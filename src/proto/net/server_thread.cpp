@@ -1,0 +1,61 @@
+#include "proto/net/server_thread.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <system_error>
+
+namespace virtcom::proto::net {
+
+std::expected<void, std::string> ServerThread::start(const Endpoint& at, const std::string& name,
+                                                     std::function<void()> loop) {
+  auto listener = listenTcp(at);
+  if (!listener) return std::unexpected(listener.error());
+  listenFd_ = listener->fd;
+  bound_ = listener->bound;
+  if (::pipe2(wakeFds_, O_CLOEXEC | O_NONBLOCK) != 0) return std::unexpected(errnoText("pipe"));
+  try {
+    thread_ = std::thread(std::move(loop));
+  } catch (const std::system_error& e) {
+    return std::unexpected("cannot start the " + name + " thread: " + e.what());
+  }
+  return {};
+}
+
+ServerThread::~ServerThread() {
+  stop();
+  for (int fd : {listenFd_, wakeFds_[0], wakeFds_[1]})
+    if (fd >= 0) ::close(fd);
+}
+
+void ServerThread::wake(uint8_t why) {
+  // A full pipe already holds a wake-up: dropping this one loses nothing.
+  while (::write(wakeFds_[1], &why, 1) < 0 && errno == EINTR) {
+  }
+}
+
+bool ServerThread::takeStopRequest() {
+  uint8_t why[64];
+  ssize_t n = ::read(wakeFds_[0], why, sizeof why);
+  return n > 0 && std::find(why, why + n, kWakeStop) != why + n;
+}
+
+int ServerThread::acceptClient(const std::vector<uint32_t>& allowedPeers, bool full) {
+  uint32_t peer = 0;
+  int fd = acceptPeer(listenFd_, peer);
+  if (fd < 0) return -1;
+  bool allowed = allowedPeers.empty() || std::find(allowedPeers.begin(), allowedPeers.end(), peer) != allowedPeers.end();
+  if (allowed && !full) return fd;
+  ::close(fd);
+  return -1;
+}
+
+void ServerThread::stop() {
+  if (!thread_.joinable()) return;
+  wake(kWakeStop);
+  thread_.join();
+}
+
+}  // namespace virtcom::proto::net

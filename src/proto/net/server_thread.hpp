@@ -1,0 +1,52 @@
+#pragma once
+// The skeleton every protocol server (Modbus TCP, ADS) shares: a listening socket, a wake-up
+// pipe and the one I/O thread whose loop polls both next to its connections. stop() wakes the
+// loop with kWakeStop and joins it; the loop returns once takeStopRequest() says so.
+#include <cstdint>
+#include <expected>
+#include <functional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "proto/net/endpoint.hpp"
+
+namespace virtcom::proto::net {
+
+class ServerThread {
+ public:
+  // The wake-up byte of stop(); a server may send its own bytes with wake() besides.
+  static constexpr uint8_t kWakeStop = 1;
+
+  ServerThread() = default;
+  ~ServerThread();  // stop(), then closes the socket and the pipe
+  ServerThread(const ServerThread&) = delete;
+  ServerThread& operator=(const ServerThread&) = delete;
+
+  // Binds and listens on `at`, opens the wake-up pipe and runs `loop` on the I/O thread. Error
+  // text if the address cannot be bound or the thread cannot start (`name`: "ADS", "Modbus").
+  std::expected<void, std::string> start(const Endpoint& at, const std::string& name, std::function<void()> loop);
+  // Any thread: wakes the I/O thread's poll on wakeFd() with `why`.
+  void wake(uint8_t why);
+  // I/O thread, once wakeFd() is readable: empties the pipe; true if stop() was among the wake-ups.
+  bool takeStopRequest();
+  // I/O thread, once listenFd() is readable: the accepted connection (non-blocking), or -1 if
+  // there was none or it was refused (closed at once): its peer is not in `allowedPeers` (an
+  // empty list allows every peer) or the server is `full`.
+  int acceptClient(const std::vector<uint32_t>& allowedPeers, bool full);
+  // Wakes the loop with kWakeStop and joins the I/O thread. Idempotent.
+  void stop();
+
+  int listenFd() const { return listenFd_; }
+  int wakeFd() const { return wakeFds_[0]; }
+  // The bound endpoint (the real port when 0 was asked for).
+  Endpoint bound() const { return bound_; }
+
+ private:
+  Endpoint bound_;
+  int listenFd_ = -1;
+  int wakeFds_[2] = {-1, -1};
+  std::thread thread_;
+};
+
+}  // namespace virtcom::proto::net

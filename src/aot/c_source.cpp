@@ -5,6 +5,8 @@
 #include <string_view>
 #include <vector>
 
+#include "aot/opcode_snippets.hpp"
+#include "aot/register_plan.hpp"
 #include "vm/compiled.hpp"
 #include "vm/natives.hpp"
 
@@ -20,17 +22,28 @@ using bc::Op;
 #define VIRTCOM_EXPAND_STRINGIFY(...) VIRTCOM_STRINGIFY(__VA_ARGS__)
 constexpr std::string_view kAbiText = VIRTCOM_EXPAND_STRINGIFY(VIRTCOM_AOT_ABI);
 
-#define C(name, text) constexpr std::string_view kC_##name = text;
-#include "aot/opcodes_c.def"
-#undef C
-
-// Indexed by Op; an opcode missing from opcodes_c.def fails to compile here.
-constexpr std::string_view kSnippets[] = {
-#define X(name, fmt, meaning) kC_##name,
-#include "bytecode/opcodes.def"
-#undef X
+// The native FBs' C code (vm/native_fbs_c.def) and the member accessors it uses, the C twins
+// of those in vm/natives_fb.cpp (little endian only, which the prelude checks).
+#define NATIVE_FBS_C(...) constexpr std::string_view kNativeFbCode = #__VA_ARGS__;
+#include "vm/native_fbs_c.def"
+#undef NATIVE_FBS_C
+#define FB(name)
+#define M(fb, member, offset, ctype)                                                                   \
+  VIRTCOM_STRINGIFY(static inline ctype get_##fb##_##member(const uint8_t* i) {                        \
+    ctype v; __builtin_memcpy(&v, i + (offset), sizeof v); return v; }                                 \
+  static inline void set_##fb##_##member(uint8_t* i, ctype v) { __builtin_memcpy(i + (offset), &v, sizeof v); }) "\n"
+constexpr std::string_view kNativeFbAccessors =
+#include "bytecode/native_fbs.def"
+    ;
+#undef M
+#undef FB
+constexpr std::string_view kNativeFbNames[] = {
+#define FB(name) #name,
+#define M(fb, member, offset, ctype)
+#include "bytecode/native_fbs.def"
+#undef M
+#undef FB
 };
-static_assert(std::size(kSnippets) == static_cast<size_t>(Op::Count_));
 
 // Shared by every generated function. The helpers mirror vm/value.hpp (checkedAddress,
 // roundToI64, ...) for a little-endian host; a big-endian one refuses to compile, and the
@@ -40,11 +53,10 @@ constexpr std::string_view kPrelude = R"(
 #error "virtcom AOT code assumes a little-endian host"
 #endif
 typedef uint8_t (*vc_native)(uint64_t*, const void*);
-typedef bool (*vc_native_fb)(uint8_t*, int64_t);
 #define LDM(T, a) ({ T v_; __builtin_memcpy(&v_, mem + (a), sizeof v_); v_; })
 #define STM(T, a, x) do { T v_ = (T)(x); __builtin_memcpy(mem + (a), &v_, sizeof v_); } while (0)
-#define RETURN(k) do { result = (k); goto finish; } while (0)
-#define FAULT(pc, k) do { c->faultPc = (pc); RETURN(k); } while (0)
+#define FAIL(k) do { result = (k); goto fail; } while (0)
+#define FAULT(pc, k) do { c->faultPc = (pc); FAIL(k); } while (0)
 #define BUDGET(pc) do { if (remaining == 0) FAULT(pc, FK_WATCHDOG); --remaining; } while (0)
 static inline double F(uint64_t v) { double d; __builtin_memcpy(&d, &v, 8); return d; }
 static inline uint64_t U(double d) { uint64_t v; __builtin_memcpy(&v, &d, 8); return v; }
@@ -105,81 +117,83 @@ int trapKind(uint32_t bx) {
                                                                                : static_cast<int>(FaultKind::InvalidEnumValue);
 }
 
-// For every POU, how many registers from its window base its callers can read back after
-// it returns: a caller at window A reloads its registers A.. up to the end of its own window,
-// or further if its own callers read beyond that (register windows overlap). A fixed point
-// over the call graph; recursion cannot raise it further. The epilogue writes back only these,
-// so a program's top-level POUs write back none: keeping every register's last value alive
-// until the end of the function costs the generated code up to 40% (bits, fb_calls).
-std::vector<uint32_t> callerVisibleRegisters(const bc::Module& m) {
-  std::vector<uint32_t> visible(m.pous.size(), 0);
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (uint32_t p = 0; p < m.pous.size(); ++p) {
-      const bc::PouInfo& caller = m.pous[p];
-      const uint32_t extent = std::max<uint32_t>(caller.numRegs, visible[p]);
-      for (uint32_t pc = caller.codeStart; pc < caller.codeStart + caller.codeSize; ++pc) {
-        const Instr& ins = m.code[pc];
-        if (ins.op != Op::CALL || ins.a >= extent) continue;
-        uint32_t& v = visible[ins.bx()];
-        if (extent - ins.a > v) {
-          v = extent - ins.a;
-          changed = true;
-        }
-      }
-    }
-  }
-  return visible;
+// Leaves up to this many instructions are inlined into their callers by the C compiler
+// (always_inline): a user FB call then costs no C call, and the register stores around it
+// become plain copies the compiler can forward.
+constexpr uint32_t kInlineLeafInstructions = 64;
+
+bool isSmallLeaf(const bc::Module& m, const bc::PouInfo& p) {
+  if (p.codeSize > kInlineLeafInstructions) return false;
+  const auto begin = m.code.begin() + p.codeStart;
+  return std::none_of(begin, begin + p.codeSize, [](const Instr& ins) { return ins.op == Op::CALL; });
+}
+
+// `restrict`: the context is reached only through `c` while a POU runs, so the C compiler may
+// keep its fields in registers across stores to the memory image.
+std::string pouSignature(const bc::Module& m, uint32_t pou) {
+  const char* linkage = isSmallLeaf(m, m.pous[pou]) ? "static inline __attribute__((always_inline)) int " : "static int ";
+  return linkage + pouFunction(pou) + "(struct AotContext* restrict c, uint32_t base, uint32_t depth)";
 }
 
 class PouWriter {
  public:
-  PouWriter(const bc::Module& m, uint32_t pou, uint32_t visibleRegs, std::string& out)
-      : m_(m), pou_(m.pous[pou]), visibleRegs_(std::min<uint32_t>(visibleRegs, m.pous[pou].numRegs)), out_(out) {}
+  PouWriter(const bc::Module& m, uint32_t pou, const RegisterPlan& plan, std::string& out)
+      : m_(m), pou_(m.pous[pou]), index_(pou), plan_(plan), regs_(plan.pous[pou]), out_(out) {}
 
-  void write(uint32_t index) {
+  void write() {
     const uint32_t begin = pou_.codeStart, end = pou_.codeStart + pou_.codeSize;
     std::vector<bool> targets(pou_.codeSize, false);
     for (uint32_t pc = begin; pc < end; ++pc)
       if (isJump(m_.code[pc].op)) targets[jumpTarget(pc, m_.code[pc]) - begin] = true;
 
-    out_ += "static int " + pouFunction(index) + "(struct AotContext* c, uint32_t base, uint32_t depth) {\n";
+    out_ += pouSignature(m_, index_) + " {\n";
     out_ += "  uint8_t* const mem = c->mem;\n  uint64_t* const w = c->regs + base;\n";
     out_ += "  uint64_t remaining = c->remaining, ad;\n  int result;\n  (void)depth; (void)ad;\n";
-    for (unsigned r = 0; r < pou_.numRegs; ++r) out_ += "  uint64_t " + reg(r) + " = w[" + std::to_string(r) + "];\n";
+    for (unsigned r = 0; r < pou_.numRegs; ++r)
+      out_ += "  uint64_t " + reg(r) + (regs_.loadOnEntry[r] ? " = w[" + std::to_string(r) + "];\n" : " = 0;\n");
     for (uint32_t pc = begin; pc < end; ++pc) {
       if (targets[pc - begin]) out_ += label(pc) + ":;\n";
       out_ += "  ";
       expand(pc, m_.code[pc]);
       out_ += "\n";
     }
+    // A fault leaves without the write-back: no bytecode reads those registers afterwards.
     out_ += "finish:\n  ";
-    copyRegs("w", 0, visibleRegs_, false, 0);
-    out_ += "\n  c->remaining = remaining;\n  return result;\n}\n\n";
+    for (unsigned r = 0; r < pou_.numRegs; ++r)
+      if (regs_.writeBack[r]) out_ += "w[" + std::to_string(r) + "] = " + reg(r) + "; ";
+    out_ += "\n  c->remaining = remaining;\n  return 0;\nfail:\n  return result;\n}\n\n";
   }
 
  private:
-  void copyRegs(std::string_view to, unsigned from, unsigned count, bool load, uint32_t windowStart) {
-    for (unsigned i = 0; i < count; ++i) {
-      const std::string slot = std::string(to) + "[" + std::to_string(from - windowStart + i) + "]";
-      out_ += load ? reg(from + i) + " = " + slot + "; " : slot + " = " + reg(from + i) + "; ";
+  // The caller's registers around a CALL at pc: before it, those the callee may read and those
+  // read after it; after it, the latter are reloaded (the callee may have changed them).
+  void callRegs(uint32_t pc, const Instr& ins, bool load) {
+    const RegisterSet& liveAfter = regs_.liveAfterCall[pc - pou_.codeStart];
+    const RegisterSet& inputs = plan_.inputs[ins.bx()];
+    for (uint32_t r = ins.a; r < pou_.numRegs; ++r) {
+      const bool calleeReads = r - ins.a < inputs.size() && inputs[r - ins.a];
+      if (!liveAfter[r] && (load || !calleeReads)) continue;
+      const std::string slot = "w[" + std::to_string(r) + "]";
+      out_ += load ? reg(r) + " = " + slot + "; " : slot + " = " + reg(r) + "; ";
     }
   }
-  // The registers whose values a call can see or change: for CALL the caller's registers from
-  // A up (the callee's window and everything beyond it), for CALLN its arguments.
-  void callRegs(const Instr& ins, bool load) {
-    if (ins.op == Op::CALLN) {
-      copyRegs("a_", ins.a, nativeArgs(ins), load, ins.a);
-    } else {
-      copyRegs("w", ins.a, pou_.numRegs - ins.a, load, 0);
+  // A native's arguments go through a_[] and come back from it.
+  void nativeArgs(const Instr& ins, bool load) {
+    for (unsigned i = 0; i < nativeArity(ins); ++i) {
+      const std::string slot = "a_[" + std::to_string(i) + "]";
+      out_ += load ? reg(ins.a + i) + " = " + slot + "; " : slot + " = " + reg(ins.a + i) + "; ";
     }
   }
-  static unsigned nativeArgs(const Instr& ins) {
+  static unsigned nativeArity(const Instr& ins) {
     return std::max(1u, bc::nativeArity(static_cast<bc::Native>(ins.bx())));
+  }
+  void passRegs(uint32_t pc, const Instr& ins, bool load) {
+    if (ins.op == Op::CALLN) nativeArgs(ins, load);
+    else callRegs(pc, ins, load);
   }
 
   void expand(uint32_t pc, const Instr& ins) {
-    const std::string_view text = kSnippets[static_cast<size_t>(ins.op)];
+    const std::string_view text = opcodeSnippet(ins.op);
     for (size_t i = 0; i < text.size(); ++i) {
       if (text[i] != '%' || i + 1 == text.size()) {
         out_ += text[i];
@@ -212,9 +226,10 @@ class PouWriter {
       case 'R': out_ += u64Literal(m_.pous[ins.bx()].numRegs); break;
       case 'P': out_ += pouFunction(ins.bx()); break;
       case 'W': out_ += u64Literal(vm::kNativeFbSizes[ins.bx()]); break;
-      case 'n': out_ += std::to_string(nativeArgs(ins)); break;
-      case 's': callRegs(ins, false); break;
-      case 'r': callRegs(ins, true); break;
+      case 'f': out_ += "fbStep_" + std::string(kNativeFbNames[ins.bx()]); break;
+      case 'n': out_ += std::to_string(nativeArity(ins)); break;
+      case 's': passRegs(pc, ins, false); break;
+      case 'r': passRegs(pc, ins, true); break;
       case 'q': out_ += std::to_string(trapKind(ins.bx())); break;
       default: out_ += '%'; out_ += p; break;
     }
@@ -222,7 +237,9 @@ class PouWriter {
 
   const bc::Module& m_;
   const bc::PouInfo& pou_;
-  const uint32_t visibleRegs_;
+  const uint32_t index_;
+  const RegisterPlan& plan_;
+  const PouRegisters& regs_;
   std::string& out_;
 };
 
@@ -245,12 +262,14 @@ std::string generateCSource(const bc::Module& m) {
          "\n#define STATIC " + u64Literal(m.staticSize) + "\n";
   writeFaultKinds(out);
   out += kPrelude;
-  const auto count = static_cast<uint32_t>(m.pous.size());
-  for (uint32_t p = 0; p < count; ++p)
-    out += "static int " + pouFunction(p) + "(struct AotContext* c, uint32_t base, uint32_t depth);\n";
+  out += kNativeFbAccessors;
+  out += kNativeFbCode;
   out += "\n";
-  const std::vector<uint32_t> visible = callerVisibleRegisters(m);
-  for (uint32_t p = 0; p < count; ++p) PouWriter(m, p, visible[p], out).write(p);
+  const auto count = static_cast<uint32_t>(m.pous.size());
+  for (uint32_t p = 0; p < count; ++p) out += pouSignature(m, p) + ";\n";
+  out += "\n";
+  const RegisterPlan plan = planRegisters(m);
+  for (uint32_t p = 0; p < count; ++p) PouWriter(m, p, plan, out).write();
   out += std::string("const AotEntry ") + kEntriesSymbol + "[] = {";
   for (uint32_t p = 0; p < count; ++p) out += (p ? ", " : "") + pouFunction(p);
   out += "};\n";

@@ -11,7 +11,8 @@ namespace virtcom::vm {
 
 // The state a compiled POU function shares with the machine. The generated C source declares
 // the same struct from this very macro's text (aot::kAbiText), so the two cannot diverge.
-// `natives` and `nativeFbs` point at kNatives and kNativeFbs; `nctx` at a NativeContext.
+// `natives` points at kNatives, `nctx` at a NativeContext. Native FBs need no pointer: the
+// generated code carries their C source (vm/native_fbs_c.def).
 #define VIRTCOM_AOT_ABI                                                            \
   struct AotContext {                                                              \
     uint8_t* mem;                                                                  \
@@ -19,7 +20,6 @@ namespace virtcom::vm {
     uint64_t* regs;                                                                \
     uint32_t* callStack;                                                           \
     const void* natives;                                                           \
-    const void* nativeFbs;                                                         \
     const void* nctx;                                                              \
     uint64_t regCount;                                                             \
     uint64_t sp;                                                                   \
@@ -34,7 +34,7 @@ namespace virtcom::vm {
 VIRTCOM_AOT_ABI
 
 // Bumped whenever the meaning of AotContext or of an entry's result changes.
-inline constexpr uint32_t kAotAbiVersion = 1;
+inline constexpr uint32_t kAotAbiVersion = 2;
 
 // One entry per POU, indexed like Module::pous. An entry runs the POU with its register window
 // at regs + base (r0 = fp, r1 = this already set) at call depth `depth` and returns 0 after its

@@ -69,9 +69,9 @@ bool Machine::run(uint32_t pou, uint32_t thisAddress) {
 bool Machine::executeCompiled(uint32_t pou, uint32_t startSp) {
   const NativeContext nctx{memory_.data(), static_cast<uint32_t>(memory_.size()), Module::kNullGuard, scratch_.data()};
   AotContext c{memory_.data(), m_.initialImage.data(), regs_.data(), compiledCallStack_.data(),
-               kNatives,       kNativeFbs,               &nctx,         regs_.size(),
-               sp_,            budget_,                  taskTimeNs_,   timeReads_,
-               static_cast<uint32_t>(frames_.size()), 0, 0};
+               kNatives,       &nctx,                    regs_.size(),  sp_,
+               budget_,        taskTimeNs_,              timeReads_,    static_cast<uint32_t>(frames_.size()),
+               0,              0};
   const int kind = compiled_->entries[pou](&c, 0, 0);
   timeReads_ = c.timeReads;
   sp_ = startSp;

@@ -6,12 +6,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <random>
 
 #include "../vm/random_instr.hpp"
 #include "../vm/test_module_builder.hpp"
 #include "aot/compile.hpp"
+#include "aot/register_plan.hpp"
 #include "bytecode/verifier.hpp"
 #include "lang/st/compiler.hpp"
 #include "vm/machine.hpp"
@@ -99,6 +101,39 @@ TEST(Aot, RandomBytecodeRunsAsOnTheInterpreter) {
   EXPECT_LT(faults, 1900);
 }
 
+// An ST program compiled once, with an interpreter and an AOT machine on it, both cold-started.
+struct BothBackends {
+  std::unique_ptr<bc::Module> m;
+  std::unique_ptr<vm::Machine> interp, native;
+};
+
+void prepare(const char* source, BothBackends& b, uint64_t budget = 50'000'000) {
+  SourceManager sources;
+  Diagnostics diags;
+  b.m = st::compileProgram({{"main.st", source}}, sources, diags);
+  ASSERT_NE(b.m, nullptr) << diags.render(sources);
+  const aot::CompileResult compiled = aot::compileModule(*b.m, testOptions());
+  ASSERT_TRUE(compiled.code) << compiled.error;
+  b.interp = std::make_unique<vm::Machine>(*b.m);
+  b.native = std::make_unique<vm::Machine>(*b.m);
+  b.native->useCompiled(compiled.code);
+  for (vm::Machine* vm : {b.interp.get(), b.native.get()}) {
+    vm->setBudget(budget);
+    ASSERT_TRUE(vm->coldStart());
+  }
+}
+
+// Runs MAIN `scans` times, 10 ms apart, on both backends; returns the number of faulted scans.
+int runMainOnBoth(BothBackends& b, int scans) {
+  const bc::ProgramInstance& main = b.m->programs.at(0);
+  int faults = 0;
+  for (int k = 0; k < scans; ++k) {
+    expectSameRun(*b.interp, *b.native, *b.m, main.pou, main.address, k * 10'000'000LL, faults);
+    if (::testing::Test::HasFatalFailure()) break;
+  }
+  return faults;
+}
+
 TEST(Aot, NestedFaultReportsTheSameCallStack) {
   const char* source = R"(
 FUNCTION Ratio : DINT
@@ -116,24 +151,136 @@ n := n - 1;
 s(d := n);
 END_PROGRAM
 )";
-  SourceManager sources;
-  Diagnostics diags;
-  auto m = st::compileProgram({{"main.st", source}}, sources, diags);
-  ASSERT_NE(m, nullptr) << diags.render(sources);
-  const aot::CompileResult compiled = aot::compileModule(*m, testOptions());
+  BothBackends b;
+  ASSERT_NO_FATAL_FAILURE(prepare(source, b));
+  ASSERT_EQ(runMainOnBoth(b, 2), 1);
+  ASSERT_FALSE(::testing::Test::HasFatalFailure());
+  const std::string report = b.native->fault().describe(*b.m);
+  EXPECT_EQ(report.rfind("division by zero at main.st:4:", 0), 0u) << report;
+  EXPECT_EQ(b.native->fault().callStack.size(), 2u) << report;
+}
+
+// Every standard FB (compiled from vm/native_fbs_c.def into the generated C) and small user
+// FBs and functions (inlined by the C compiler) with values live across the calls, over
+// enough scans for the timers to run out and the counters to wrap.
+TEST(Aot, InlinedStandardAndUserFbsRunAsOnTheInterpreter) {
+  const char* source = R"(
+FUNCTION Twice : DINT
+VAR_INPUT x : DINT; END_VAR
+Twice := x + x;
+END_FUNCTION
+FUNCTION_BLOCK FB_Acc
+VAR_INPUT x : REAL; on : BOOL; END_VAR
+VAR_OUTPUT y : REAL; high : BOOL; END_VAR
+IF on THEN y := y + (x - y) * 0.25; ELSE y := 0.0; END_IF
+high := y > 3.0;
+END_FUNCTION_BLOCK
+PROGRAM MAIN
+VAR
+  ton1 : TON; tof1 : TOF; tp1 : TP; ctu1 : CTU; ctd1 : CTD; ctud1 : CTUD;
+  rt : R_TRIG; ft : F_TRIG; sr1 : SR; rs1 : RS;
+  acc : ARRAY[1..3] OF FB_Acc;
+  k : INT; n : DINT; sum : DINT; ySum : REAL; tick : BOOL;
+END_VAR
+n := n + 1;
+tick := (n MOD 3) = 0;
+ton1(IN := NOT ton1.Q, PT := T#30MS);
+tof1(IN := tick, PT := T#20MS);
+tp1(IN := ton1.Q, PT := T#40MS);
+ctu1(CU := ton1.Q, RESET := ctu1.Q, PV := 4);
+ctd1(CD := tick, LOAD := ctd1.Q, PV := 3);
+ctud1(CU := tick, CD := tp1.Q, RESET := ctud1.QU, LOAD := FALSE, PV := 5);
+rt(CLK := tick);
+ft(CLK := tof1.Q);
+sr1(SET1 := rt.Q, RESET := ft.Q);
+rs1(SET := ft.Q, RESET1 := rt.Q);
+sum := 0;
+ySum := 0.0;
+FOR k := 1 TO 3 DO
+  acc[k](x := INT_TO_REAL(ctu1.CV + k), on := NOT sr1.Q1);
+  sum := sum + Twice(k) * Twice(INT_TO_DINT(ctud1.CV)) + n;
+  IF acc[k].high THEN ySum := ySum + acc[k].y; END_IF
+END_FOR
+END_PROGRAM
+)";
+  BothBackends b;
+  ASSERT_NO_FATAL_FAILURE(prepare(source, b));
+  EXPECT_EQ(runMainOnBoth(b, 300), 0);
+}
+
+// A fault and the watchdog inside an FB the C compiler inlines: same pc, source location and
+// call stack as the interpreter (expectSameRun compares the reports).
+TEST(Aot, FaultsInsideAnInlinedFbReportTheCallSite) {
+  const char* source = R"(
+FUNCTION_BLOCK FB_Spin
+VAR_INPUT n, d : DINT; END_VAR
+VAR_OUTPUT q : DINT; END_VAR
+WHILE n > 0 DO
+  q := q + 1;
+END_WHILE
+q := 100 / d;
+END_FUNCTION_BLOCK
+PROGRAM MAIN
+VAR s : FB_Spin; scan : DINT; END_VAR
+scan := scan + 1;
+s(n := scan / 3, d := 2 - scan);
+END_PROGRAM
+)";
+  BothBackends b;
+  ASSERT_NO_FATAL_FAILURE(prepare(source, b, 1000));
+  const bc::ProgramInstance& main = b.m->programs.at(0);
+  const bc::FaultKind expected[] = {bc::FaultKind::None, bc::FaultKind::DivisionByZero, bc::FaultKind::WatchdogBudget};
+  const char* where[] = {"", "main.st:8:", "main.st:6:"};  // the loop's backward jump
+  int faults = 0;
+  for (int scan = 0; scan < 3; ++scan) {
+    SCOPED_TRACE(scan + 1);
+    ASSERT_NO_FATAL_FAILURE(expectSameRun(*b.interp, *b.native, *b.m, main.pou, main.address, 0, faults));
+    EXPECT_EQ(faults, scan);
+    if (scan == 0) continue;
+    const vm::FaultInfo& fault = b.native->fault();
+    EXPECT_EQ(fault.kind, expected[scan]);
+    EXPECT_NE(fault.describe(*b.m).find(where[scan]), std::string::npos) << fault.describe(*b.m);
+    EXPECT_EQ(fault.callStack.size(), 1u);
+  }
+}
+
+// A caller keeps r7 across a call and reads back r4, which the callee (window at r2) sets as
+// its r2; r6 is dead after the call. The plan stores and reloads only what is read afterwards
+// and the callee writes back only its r2.
+TEST(Aot, RegisterPlanMovesOnlyTheRegistersReadAfterACall) {
+  test::ModuleBuilder b(64);
+  b.beginPou("Leaf", 4);
+  b.emit(test::asbx(Op::LDI, 2, 7));
+  b.emit(test::abc(Op::ADD, 2, 2, 1));  // reads this (r1): the callee's inputs are r0..r1
+  b.emit(test::abc(Op::RET));
+  b.beginPou("Caller", 8);
+  b.emit(test::asbx(Op::LDI, 2, 0));
+  b.emit(test::abc(Op::MOV, 3, 1));
+  b.emit(test::asbx(Op::LDI, 6, 5));
+  b.emit(test::asbx(Op::LDI, 7, 9));
+  const uint32_t call = b.emit(test::abx(Op::CALL, 2, 0)) - b.m.pous[1].codeStart;
+  b.emit(test::abc(Op::ADD, 6, 4, 7));
+  b.emit(test::abc(Op::ST_32, 6, 1, 0));
+  b.emit(test::abc(Op::RET));
+  ASSERT_EQ(bc::verifyModule(b.m), "");
+
+  const aot::RegisterPlan plan = aot::planRegisters(b.m);
+  EXPECT_EQ(plan.inputs[0], (aot::RegisterSet{false, true}));
+  EXPECT_EQ(plan.pous[0].writeBack, (aot::RegisterSet{false, false, true, false}));
+  EXPECT_EQ(plan.pous[1].writeBack, aot::RegisterSet(8, false));  // nobody calls it
+  EXPECT_EQ(plan.pous[1].liveAfterCall[call], (aot::RegisterSet{false, true, false, false, true, false, false, true}));
+
+  const aot::CompileResult compiled = aot::compileModule(b.m, testOptions());
   ASSERT_TRUE(compiled.code) << compiled.error;
-  vm::Machine interp(*m), native(*m);
+  vm::Machine interp(b.m), native(b.m);
   native.useCompiled(compiled.code);
   ASSERT_TRUE(interp.coldStart());
   ASSERT_TRUE(native.coldStart());
-  const bc::ProgramInstance& main = m->programs.at(0);
   int faults = 0;
-  ASSERT_NO_FATAL_FAILURE(expectSameRun(interp, native, *m, main.pou, main.address, 0, faults));
-  ASSERT_NO_FATAL_FAILURE(expectSameRun(interp, native, *m, main.pou, main.address, 10'000'000, faults));
-  ASSERT_EQ(faults, 1);
-  const std::string report = native.fault().describe(*m);
-  EXPECT_EQ(report.rfind("division by zero at main.st:4:", 0), 0u) << report;
-  EXPECT_EQ(native.fault().callStack.size(), 2u) << report;
+  ASSERT_NO_FATAL_FAILURE(expectSameRun(interp, native, b.m, 1, 32, 0, faults));
+  uint32_t stored = 0;
+  std::memcpy(&stored, native.memory() + 32, sizeof stored);
+  EXPECT_EQ(stored, 7u + 32u + 9u);
 }
 
 bc::Module tinyModule() {

@@ -34,6 +34,11 @@ struct Place {
   const VarInfo* var = nullptr;  // the declared variable, when the place is one (for checks)
   bool constant = false;
   bool isInput = false;       // an input of a function (writable) or FB (writable inside only)
+  // A REFERENCE TO standing for its referee: where the reference's own address slot is, for
+  // REF= (rebinding) and __ISVALIDREF. Places derived from it (members, elements) clear it.
+  bool viaReference = false;
+  uint16_t referenceBase = kAbsolute;
+  uint32_t referenceOffset = 0;
 };
 
 // The result of an expression.
@@ -127,6 +132,8 @@ class PouCompiler {
   bool propertySet(const Expr& target, const Expr& value, SourceLocation loc);
   // Builtins (codegen_builtin.cpp); nullopt if `name` is not a standard function.
   std::optional<Value> builtin(const std::string& upperName, const Expr& e, TypeId expected);
+  // CODESYS operators (codegen_operators.cpp); nullopt if `name` is not one of them.
+  std::optional<Value> codesysOperator(const std::string& upperName, const Expr& e);
   Value callNative(bc::Native n, const std::vector<uint16_t>& argRegs, TypeId resultType);
   Value stringResult(bc::Native n, std::vector<uint16_t> args, TypeId stringType);
   Value compare(const Expr& e, Value a, Value b);
@@ -160,6 +167,7 @@ class PouCompiler {
   std::optional<Place> indexPlace(const Expr& e, bool forWrite);
   std::optional<Place> derefPlace(const Expr& e);
   Place varPlace(const VarInfo& v, uint16_t instanceBase);
+  Place referee(const Place& referenceSlot);
 
   std::vector<const VarInfo*> fbParams(PouSym& fb);
  public:
@@ -185,6 +193,17 @@ class PouCompiler {
   TypeId staticTypeOf(const Expr& object);
   TypeId staticMemberType(const Expr& member);  // staticTypeOf of `a.b`
 
+  // CODESYS operators (codegen_operators.cpp)
+  struct InstanceOperand {
+    uint16_t address = 0;      // register holding the instance's address (0 for a null interface)
+    const PouSym* fb = nullptr;  // the FB type when the operand is an instance, null for interfaces
+  };
+  std::optional<std::vector<const Expr*>> operatorOperands(const Expr& e, size_t count);
+  std::optional<InstanceOperand> instanceOperand(const Expr& operand, const std::string& op);
+  Value isValidRef(const Expr& e);
+  Value queryInterface(const Expr& e);
+  Value queryPointer(const Expr& e);
+
   struct Loop {
     std::vector<uint32_t> breaks;
     std::vector<uint32_t> continues;
@@ -208,5 +227,9 @@ bc::Op loadAbsOp(ElemType e);
 bc::Op storeOp(ElemType e);
 bc::Op storeAbsOp(ElemType e);
 std::string describe(const TypeTable& types, TypeId t);
+// Interface and class names are upper-cased. True if interface `itf` is `target` or extends it.
+bool interfaceExtends(const ProgramModel& m, const std::string& itf, const std::string& target);
+// True if FB `c` or one of its bases implements `itf` or an interface extending it.
+bool implementsInterface(const ProgramModel& m, const PouSym* c, const std::string& itf);
 
 }  // namespace virtcom::st

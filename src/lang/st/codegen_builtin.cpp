@@ -110,6 +110,7 @@ static bool isStringValue(TypeTable& t, const Value& v) {
 }
 
 std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e, TypeId expected) {
+  if (auto op = codesysOperator(name, e)) return op;
   if (!isStandardFunctionName(name) && name != "__SYSTIME_NS") return std::nullopt;
   TypeTable& t = types();
   // The arguments in parameter order: positional as written, named ones by their IEC names.

@@ -291,19 +291,25 @@ static bool derivesFrom(const PouSym* c, const PouSym* base) {
   return false;
 }
 
-static bool implementsInterface(ProgramModel& m, const PouSym* c, const std::string& itf) {
-  std::function<bool(const std::string&, int)> matches = [&](const std::string& name, int depth) {
-    if (name == itf) return true;
-    if (depth > 16) return false;
-    auto it = m.interfaces.find(name);
-    if (it == m.interfaces.end()) return false;
-    for (const auto& b : it->second.bases)
-      if (matches(b, depth + 1)) return true;
-    return false;
-  };
+// The depth limit guards against EXTENDS cycles, which the declarer reports but keeps.
+static bool extendsWithin(const ProgramModel& m, const std::string& itf, const std::string& target, int depth) {
+  if (itf == target) return true;
+  if (depth > 16) return false;
+  auto it = m.interfaces.find(itf);
+  if (it == m.interfaces.end()) return false;
+  for (const auto& b : it->second.bases)
+    if (extendsWithin(m, b, target, depth + 1)) return true;
+  return false;
+}
+
+bool interfaceExtends(const ProgramModel& m, const std::string& itf, const std::string& target) {
+  return extendsWithin(m, itf, target, 0);
+}
+
+bool implementsInterface(const ProgramModel& m, const PouSym* c, const std::string& itf) {
   for (; c; c = c->base)
     for (const auto& i : c->interfaces)
-      if (matches(i, 0)) return true;
+      if (interfaceExtends(m, i, itf)) return true;
   return false;
 }
 
@@ -333,18 +339,25 @@ std::vector<std::pair<uint32_t, PouSym*>> PouCompiler::dispatchTargets(const Rec
 }
 
 // Emits `callOne(target)` for each dispatch target, selected at run time by the class id stored in
-// the first 4 bytes of the instance; a single target is called directly.
+// the first 4 bytes of the instance; a single target is called directly. Loading the class id
+// also checks the receiver: a null interface or pointer faults at the call, as in CODESYS, even
+// when the method itself would not touch the instance.
 template <typename F>
-static void emitDispatch(PouCompiler& pc, uint16_t thisReg, const std::vector<std::pair<uint32_t, PouSym*>>& targets,
-                         F callOne) {
+static void emitDispatch(PouCompiler& pc, const PouCompiler::Receiver& recv,
+                         const std::vector<std::pair<uint32_t, PouSym*>>& targets, F callOne) {
   std::set<PouSym*> distinct;
   for (const auto& t : targets) distinct.insert(t.second);
-  if (distinct.size() == 1) {
+  bool mayBeNull = !recv.exact && recv.thisReg != kThis;
+  bool dynamic = distinct.size() > 1;
+  uint16_t cls = 0;
+  if (dynamic || mayBeNull) {
+    cls = pc.allocReg();
+    pc.emit(Op::LD_U32, cls, recv.thisReg, 0);
+  }
+  if (!dynamic) {
     callOne(*targets.front().second);
     return;
   }
-  uint16_t cls = pc.allocReg();
-  pc.emit(Op::LD_U32, cls, thisReg, 0);
   std::vector<uint32_t> toEnd;
   for (size_t i = 0; i < targets.size(); ++i) {
     uint32_t skip = 0;
@@ -402,7 +415,7 @@ Value PouCompiler::callMethod(const std::string& name, const Receiver& recv, con
   Place aggregate;
   if (rt != kNoType && !scalarResult) aggregate = frameTemp(rt);
   uint16_t aggregateAddr = rt != kNoType && !scalarResult ? addressOf(aggregate) : 0;
-  emitDispatch(*this, recv.thisReg, targets, [&](PouSym& m) {
+  emitDispatch(*this, recv, targets, [&](PouSym& m) {
     pou_.callees.push_back(&m);
     uint16_t inner = regMark();
     uint16_t frame = emitFrameCall(m, recv.thisReg);
@@ -443,7 +456,7 @@ Value PouCompiler::propertyGet(const PropertySym& prop, const Receiver& recv, So
   bool scalar = types().isScalar(prop.type);
   Place aggregate;
   if (!scalar) aggregate = frameTemp(prop.type);
-  emitDispatch(*this, thisReg, targets, [&](PouSym& getter) {
+  emitDispatch(*this, recv, targets, [&](PouSym& getter) {
     pou_.callees.push_back(&getter);
     uint16_t inner = regMark();
     uint16_t frame = emitFrameCall(getter, thisReg);
@@ -600,7 +613,7 @@ bool PouCompiler::propertySet(const Expr& target, const Expr& valueExpr, SourceL
   Value v = expr(valueExpr, in->type);
   if (v.ok() && types().isScalar(in->type)) v = coerce(v, in->type, loc);
   if (!v.ok()) return true;
-  emitDispatch(*this, recv.thisReg, targets, [&](PouSym& setter) {
+  emitDispatch(*this, recv, targets, [&](PouSym& setter) {
     pou_.callees.push_back(&setter);
     uint16_t inner = regMark();
     uint16_t frame = emitFrameCall(setter, recv.thisReg);

@@ -1,7 +1,6 @@
 // Code generation: instruction emission, registers, loads/stores, conversions and assignment.
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <cstring>
 
 #include "lang/st/codegen.hpp"
@@ -525,26 +524,16 @@ void PouCompiler::assignValue(const Place& target, Value v, SourceLocation loc) 
   if (auto itf = model().interfaceByType.find(tt); itf != model().interfaceByType.end()) {
     // An interface variable holds the address of an instance whose class implements it.
     if (!v.ok()) return;
-    if (v.type == tt) {
+    std::string name = upper(itf->second->name);
+    auto from = model().interfaceByType.find(v.type);
+    // `itf := 0` resets the interface; an interface converts to any interface it extends.
+    bool isNull = v.kind == Value::Kind::Const && t.isInteger(v.type) && v.c.i == 0;
+    if (isNull || (from != model().interfaceByType.end() && interfaceExtends(model(), upper(from->second->name), name))) {
       store(target, toReg(v));
       return;
     }
     auto fb = model().fbByType.find(v.type);
-    bool implements = false;
-    std::string name = upper(itf->second->name);
-    std::function<bool(const std::string&, int)> matches = [&](const std::string& i, int depth) {
-      if (i == name) return true;
-      auto it = model().interfaces.find(i);
-      if (depth > 16 || it == model().interfaces.end()) return false;
-      for (const auto& b : it->second.bases)
-        if (matches(b, depth + 1)) return true;
-      return false;
-    };
-    if (fb != model().fbByType.end() && v.kind == Value::Kind::Addr)
-      for (const PouSym* c = fb->second; c && !implements; c = c->base)
-        for (const auto& i : c->interfaces)
-          if (matches(i, 0)) implements = true;
-    if (!implements) {
+    if (fb == model().fbByType.end() || v.kind != Value::Kind::Addr || !implementsInterface(model(), fb->second, name)) {
       diags().error(diag::E202, loc, describe(t, v.type) + " does not implement " + itf->second->name);
       return;
     }

@@ -90,12 +90,20 @@ Place PouCompiler::varPlace(const VarInfo& v, uint16_t instanceBase) {
   }
   if (types().isReference(v.type) && !model().interfaceByType.count(v.type)) {
     // REFERENCE TO: used like the referee (interface variables stay references).
-    Place slot = p;
-    uint16_t addr = load(slot);
-    p.type = types()[v.type].element;
-    p.base = addr;
-    p.offset = 0;  // p.var still names the REFERENCE variable (REF= needs its slot)
+    p = referee(p);
+    p.var = &v;
   }
+  return p;
+}
+
+// The referee of the REFERENCE TO stored at `slot`. Writing it writes the referee, not an input.
+Place PouCompiler::referee(const Place& slot) {
+  Place p;
+  p.type = types()[slot.type].element;
+  p.base = load(slot);
+  p.viaReference = true;
+  p.referenceBase = slot.base;
+  p.referenceOffset = slot.offset;
   return p;
 }
 
@@ -145,6 +153,9 @@ std::optional<Place> PouCompiler::memberPlace(const Expr& e, bool forWrite) {
           diags().error(diag::E212, e.loc, "program '" + inst.name + "' has no variable '" + e.text + "'");
           return std::nullopt;
         }
+        // A REFERENCE TO or VAR_IN_OUT is followed inside varPlace: it needs the instance's base.
+        if (m->storage == Storage::Instance && (m->byReference || types().isReference(m->type)))
+          return varPlace(*m, loadConstInt(inst.address));
         Place p = varPlace(*m, kAbsolute);
         if (m->storage == Storage::Instance) p.offset = inst.address + m->offset;
         return p;
@@ -192,12 +203,8 @@ std::optional<Place> PouCompiler::memberPlace(const Expr& e, bool forWrite) {
     p.offset += f.offset;
     p.var = nullptr;
     p.isInput = false;
-    if (types().isReference(f.type) && !model().interfaceByType.count(f.type)) {
-      uint16_t addr = load(p);
-      p.type = types()[f.type].element;
-      p.base = addr;
-      p.offset = 0;
-    }
+    p.viaReference = false;
+    if (types().isReference(f.type) && !model().interfaceByType.count(f.type)) p = referee(p);
     return p;
   }
   diags().error(diag::E212, e.loc, "'" + d.name + "' has no member '" + e.text + "'");
@@ -222,6 +229,7 @@ std::optional<Place> PouCompiler::indexPlace(const Expr& e, bool forWrite) {
   Place p = *basePlace;
   p.type = d.element;
   p.var = nullptr;
+  p.viaReference = false;
   // Constant part folded at compile time; variable part accumulated in a register.
   int64_t constLinear = 0;
   uint16_t linear = 0xffff;
@@ -325,6 +333,7 @@ std::optional<Place> PouCompiler::place(const Expr& e, bool forWrite) {
         return std::nullopt;
       }
       Place p = *host;
+      p.viaReference = false;
       p.bitHost = host->type;
       p.type = TypeTable::elem(ElemType::Bool);
       p.valueBit = static_cast<int8_t>(e.intValue);

@@ -90,7 +90,7 @@ void PouCompiler::assignment(const Stmt& s) {
   if (target->isInput && isInsideOwnPou(*target, pou_) && pou_.kind == PouKind::FunctionBlock)
     diags().warning(diag::W304, s.lhs->loc, "writing the input '" + target->var->name + "' inside its own FUNCTION_BLOCK; the next call overwrites it");
   if (s.kind == StmtKind::RefAssign) {
-    if (!target->var || !types().isReference(target->var->type)) {
+    if (!target->viaReference) {
       diags().error(diag::E209, s.lhs->loc, "REF= needs a REFERENCE TO variable on the left");
       return;
     }
@@ -104,9 +104,8 @@ void PouCompiler::assignment(const Stmt& s) {
     // the reference slot itself (not the referee)
     Place refSlot;
     refSlot.type = TypeTable::elem(ElemType::Lword);
-    const VarInfo& v = *target->var;
-    refSlot.base = v.storage == Storage::Absolute ? kAbsolute : v.storage == Storage::Frame ? kFp : kThis;
-    refSlot.offset = v.offset;
+    refSlot.base = target->referenceBase;
+    refSlot.offset = target->referenceOffset;
     store(refSlot, addressOf(*src));
     return;
   }

@@ -39,6 +39,7 @@ class Declarer {
 
  private:
   void registerNames();
+  void registerQueryInterface();
   // Reports variables that cannot exist: instances of ABSTRACT FBs, names of standard functions.
   void checkVariable(const VarInfo& v);
   void allocateProcessAreas();

@@ -452,7 +452,10 @@ void Declarer::applyInit(TypeId type, uint8_t* dst, const Expr& init, const PouS
     return;
   }
   if (d.kind == bc::TypeKind::Pointer || d.kind == bc::TypeKind::Reference) {
-    diags_.error(diag::E116, init.loc, "pointers and references cannot have initial values; assign them in code");
+    // CODESYS code often spells out the initial value of pointers and interfaces, `itf : I_X := 0`.
+    if (init.kind == ExprKind::IntLit)
+      if (auto zero = constant(init, pou); zero && zero->i == 0) return;
+    diags_.error(diag::E116, init.loc, "pointers, references and interfaces can only start as 0; assign them in code");
     return;
   }
   TypeId enumType = kNoType;

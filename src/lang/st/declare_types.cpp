@@ -62,6 +62,17 @@ void Declarer::registerPou(const Pou& pou, uint32_t fileId) {
   model_.pous.push_back(std::move(sym));
 }
 
+// CODESYS's implicit base interface __SYSTEM.IQueryInterface has no methods; interfaces extend
+// it so that __QUERYINTERFACE may convert them. virtcom converts any interface, so it only has
+// to be known (as a base and as a variable type).
+void Declarer::registerQueryInterface() {
+  static const Interface kQueryInterface{"__SYSTEM.IQueryInterface", {}, {}, {}, {}};
+  InterfaceSym sym;
+  sym.name = kQueryInterface.name;
+  sym.ast = &kQueryInterface;
+  model_.interfaces.emplace(upper(sym.name), std::move(sym));
+}
+
 void Declarer::registerNames() {
   for (const auto& unit : units_) {
     for (const auto& type : unit.types) {
@@ -86,6 +97,7 @@ void Declarer::registerNames() {
       model_.interfaces[key] = std::move(sym);
     }
   }
+  registerQueryInterface();
   for (const auto& unit : units_)
     for (const auto& pou : unit.pous) registerPou(*pou, unit.fileId);
   for (auto& [key, itf] : model_.interfaces) {

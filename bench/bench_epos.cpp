@@ -1,5 +1,6 @@
-// Per-tick cost of the EPos positioning axis (telegram 111) and of applying a UNIVERSAL_AXIS
-// mapping (pack, wire image, drive decode, reply, unpack) — the extra work of a mapped drive.
+// Per-tick cost of the EPos positioning axis (telegram 111), of applying a UNIVERSAL_AXIS
+// mapping (pack, the words the drive decodes, its reply, unpack) — the extra work of a mapped drive —
+// and of the whole mapped axis as a cell steps it (tag bus, mapping, drive).
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -7,6 +8,7 @@
 #include <sstream>
 
 #include "cell/yaml_config.hpp"
+#include "core/trace.hpp"
 #include "drives/epos_axis.hpp"
 #include "drives/mapped_ports.hpp"
 
@@ -49,8 +51,9 @@ std::shared_ptr<const drives::MappingSpec> bundledMapping(const char* name) {
   return spec ? std::make_shared<const drives::MappingSpec>(std::move(*spec)) : nullptr;
 }
 
-// The mapping layer alone for telegram 111 (the largest image): Control_* values to the words
-// the drive decodes, and the reply words back to Status_* values.
+// The mapping layer alone for telegram 111 (the largest image) when everything changes every
+// tick: Control_* values to the words the drive decodes, and the reply words back to Status_*
+// values (a mapped drive converts only what changed: BM_MappedAxisTickEpos111).
 void BM_AxisMappingTelegram111(benchmark::State& state) {
   auto spec = bundledMapping("telegram111.yaml");
   if (!spec) {
@@ -62,24 +65,67 @@ void BM_AxisMappingTelegram111(benchmark::State& state) {
   values[static_cast<size_t>(drives::AxisSignal::Control_Start)] = 1;
   values[static_cast<size_t>(drives::AxisSignal::Control_GoalPosition)] = 70000;
   values[static_cast<size_t>(drives::AxisSignal::Control_OverridePosV)] = 50;
-  drives::RawWords out{}, rx{}, tx{};
+  drives::RawWords out{}, in{}, rx{}, tx{};
   tx[0] = 0x2F37;
   tx[5] = 70000;
-  std::array<uint8_t, drives::kMaxImageBytes> image{};
   for (auto _ : state) {
     runtime.pack(values, out);
-    runtime.toWire(out, image);
-    drives::decode(spec->telegram, drives::Dir::ToDrive, image, rx);
-    drives::encode(spec->telegram, drives::Dir::FromDrive, tx, image);
-    runtime.fromWire(image, out);
-    runtime.unpack(out, values);
+    runtime.toDrive(out, rx, ~0u);
+    runtime.fromDrive(tx, in);
+    runtime.unpack(in, values);
     benchmark::DoNotOptimize(rx[0]);
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()));
+}
+
+// One cell tick of an EPos axis with `mapping: telegram111.yaml`, as the simulation steps it:
+// the Control_* ports read from the tag bus, the mapping, the drive's bus cycle and integration
+// step, the Status_* and Cfg_* ports written back. The same jog pattern as BM_DriveTickEpos111,
+// commanded through the block's signals.
+void BM_MappedAxisTickEpos111(benchmark::State& state) {
+  drives::DriveCommon common;
+  common.telegram = drives::TelegramId::Std111;
+  common.mapping = bundledMapping("telegram111.yaml");
+  if (!common.mapping) {
+    state.SkipWithError("lib/mappings/telegram111.yaml did not load");
+    return;
+  }
+  drives::EposAxis drive("D", common, drives::EposParams{});
+  TagBus bus;
+  for (size_t i = 0; i < drive.ports().size(); ++i)
+    drive.bindPort(i, bus.add("D." + drive.ports()[i].name, drive.ports()[i].type));
+  Trace trace;
+  plant::World world(trace);
+  drive.prepare(world, trace);
+  const auto set = [&](const char* port, double v) { bus.setNumber(drive.tag(static_cast<size_t>(drive.portIndex(port))), v); };
+  for (const char* on : {"Control_OFF2", "Control_OFF3", "Control_EnablePos", "Control_noJOB_STOP", "Control_NOSTOP",
+                         "Control_ControlFromPLC", "Control_Start"})
+    set(on, 1);
+  set("Control_SpeedPosition", 100);
+  for (const char* percent : {"Control_OverridePosV", "Control_Acceleration", "Control_Deceleration"}) set(percent, 100);
+  int64_t now = 0;
+  const auto tick = [&] {
+    now += kStepNs;
+    drive.step(plant::StepContext{now, kStepNs, bus, world, trace});
+  };
+  for (int i = 0; i < 100; ++i) tick();
+  const TagId jog1 = drive.tag(static_cast<size_t>(drive.portIndex("Control_Jog1")));
+  const TagId jog2 = drive.tag(static_cast<size_t>(drive.portIndex("Control_Jog2")));
+  const TagId position = drive.tag(static_cast<size_t>(drive.portIndex("Status_ActualPosition")));
+  uint64_t i = 0;
+  for (auto _ : state) {
+    const bool negative = (i++ / 2000) % 2;
+    bus.setBool(jog1, negative);
+    bus.setBool(jog2, !negative);
+    tick();
+    benchmark::DoNotOptimize(bus.raw(position));
   }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()));
 }
 
 BENCHMARK(BM_DriveTickEpos111);
 BENCHMARK(BM_AxisMappingTelegram111);
+BENCHMARK(BM_MappedAxisTickEpos111);
 
 }  // namespace
 }  // namespace virtcom::bench

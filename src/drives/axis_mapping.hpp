@@ -103,24 +103,60 @@ std::optional<MappingSpec> parseMapping(const ConfigNode& root, Diagnostics& dia
 // Signal values in block units (BOOL as 0/1), indexed by AxisSignal.
 using AxisSignalValues = std::array<double, kAxisSignalCount>;
 
-// Applies one mapping. Per-tick, never allocates.
+// Applies one mapping. Per-tick, never allocates (the constructor does, at load time).
 class MappingRuntime {
  public:
-  explicit MappingRuntime(const MappingSpec& spec) : spec_(&spec) {}
+  explicit MappingRuntime(const MappingSpec& spec);
   const MappingSpec& spec() const { return *spec_; }
   // Control_* values -> the telegram's output words (ToDrive), then the wire image in the
   // mapping's byte order. Advances the pulse/interlock state and the master sign-of-life.
   void pack(const AxisSignalValues& values, RawWords& words);
+  // True when packing the same values again would give the same words but for the master
+  // sign-of-life: no pulse fired in the last pack() and the first frame is past.
+  bool repeatable() const { return repeatable_; }
+  // What pack() does to words it packed before when the values have not changed since and
+  // repeatable() holds: only the master sign-of-life advances. Returns the word it changed
+  // (bit i = word i; 0 without a sign-of-life).
+  uint32_t advanceSignOfLife(RawWords& words);
   void toWire(const RawWords& words, std::span<uint8_t> image) const;
+  // The words the drive decodes (telegram byte order) from the image toWire() writes, without
+  // the image: per word a truncation to its width and, if the byte orders differ, a byte swap.
+  // Only the words in `changedWords` (bit i = word i); the others in `rx` are left as they are.
+  void toDrive(const RawWords& words, RawWords& rx, uint32_t changedWords) const;
   // The telegram's input words (FromDrive) -> Status_* values (only bound ones are written).
   void unpack(const RawWords& words, AxisSignalValues& values) const;
+  // The same for the rules that read a word in `changedWords` (bit i = input word i); the other
+  // values are left as they are, which is what unpack() would give them if their words have not
+  // changed since.
+  void unpack(const RawWords& words, AxisSignalValues& values, uint32_t changedWords) const;
   void fromWire(std::span<const uint8_t> image, RawWords& words) const;
+  // fromWire() of the drive's reply `tx` encoded in the telegram's byte order, without the
+  // image, into `words`; returns the words that changed (bit i = word i).
+  uint32_t fromDrive(const RawWords& tx, RawWords& words) const;
 
  private:
+  // Per input rule, computed once: the words it reads (bit i = word i), its word's wire type, and
+  // whether its scale is 1:1 ((raw - 0) * 1 / 1 is raw: no division per tick).
+  struct InputPlan {
+    uint32_t words;
+    WireType type;
+    bool identity;
+  };
+  // Per word of one direction: 16-bit words are truncated on the wire.
+  struct WordWidths {
+    std::array<bool, kMaxWords> wide{};
+    size_t count = 0;
+  };
+  static WordWidths widths(TelegramId t, Dir d);
+
   const MappingSpec* spec_;
+  bool swap_;  // the mapping's byte order is not the telegram's
+  WordWidths toDrive_, fromDrive_;
+  std::vector<InputPlan> inputs_;
   std::array<bool, kAxisSignalCount> previous_{};
   std::array<bool, kAxisSignalCount> seenZero_{};
   uint8_t signOfLife_ = 0;
+  bool packed_ = false, repeatable_ = false;
 };
 
 }  // namespace virtcom::drives

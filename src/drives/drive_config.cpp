@@ -22,6 +22,12 @@ double positiveNumber(ConfigReader& cfg, const std::string& key, double fallback
   return v > 0 ? v : fallback;
 }
 
+double nonNegativeNumber(ConfigReader& cfg, const std::string& key, double fallback) {
+  const double v = cfg.optNumber(key, fallback);
+  if (!(v >= 0)) cfg.error(cfg.node().find(key)->loc(), "'" + key + "' must be a number of 0 or more");
+  return v >= 0 ? v : fallback;
+}
+
 namespace {
 
 // `mapping:` is a map here: the cell loader replaces a file name by the file's tree.

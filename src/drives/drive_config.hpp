@@ -13,5 +13,7 @@ double positiveSeconds(ConfigReader& cfg, const std::string& key, double fallbac
 double nonNegativeSeconds(ConfigReader& cfg, const std::string& key, double fallbackS);
 // A plain-number parameter that must be > 0 (reference speed, current, ...).
 double positiveNumber(ConfigReader& cfg, const std::string& key, double fallback);
+// A plain-number parameter that may be 0 (hysteresis, start values).
+double nonNegativeNumber(ConfigReader& cfg, const std::string& key, double fallback);
 
 }  // namespace virtcom::drives

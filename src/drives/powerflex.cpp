@@ -126,6 +126,7 @@ void PowerFlex::onFrame(std::span<const uint32_t> rx, int64_t nowNs) {
   if (cmd_.accelSelect == 1 || cmd_.accelSelect == 2) useTime2Accel_ = cmd_.accelSelect == 2;
   if (cmd_.decelSelect == 1 || cmd_.decelSelect == 2) useTime2Decel_ = cmd_.decelSelect == 2;
   if (!cmd_.start) startBlocked_ = false;  // a new Start is needed after a fault
+  if (p_.mop) applyMopPreloadAndReset();
   if (faulted() || cmd_.stop || cmd_.coastStop) {
     startLatched_ = false;
     jogging_ = false;
@@ -138,6 +139,15 @@ void PowerFlex::onFrame(std::span<const uint32_t> rx, int64_t nowNs) {
   if (cmd_.start && !startBlocked_) startLatched_ = true;
   jogging_ = cmd_.jog && !startLatched_ && !cmd_.run;
   if (startLatched_ || cmd_.run || jogging_) coasting_ = false;
+}
+
+// A429 Preload: switching FreqSelect from a preset to the MOP continues from the output
+// frequency; A428 Zero MOP Ref: any stop (Stop, coast stop, fault) sets the MOP to 0.
+void PowerFlex::applyMopPreloadAndReset() {
+  const bool selected = cmd_.refSelect < 4;
+  if (p_.mopPreload && selected && !mopSelected_) mop_.value = std::min(std::abs(outHz_), p_.maxHz);
+  mopSelected_ = selected;
+  if (!p_.mopSaveOnStop && (faulted() || cmd_.stop || cmd_.coastStop)) mop_.value = 0;
 }
 
 void PowerFlex::onMissingFrame(int64_t nowNs) {

@@ -33,6 +33,8 @@ struct PowerFlexParams {
   bool referenceInRpm = false;  // PF750: Reference/Feedback in rpm instead of Hz
   bool mop = false;          // PF525: the network references (FreqSelect 000..011) come from the MOP
   double mopTimeS = 10;      // A430 MOP time: 0 -> P044 while MOPIncrement is held [S]
+  bool mopSaveOnStop = true; // A428 MOP Reset Sel: 1 Save MOP Ref; 0 Zero MOP Ref (a stop sets the MOP to 0) [S]
+  bool mopPreload = false;   // A429 MOP Preload: selecting the MOP (FreqSelect 000..011) loads the output frequency [S]
   bool positionMode = false; // PF750: Reference/Feedback are the external (load) encoder's degrees
 };
 
@@ -72,11 +74,13 @@ class PowerFlex final : public TelegramDevice {
   void stepPosition(double dtS);
   void coastMotor();
   void clearFaults();
+  void applyMopPreloadAndReset();
 
   bool pf750_ = false;
   PowerFlexParams p_;
   double coastFactor_ = 0;
   MotorPot mop_;
+  bool mopSelected_ = true;    // the last accepted FreqSelect chose the network reference (the MOP)
   PositionProfile profile_;    // position mode: setpoint = actual position of the load encoder
   double degPerSPerHz_ = 0;    // load degrees per second at 1 Hz output
   bool inPosition_ = false;

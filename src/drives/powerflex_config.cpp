@@ -7,6 +7,14 @@
 namespace virtcom::drives {
 namespace {
 
+// A 0/1 selection parameter; `expected` completes "'key' ..." in the error.
+int64_t choice(ConfigReader& cfg, const std::string& key, int64_t fallback, const std::string& expected) {
+  const int64_t v = cfg.optInt(key, fallback);
+  if (v == 0 || v == 1) return v;
+  cfg.error(cfg.node().find(key)->loc(), "'" + key + "' " + expected + ", not " + std::to_string(v));
+  return fallback;
+}
+
 std::unique_ptr<plant::Device> makePowerFlex(const std::string& name, ConfigReader& cfg, TelegramId telegram,
                                              const char* type) {
   DriveCommon common = readDriveCommon(cfg, telegram);
@@ -36,6 +44,8 @@ std::unique_ptr<plant::Device> makePowerFlex(const std::string& name, ConfigRead
   if (telegram == TelegramId::Pf525) {
     p.mop = cfg.optBool("mop", p.mop);
     p.mopTimeS = positiveSeconds(cfg, "a430", p.mopTimeS);
+    p.mopSaveOnStop = choice(cfg, "a428", 1, "(MOP Reset Sel) must be 0 (Zero MOP Ref: a stop sets the MOP to 0) or 1 (Save MOP Ref)") == 1;
+    p.mopPreload = choice(cfg, "a429", 0, "(MOP Preload) must be 0 (no preload) or 1 (selecting the MOP loads the output frequency)") == 1;
   }
   if (telegram == TelegramId::Pf750) {
     const std::string unit = cfg.optString("speed_units", "hz");

@@ -81,6 +81,7 @@ SpeedAxis::SpeedAxis(std::string name, DriveCommon common, SpeedAxisParams param
   // specs/drives.md §B.3.1: the MOP integrates at p1082/p1047 rpm/s.
   mop_.step = p_.p1082 / p_.p1047S * dtS;
   mop_.maximum = p_.p1082;
+  mop_.value = mopStartRpm();
 }
 
 double SpeedAxis::setpointRpm() const {
@@ -131,11 +132,18 @@ void SpeedAxis::integrate(double dtS) {
 }
 
 // Timers of §B.2 standstill detection (actual speed: p1228, setpoint: p1227 — the latter ends an
-// OFF1/OFF3 ramp even when the load keeps the motor turning) and of the ZSW1.8 delay p2166.
+// OFF1/OFF3 ramp even when the load keeps the motor turning) and the ZSW1.8 comparison: within
+// p2163, out beyond p2163 + p2164 (the hysteresis keeps the bit from chattering at the edge), and
+// the time out of tolerance for the p2166 off delay.
 void SpeedAxis::trackStandstillAndTolerance(double dtS) {
   standstillS_ = std::abs(speedRpm_) < p_.p1226 ? standstillS_ + dtS : 0.0;
   setpointStandstillS_ = std::abs(rfgOut_) < p_.p1226 ? setpointStandstillS_ + dtS : 0.0;
-  withinToleranceS_ = std::abs(rfgOut_ - speedRpm_) <= p_.p2163 ? withinToleranceS_ + dtS : 0.0;
+  const double deviation = std::abs(rfgOut_ - speedRpm_);
+  if (withinTolerance_ ? deviation > p_.p2163 + p_.p2164 : deviation <= p_.p2163) {
+    withinTolerance_ = !withinTolerance_;
+    outOfToleranceS_ = 0;
+  }
+  if (!withinTolerance_) outOfToleranceS_ += dtS;
 }
 
 void SpeedAxis::updateState() {
@@ -147,6 +155,9 @@ void SpeedAxis::updateState() {
   in.standstill = standstillS_ >= p_.p1228S || setpointStandstillS_ >= p_.p1227S;
   const DriveState next = nextState(state_, in);
   if (pulsesEnabled(next) && !pulsesEnabled(state_)) rfgOut_ = speedRpm_;  // flying restart from the actual speed
+  // ON: without p1030.0 (data save) the MOP setpoint starts again from p1040.
+  const bool switchedOn = state_ == DriveState::S2ReadyForSwitchingOn && next != state_ && next != DriveState::S1SwitchingOnInhibited;
+  if (switchedOn && !p_.p1030Store) mop_.value = mopStartRpm();
   state_ = next;
 }
 
@@ -215,7 +226,7 @@ void SpeedAxis::encode(RawWords& tx) const {
   z = withBit(z, zsw::NoOff2Active, test(stw_, stw::NoOff2));
   z = withBit(z, zsw::NoOff3Active, test(stw_, stw::NoOff3));
   z = withBit(z, zsw::AlarmActive, alarms_.active());
-  z = withBit(z, zsw::SpeedWithinTolerance, withinToleranceS_ >= p_.p2166S);
+  z = withBit(z, zsw::SpeedWithinTolerance, speedWithinTolerance());
   z = withBit(z, zsw::ControlRequested, true);
   z = withBit(z, zsw::ComparisonReached, std::abs(speedRpm_) >= p_.p2141);
   z = withBit(z, zsw::NoLimitReached, std::abs(torqueNm_) < p_.torqueLimitNm);
@@ -251,7 +262,7 @@ bool SpeedAxis::mopActive() const { return p_.mop && accepted_ && !commFault_; }
 
 bool SpeedAxis::settled() const {
   if (mopActive() && mop_.moving(test(stw_, stw::MopRaise), test(stw_, stw::MopLower))) return false;
-  if (withinToleranceS_ < p_.p2166S) return false;  // ZSW1.8 is still to come
+  if (!withinTolerance_) return false;  // the deviation is still to settle (and ZSW1.8 may drop)
   // The ramp-downs end on the standstill timers (p1228 / p1227), which need the ticks.
   if (state_ == DriveState::S5aOff1RampDown || state_ == DriveState::S5bOff3QuickStop) return false;
   if (!pulsesEnabled(state_)) return speedRpm_ == 0;

@@ -4,8 +4,10 @@
 // a first-order speed response, OFF1/OFF2/OFF3, ZSW1, smoothed actual values, current/torque
 // from the shaft load, fault/alarm buffers with acknowledge on the 0->1 edge of STW1.7, and
 // setpoint-timeout monitoring (F01910 / F08501, A01920 when not under PLC control), the
-// standstill timers p1228/p1227, the ZSW1.8 delay p2166 and the optional MOP (STW1.13/.14).
+// standstill timers p1228/p1227, the ZSW1.8 tolerance p2163 with hysteresis p2164 and off delay
+// p2166, and the optional MOP (STW1.13/.14).
 // Parameters keep their SINAMICS numbers; every one is a simulator default [S] set in the cell file.
+#include <algorithm>
 #include <memory>
 
 #include "drives/drive_messages.hpp"
@@ -27,10 +29,13 @@ struct SpeedAxisParams {
   double p1226 = 20;            // standstill threshold, rpm
   double p1228S = 0.010;        // standstill delay of the actual speed
   double p1227S = 300;          // standstill delay of the setpoint (RFG output < p1226)
-  double p2163 = 90;            // speed deviation tolerance, rpm (ZSW1.8)
-  double p2166S = 0.2;          // the deviation must stay within p2163 this long before ZSW1.8 [S]
+  double p2163 = 90;            // speed deviation tolerance, rpm (ZSW1.8 set within it)
+  double p2164 = 2;             // hysteresis, rpm: ZSW1.8 drops once the deviation exceeds p2163 + p2164
+  double p2166S = 0.2;          // off delay: ZSW1.8 drops only after the deviation has stayed out this long
   bool mop = false;             // STW1.13/.14 drive a motorised potentiometer that is the main setpoint
   double p1047S = 10;           // MOP ramp time 0 -> p1082 (both directions)
+  double p1040 = 0;             // MOP start value, rpm: the MOP setpoint at power-up and at every ON
+  bool p1030Store = false;      // p1030.0 data save: the MOP keeps its setpoint from one ON to the next
   double p2141 = -1;            // comparison speed, rpm (ZSW1.10); < 0 = 1 % of p2000
   double p2002 = 10;            // reference current, A
   double p2003 = 10;            // reference torque, N*m
@@ -71,7 +76,9 @@ class SpeedAxis final : public TelegramDevice {
   void rampRfg();
   void updateState();
   void trackStandstillAndTolerance(double dtS);
+  bool speedWithinTolerance() const { return withinTolerance_ || outOfToleranceS_ < p_.p2166S; }
   bool mopActive() const;
+  double mopStartRpm() const { return std::min(p_.p1040, p_.p1082); }
   void updateAlarmEffects();
 
   SpeedAxisParams p_;
@@ -87,7 +94,8 @@ class SpeedAxis final : public TelegramDevice {
   double rfgOut_ = 0;
   double standstillS_ = 0;          // |n_act| < p1226 for this long (p1228)
   double setpointStandstillS_ = 0;  // |RFG output| < p1226 for this long (p1227)
-  double withinToleranceS_ = 0;     // |n_set - n_act| <= p2163 for this long (p2166)
+  bool withinTolerance_ = true;     // |n_set - n_act| <= p2163, until it exceeds p2163 + p2164
+  double outOfToleranceS_ = 0;      // and out of it for this long (the p2166 off delay)
   MotorPot mop_;
   double nistGlatt_ = 0, currentGlatt_ = 0, torqueGlatt_ = 0;
   bool motorTempAlarm_ = false, powerUnitTempAlarm_ = false;

@@ -27,9 +27,17 @@ std::unique_ptr<plant::Device> makeSpeedAxis(const std::string& name, ConfigRead
   p.p1228S = positiveSeconds(cfg, "p1228", p.p1228S);
   p.p1227S = positiveSeconds(cfg, "p1227", p.p1227S);
   p.p2163 = positiveNumber(cfg, "p2163", p.p2163);
+  p.p2164 = nonNegativeNumber(cfg, "p2164", p.p2164);
   p.p2166S = nonNegativeSeconds(cfg, "p2166", p.p2166S);
   p.mop = cfg.optBool("mop", p.mop);
   p.p1047S = positiveSeconds(cfg, "p1047", p.p1047S);
+  p.p1040 = nonNegativeNumber(cfg, "p1040", p.p1040);
+  if (p.p1040 > p.p1082) cfg.error(cfg.node().find("p1040")->loc(), "'p1040' (MOP start value) must not exceed p1082 (the maximum speed)");
+  const int64_t p1030 = cfg.optInt("p1030", 0);
+  if (p1030 != 0 && p1030 != 1)
+    cfg.error(cfg.node().find("p1030")->loc(), "'p1030' (MOP configuration) must be 0 (the MOP starts from p1040 at every ON) or 1 "
+                                               "(bit 0, data save: it keeps its setpoint); its other bits are not simulated");
+  p.p1030Store = p1030 == 1;
   p.p2141 = positiveNumber(cfg, "p2141", 0.01 * p.p2000);
   p.p2002 = positiveNumber(cfg, "p2002", p.p2002);
   p.p2003 = cfg.optQuantity("p2003", Dimension::Torque, p.p2003);

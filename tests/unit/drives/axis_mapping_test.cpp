@@ -220,6 +220,59 @@ TEST(AxisMapping, Pf750SignsTheRealReference) {
 }
 
 // S7 byte.bit aliases convert with the §A.0 formula: "STW1 0.2" = bit 10, "STW1 1.0" = bit 0.
+// A mapped drive skips the wire image: toDrive()/fromDrive() give what writing the image in one
+// byte order and decoding it in the telegram's gives, for either byte order of the mapping.
+TEST(AxisMapping, ToDriveAndFromDriveMatchTheWireImage) {
+  for (const char* name : {"telegram111.yaml", "telegram352.yaml", "pf525.yaml", "pf750.yaml"}) {
+    Loaded l;
+    loadBundled(l, name);
+    for (const ByteOrder order : {ByteOrder::Big, ByteOrder::Little}) {
+      MappingSpec spec = *l.spec;
+      spec.order = order;
+      MappingRuntime rt(spec);
+      RawWords words{}, viaImage{}, direct{};
+      for (size_t i = 0; i < words.size(); ++i) words[i] = 0x89ABCDEFu * static_cast<uint32_t>(i + 1);
+      std::array<uint8_t, kMaxImageBytes> image{};
+      rt.toWire(words, image);
+      decode(spec.telegram, Dir::ToDrive, image, viaImage);
+      rt.toDrive(words, direct, ~0u);
+      EXPECT_EQ(direct, viaImage) << name;
+      encode(spec.telegram, Dir::FromDrive, words, image);
+      rt.fromWire(image, viaImage);
+      direct = {};
+      EXPECT_NE(rt.fromDrive(words, direct), 0u) << name;
+      EXPECT_EQ(direct, viaImage) << name;
+      EXPECT_EQ(rt.fromDrive(words, direct), 0u) << name << ": nothing changed the second time";
+    }
+  }
+}
+
+// A mapped drive packs again only when a Control_* value changed or repeatable() is false;
+// otherwise advancing the sign-of-life must give what a full pack would.
+TEST(AxisMapping, RepackingUnchangedValuesOnlyAdvancesTheSignOfLife) {
+  Loaded l;
+  loadBundled(l, "telegram111.yaml");
+  MappingRuntime rt(*l.spec);
+  AxisSignalValues v{};
+  at(v, AxisSignal::Control_Start) = 1;
+  at(v, AxisSignal::Control_JobStart) = 1;
+  RawWords words{};
+  rt.pack(v, words);
+  EXPECT_FALSE(rt.repeatable()) << "the first frame holds Start at 0 and fires the JobStart pulse";
+  rt.pack(v, words);
+  EXPECT_TRUE(rt.repeatable());
+  for (int tick = 0; tick < 20; ++tick) {
+    MappingRuntime repacked = rt;
+    RawWords full{};
+    repacked.pack(v, full);
+    EXPECT_NE(rt.advanceSignOfLife(words), 0u);
+    EXPECT_EQ(words, full) << "tick " << tick;
+  }
+  at(v, AxisSignal::Control_AlarmReset) = 1;  // a pulse: the frame after it differs again
+  rt.pack(v, words);
+  EXPECT_FALSE(rt.repeatable());
+}
+
 TEST(AxisMapping, S7AliasAndBitNames) {
   Loaded l;
   load(l, "m.yaml",

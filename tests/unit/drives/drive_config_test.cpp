@@ -78,14 +78,24 @@ TEST(DriveConfig, ReportsWrongValuesWithTheirPosition) {
 }
 
 TEST(DriveConfig, DelayAndMopKeysReportWrongValues) {
-  Loaded g("type: g120\np2166: -1 s\np1227: 0 s\np1047: 0 s\nmop: true\n");
+  Loaded g("type: g120\np2166: -1 s\np2164: -2\np1227: 0 s\np1047: 0 s\nmop: true\n");
   EXPECT_EQ(g.device, nullptr);
   EXPECT_NE(g.errors().find("'p2166' must be a time of 0 or more"), std::string::npos) << g.errors();
+  EXPECT_NE(g.errors().find("drive.yaml:3:8"), std::string::npos) << g.errors();
+  EXPECT_NE(g.errors().find("'p2164' must be a number of 0 or more"), std::string::npos) << g.errors();
   EXPECT_NE(g.errors().find("'p1227' must be a time greater than 0"), std::string::npos) << g.errors();
   EXPECT_NE(g.errors().find("'p1047' must be a time greater than 0"), std::string::npos) << g.errors();
-  EXPECT_NE(Loaded("type: g120\np2166: 0 s\nmop: true\n").device, nullptr);
-  Loaded p("type: powerflex525\nmop: true\na430: 0 s\n");
+  EXPECT_NE(Loaded("type: g120\np2166: 0 s\nmop: true\np1040: 100\np1030: 1\n").device, nullptr);
+  Loaded start("type: g120\nmop: true\np1040: 2000\np1030: 6\n");
+  EXPECT_NE(start.errors().find("'p1040' (MOP start value) must not exceed p1082"), std::string::npos) << start.errors();
+  EXPECT_NE(start.errors().find("drive.yaml:4:8"), std::string::npos) << start.errors();
+  EXPECT_NE(start.errors().find("'p1030' (MOP configuration) must be 0"), std::string::npos) << start.errors();
+  Loaded p("type: powerflex525\nmop: true\na430: 0 s\na428: 2\na429: -1\n");
   EXPECT_NE(p.errors().find("'a430' must be a time greater than 0"), std::string::npos) << p.errors();
+  EXPECT_NE(p.errors().find("drive.yaml:4:7"), std::string::npos) << p.errors();
+  EXPECT_NE(p.errors().find("'a428' (MOP Reset Sel) must be 0 (Zero MOP Ref"), std::string::npos) << p.errors();
+  EXPECT_NE(p.errors().find("'a429' (MOP Preload) must be 0 (no preload)"), std::string::npos) << p.errors();
+  EXPECT_NE(Loaded("type: powerflex525\nmop: true\na428: 0\na429: 1\n").device, nullptr);
   Loaded m("type: powerflex750\ncontrol_mode: torque\n");
   EXPECT_NE(m.errors().find("'control_mode' must be speed or position, not 'torque'"), std::string::npos) << m.errors();
   Loaded u("type: powerflex750\ncontrol_mode: position\nspeed_units: rpm\n");

@@ -151,6 +151,33 @@ TEST(PowerFlex525, MopIncrementAndDecrementDriveTheNetworkReference) {
   EXPECT_NEAR(rig.drive->mopHz(), 3.0, 1e-6);
 }
 
+// A429 = 1 (Preload): switching FreqSelect from a preset to the MOP continues from the output
+// frequency; A428 = 0 (Zero MOP Ref): a Stop sets the MOP to 0.
+TEST(PowerFlex525, MopPreloadsTheOutputFrequencyAndZeroesOnStop) {
+  PowerFlexParams p;
+  p.mop = true;
+  p.mopPreload = true;
+  p.mopSaveOnStop = false;
+  PowerFlexRig rig(TelegramId::Pf525, p);
+  rig.cmd(kStartForward | 0x6000, 0, 1500);  // FreqSelect 110: preset A412 = 10 Hz
+  EXPECT_EQ(rig.outputFreq(), 1000);
+  EXPECT_EQ(rig.drive->mopHz(), 0.0);
+  rig.cmd(kStartForward, 0, 500);  // FreqSelect 000: the MOP, preloaded with 10 Hz
+  EXPECT_NEAR(rig.drive->mopHz(), 10.0, 1e-9);
+  EXPECT_EQ(rig.outputFreq(), 1000);
+  rig.cmd(kStop, 0, 10);
+  EXPECT_EQ(rig.drive->mopHz(), 0.0);
+  p.mopPreload = false;  // the defaults: no preload, the MOP keeps its value over a Stop
+  p.mopSaveOnStop = true;
+  PowerFlexRig plain(TelegramId::Pf525, p);
+  plain.cmd(kStartForward | 0x0080, 0, 500);  // MOPIncrement for 1 s: 6 Hz
+  plain.cmd(kStartForward | 0x6000, 0, 1500);
+  plain.cmd(kStartForward, 0, 10);
+  EXPECT_NEAR(plain.drive->mopHz(), 6.0, 1e-9);
+  plain.cmd(kStop, 0, 10);
+  EXPECT_NEAR(plain.drive->mopHz(), 6.0, 1e-9);
+}
+
 TEST(PowerFlex525, MopBitsAreIgnoredUnlessConfigured) {
   PowerFlexRig rig;
   rig.cmd(kStartForward | 0x0080, 1188, 1500);

@@ -148,23 +148,45 @@ TEST(SpeedAxis, Off1RampsWithP1121ThenS2) {
   EXPECT_EQ(rig.state(), kS4);
 }
 
-TEST(SpeedAxis, Zsw1Bit8WaitsP2166WithinP2163) {
+// ZSW1.8 (SINAMICS r2199.4): set as soon as |n_set - n_act| <= p2163; dropped only once the
+// deviation has stayed beyond p2163 + p2164 for the off delay p2166.
+TEST(SpeedAxis, Zsw1Bit8DropsP2166AfterTheDeviationLeavesTheTolerance) {
   SpeedAxisParams p;
   p.p2163 = 5;  // below the ramp's tracking lag (675 rpm/s x 20 ms = 13.5 rpm)
   SpeedRig rig(TelegramId::Std1, p);
   rig.stw(0x047E, 0, 2);
-  rig.stw(0x047F, 0x2000, 250);        // 0.5 s into the 1 s ramp: the lag is outside p2163
+  EXPECT_TRUE(rig.zsw1() & (1u << 8)) << "at rest the actual speed is the setpoint";
+  rig.stw(0x047F, 0x2000, 50);   // 100 ms into the 1 s ramp: out of tolerance for less than p2166 = 200 ms
+  EXPECT_TRUE(rig.zsw1() & (1u << 8));
+  rig.stw(0x047F, 0x2000, 100);  // 300 ms: out for longer than p2166
   EXPECT_FALSE(rig.zsw1() & (1u << 8));
-  rig.stw(0x047F, 0x2000, 300);        // ~80 ms within p2163, less than p2166 = 200 ms
-  EXPECT_FALSE(rig.zsw1() & (1u << 8));
-  rig.stw(0x047F, 0x2000, 150);
+  rig.stw(0x047F, 0x2000, 500);  // the ramp has ended and the lag decayed into p2163: set at once
   EXPECT_TRUE(rig.zsw1() & (1u << 8));
   EXPECT_EQ(rig.zsw1(), 0xEF37);
-  p.p2166S = 0;                        // no delay: the bit follows the deviation at once
+  p.p2166S = 0;  // no off delay: the bit drops with the deviation
   SpeedRig direct(TelegramId::Std1, p);
   direct.stw(0x047E, 0, 2);
-  direct.stw(0x047F, 0x2000, 550);
-  EXPECT_TRUE(direct.zsw1() & (1u << 8));
+  direct.stw(0x047F, 0x2000, 50);
+  EXPECT_FALSE(direct.zsw1() & (1u << 8));
+}
+
+// A deviation between p2163 and p2163 + p2164 keeps ZSW1.8 as it is.
+TEST(SpeedAxis, Zsw1Bit8HysteresisP2164HoldsTheBitAboveP2163) {
+  SpeedAxisParams p;
+  p.p2163 = 10;
+  p.p2164 = 5;  // the ramp's tracking lag, 13.5 rpm, lies between p2163 and p2163 + p2164
+  p.p2166S = 0;
+  SpeedRig held(TelegramId::Std1, p);
+  held.stw(0x047E, 0, 2);
+  held.stw(0x047F, 0x2000, 250);
+  EXPECT_TRUE(held.zsw1() & (1u << 8));
+  p.p2164 = 2;
+  SpeedRig dropped(TelegramId::Std1, p);
+  dropped.stw(0x047E, 0, 2);
+  dropped.stw(0x047F, 0x2000, 250);
+  EXPECT_FALSE(dropped.zsw1() & (1u << 8));
+  dropped.stw(0x047F, 0x2000, 500);  // after the ramp the lag falls back below p2163
+  EXPECT_TRUE(dropped.zsw1() & (1u << 8));
 }
 
 TEST(SpeedAxis, Off1EndsOnSetpointStandstillP1227WhileTheMotorStillTurns) {
@@ -204,6 +226,28 @@ TEST(SpeedAxis, MopRaiseAndLowerIntegrateTheMainSetpoint) {
   EXPECT_EQ(rig.nist(), -819);
   rig.stw(0x447F, 0x2000, 1000);  // lowers to 0, not below
   EXPECT_EQ(rig.drive->mopRpm(), 0.0);
+}
+
+// p1040 is the MOP setpoint at power-up and at every ON; with p1030.0 (data save) the MOP keeps
+// its setpoint from one ON to the next instead.
+TEST(SpeedAxis, MopStartsFromP1040AtEveryOnUnlessP1030StoresIt) {
+  for (const bool store : {false, true}) {
+    SpeedAxisParams p;
+    p.mop = true;  // 135 rpm/s
+    p.p1040 = 270;
+    p.p1030Store = store;
+    SpeedRig rig(TelegramId::Std1, p);
+    EXPECT_EQ(rig.drive->mopRpm(), 270.0);
+    rig.stw(0x047E, 0, 2);
+    rig.stw(0x247F, 0, 500);  // raise for 1 s
+    rig.stw(0x047F, 0, 1);
+    EXPECT_NEAR(rig.drive->mopRpm(), 405.0, 1e-6);
+    rig.stw(0x047E, 0, 1000);  // OFF1 down to S2
+    EXPECT_EQ(rig.state(), kS2);
+    rig.stw(0x047F, 0, 2);  // ON again
+    EXPECT_EQ(rig.state(), kS4);
+    EXPECT_NEAR(rig.drive->mopRpm(), store ? 405.0 : 270.0, 1e-6) << "p1030 = " << store;
+  }
 }
 
 TEST(SpeedAxis, MopBitsAreIgnoredUnlessConfigured) {

@@ -45,17 +45,19 @@ uint32_t bitWidth(ElemType t) {
 
 namespace {
 
-// Appends to a caller's buffer of kIecTextMax bytes; every text here is far shorter.
+// Appends to a caller's buffer of kIecTextMax bytes. The texts of real values are far
+// shorter; the bound only matters for the garbage a faulty program may format.
 struct TextBuf {
   char* p;
   size_t n = 0;
   void add(std::string_view s) {
-    for (char c : s) p[n++] = c;
+    for (char c : s)
+      if (n < kIecTextMax) p[n++] = c;
   }
   void addNumber(uint64_t v, int minDigits = 1) {
     char digits[24];
     char* end = std::to_chars(digits, digits + sizeof digits, v).ptr;
-    for (int pad = minDigits - static_cast<int>(end - digits); pad > 0; --pad) p[n++] = '0';
+    for (int pad = minDigits - static_cast<int>(end - digits); pad > 0; --pad) add("0");
     add(std::string_view(digits, static_cast<size_t>(end - digits)));
   }
 };
@@ -128,7 +130,7 @@ void civilFromDays(int64_t z, int64_t& y, unsigned& m, unsigned& d) {
 }
 
 static void addDate(TextBuf& out, int64_t seconds) {
-  int64_t days = seconds >= 0 ? seconds / 86400 : -((-seconds + 86399) / 86400);
+  int64_t days = seconds / 86400 - (seconds % 86400 < 0 ? 1 : 0);  // floor, also for INT64_MIN
   int64_t y;
   unsigned m, d;
   civilFromDays(days, y, m, d);
@@ -140,7 +142,9 @@ static void addDate(TextBuf& out, int64_t seconds) {
   out.addNumber(d, 2);
 }
 
-static void addClock(TextBuf& out, int64_t msOfDay) {
+// A TOD beyond a day (it is a 32-bit count of milliseconds) shows its time within the day.
+static void addClock(TextBuf& out, int64_t ms) {
+  int64_t msOfDay = ((ms % 86400000) + 86400000) % 86400000;
   int64_t s = msOfDay / 1000;
   out.addNumber(static_cast<uint64_t>(s / 3600), 2);
   out.add(":");
@@ -173,7 +177,7 @@ size_t formatDateAndTimeInto(char* buf, int64_t seconds) {
   out.add("DT#");
   addDate(out, seconds);
   out.add("-");
-  addClock(out, (((seconds % 86400) + 86400) % 86400) * 1000);
+  addClock(out, (seconds % 86400) * 1000);
   return out.n;
 }
 

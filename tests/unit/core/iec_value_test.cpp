@@ -284,5 +284,21 @@ TEST(ElemTypeInfo, SizesAndBitWidths) {
   EXPECT_FALSE(isInteger(ElemType::Time));
 }
 
+// The VM formats whatever bits a faulty program holds (regression: a TOD of -1 ms overran the
+// formatting buffer).
+TEST(FormatDates, AnyBitsStayWithinTheBuffer) {
+  EXPECT_EQ(formatTimeOfDay(-1), "TOD#23:59:59.999");
+  EXPECT_EQ(formatTimeOfDay(86400000 + 1500), "TOD#00:00:01.5");
+  for (int64_t v : {std::numeric_limits<int64_t>::min(), std::numeric_limits<int64_t>::max(), int64_t{-1}}) {
+    char buf[kIecTextMax];
+    EXPECT_LE(formatDateAndTimeInto(buf, v), kIecTextMax);
+    EXPECT_LE(formatDateInto(buf, v), kIecTextMax);
+    EXPECT_LE(formatTimeOfDayInto(buf, v), kIecTextMax);
+    EXPECT_LE(formatLtimeNsInto(buf, v), kIecTextMax);
+    EXPECT_LE(formatTimeMsInto(buf, v), kIecTextMax);
+  }
+  EXPECT_EQ(formatDate(-1), "D#1969-12-31");
+}
+
 }  // namespace
 }  // namespace virtcom

@@ -192,6 +192,8 @@ class PouCompiler {
   // The declared type of a bare name or THIS^/SUPER^ without generating code; kNoType otherwise.
   TypeId staticTypeOf(const Expr& object);
   TypeId staticMemberType(const Expr& member);  // staticTypeOf of `a.b`
+  // The types are equal, or both FBs and `actual` EXTENDS `wanted` (directly or further up).
+  bool sameOrDerivedFb(TypeId actual, TypeId wanted);
 
   // CODESYS operators (codegen_operators.cpp)
   struct InstanceOperand {

@@ -118,7 +118,9 @@ void PouCompiler::evaluateInputs(const std::vector<const VarInfo*>& params, std:
       auto target = place(*arg.value, true);
       if (!target) continue;
       TypeId wanted = p.byReference ? p.type : types()[p.type].element;
-      if (target->type != wanted && !(types().isString(target->type) && types().isString(wanted))) {
+      // A derived FB instance may be passed for its base, as CODESYS allows: its layout starts
+      // with the base's members, and methods dispatch on its class id.
+      if (!sameOrDerivedFb(target->type, wanted) && !(types().isString(target->type) && types().isString(wanted))) {
         diags().error(diag::E202, arg.loc, "'" + p.name + "' needs a " + describe(types(), wanted) +
                                                " variable, found " + describe(types(), target->type));
         continue;
@@ -289,6 +291,12 @@ static bool derivesFrom(const PouSym* c, const PouSym* base) {
   for (; c; c = c->base)
     if (c == base) return true;
   return false;
+}
+
+bool PouCompiler::sameOrDerivedFb(TypeId actual, TypeId wanted) {
+  if (actual == wanted) return true;
+  auto a = model().fbByType.find(actual), w = model().fbByType.find(wanted);
+  return a != model().fbByType.end() && w != model().fbByType.end() && derivesFrom(a->second, w->second);
 }
 
 // The depth limit guards against EXTENDS cycles, which the declarer reports but keeps.
@@ -545,7 +553,9 @@ bool PouCompiler::receiverOf(const Expr& object, Receiver& recv) {
     if (fb == model().fbByType.end()) return false;
     recv.thisReg = addressOf(*p);
     recv.staticClass = fb->second;
-    recv.exact = true;
+    // A REFERENCE TO or VAR_IN_OUT of an FB type may stand for a derived instance: dispatch on
+    // its class id. A variable, member or element holds exactly its declared FB.
+    recv.exact = !p->viaReference && !(p->var && p->var->byReference);
     return true;
   }
   if (object.kind == ExprKind::Deref) {

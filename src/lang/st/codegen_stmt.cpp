@@ -96,7 +96,7 @@ void PouCompiler::assignment(const Stmt& s) {
     }
     auto src = place(*s.rhs, false);
     if (!src) return;
-    if (src->type != target->type) {
+    if (!sameOrDerivedFb(src->type, target->type)) {
       diags().error(diag::E202, s.rhs->loc, "REF= binds a REFERENCE TO " + describe(types(), target->type) + " to a " +
                                                 describe(types(), src->type));
       return;

@@ -165,6 +165,7 @@ class PouCompiler {
   std::optional<Place> namePlace(const Expr& e, bool forWrite);
   std::optional<Place> memberPlace(const Expr& e, bool forWrite);
   std::optional<Place> indexPlace(const Expr& e, bool forWrite);
+  std::optional<Place> pointerIndexPlace(const Place& pointer, const Expr& index);
   std::optional<Place> derefPlace(const Expr& e);
   Place varPlace(const VarInfo& v, uint16_t instanceBase);
   Place referee(const Place& referenceSlot);

@@ -470,14 +470,9 @@ Value PouCompiler::coerce(Value v, TypeId to, SourceLocation loc) {
   }
   if ((t.isPointer(to) || t.isReference(to)) && (t.isPointer(v.type) || t.isReference(v.type))) {
     TypeId a = t[to].element, b = t[v.type].element;
-    auto derived = [&]() {
-      auto from = model().fbByType.find(b), base = model().fbByType.find(a);
-      if (from == model().fbByType.end() || base == model().fbByType.end()) return false;
-      for (const PouSym* c = from->second; c; c = c->base)
-        if (c == base->second) return true;
-      return false;
-    };
-    if (a == b || a == kNoType || b == kNoType || t.isElem(a, ElemType::Byte) || derived()) {
+    // ADR(buffer) for a POINTER TO its element type, as CODESYS code walks arrays (`p[i]`).
+    while (b != kNoType && t[b].kind == bc::TypeKind::Array && a != b) b = t[b].element;
+    if (a == kNoType || b == kNoType || t.isElem(a, ElemType::Byte) || sameOrDerivedFb(b, a)) {
       Value out = v;
       out.type = to;
       return out;

@@ -216,6 +216,8 @@ std::optional<Place> PouCompiler::indexPlace(const Expr& e, bool forWrite) {
   if (!basePlace) return std::nullopt;
   TypeId at = basePlace->type;
   const bc::TypeDesc& d = types()[at];
+  if (d.kind == bc::TypeKind::Pointer && d.element != kNoType && e.items.size() == 1)
+    return pointerIndexPlace(*basePlace, *e.items[0]);
   if (d.kind != bc::TypeKind::Array) {
     diags().error(diag::E213, e.loc, "only arrays can be indexed; this is " + describe(types(), at));
     return std::nullopt;
@@ -270,6 +272,26 @@ std::optional<Place> PouCompiler::indexPlace(const Expr& e, bool forWrite) {
     }
     p.base = addr;
   }
+  return p;
+}
+
+// `p[i]` on a POINTER TO T, as CODESYS allows: the T at p + i * SIZEOF(T). Not bounds-checked
+// (the pointer says nothing about how many Ts follow); an access outside the memory image is
+// an invalid pointer fault like any other.
+std::optional<Place> PouCompiler::pointerIndexPlace(const Place& pointer, const Expr& index) {
+  TypeId element = types()[pointer.type].element;
+  Value idx = expr(index, TypeTable::elem(ElemType::Dint));
+  if (!idx.ok()) return std::nullopt;
+  if (!types().isInteger(idx.type)) {
+    diags().error(diag::E213, index.loc, "a pointer index must be an integer, found " + describe(types(), idx.type));
+    return std::nullopt;
+  }
+  uint16_t offset = allocReg(), address = allocReg();
+  emit(Op::MUL, offset, toReg(idx), loadConstInt(types()[element].size));
+  emit(Op::ADD, address, load(pointer), offset);
+  Place p;
+  p.type = element;
+  p.base = address;
   return p;
 }
 

@@ -206,6 +206,7 @@ class PouCompiler {
   Value isValidRef(const Expr& e);
   Value queryInterface(const Expr& e);
   Value queryPointer(const Expr& e);
+  Value memoryFunction(const std::string& upperName, const Expr& e);
 
   struct Loop {
     std::vector<uint32_t> breaks;

@@ -11,7 +11,37 @@ std::optional<Value> PouCompiler::codesysOperator(const std::string& upperName, 
   if (upperName == "__ISVALIDREF") return isValidRef(e);
   if (upperName == "__QUERYINTERFACE") return queryInterface(e);
   if (upperName == "__QUERYPOINTER") return queryPointer(e);
+  // The memory functions of TwinCAT's Tc2_System and CODESYS's MemUtils, unless the program
+  // brings its own POU of that name.
+  if ((upperName == "MEMCPY" || upperName == "MEMMOVE" || upperName == "MEMSET" || upperName == "MEMCMP") &&
+      !model().pouByName.count(upperName))
+    return memoryFunction(upperName, e);
   return std::nullopt;
+}
+
+// MEMCPY/MEMMOVE(dest, src, n) and MEMSET(dest, byte, n) return dest (UDINT); MEMCMP(a, b, n)
+// returns -1, 0 or 1 (DINT). Addresses are POINTERs (ADR(x)) or integers of at least 32 bits.
+// A range outside the PLC's memory is an invalid pointer fault, never a write elsewhere.
+Value PouCompiler::memoryFunction(const std::string& name, const Expr& e) {
+  auto operands = operatorOperands(e, 3);
+  if (!operands) return Value::error();
+  const bool fill = name == "MEMSET";
+  std::vector<uint16_t> regs;
+  for (size_t i = 0; i < 3; ++i) {
+    const Expr& operand = *(*operands)[i];
+    Value v = expr(operand, TypeTable::elem(ElemType::Udint));
+    if (!v.ok()) return Value::error();
+    bool address = i == 0 || (i == 1 && !fill);
+    bool fits = types().isInteger(v.type) && (!address || v.kind == Value::Kind::Const || types().bits(v.type) >= 32);
+    if (!fits && !(address && types().isPointer(v.type))) {
+      diags().error(diag::E202, operand.loc, name + (address ? " needs an address (ADR(x), a POINTER or a UDINT/LWORD)"
+                                                            : " needs an integer") + ", found " + describe(types(), v.type));
+      return Value::error();
+    }
+    regs.push_back(types().isPointer(v.type) ? toReg(v) : toReg(convert(v, TypeTable::elem(ElemType::Lword), operand.loc)));
+  }
+  if (name == "MEMCMP") return callNative(bc::Native::MEM_CMP, regs, TypeTable::elem(ElemType::Dint));
+  return callNative(fill ? bc::Native::MEM_SET : bc::Native::MEM_COPY, regs, TypeTable::elem(ElemType::Udint));
 }
 
 // The operators take `count` positional operands; nullopt (with E203) otherwise.

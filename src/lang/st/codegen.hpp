@@ -165,6 +165,7 @@ class PouCompiler {
   std::optional<Place> namePlace(const Expr& e, bool forWrite);
   std::optional<Place> memberPlace(const Expr& e, bool forWrite);
   std::optional<Place> indexPlace(const Expr& e, bool forWrite);
+  std::optional<Place> valuePlace(const Value& v);
   std::optional<Place> pointerIndexPlace(const Place& pointer, const Expr& index);
   std::optional<Place> derefPlace(const Expr& e);
   Place varPlace(const VarInfo& v, uint16_t instanceBase);
@@ -193,6 +194,7 @@ class PouCompiler {
   // The declared type of a bare name or THIS^/SUPER^ without generating code; kNoType otherwise.
   TypeId staticTypeOf(const Expr& object);
   TypeId staticMemberType(const Expr& member);  // staticTypeOf of `a.b`
+  bool hasProperty(TypeId type, const std::string& upperName);  // an FB or interface type's
   // The types are equal, or both FBs and `actual` EXTENDS `wanted` (directly or further up).
   bool sameOrDerivedFb(TypeId actual, TypeId wanted);
 

@@ -570,18 +570,18 @@ bool PouCompiler::receiverOf(const Expr& object, Receiver& recv) {
   return false;
 }
 
+bool PouCompiler::hasProperty(TypeId type, const std::string& upperName) {
+  if (auto fb = model().fbByType.find(type); fb != model().fbByType.end()) return fb->second->properties.count(upperName);
+  if (auto itf = model().interfaceByType.find(type); itf != model().interfaceByType.end())
+    return itf->second->properties.count(upperName);
+  return false;
+}
+
 std::optional<Value> PouCompiler::memberProperty(const Expr& e) {
   // Quick structural check before generating any code for the object.
   const Expr& object = *e.lhs;
   std::string key = upper(e.text);
-  auto staticTypeHasProperty = [&](TypeId t) {
-    if (auto fb = model().fbByType.find(t); fb != model().fbByType.end()) return fb->second->properties.count(key) > 0;
-    if (auto itf = model().interfaceByType.find(t); itf != model().interfaceByType.end())
-      return itf->second->properties.count(key) > 0;
-    return false;
-  };
-  TypeId objectType = staticTypeOf(object);
-  if (objectType == kNoType || !staticTypeHasProperty(objectType)) return std::nullopt;
+  if (!hasProperty(staticTypeOf(object), key)) return std::nullopt;
   Receiver recv;
   if (!receiverOf(object, recv)) return std::nullopt;
   const PropertySym& prop = recv.viaInterface ? recv.viaInterface->properties[key] : recv.staticClass->properties[key];
@@ -601,12 +601,7 @@ bool PouCompiler::propertySet(const Expr& target, const Expr& valueExpr, SourceL
   } else if (target.kind == ExprKind::Member) {
     key = upper(target.text);
     const Expr& object = *target.lhs;
-    TypeId objectType = staticTypeOf(object);
-    bool isProp = false;
-    if (auto fb = model().fbByType.find(objectType); fb != model().fbByType.end()) isProp = fb->second->properties.count(key);
-    if (auto itf = model().interfaceByType.find(objectType); itf != model().interfaceByType.end())
-      isProp = itf->second->properties.count(key);
-    if (!isProp || !receiverOf(object, recv)) return false;
+    if (!hasProperty(staticTypeOf(object), key) || !receiverOf(object, recv)) return false;
   } else {
     return false;
   }

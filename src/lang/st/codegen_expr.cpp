@@ -139,6 +139,14 @@ static const VarInfo* findMember(PouSym* fb, const std::string& key) {
 std::optional<Place> PouCompiler::memberPlace(const Expr& e, bool forWrite) {
   const Expr& lhs = *e.lhs;
   std::string key = upper(e.text);
+  // A property read where a place is needed (`r.Pos.x`, `r.Flags.3`); written only whole.
+  if (!forWrite) {
+    if (auto prop = memberProperty(e)) return valuePlace(*prop);
+  } else if (hasProperty(staticTypeOf(lhs), key)) {
+    diags().error(diag::E209, e.loc, "'" + e.text + "' is a PROPERTY: a part of its value cannot be written; "
+                                     "read it, change the copy and assign the whole value");
+    return std::nullopt;
+  }
   if (lhs.kind == ExprKind::Name) {
     std::string base = upper(lhs.text);
     PouSym* owner = instanceOwner(pou_);
@@ -333,6 +341,16 @@ std::optional<Place> PouCompiler::derefPlace(const Expr& e) {
   return p;
 }
 
+// A value read where a place is needed: aggregates already are in memory, a value in a
+// register goes to a temporary.
+std::optional<Place> PouCompiler::valuePlace(const Value& v) {
+  if (!v.ok() || v.kind == Value::Kind::Void) return std::nullopt;
+  if (v.kind == Value::Kind::Addr) return v.place;
+  Place tmp = frameTemp(v.type);
+  store(tmp, toReg(v));
+  return tmp;
+}
+
 std::optional<Place> PouCompiler::place(const Expr& e, bool forWrite) {
   switch (e.kind) {
     case ExprKind::Name: {
@@ -375,6 +393,9 @@ std::optional<Place> PouCompiler::place(const Expr& e, bool forWrite) {
       p.type = TypeTable::elem(a->bit >= 0 ? ElemType::Bool : a->size == 1 ? ElemType::Byte : a->size == 2 ? ElemType::Word : a->size == 4 ? ElemType::Dword : ElemType::Lword);
       return p;
     }
+    case ExprKind::Call:  // `GetPos().y`, `F().3`: the result, read only
+      if (!forWrite) return valuePlace(expr(e));
+      [[fallthrough]];
     default:
       diags().error(diag::E209, e.loc, "this expression does not denote a variable");
       return std::nullopt;

@@ -108,6 +108,16 @@ bool PouCompiler::bindArgs(const Expr& call, const std::vector<const VarInfo*>& 
   return ok;
 }
 
+static bool denotesVariable(const Expr& e) {
+  switch (e.kind) {
+    case ExprKind::Name: case ExprKind::Member: case ExprKind::Index: case ExprKind::Deref:
+    case ExprKind::BitAccess: case ExprKind::DirectAddr:
+      return true;
+    default:
+      return false;
+  }
+}
+
 void PouCompiler::evaluateInputs(const std::vector<const VarInfo*>& params, std::vector<Binding>& bindings) {
   for (auto& b : bindings) {
     const VarInfo& p = *params[b.param];
@@ -115,9 +125,18 @@ void PouCompiler::evaluateInputs(const std::vector<const VarInfo*>& params, std:
     if (p.section == VarSection::Output) continue;
     if (!arg.value) continue;
     if (passesAddress(p)) {
-      auto target = place(*arg.value, true);
-      if (!target) continue;
       TypeId wanted = p.byReference ? p.type : types()[p.type].element;
+      // VAR_IN_OUT CONSTANT (CODESYS) is never written: it also takes constants, literals and
+      // expressions, passed as the address of a temporary copy.
+      const bool readOnly = p.byReference && p.constant;
+      if (readOnly && !denotesVariable(*arg.value)) {
+        Place copy = frameTemp(wanted);
+        assignValue(copy, expr(*arg.value, wanted), arg.loc);
+        b.address = addressOf(copy);
+        continue;
+      }
+      auto target = place(*arg.value, !readOnly);
+      if (!target) continue;
       // A derived FB instance may be passed for its base, as CODESYS allows: its layout starts
       // with the base's members, and methods dispatch on its class id.
       if (!sameOrDerivedFb(target->type, wanted) && !(types().isString(target->type) && types().isString(wanted))) {
@@ -125,7 +144,7 @@ void PouCompiler::evaluateInputs(const std::vector<const VarInfo*>& params, std:
                                                " variable, found " + describe(types(), target->type));
         continue;
       }
-      if (target->constant) {
+      if (target->constant && !readOnly) {
         diags().error(diag::E204, arg.loc, "the CONSTANT '" + (target->var ? target->var->name : std::string("value")) +
                                                "' cannot be passed to '" + p.name + "', which may write it");
         continue;

@@ -6,13 +6,12 @@
 
 #include "lang/plcopen/diagnostic_codes.hpp"
 #include "lang/plcopen/xml_file.hpp"
+#include "lang/st/lexer.hpp"
 #include "lang/st/parser.hpp"
 
 namespace virtcom::plcopen {
 
 namespace {
-
-bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
 
 // The ST text of a TwinCAT file, laid out so that every character of every CDATA section stays
 // at its byte offset in the XML file (the markup in between becomes spaces, its line breaks
@@ -94,34 +93,13 @@ class StLayout {
   std::vector<Item> items_;
 };
 
-// The first word of a declaration, upper-cased, after comments, pragmas and blanks.
-std::string firstWord(std::string_view text) {
-  size_t i = 0;
-  while (i < text.size()) {
-    if (isBlank(text[i])) {
-      ++i;
-    } else if (text.compare(i, 2, "//") == 0) {
-      i = text.find('\n', i);
-    } else if (text.compare(i, 2, "(*") == 0 || text.compare(i, 2, "/*") == 0) {
-      // IEC comments nest (docs/st-dialect.md); so do these.
-      std::string_view open = text.substr(i, 2), close = open == "(*" ? "*)" : "*/";
-      int depth = 0;
-      do {
-        if (text.compare(i, 2, open) == 0) ++depth, i += 2;
-        else if (text.compare(i, 2, close) == 0) --depth, i += 2;
-        else ++i;
-      } while (depth > 0 && i < text.size());
-    } else if (text[i] == '{') {
-      i = text.find('}', i);
-      if (i != std::string_view::npos) ++i;
-    } else {
-      break;
-    }
-  }
-  std::string word;
-  for (; i < text.size() && (std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '_'); ++i)
-    word += static_cast<char>(std::toupper(static_cast<unsigned char>(text[i])));
-  return word;
+// The keyword a declaration starts with (after comments and pragmas), as the ST lexer reads
+// it; its diagnostics are dropped here because the ST parser reports them again.
+st::Tok firstKeyword(std::string_view declaration) {
+  Diagnostics ignored;
+  for (const st::Token& t : st::lex(0, declaration, ignored))
+    if (t.kind != st::Tok::Pragma) return t.kind;
+  return st::Tok::Eof;
 }
 
 // `POU 'MAIN'`, `Method 'Reset'`: TwinCAT names elements with a capitalised Name attribute.
@@ -188,8 +166,15 @@ class TwinCatReader {
   }
 
   void pou(pugi::xml_node object) {
-    std::string word = firstWord(sectionText(child(object, "Declaration")));
-    if (word != "PROGRAM" && word != "FUNCTION_BLOCK" && word != "FUNCTION" && word != "INTERFACE") {
+    const char* end = nullptr;
+    switch (firstKeyword(sectionText(child(object, "Declaration")))) {
+      case st::Tok::KwProgram: end = "END_PROGRAM"; break;
+      case st::Tok::KwFunctionBlock: end = "END_FUNCTION_BLOCK"; break;
+      case st::Tok::KwFunction: end = "END_FUNCTION"; break;
+      case st::Tok::KwInterface: end = "END_INTERFACE"; break;
+      default: break;
+    }
+    if (!end) {
       diags_.error(diag::X003, file_.at(object), named(object) +
                                                      ": the declaration must start with PROGRAM, FUNCTION_BLOCK, "
                                                      "FUNCTION or INTERFACE");
@@ -205,7 +190,7 @@ class TwinCatReader {
       else if (kind == "Transition")
         diags_.error(diag::X004, file_.at(member), named(member) + ": SFC transitions of TwinCAT files are not read");
     }
-    layout_.keyword("END_" + word);
+    layout_.keyword(end);
   }
 
   void method(pugi::xml_node member) {

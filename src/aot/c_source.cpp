@@ -70,20 +70,14 @@ static inline uint64_t sext(uint64_t v, unsigned bits) {
   return bits == 0 ? 0 : bits >= 64 ? v : (uint64_t)((int64_t)(v << (64 - bits)) >> (64 - bits));
 }
 static inline uint64_t zext(uint64_t v, unsigned bits) { return bits >= 64 ? v : v & ((1ull << bits) - 1); }
-static inline int64_t rtoi(double f) {
-  if (f != f) return 0;
-  const double r = __builtin_round(f);
+static inline int64_t sati(double r) {
+  if (r != r) return 0;
   if (r >= 9223372036854775808.0) return INT64_MAX;
   if (r < -9223372036854775808.0) return INT64_MIN;
   return (int64_t)r;
 }
-static inline int64_t ttoi(double f) {
-  if (f != f) return 0;
-  const double r = __builtin_trunc(f);
-  if (r >= 9223372036854775808.0) return INT64_MAX;
-  if (r < -9223372036854775808.0) return INT64_MIN;
-  return (int64_t)r;
-}
+static inline int64_t rtoi(double f) { return sati(__builtin_round(f)); }
+static inline int64_t ttoi(double f) { return sati(__builtin_trunc(f)); }
 static inline uint64_t rtou(double f) {
   if (f != f) return 0;
   const double r = __builtin_round(f);

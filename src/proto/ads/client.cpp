@@ -119,14 +119,7 @@ std::expected<std::span<const uint8_t>, ClientError> Client::read(uint32_t index
   w.u32(length);
   auto reply = transact(Command::Read);
   if (!reply) return std::unexpected(reply.error());
-  LittleEndianReader r(*reply);
-  auto result = r.u32();
-  auto size = r.u32();
-  if (!result || !size) return std::unexpected(lost("a Read reply shorter than 8 bytes"));
-  if (*result != 0) return std::unexpected(ClientError{false, *result, adsErrorText(*result)});
-  auto data = r.bytes(*size);
-  if (!data || *size > length) return std::unexpected(lost("a Read reply whose length disagrees with its data"));
-  return *data;
+  return dataReply(*reply, length, "Read");
 }
 
 std::expected<void, ClientError> Client::write(uint32_t indexGroup, uint32_t indexOffset, std::span<const uint8_t> data) {
@@ -155,14 +148,20 @@ std::expected<std::span<const uint8_t>, ClientError> Client::readWrite(uint32_t 
   w.bytes(data);
   auto reply = transact(Command::ReadWrite);
   if (!reply) return std::unexpected(reply.error());
-  LittleEndianReader r(*reply);
+  return dataReply(*reply, readLength, "ReadWrite");
+}
+
+// A Read or ReadWrite reply: result, length, then at most `maxLength` bytes of data.
+std::expected<std::span<const uint8_t>, ClientError> Client::dataReply(std::span<const uint8_t> reply, uint32_t maxLength,
+                                                                       const char* command) {
+  LittleEndianReader r(reply);
   auto result = r.u32();
   auto size = r.u32();
-  if (!result || !size) return std::unexpected(lost("a ReadWrite reply shorter than 8 bytes"));
+  if (!result || !size) return std::unexpected(lost(std::string("a ") + command + " reply shorter than 8 bytes"));
   if (*result != 0) return std::unexpected(ClientError{false, *result, adsErrorText(*result)});
-  auto out = r.bytes(*size);
-  if (!out || *size > readLength) return std::unexpected(lost("a ReadWrite reply whose length disagrees with its data"));
-  return *out;
+  auto data = r.bytes(*size);
+  if (!data || *size > maxLength) return std::unexpected(lost(std::string("a ") + command + " reply whose length disagrees with its data"));
+  return *data;
 }
 
 std::expected<void, ClientError> Client::sendAll(int64_t deadlineNs) {

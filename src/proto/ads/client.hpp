@@ -69,6 +69,8 @@ class Client {
   // Sends the request whose ADS data is in tx_ after the header space; waits for its reply.
   // The reply's ADS data are rx_[kFrameHeaderSize, replySize_).
   std::expected<std::span<const uint8_t>, ClientError> transact(Command command);
+  std::expected<std::span<const uint8_t>, ClientError> dataReply(std::span<const uint8_t> reply, uint32_t maxLength,
+                                                                 const char* command);
   std::expected<void, ClientError> sendAll(int64_t deadlineNs);
   std::expected<void, ClientError> receiveFrame(int64_t deadlineNs);
   ClientError lost(std::string what);

@@ -76,6 +76,15 @@ std::unique_ptr<ClientBridge> ClientBridge::start(BridgeConfig config, TagBus& b
   return b;
 }
 
+// The {IG, IO, length} header of a sum read or write (ADS section 3.5) for each slot, by handle.
+void ClientBridge::writeSumHeaders(LittleEndianWriter& w, const std::vector<size_t>& slots) const {
+  for (size_t i : slots) {
+    w.u32(kIgValueByHandle);
+    w.u32(slots_[i].handle);
+    w.u32(slots_[i].size);
+  }
+}
+
 bool ClientBridge::resolve(TagBus& bus, bool addTags, std::vector<Problem>& problems) {
   const size_t before = problems.size();
   reads_.clear();
@@ -174,11 +183,7 @@ bool ClientBridge::resolve(TagBus& bus, bool addTags, std::vector<Problem>& prob
   image_.assign(imageBytes, 0);
   readRequest_.clear();
   LittleEndianWriter w(readRequest_);
-  for (size_t i : reads_) {
-    w.u32(kIgValueByHandle);
-    w.u32(slots_[i].handle);
-    w.u32(slots_[i].size);
-  }
+  writeSumHeaders(w, reads_);
   writeRequest_.reserve(12 * writes_.size() + writeBytes);
   changed_.reserve(writes_.size());
   client_.reserve(16 + std::max(readRequest_.size(), writeRequest_.capacity()), 8 + 4 * reads_.size() + readBytes + 4 * writes_.size());
@@ -264,11 +269,7 @@ void ClientBridge::push(const TagBus& bus, int64_t) {
     // Sum write (section 3.5): n x {IG, IO, length}, then all the data; reply: n results.
     writeRequest_.clear();
     LittleEndianWriter w(writeRequest_);
-    for (size_t i : changed_) {
-      w.u32(kIgValueByHandle);
-      w.u32(slots_[i].handle);
-      w.u32(slots_[i].size);
-    }
+    writeSumHeaders(w, changed_);
     for (size_t i : changed_) w.bytes({image_.data() + slots_[i].offset, slots_[i].size});
     const uint32_t n = static_cast<uint32_t>(changed_.size());
     auto reply = client_.readWrite(kIgSumWrite, n, 4 * n, writeRequest_);

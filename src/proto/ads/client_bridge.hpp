@@ -23,6 +23,7 @@
 
 #include "core/bus_bridge.hpp"
 #include "core/iec_value.hpp"
+#include "proto/ads/byte_io.hpp"
 #include "proto/ads/client.hpp"
 
 namespace virtcom::proto::ads {
@@ -96,6 +97,7 @@ class ClientBridge final : public BusBridge {
   bool reconnect(TagBus& bus);
   void lose(const std::string& what);
   void fail(const std::string& what);
+  void writeSumHeaders(LittleEndianWriter& w, const std::vector<size_t>& slots) const;
 
   BridgeConfig config_;
   Client client_;

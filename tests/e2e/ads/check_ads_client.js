@@ -5,21 +5,12 @@
 'use strict';
 const assert = require('node:assert/strict');
 const { Client } = require('ads-client');
+const { clientSettings, sleep, eventually: poll } = require('./support');
 
 const port = Number(process.argv[2]);
-const settings = { targetAmsNetId: '127.0.0.1.1.1', targetAdsPort: 851, routerAddress: '127.0.0.1', routerTcpPort: port };
-const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
-
-// Polls `read` until `accept` holds (the PLC takes a write at its next scan), at most 3 s.
-async function eventually(read, accept, what) {
-  let last;
-  for (let i = 0; i < 150; ++i) {
-    last = await read();
-    if (accept(last)) return last;
-    await sleep(20);
-  }
-  assert.fail(`${what}: last value ${JSON.stringify(last)}`);
-}
+const settings = clientSettings(port);
+// at most 3 s: the PLC takes a write at its next scan
+const eventually = (read, accept, what) => poll(read, accept, what, 3000);
 
 async function expectAdsError(promise, code, what) {
   try {

@@ -36,14 +36,7 @@ aot::CompileOptions testOptions() {
 // user of that register-stack slot left there, which the AOT code does not promise to match
 // (src/aot/README.md).
 bc::Module randomModule(std::mt19937& rng, uint32_t count) {
-  test::ModuleBuilder b(256);
-  b.m.stackSize = 512;
-  b.m.maxCallDepth = 8;
-  b.m.registerStackSize = 64;
-  for (int k = 0; k < 3; ++k) b.constant(std::uniform_int_distribution<uint64_t>()(rng) % 600);
-  for (int k = 0; k < 3; ++k)
-    b.m.indexes.push_back({static_cast<int64_t>(rng() % 600) - 300, 1 + rng() % 300, rng() % 9});
-  for (size_t i = 16; i < b.m.initialImage.size(); ++i) b.m.initialImage[i] = static_cast<uint8_t>(rng() % 4 ? rng() : 0);
+  test::ModuleBuilder b = test::randomModuleTables(rng);
   while (b.m.pous.size() < count) {
     const bc::Module before = b.m;
     const auto regs = static_cast<uint16_t>(2 + rng() % 10);

@@ -19,14 +19,7 @@ TEST(RandomBytecode, VerifiedModulesRunSafely) {
   std::mt19937 rng(20240611);
   int verified = 0, completed = 0;
   for (int round = 0; round < 20000; ++round) {
-    test::ModuleBuilder b(256);
-    b.m.stackSize = 512;
-    b.m.maxCallDepth = 8;
-    b.m.registerStackSize = 64;
-    for (int k = 0; k < 3; ++k) b.constant(std::uniform_int_distribution<uint64_t>()(rng) % 600);
-    for (int k = 0; k < 3; ++k)
-      b.m.indexes.push_back({static_cast<int64_t>(rng() % 600) - 300, 1 + rng() % 300, rng() % 9});
-    for (size_t i = 16; i < b.m.initialImage.size(); ++i) b.m.initialImage[i] = static_cast<uint8_t>(rng() % 4 ? rng() : 0);
+    test::ModuleBuilder b = test::randomModuleTables(rng);
     for (int p = 0; p < 3; ++p) {
       const auto regs = static_cast<uint16_t>(2 + rng() % 10);
       const uint32_t size = 2 + rng() % 12;

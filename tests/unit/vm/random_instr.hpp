@@ -4,6 +4,7 @@
 
 #include "bytecode/instruction.hpp"
 #include "bytecode/verifier.hpp"
+#include "test_module_builder.hpp"
 
 namespace virtcom::test {
 
@@ -46,6 +47,20 @@ inline bc::Instr randomInstr(std::mt19937& rng, uint16_t numRegs, uint32_t pc, u
     default: bx = pick(0, 3) == 0 ? pick(0, 0xffffffffu) : pick(0, 300); break;
   }
   return bc::Instr::abx(op, reg(), bx);
+}
+
+// A module without POUs for random code: small stacks, the 3 constants and 3 index descriptors
+// randomInstr() refers to, and static memory above the null guard filled with random bytes.
+inline ModuleBuilder randomModuleTables(std::mt19937& rng) {
+  ModuleBuilder b(256);
+  b.m.stackSize = 512;
+  b.m.maxCallDepth = 8;
+  b.m.registerStackSize = 64;
+  for (int k = 0; k < 3; ++k) b.constant(std::uniform_int_distribution<uint64_t>()(rng) % 600);
+  for (int k = 0; k < 3; ++k)
+    b.m.indexes.push_back({static_cast<int64_t>(rng() % 600) - 300, 1 + rng() % 300, rng() % 9});
+  for (size_t i = 16; i < b.m.initialImage.size(); ++i) b.m.initialImage[i] = static_cast<uint8_t>(rng() % 4 ? rng() : 0);
+  return b;
 }
 
 }  // namespace virtcom::test

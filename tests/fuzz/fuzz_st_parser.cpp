@@ -6,8 +6,8 @@
 
 #include "core/diagnostics.hpp"
 #include "core/source.hpp"
-#include "lang/st/lexer.hpp"
-#include "lang/st/parser.hpp"
+#include "lang/st/parse/lexer.hpp"
+#include "lang/st/parse/parser.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string text(reinterpret_cast<const char*>(data), size);

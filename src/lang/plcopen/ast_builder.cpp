@@ -1,6 +1,6 @@
 #include "lang/plcopen/ast_builder.hpp"
 
-#include "lang/st/ast_clone.hpp"
+#include "lang/syntax/ast_clone.hpp"
 
 namespace virtcom::plcopen {
 

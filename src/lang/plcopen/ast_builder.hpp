@@ -3,7 +3,7 @@
 // the XML file, so the checker and code generator treat them exactly like parsed ST.
 #include <string>
 
-#include "lang/st/ast.hpp"
+#include "lang/syntax/ast.hpp"
 
 namespace virtcom::plcopen {
 

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "lang/plcopen/export_internal.hpp"
-#include "lang/st/printer.hpp"
-#include "lang/st/program_model.hpp"
+#include "lang/syntax/printer.hpp"
+#include "lang/st/declare/program_model.hpp"
 
 namespace virtcom::plcopen::detail {
 

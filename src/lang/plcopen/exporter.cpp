@@ -8,7 +8,7 @@
 #include "core/iec_value.hpp"
 #include "lang/plcopen/diagnostic_codes.hpp"
 #include "lang/plcopen/export_internal.hpp"
-#include "lang/st/printer.hpp"
+#include "lang/syntax/printer.hpp"
 
 namespace virtcom::plcopen {
 

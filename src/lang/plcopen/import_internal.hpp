@@ -8,7 +8,7 @@
 #include "core/diagnostics.hpp"
 #include "lang/plcopen/ast_builder.hpp"
 #include "lang/plcopen/xml_file.hpp"
-#include "lang/st/ast.hpp"
+#include "lang/syntax/ast.hpp"
 
 namespace virtcom::plcopen::detail {
 

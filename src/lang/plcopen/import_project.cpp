@@ -6,7 +6,7 @@
 #include "lang/plcopen/import_internal.hpp"
 #include "lang/plcopen/importer.hpp"
 #include "lang/plcopen/twincat_file.hpp"
-#include "lang/st/parser.hpp"
+#include "lang/st/parse/parser.hpp"
 
 namespace virtcom::plcopen {
 

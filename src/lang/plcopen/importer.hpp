@@ -7,7 +7,7 @@
 #include <string_view>
 
 #include "core/diagnostics.hpp"
-#include "lang/st/ast.hpp"
+#include "lang/syntax/ast.hpp"
 #include "lang/st/compiler.hpp"
 
 namespace virtcom::plcopen {

@@ -6,8 +6,8 @@
 
 #include "lang/plcopen/diagnostic_codes.hpp"
 #include "lang/plcopen/xml_file.hpp"
-#include "lang/st/lexer.hpp"
-#include "lang/st/parser.hpp"
+#include "lang/st/parse/lexer.hpp"
+#include "lang/st/parse/parser.hpp"
 
 namespace virtcom::plcopen {
 

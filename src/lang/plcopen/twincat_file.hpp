@@ -8,7 +8,7 @@
 #include <string_view>
 
 #include "core/diagnostics.hpp"
-#include "lang/st/ast.hpp"
+#include "lang/syntax/ast.hpp"
 
 namespace virtcom::plcopen {
 

@@ -4,7 +4,7 @@
 // element it came from.
 #include <string_view>
 
-#include "lang/st/ast.hpp"
+#include "lang/syntax/ast.hpp"
 
 namespace virtcom::sfc::detail {
 

@@ -5,7 +5,7 @@
 #include <map>
 #include <set>
 
-#include "lang/st/diagnostic_codes.hpp"
+#include "lang/syntax/diagnostic_codes.hpp"
 
 namespace virtcom::sfc::detail {
 

@@ -6,7 +6,7 @@
 
 #include "lang/sfc/ast_builder.hpp"
 #include "lang/sfc/chart_check.hpp"
-#include "lang/st/ast_clone.hpp"
+#include "lang/syntax/ast_clone.hpp"
 
 namespace virtcom::sfc {
 

@@ -4,7 +4,7 @@
 
 #include "core/diagnostics.hpp"
 #include "lang/sfc/sfc_model.hpp"
-#include "lang/st/ast.hpp"
+#include "lang/syntax/ast.hpp"
 
 namespace virtcom::sfc {
 

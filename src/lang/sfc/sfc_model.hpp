@@ -24,14 +24,14 @@
 // variables and statements appended to the POU, so type checking, code generation, the VM,
 // traces and protocol servers see plain variables.
 //
-// Dependencies: core and the ST syntax tree (lang/st/ast.hpp, header only); nothing else.
+// Dependencies: core and the ST syntax tree (lang/syntax/ast.hpp, header only); nothing else.
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/source.hpp"
-#include "lang/st/ast.hpp"
+#include "lang/syntax/ast.hpp"
 
 namespace virtcom::sfc {
 

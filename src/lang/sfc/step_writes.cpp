@@ -5,7 +5,7 @@
 #include <set>
 
 #include "lang/sfc/chart_check.hpp"
-#include "lang/st/diagnostic_codes.hpp"
+#include "lang/syntax/diagnostic_codes.hpp"
 
 namespace virtcom::sfc::detail {
 

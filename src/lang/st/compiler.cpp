@@ -4,10 +4,10 @@
 #include <functional>
 
 #include "bytecode/verifier.hpp"
-#include "lang/st/codegen.hpp"
-#include "lang/st/diagnostic_codes.hpp"
-#include "lang/st/init_program.hpp"
-#include "lang/st/parser.hpp"
+#include "lang/st/codegen/codegen.hpp"
+#include "lang/syntax/diagnostic_codes.hpp"
+#include "lang/st/codegen/init_program.hpp"
+#include "lang/st/parse/parser.hpp"
 #include "lang/st/prelude.hpp"
 
 namespace virtcom::st {

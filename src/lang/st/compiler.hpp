@@ -9,7 +9,7 @@
 #include "bytecode/module.hpp"
 #include "core/diagnostics.hpp"
 #include "core/source.hpp"
-#include "lang/st/ast.hpp"
+#include "lang/syntax/ast.hpp"
 
 namespace virtcom::st {
 

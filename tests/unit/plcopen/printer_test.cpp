@@ -1,7 +1,7 @@
-// The ST printer (lang/st/printer.hpp) that export relies on: printing a parsed body and parsing
+// The ST printer (lang/syntax/printer.hpp) that export relies on: printing a parsed body and parsing
 // the text again gives the same text, for every POU body of the ST golden tests.
-#include "lang/st/parser.hpp"
-#include "lang/st/printer.hpp"
+#include "lang/st/parse/parser.hpp"
+#include "lang/syntax/printer.hpp"
 #include "plcopen_fixture.hpp"
 
 namespace virtcom::plcopen::testing {

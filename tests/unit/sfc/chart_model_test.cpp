@@ -6,7 +6,7 @@
 #include "lang/sfc/lower.hpp"
 #include "lang/sfc/step_monitor.hpp"
 #include "lang/st/compiler.hpp"
-#include "lang/st/parser.hpp"
+#include "lang/st/parse/parser.hpp"
 #include "plc/runtime.hpp"
 
 namespace virtcom::sfc {

@@ -1,4 +1,4 @@
-// Keeps docs/diagnostics.md in sync with src/lang/st/diagnostic_codes.def: every ST code needs a
+// Keeps docs/diagnostics.md in sync with src/lang/syntax/diagnostic_codes.def: every ST code needs a
 // section `### CODE title` (with the title of the .def), saying what triggers it and how to fix
 // it, and the page documents no E/W code that does not exist.
 #include <gtest/gtest.h>
@@ -19,7 +19,7 @@ struct CodeTitle {
 
 constexpr CodeTitle kCodes[] = {
 #define X(code, title) {#code, title},
-#include "lang/st/diagnostic_codes.def"
+#include "lang/syntax/diagnostic_codes.def"
 #undef X
 };
 
@@ -71,7 +71,7 @@ TEST(DiagnosticsDoc, EveryCodeHasASection) {
   std::string list;
   for (const auto& m : missing) list += "\n  " + m;
   EXPECT_TRUE(missing.empty()) << "docs/diagnostics.md has no `### CODE title` section for these codes of "
-                                  "src/lang/st/diagnostic_codes.def:"
+                                  "src/lang/syntax/diagnostic_codes.def:"
                                << list;
 }
 
@@ -107,7 +107,7 @@ TEST(DiagnosticsDoc, DocumentsNoUnknownStCode) {
     bool known = false;
     for (const CodeTitle& c : kCodes) known = known || c.code == code;
     EXPECT_TRUE(known) << "docs/diagnostics.md documents " << code
-                       << ", which is not in src/lang/st/diagnostic_codes.def";
+                       << ", which is not in src/lang/syntax/diagnostic_codes.def";
   }
 }
 

@@ -1,4 +1,4 @@
-#include "lang/st/lexer.hpp"
+#include "lang/st/parse/lexer.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/iec_value.hpp"
-#include "lang/st/diagnostic_codes.hpp"
+#include "lang/syntax/diagnostic_codes.hpp"
 
 namespace virtcom::st {
 namespace {

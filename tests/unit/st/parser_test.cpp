@@ -1,4 +1,4 @@
-#include "lang/st/parser.hpp"
+#include "lang/st/parse/parser.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,340 @@
+// Code generation: statements and the body of one POU.
+#include <algorithm>
+
+#include "lang/st/codegen/codegen.hpp"
+#include "lang/syntax/diagnostic_codes.hpp"
+#include "lang/st/codegen/init_program.hpp"
+
+namespace virtcom::st {
+
+using bc::Op;
+
+void PouCompiler::compile() {
+  codeStart_ = here();
+  tempTop_ = 0;
+  tempMax_ = 0;
+  if (pou_.ast->hasBody || !pou_.ast->body.empty()) {
+    const StmtList frameInits = buildFrameInitCalls(model(), types(), pou_);
+    statements(frameInits);
+    statements(pou_.ast->body);
+  }
+  uint32_t end = here();
+  for (uint32_t r : returns_) patchJump(r, end);
+  emit(Op::RET, 0, 0, 0);
+  bc::PouInfo& info = ctx_.module.pous[pou_.bcIndex];
+  info.codeStart = codeStart_;
+  info.codeSize = here() - codeStart_;
+  info.numRegs = maxReg_;
+  pou_.frameSize = (pou_.frameSize + tempMax_ + 7) / 8 * 8;
+  info.frameSize = pou_.frameSize;
+}
+
+void PouCompiler::statements(const StmtList& list) {
+  for (const auto& s : list) statement(*s);
+}
+
+void PouCompiler::statement(const Stmt& s) {
+  uint16_t mark = regMark();
+  uint32_t tempMark = tempTop_;
+  if (s.kind != StmtKind::Empty) ctx_.module.lines.push_back({here(), s.loc});
+  switch (s.kind) {
+    case StmtKind::Assign:
+    case StmtKind::SetAssign:
+    case StmtKind::ResetAssign:
+    case StmtKind::RefAssign: assignment(s); break;
+    case StmtKind::Call: {
+      if (s.expr && s.expr->kind == ExprKind::Call) {
+        (void)call(*s.expr, kNoType);
+      } else if (s.expr) {
+        diags().error(diag::E206, s.loc, "this expression is not a statement; did you mean ':=' or a call?");
+      }
+      break;
+    }
+    case StmtKind::If: ifStatement(s); break;
+    case StmtKind::Case: caseStatement(s); break;
+    case StmtKind::For: forStatement(s); break;
+    case StmtKind::While: whileStatement(s); break;
+    case StmtKind::Repeat: repeatStatement(s); break;
+    case StmtKind::Exit:
+    case StmtKind::Continue: jumpOut(s); break;
+    case StmtKind::Return: returns_.push_back(emitJump(Op::JMP, 0)); break;
+    case StmtKind::Empty: break;
+  }
+  freeRegs(mark);
+  tempTop_ = tempMark;
+}
+
+static bool isInsideOwnPou(const Place& p, const PouSym& pou) {
+  if (!p.var) return false;
+  for (const auto& l : pou.locals)
+    if (&l == p.var) return true;
+  const PouSym* owner = pou.kind == PouKind::FunctionBlock || pou.kind == PouKind::Program ? &pou : pou.owner;
+  if (owner)
+    for (const auto& m : owner->members)
+      if (&m == p.var) return true;
+  return false;
+}
+
+void PouCompiler::assignment(const Stmt& s) {
+  if (s.kind == StmtKind::Assign && propertySet(*s.lhs, *s.rhs, s.loc)) return;
+  auto target = place(*s.lhs, true);
+  if (!target) {
+    (void)expr(*s.rhs);  // still report errors on the right-hand side
+    return;
+  }
+  if (target->constant) {
+    diags().error(diag::E204, s.lhs->loc, "'" + (target->var ? target->var->name : std::string("value")) +
+                                              "' is a CONSTANT and cannot be assigned");
+    return;
+  }
+  if (target->isInput && isInsideOwnPou(*target, pou_) && pou_.kind == PouKind::FunctionBlock)
+    diags().warning(diag::W304, s.lhs->loc, "writing the input '" + target->var->name + "' inside its own FUNCTION_BLOCK; the next call overwrites it");
+  if (s.kind == StmtKind::RefAssign) {
+    if (!target->viaReference) {
+      diags().error(diag::E209, s.lhs->loc, "REF= needs a REFERENCE TO variable on the left");
+      return;
+    }
+    auto src = place(*s.rhs, false);
+    if (!src) return;
+    if (!sameOrDerivedFb(src->type, target->type)) {
+      diags().error(diag::E202, s.rhs->loc, "REF= binds a REFERENCE TO " + describe(types(), target->type) + " to a " +
+                                                describe(types(), src->type));
+      return;
+    }
+    // the reference slot itself (not the referee)
+    Place refSlot;
+    refSlot.type = TypeTable::elem(ElemType::Lword);
+    refSlot.base = target->referenceBase;
+    refSlot.offset = target->referenceOffset;
+    store(refSlot, addressOf(*src));
+    return;
+  }
+  if (s.kind == StmtKind::SetAssign || s.kind == StmtKind::ResetAssign) {
+    uint16_t c = condition(*s.rhs);
+    uint32_t skip = emitJump(Op::JZ, c);
+    Value bit = constInt(TypeTable::elem(ElemType::Bool), s.kind == StmtKind::SetAssign ? 1 : 0);
+    if (!storeConst(*target, bit)) store(*target, toReg(bit));
+    patchJump(skip, here());
+    return;
+  }
+  assign(*target, *s.rhs, s.rhs->loc);
+}
+
+uint16_t PouCompiler::condition(const Expr& e) {
+  Value v = expr(e, TypeTable::elem(ElemType::Bool));
+  if (!v.ok()) return allocReg();
+  if (!types().isBool(v.type)) {
+    diags().error(diag::E202, e.loc, "a condition must be BOOL, found " + describe(types(), v.type));
+    return allocReg();
+  }
+  return toReg(v);
+}
+
+void PouCompiler::ifStatement(const Stmt& s) {
+  std::vector<uint32_t> toEnd;
+  for (const auto& branch : s.branches) {
+    uint16_t mark = regMark();
+    uint16_t c = condition(*branch.cond);
+    uint32_t skip = emitJump(Op::JZ, c);
+    freeRegs(mark);
+    statements(branch.body);
+    if (&branch != &s.branches.back() || s.hasElse) toEnd.push_back(emitJump(Op::JMP, 0));
+    patchJump(skip, here());
+  }
+  if (s.hasElse) statements(s.elseBody);
+  for (uint32_t j : toEnd) patchJump(j, here());
+}
+
+void PouCompiler::caseStatement(const Stmt& s) {
+  Value sel = expr(*s.expr);
+  if (!sel.ok()) return;
+  TypeTable& t = types();
+  if (!t.isInteger(sel.type) && !t.isEnum(sel.type)) {
+    diags().error(diag::E202, s.expr->loc, "CASE needs an integer or enumeration selector, found " + describe(t, sel.type));
+    return;
+  }
+  uint16_t r = toReg(sel);
+  struct Range {
+    int64_t lo, hi;
+    SourceLocation loc;
+  };
+  std::vector<Range> seen;
+  auto labelValue = [&](const Expr& e) -> std::optional<int64_t> {
+    Value v = expr(e, sel.type);
+    if (!v.ok()) return std::nullopt;
+    if (v.kind != Value::Kind::Const) {
+      diags().error(diag::E101, e.loc, "a CASE label must be a constant");
+      return std::nullopt;
+    }
+    if (t.isEnum(sel.type) && v.type != sel.type) {
+      diags().error(diag::E202, e.loc, "CASE label of type " + describe(t, v.type) + " for a selector of type " + describe(t, sel.type));
+      return std::nullopt;
+    }
+    return v.c.i;
+  };
+  std::vector<uint32_t> toEnd;
+  for (const auto& branch : s.cases) {
+    // One label: jump over the body unless it matches; several: jump into the body if any matches.
+    const bool single = branch.labels.size() == 1;
+    std::vector<uint32_t> toBody, toNext;
+    for (const auto& label : branch.labels) {
+      uint16_t mark = regMark();
+      auto lo = labelValue(*label.lo);
+      auto hi = label.hi ? labelValue(*label.hi) : lo;
+      if (!lo || !hi) continue;
+      for (const auto& prev : seen)
+        if (*lo <= prev.hi && *hi >= prev.lo)
+          diags().error(diag::E208, label.lo->loc, "CASE label " + std::to_string(*lo) + (label.hi ? ".." + std::to_string(*hi) : "") +
+                                                       " overlaps an earlier label (line " + std::to_string(prev.loc.line) + ")");
+      seen.push_back({*lo, *hi, label.lo->loc});
+      if (t.isInteger(sel.type)) {
+        uint32_t bits = t.bits(sel.type);
+        bool sgn = t.isSignedInt(sel.type);
+        int64_t min = bits >= 64 ? INT64_MIN : sgn ? -(int64_t(1) << (bits - 1)) : 0;
+        int64_t max = bits >= 64 ? INT64_MAX : sgn ? (int64_t(1) << (bits - 1)) - 1 : (int64_t(1) << bits) - 1;
+        if (*hi < min || *lo > max)
+          diags().warning(diag::W302, label.lo->loc, "CASE label can never match a selector of type " + describe(t, sel.type));
+      }
+      uint16_t c = allocReg();
+      auto compareWith = [&](Op op, Op opK, uint16_t into, int64_t k, bool constFirst) {
+        if (k >= INT16_MIN && k <= INT16_MAX) emit(opK, into, r, static_cast<uint16_t>(k));
+        else if (constFirst) emit(op, into, loadConstInt(k), r);
+        else emit(op, into, r, loadConstInt(k));
+      };
+      if (*lo == *hi) {
+        compareWith(Op::EQ, Op::EQK, c, *lo, false);
+      } else {
+        uint16_t c2 = allocReg();
+        compareWith(Op::LE_I, Op::GEK, c, *lo, true);
+        compareWith(Op::LE_I, Op::LEK, c2, *hi, false);
+        emit(Op::BAND, c, c, c2);
+      }
+      (single ? toNext : toBody).push_back(emitJump(single ? Op::JZ : Op::JNZ, c));
+      freeRegs(mark);
+    }
+    if (!single) toNext.push_back(emitJump(Op::JMP, 0));
+    for (uint32_t j : toBody) patchJump(j, here());
+    statements(branch.body);
+    if (&branch != &s.cases.back() || s.hasElse) toEnd.push_back(emitJump(Op::JMP, 0));
+    for (uint32_t j : toNext) patchJump(j, here());
+  }
+  if (s.hasElse) statements(s.elseBody);
+  for (uint32_t j : toEnd) patchJump(j, here());
+}
+
+void PouCompiler::forStatement(const Stmt& s) {
+  auto var = place(*s.lhs, true);
+  if (!var) return;
+  TypeTable& t = types();
+  if (!t.isInteger(var->type)) {
+    diags().error(diag::E202, s.lhs->loc, "a FOR control variable must be an integer, found " + describe(t, var->type));
+    return;
+  }
+  if (var->constant) {
+    diags().error(diag::E204, s.lhs->loc, "a CONSTANT cannot be a FOR control variable");
+    return;
+  }
+  assign(*var, *s.rhs, s.rhs->loc);
+  Value endV = coerce(expr(*s.to, var->type), var->type, s.to->loc);
+  if (!endV.ok()) return;
+  uint16_t end = allocReg();
+  emit(Op::MOV, end, toReg(endV), 0);
+  int64_t stepConst = 1;
+  uint16_t step = 0xffff;
+  if (s.by) {
+    Value by = coerce(expr(*s.by, var->type), var->type, s.by->loc);
+    if (!by.ok()) return;
+    if (by.kind == Value::Kind::Const) {
+      stepConst = by.c.i;
+      if (stepConst == 0) diags().warning(diag::W302, s.by->loc, "FOR with BY 0 never ends");
+    } else {
+      step = allocReg();
+      emit(Op::MOV, step, toReg(by), 0);
+    }
+  }
+  bool uns = !t.isSignedInt(var->type);
+  Op le = uns ? Op::LE_U : Op::LE_I;
+  uint32_t top = here();
+  uint16_t mark = regMark();
+  uint16_t i = load(*var);
+  uint16_t c = allocReg();
+  if (step == 0xffff) {
+    if (stepConst >= 0) emit(le, c, i, end);
+    else emit(le, c, end, i);
+  } else {
+    // the direction is known only at run time
+    uint16_t zero = loadConstInt(0), neg = allocReg();
+    emit(Op::LT_I, neg, step, zero);
+    uint32_t down = emitJump(Op::JNZ, neg);
+    emit(le, c, i, end);
+    uint32_t joined = emitJump(Op::JMP, 0);
+    patchJump(down, here());
+    emit(le, c, end, i);
+    patchJump(joined, here());
+  }
+  uint32_t exit = emitJump(Op::JZ, c);
+  freeRegs(mark);
+  loops_.push_back({});
+  statements(s.body);
+  uint32_t cont = here();
+  uint16_t i2 = load(*var);
+  if (step == 0xffff && stepConst >= INT16_MIN && stepConst <= INT16_MAX) {
+    emit(Op::ADDI, i2, i2, static_cast<uint16_t>(static_cast<int16_t>(stepConst)));
+  } else if (step == 0xffff) {
+    uint16_t k = loadConstInt(stepConst);
+    emit(Op::ADD, i2, i2, k);
+  } else {
+    emit(Op::ADD, i2, i2, step);
+  }
+  store(*var, i2);
+  freeRegs(mark);
+  jumpTo(Op::JMP, 0, top);
+  uint32_t after = here();
+  patchJump(exit, after);
+  for (uint32_t b : loops_.back().breaks) patchJump(b, after);
+  for (uint32_t k : loops_.back().continues) patchJump(k, cont);
+  loops_.pop_back();
+}
+
+void PouCompiler::whileStatement(const Stmt& s) {
+  uint32_t top = here();
+  uint16_t mark = regMark();
+  uint16_t c = condition(*s.expr);
+  uint32_t exit = emitJump(Op::JZ, c);
+  freeRegs(mark);
+  loops_.push_back({});
+  statements(s.body);
+  jumpTo(Op::JMP, 0, top);
+  uint32_t after = here();
+  patchJump(exit, after);
+  for (uint32_t b : loops_.back().breaks) patchJump(b, after);
+  for (uint32_t k : loops_.back().continues) patchJump(k, top);
+  loops_.pop_back();
+}
+
+void PouCompiler::repeatStatement(const Stmt& s) {
+  uint32_t top = here();
+  loops_.push_back({});
+  statements(s.body);
+  uint32_t cont = here();
+  uint16_t mark = regMark();
+  uint16_t c = condition(*s.expr);
+  jumpTo(Op::JZ, c, top);
+  freeRegs(mark);
+  uint32_t after = here();
+  for (uint32_t b : loops_.back().breaks) patchJump(b, after);
+  for (uint32_t k : loops_.back().continues) patchJump(k, cont);
+  loops_.pop_back();
+}
+
+void PouCompiler::jumpOut(const Stmt& s) {
+  if (loops_.empty()) {
+    diags().error(diag::E211, s.loc, std::string(s.kind == StmtKind::Exit ? "EXIT" : "CONTINUE") + " is only allowed inside FOR, WHILE or REPEAT");
+    return;
+  }
+  uint32_t j = emitJump(Op::JMP, 0);
+  if (s.kind == StmtKind::Exit) loops_.back().breaks.push_back(j);
+  else loops_.back().continues.push_back(j);
+}
+
+}  // namespace virtcom::st

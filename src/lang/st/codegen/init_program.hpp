@@ -1,0 +1,21 @@
+#pragma once
+// The init program: CODESYS calls METHOD FB_init of every FB instance once, before the first
+// scan. virtcom generates a POU (Module::initPou) that does so for every instance reachable
+// from the globals and the program instances, nested instances before their container, with
+// bInitRetains := TRUE and bInCopyCode := FALSE (a cold start) and the instance declaration's
+// arguments (`inst : FB_T(a := 1)`) bound to FB_init's other inputs. Instances in a POU's frame
+// get their calls at the start of every call instead (buildFrameInitCalls).
+#include <memory>
+
+#include "lang/st/declare/program_model.hpp"
+
+namespace virtcom::st {
+
+// The init program's AST (a PROGRAM named __INIT), or null when no instance has an FB_init.
+std::unique_ptr<Pou> buildInitProgram(const ProgramModel& model, const TypeTable& types);
+// The FB_init calls for the instances among `pou`'s frame variables (VAR of a FUNCTION or
+// METHOD, VAR_TEMP of any POU), run before its body: these are initialised on every call, so
+// CODESYS calls their FB_init on every call too. Empty when none has an FB_init.
+StmtList buildFrameInitCalls(const ProgramModel& model, const TypeTable& types, const PouSym& pou);
+
+}  // namespace virtcom::st

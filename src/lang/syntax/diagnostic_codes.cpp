@@ -1,0 +1,24 @@
+#include "lang/syntax/diagnostic_codes.hpp"
+
+namespace virtcom::st {
+
+namespace {
+struct CodeTitle {
+  std::string_view code;
+  std::string_view title;
+};
+
+constexpr CodeTitle kCodeTitles[] = {
+#define X(code, title) {#code, title},
+#include "lang/syntax/diagnostic_codes.def"
+#undef X
+};
+}  // namespace
+
+std::string_view diagnosticTitle(std::string_view code) {
+  for (const CodeTitle& entry : kCodeTitles)
+    if (entry.code == code) return entry.title;
+  return {};
+}
+
+}  // namespace virtcom::st

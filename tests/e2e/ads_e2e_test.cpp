@@ -38,7 +38,8 @@ uint32_t get32(const Bytes& b, size_t at) {
   return b[at] | b[at + 1] << 8 | b[at + 2] << 16 | static_cast<uint32_t>(b[at + 3]) << 24;
 }
 
-// An AMS packet to 127.0.0.1.1.1:851 from 10.0.0.1.1.1:30000 (specs/ads.md section 1.2).
+// An AMS packet to 127.0.0.1.1.1:851 from 10.0.0.1.1.1:30000 (docs/ads.md, Wire reference:
+// AMS/TCP and the AMS header).
 Bytes amsPacket(uint16_t command, const Bytes& data, uint32_t invokeId = 1) {
   Bytes f{0, 0};
   put32(f, static_cast<uint32_t>(32 + data.size()));

@@ -1,5 +1,6 @@
 #pragma once
-// AMS/TCP framing and the AMS header (specs/ads.md section 1), as pure functions over spans:
+// AMS/TCP framing and the AMS header (docs/ads.md, Wire reference: AMS/TCP and the
+// AMS header), as pure functions over spans:
 // no sockets, no threads; scanFrame never reads past its buffer.
 //   AMS/TCP header (6 bytes): u16 command (0 = AMS packet, 0x1000 port connect, ...), u32 length
 //   AMS header (32 bytes): target NetId(6) + port u16, source NetId(6) + port u16, u16 command id,

@@ -1,6 +1,6 @@
 #pragma once
 // Bounds-checked little-endian readers and writers for AMS/ADS frames (ADS is little endian on
-// the wire: specs/ads.md section 0).
+// the wire: docs/ads.md, Wire reference: Byte order and strings).
 #include <cstddef>
 #include <cstdint>
 #include <optional>

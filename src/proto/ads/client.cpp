@@ -19,7 +19,7 @@ namespace virtcom::proto::ads {
 
 namespace {
 
-constexpr uint16_t kResponseFlag = 0x0001;  // state flags bit 0 (section 1.2)
+constexpr uint16_t kResponseFlag = 0x0001;  // state flags bit 0 (docs/ads.md, AMS/TCP and the AMS header)
 constexpr size_t kInitialBuffer = 4096;
 
 // Waits until `fd` is ready for `events` or the deadline passes; false on timeout.

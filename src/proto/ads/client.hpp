@@ -1,5 +1,5 @@
 #pragma once
-// A small blocking ADS client (specs/ads.md sections 1-3): one TCP connection to an AMS router
+// A small blocking ADS client (docs/ads.md, Wire reference): one TCP connection to an AMS router
 // (a TwinCAT PC, or `virtcom exec --ads`), one request at a time, each answered within the
 // timeout or the link counts as lost. Requests are framed with the server's codec (ams.hpp,
 // byte_io.hpp); replies are matched by invoke id, anything else on the stream is skipped.

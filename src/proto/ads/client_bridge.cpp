@@ -44,7 +44,7 @@ std::optional<ElemType> storageType(const Symbol& s, bool& isEnum) {
 
 std::vector<uint8_t> nameBytes(const std::string& name) {
   std::vector<uint8_t> b(name.begin(), name.end());
-  b.push_back(0);  // TwinCAT takes names with or without the NUL (section 3.1)
+  b.push_back(0);  // TwinCAT takes names with or without the NUL (docs/ads.md, Symbol services)
   return b;
 }
 
@@ -76,7 +76,7 @@ std::unique_ptr<ClientBridge> ClientBridge::start(BridgeConfig config, TagBus& b
   return b;
 }
 
-// The {IG, IO, length} header of a sum read or write (ADS section 3.5) for each slot, by handle.
+// The {IG, IO, length} header of a sum read or write (docs/ads.md, Sum commands) for each slot, by handle.
 void ClientBridge::writeSumHeaders(LittleEndianWriter& w, const std::vector<size_t>& slots) const {
   for (size_t i : slots) {
     w.u32(kIgValueByHandle);
@@ -103,7 +103,8 @@ bool ClientBridge::resolve(TagBus& bus, bool addTags, std::vector<Problem>& prob
         return false;
       }
       if (info.error().code < 0x700) {
-        // An AMS or router error (section 4): the target itself is wrong, not this variable.
+        // An AMS or router error (docs/ads.md, AMS/TCP and the AMS header): the target itself is
+        // wrong, not this variable.
         problems.push_back({kNoSignal, "ads: " + peerText() + " refused the first request: " + info.error().text +
                                            " (check 'netid' and 'port')", Problem::Kind::Link});
         return false;
@@ -233,7 +234,7 @@ bool ClientBridge::pull(TagBus& bus, int64_t) {
     else fail("refused the sum read of its outputs: " + reply.error().text);
     return failure_.empty();
   }
-  // Reply: n results, then each item's data at its requested length (section 3.5).
+  // Reply: n results, then each item's data at its requested length (docs/ads.md, Sum commands).
   size_t at = 4 * n;
   for (uint32_t k = 0; k < n; ++k) {
     const Slot& slot = slots_[reads_[k]];
@@ -266,7 +267,7 @@ void ClientBridge::push(const TagBus& bus, int64_t) {
       return;
     }
   } else {
-    // Sum write (section 3.5): n x {IG, IO, length}, then all the data; reply: n results.
+    // Sum write (docs/ads.md, Sum commands): n x {IG, IO, length}, then all the data; reply: n results.
     writeRequest_.clear();
     LittleEndianWriter w(writeRequest_);
     writeSumHeaders(w, changed_);

@@ -14,9 +14,9 @@
 
 namespace virtcom::proto::ads {
 
-// ADS states (specs/ads.md section 4).
+// ADS states (docs/ads.md, Wire reference: States and return codes).
 inline constexpr uint16_t kAdsStateReset = 2, kAdsStateRun = 5, kAdsStateStop = 6, kAdsStateError = 11;
-// AMS ports served (section 1.2, 3.7).
+// AMS ports served (docs/ads.md, AMS/TCP and the AMS header).
 inline constexpr uint16_t kPlcPort = 851, kSystemPort = 10000;
 
 struct DeviceConfig {

@@ -1,5 +1,6 @@
 #pragma once
-// The byte layouts of symbol and data type descriptions (specs/ads.md sections 3.1-3.4).
+// The byte layouts of symbol and data type descriptions (docs/ads.md, Wire reference: Symbol
+// services, Symbol entry, Data type entry).
 #include <cstdint>
 #include <optional>
 #include <span>

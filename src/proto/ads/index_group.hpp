@@ -20,7 +20,7 @@ inline bool isKnownGroup(uint32_t ig) {
   return false;
 }
 
-// "Any length": the client does not know the size and takes what the server has (section 2).
+// "Any length": the client does not know the size and takes what the server has (docs/ads.md, Commands).
 inline constexpr uint32_t kAnyLength = 0xFFFFFFFF;
 
 }  // namespace virtcom::proto::ads

@@ -1,4 +1,4 @@
-// Session: device notifications (specs/ads.md section 5).
+// Session: device notifications (docs/ads.md, Wire reference: Device notifications).
 #include <algorithm>
 #include <limits>
 
@@ -10,7 +10,8 @@ namespace virtcom::proto::ads {
 
 namespace {
 
-// ADSTRANSMODE (section 5.1); the "in context" variants behave like their plain ones here.
+// ADSTRANSMODE (docs/ads.md, Device notifications); the "in context" variants behave like their
+// plain ones here.
 constexpr uint32_t kServerCycle = 3, kServerOnChange = 4, kServerCycleInContext = 5, kServerOnChangeInContext = 6;
 constexpr int64_t kNsPer100Ns = 100;
 
@@ -26,7 +27,7 @@ AdsError Session::addNotification(std::span<const uint8_t> body, uint32_t& handl
     return AdsError::TransModeNotSupported;
   if (length == 0 || length == kAnyLength) return AdsError::InvalidSize;
   if (ig == static_cast<uint32_t>(IndexGroup::SymValueByHandle)) {
-    // AdsLib's notification by name: IO is a symbol handle (section 5.1).
+    // AdsLib's notification by name: IO is a symbol handle (docs/ads.md, Device notifications).
     const Handle* h = findHandle(io);
     if (!h) return AdsError::SymbolNotFound;
     if (length > h->symbol.size) return AdsError::InvalidSize;
@@ -76,7 +77,8 @@ void Session::sendDueNotifications(int64_t nowNs, uint64_t fileTime, std::vector
     if (n.onChange && n.sent && value_ == n.last) continue;
     n.last.assign(value_.begin(), value_.end());
     n.sent = true;
-    // Stream (section 5.2): length = bytes after this field, one stamp with one sample.
+    // Stream (docs/ads.md, Device notifications): length = bytes after this field, one stamp
+    // with one sample.
     const uint32_t dataLength = 4 + 4 + 8 + 4 + 4 + 4 + n.length;
     AmsHeader h;
     h.target = n.client;

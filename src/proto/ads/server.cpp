@@ -24,7 +24,7 @@ constexpr size_t kReadChunk = 16 * 1024;
 constexpr size_t kMaxUnsentBytes = 256 * 1024;
 constexpr size_t kMaxQueuedBytes = 16 * 1024 * 1024;
 constexpr uint8_t kWakePublished = 2;  // besides net::ServerThread::kWakeStop
-// Windows FILETIME (100 ns ticks since 1601) of the Unix epoch (section 5.2).
+// Windows FILETIME (100 ns ticks since 1601) of the Unix epoch (docs/ads.md, Device notifications).
 constexpr uint64_t kFileTimeUnixEpoch = 116'444'736'000'000'000ull;
 
 struct Connection {

@@ -1,4 +1,5 @@
-// Session: frame dispatch and the nine ADS commands (specs/ads.md sections 1 and 2).
+// Session: frame dispatch and the nine ADS commands (docs/ads.md, Wire reference: AMS/TCP
+// and the AMS header, Commands).
 #include "proto/ads/session.hpp"
 
 #include <algorithm>
@@ -11,10 +12,11 @@ namespace virtcom::proto::ads {
 
 namespace {
 
-// TwinCAT 3.1.4024 as ads-client's tests pin it (section 2); names per AMS port.
+// TwinCAT 3.1.4024 as ads-client's tests pin it (docs/ads.md, Commands); names per AMS port.
 constexpr uint8_t kVersionMajor = 3, kVersionMinor = 1;
 constexpr uint16_t kVersionBuild = 4024;
-constexpr uint16_t kSystemDeviceState = 1;  // port 10000's deviceState on a real TC3 (section 3.7)
+// Port 10000's deviceState on a real TC3 (docs/ads.md, States and return codes).
+constexpr uint16_t kSystemDeviceState = 1;
 
 void appendDeviceInfo(std::vector<uint8_t>& reply, const char* name) {
   LittleEndianWriter w(reply);
@@ -38,7 +40,8 @@ bool Session::handleFrame(std::span<const uint8_t> frame, std::vector<uint8_t>& 
   switch (tcpCommand) {
     case AmsTcpCommand::AmsPacket: break;
     case AmsTcpCommand::PortConnect: {
-      // Reply: this router's NetId and the client's port (section 1.1); 0 asks for any port.
+      // Reply: this router's NetId and the client's port (docs/ads.md, AMS/TCP and the AMS
+      // header); 0 asks for any port.
       const uint16_t requested = in.u16().value_or(0);
       LittleEndianWriter w(out);
       w.u16(static_cast<uint16_t>(AmsTcpCommand::PortConnect));
@@ -61,7 +64,7 @@ bool Session::handleFrame(std::span<const uint8_t> frame, std::vector<uint8_t>& 
 }
 
 void Session::answerPacket(const AmsHeader& h, std::span<const uint8_t> data, std::vector<uint8_t>& out) {
-  // AMS-level errors (section 1.2): no ADS data, the code in the header.
+  // AMS-level errors (docs/ads.md, AMS/TCP and the AMS header): no ADS data, the code in the header.
   auto amsError = [&](AdsError e) { writeAmsFrameHeader(out, responseHeader(h, 0, static_cast<uint32_t>(e))); };
   if (h.target.netId != device_.config().netId && h.target.netId != kLocalAliasNetId)
     return amsError(AdsError::TargetMachineNotFound);
@@ -77,7 +80,7 @@ void Session::answerPacket(const AmsHeader& h, std::span<const uint8_t> data, st
                     : h.target.port == kPlcPort        ? plcCommand(h, data)
                                                        : systemCommand(h, data);
   if (result != AdsError::None) {
-    // Clients parse the fixed layout even on error (section 2): result, then zeros.
+    // Clients parse the fixed layout even on error (docs/ads.md, Commands): result, then zeros.
     reply_.assign(errorReplyBytes(command), 0);
     LittleEndianWriter(reply_).put32(0, static_cast<uint32_t>(result));
   }
@@ -143,7 +146,8 @@ AdsError Session::systemCommand(const AmsHeader& h, std::span<const uint8_t> dat
       if (ig != static_cast<uint32_t>(IndexGroup::SystemState)) return AdsError::InvalidIndexGroup;
       if (io != 0) return AdsError::InvalidIndexOffset;
       if (length < 16) return AdsError::InvalidSize;
-      // Extended system state (section 3.7): the system stays in RUN whatever the PLC does.
+      // Extended system state (docs/ads.md, States and return codes): the system stays in RUN
+      // whatever the PLC does.
       w.u16(kAdsStateRun);
       w.u16(kSystemDeviceState);
       w.u16(0);  // restartIndex: a change would make ads-client reconnect

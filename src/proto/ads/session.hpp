@@ -14,7 +14,7 @@ namespace virtcom::proto::ads {
 
 class Session {
  public:
-  // `allowedNetIds` empty: any source NetId (no route check on localhost, spec section 6).
+  // `allowedNetIds` empty: any source NetId (no route check on localhost: docs/ads.md, Routes).
   explicit Session(Device& device, std::vector<AmsNetId> allowedNetIds = {});
 
   // Answers one complete frame (as scanFrame found it), appending the response to `out`.
@@ -22,9 +22,10 @@ class Session {
   // is not allowed (TwinCAT drops a connection without a route the same way).
   bool handleFrame(std::span<const uint8_t> frame, std::vector<uint8_t>& out);
 
-  // Appends one DeviceNotification frame (section 5.2) per notification that is due at `nowNs`
-  // (monotonic): a new one (its initial sample), a cyclic one whose cycle elapsed, an on-change
-  // one whose value differs from the last sent (checked at most once per cycle).
+  // Appends one DeviceNotification frame (docs/ads.md, Device notifications) per notification
+  // that is due at `nowNs` (monotonic): a new one (its initial sample), a cyclic one whose cycle
+  // elapsed, an on-change one whose value differs from the last sent (checked at most once per
+  // cycle).
   void sendDueNotifications(int64_t nowNs, uint64_t fileTime, std::vector<uint8_t>& out);
   // Monotonic time at which a cyclic notification is next due; INT64_MAX if none.
   int64_t nextCycleDueNs() const;
@@ -38,7 +39,7 @@ class Session {
   };
   struct Notification {
     uint32_t handle = 0;
-    AmsAddress client, server;  // DeviceNotification target / source (section 5.2)
+    AmsAddress client, server;  // DeviceNotification target / source (docs/ads.md, Device notifications)
     uint32_t ig = 0, io = 0, length = 0;
     bool onChange = true;
     int64_t cycleNs = 0;

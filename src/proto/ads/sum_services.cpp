@@ -1,5 +1,5 @@
-// Session: sum commands (specs/ads.md section 3.5). The outer result is 0 once the batch parsed;
-// each item carries its own result.
+// Session: sum commands (docs/ads.md, Wire reference: Sum commands). The outer result is 0 once
+// the batch parsed; each item carries its own result.
 #include "proto/ads/byte_io.hpp"
 #include "proto/ads/index_group.hpp"
 #include "proto/ads/session.hpp"

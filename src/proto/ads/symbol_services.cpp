@@ -1,5 +1,5 @@
 // Session: Read / Write / ReadWrite by index group, symbol handles and the by-name symbol
-// services (specs/ads.md section 3.1).
+// services (docs/ads.md, Wire reference: Symbol services).
 #include <algorithm>
 #include <string_view>
 
@@ -12,7 +12,7 @@ namespace virtcom::proto::ads {
 
 namespace {
 
-// A name as sent: ads-client appends a NUL, AdsLib does not (section 3.1).
+// A name as sent: ads-client appends a NUL, AdsLib does not (docs/ads.md, Symbol services).
 std::string_view nameOf(std::span<const uint8_t> data) {
   std::string_view s(reinterpret_cast<const char*>(data.data()), data.size());
   return s.substr(0, s.find('\0'));
@@ -109,7 +109,7 @@ AdsError Session::symbolService(uint32_t ig, uint32_t readLength, std::span<cons
                                 std::vector<uint8_t>& reply) {
   const std::string_view name = nameOf(nameBytes);
   const size_t start = reply.size();
-  // Never more than the client asked for (AdsLib fails with 0x705 otherwise, section 2).
+  // Never more than the client asked for (AdsLib fails with 0x705 otherwise: docs/ads.md, Commands).
   auto fits = [&] { return readLength == kAnyLength || reply.size() - start <= readLength; };
   if (static_cast<IndexGroup>(ig) == IndexGroup::DataTypeByNameEx) {
     const DataType* t = device_.table().findType(name);

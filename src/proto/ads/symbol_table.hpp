@@ -14,14 +14,15 @@
 
 namespace virtcom::proto::ads {
 
-// ADS data type ids (ADST_*, specs/ads.md section 3.4).
+// ADS data type ids (ADST_*, docs/ads.md, Wire reference: ADS data type ids and flags).
 namespace adst {
 inline constexpr uint32_t kVoid = 0, kInt16 = 2, kInt32 = 3, kReal32 = 4, kReal64 = 5, kInt8 = 16, kUint8 = 17,
                           kUint16 = 18, kUint32 = 19, kInt64 = 20, kUint64 = 21, kString = 30, kWstring = 31,
                           kBit = 33, kBigType = 65;
 }
 
-// Symbol flags (ADSSYMBOLFLAG_*, section 3.3) and data type flags (ADSDATATYPEFLAG_*, section 3.4).
+// Symbol flags (ADSSYMBOLFLAG_*) and data type flags (ADSDATATYPEFLAG_*) the server uses
+// (docs/ads.md, ADS data type ids and flags).
 inline constexpr uint16_t kSymbolFlagBitValue = 0x0002;
 inline constexpr uint16_t kSymbolFlagReadOnly = 0x0020;
 inline constexpr uint32_t kTypeFlagDataType = 0x1;

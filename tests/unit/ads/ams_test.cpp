@@ -1,4 +1,4 @@
-// AMS/TCP framing, the AMS header and NetIds (specs/ads.md section 1).
+// AMS/TCP framing, the AMS header and NetIds (docs/ads.md, Wire reference: AMS/TCP and the AMS header).
 #include "proto/ads/ams.hpp"
 
 #include <gtest/gtest.h>

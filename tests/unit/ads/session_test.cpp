@@ -1,5 +1,5 @@
-// Golden bytes for every request/response form of specs/ads.md the server answers, driven
-// through Session without sockets.
+// Golden bytes for every request/response form of docs/ads.md (Wire reference) the server
+// answers, driven through Session without sockets.
 #include "proto/ads/session.hpp"
 
 #include <gtest/gtest.h>

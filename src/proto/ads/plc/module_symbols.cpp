@@ -9,7 +9,7 @@ namespace virtcom::proto::ads {
 
 namespace {
 
-// ADST of an elementary type (specs/ads.md section 3.4).
+// ADST of an elementary type (docs/ads.md, Wire reference: ADS data type ids and flags).
 uint32_t adsTypeOf(ElemType e) {
   switch (e) {
     case ElemType::Bool: return adst::kBit;

@@ -1,6 +1,6 @@
 #pragma once
 // The declarative mapping between the UNIVERSAL_AXIS block (lib/universal_axis.st) and one drive
-// telegram (specs/drives.md §D.5). A mapping file (lib/mappings/*.yaml, format in docs/drives.md)
+// telegram. A mapping file (lib/mappings/*.yaml, format in docs/universal-axis.md, Mapping files)
 // names a telegram of telegrams.def and binds the block's Control_* signals to bits, multi-bit
 // fields and words of the telegram's output words, its Status_* signals to the input words,
 // and may set Cfg_* block inputs to constants. parseMapping() validates everything at load;

@@ -1,7 +1,7 @@
 #pragma once
 // The SINAMICS message catalogue (drive_messages.def) and the fault/alarm buffers of
-// specs/drives.md §B.5. Buffers are fixed-size arrays: raising, clearing and acknowledging
-// never allocate, so they run on the per-tick path.
+// docs/drive-simulators.md (Faults and alarms). Buffers are fixed-size arrays: raising, clearing
+// and acknowledging never allocate, so they run on the per-tick path.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -64,7 +64,8 @@ class FaultBuffer {
   bool acknowledge(int64_t nowNs);
   bool active() const { return count_ > 0; }
   size_t activeCount() const { return count_; }
-  // Number of the fault at index 0, 0 if none (FAULT_CODE, specs/drives.md §A.2).
+  // Number of the fault at index 0, 0 if none (FAULT_CODE: docs/drive-simulators.md, Faults and
+  // alarms).
   uint16_t firstNumber() const { return count_ ? slots_[0].number : 0; }
   // Strongest reaction among active faults (OFF2 > OFF3 > OFF1 > none).
   Reaction reaction() const;

@@ -50,7 +50,8 @@ void EposAxis::integrate(double dtS) {
   updateState();
 }
 
-// specs/drives.md §B.4: following error, positioning window (F07451), standstill window (F07450).
+// Following error, positioning window (F07451), standstill window (F07450): docs/universal-axis.md,
+// EPos position loop and monitoring.
 void EposAxis::monitor(double dtS) {
   followingOk_ = std::abs(followingErrorLu()) <= p_.p2546;
   if (!followingOk_) raiseFault(kFollowingFault, Reaction::Off3, nowNs_);
@@ -107,8 +108,9 @@ void EposAxis::onFrame(std::span<const uint32_t> rx, int64_t nowNs) {
   if (state_ == DriveState::S4OperationEnabled && !faults_.active()) selectMode(previous, previousPos2, nowNs);
 }
 
-// specs/drives.md §B.6: the master counts 1..15 (0 skipped); more than p0925 consecutive
-// errors raise F01912. Monitoring starts with the first non-zero value.
+// The master counts 1..15 (0 skipped); more than p0925 consecutive errors raise F01912.
+// Monitoring starts with the first non-zero value (docs/universal-axis.md, EPos position loop
+// and monitoring).
 void EposAxis::checkSignOfLife(uint32_t stw2, int64_t nowNs) {
   const auto master = static_cast<uint8_t>(field(stw2, stw2::MasterSol));
   if (!p_.solMonitor) return;
@@ -230,7 +232,7 @@ void EposAxis::encode(RawWords& tx) const {
   m = withBit(m, meldw::Pulses, pulses);
   tx[kMeldw] = m;
 
-  // XIST_A wraps as int32 (spec §B.4).
+  // XIST_A wraps as int32 (docs/universal-axis.md, EPos position loop and monitoring).
   tx[kXist] = static_cast<uint32_t>(static_cast<int64_t>(std::nearbyint(actual)));
   tx[kNistB] = rawFromInt(WireType::I32, n4FromRpm(loadRpm, p_.p2000));
   tx[kFaultCode] = faults_.firstNumber();

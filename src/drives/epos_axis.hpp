@@ -1,13 +1,13 @@
 #pragma once
 // Siemens positioning axis (S110/S120 EPos basic positioner) on Standard Telegram 111
-// (specs/drives.md §A.3, §B.4, §B.6, §C): the PROFIdrive state machine, every EPos mode (MDI
-// relative/absolute positioning, MDI setup, reference point approach, set reference point,
-// flying referencing, traversing blocks, jog, incremental jog), the stepped position profile
+// (docs/drives.md; behaviour: docs/universal-axis.md, EPos): the PROFIdrive state machine, every
+// EPos mode (MDI relative/absolute positioning, MDI setup, reference point approach, set reference
+// point, flying referencing, traversing blocks, jog, incremental jog), the stepped position profile
 // with velocity/acceleration/deceleration overrides, a first-order position loop with
-// following-error, positioning-window and standstill monitoring (F07452/F07451/F07450),
-// software limit switches, master/slave sign-of-life (F01912) and setpoint-timeout
-// monitoring. Positions are in LU; parameters keep their SINAMICS numbers and are simulator
-// defaults [S] set in the cell file (docs/drives.md).
+// following-error, positioning-window and standstill monitoring (F07452/F07451/F07450), software
+// limit switches, master/slave sign-of-life (F01912) and setpoint-timeout monitoring. Positions are
+// in LU; parameters keep their SINAMICS numbers and are simulator defaults [S] set in the cell file
+// (docs/universal-axis.md, EPos positioning axis).
 #include <array>
 #include <cmath>
 #include <memory>
@@ -20,7 +20,7 @@
 
 namespace virtcom::drives {
 
-// One traversing block (p2616..p2623), spec §C.7.
+// One traversing block (p2616..p2623): docs/universal-axis.md, EPos modes.
 struct TraversingBlock {
   enum class Task : uint8_t { PositionAbs, PositionRel, EndlessPos, EndlessNeg, Wait, Goto, SetOutput, ResetOutput };
   enum class Advance : uint8_t { End, ContinueWithStop, ContinueFlying, ContinueExternal };

@@ -1,5 +1,5 @@
-// EposAxis modes (specs/drives.md §C): which function a received frame selects, and how each
-// one moves the position setpoint every integration step.
+// EposAxis modes (docs/universal-axis.md, EPos modes): which function a received frame selects, and
+// how each one moves the position setpoint every integration step.
 #include <algorithm>
 #include <cmath>
 
@@ -16,7 +16,8 @@ constexpr uint16_t kCamNotFound = 7458;
 constexpr double kQ14 = 16384.0;
 }  // namespace
 
-// v_max = min(velocity x OVERRIDE, p2571); a, d = p2572/p2573 x override (spec §B.4).
+// v_max = min(velocity x OVERRIDE, p2571); a, d = p2572/p2573 x override (docs/universal-axis.md,
+// EPos position loop and monitoring).
 ProfileLimits EposAxis::limits(double velocity1000LuMin, double accelPercent, double decelPercent) const {
   ProfileLimits l;
   const double v = std::min(std::abs(velocity1000LuMin) * override_ / kQ14, p_.p2571);
@@ -74,7 +75,7 @@ void EposAxis::selectMode(uint32_t previous, uint32_t previousPos2, int64_t nowN
 
   const bool idle = mode_ == Mode::None || (profile_.v() == 0 && setpointStatic_ && !stopping_);
   if (test(posStw2_, pos2::SetReference) && !test(previousPos2, pos2::SetReference) && idle && profile_.v() == 0) {
-    setReference(machinePos_);  // §C.6: ignored while moving
+    setReference(machinePos_);  // ignored while moving (EPos modes)
     return;
   }
   if (stopping_) return;
@@ -85,7 +86,7 @@ void EposAxis::selectMode(uint32_t previous, uint32_t previousPos2, int64_t nowN
   if (jog1 != jog2 && mode_ != Mode::Jog && mode_ != Mode::JogIncremental) {
     const bool incremental = test(posStw2_, pos2::IncrementalJog);
     if (idle && !(incremental && jogLatched_)) startJog(jog2, incremental);
-    return;  // refused while another task moves (§C.8)
+    return;  // refused while another task moves (EPos modes: jog)
   }
   const bool mdiMode = mode_ == Mode::MdiPositioning || mode_ == Mode::MdiSetup;
   if (mdi && (taskEdge || (mdiMode && test(posStw1_, pos1::Continuous))) && (idle || mdiMode)) startMdi(nowNs);
@@ -108,7 +109,7 @@ void EposAxis::startMdi(int64_t nowNs) {
     return;
   }
   const bool absolute = test(posStw1_, pos1::Absolute);
-  if (absolute && !referenced_) {  // §C.2: alarm, no motion
+  if (absolute && !referenced_) {  // not referenced: alarm, no motion (EPos modes)
     alarms_.raise(kNotReferenced, 0, nowNs);
     return;
   }
@@ -140,7 +141,7 @@ void EposAxis::startJog(bool jog2, bool incremental) {
 void EposAxis::startReferencing() {
   mode_ = Mode::ReferenceApproach;
   referenced_ = false;
-  refDir_ = test(posStw2_, pos2::RefNegative) ? -1 : 1;  // only POS_STW2.9 decides (§C.4)
+  refDir_ = test(posStw2_, pos2::RefNegative) ? -1 : 1;  // only POS_STW2.9 decides (EPos modes)
   refPhase_ = p_.hasRefCam ? 1 : 2;
   refStart_ = profile_.x();
   taskAcc_ = taskDec_ = 100;
@@ -170,7 +171,7 @@ void EposAxis::startBlock(uint8_t number, int64_t nowNs) {
     beginBlock(i, 0);
     return;
   }
-  alarms_.raise(kNoSuchBlock, number, nowNs);  // §C.7: no motion
+  alarms_.raise(kNoSuchBlock, number, nowNs);  // unknown block: no motion (EPos modes)
 }
 
 // Sets up block `index`; GOTO and output tasks complete at once (depth bounds a GOTO loop).
@@ -212,7 +213,8 @@ void EposAxis::beginBlock(size_t index, int depth) {
   }
 }
 
-// The running block has completed: continue per its advance condition (§C.7).
+// The running block has completed: continue per its advance condition (docs/universal-axis.md, EPos
+// modes).
 void EposAxis::blockDone(int depth) {
   using Advance = TraversingBlock::Advance;
   const TraversingBlock& b = p_.blocks[blockIndex_];
@@ -246,8 +248,9 @@ void EposAxis::blockStep(const ProfileLimits& lim, double dtS) {
   }
 }
 
-// §C.4 [S simplified]: (1) cam search at p2605, (2) on to the next zero mark at p2608,
-// (3) the reference point offset p2600 at p2611; there x := p2599.
+// Reference point approach [S simplified] (docs/universal-axis.md, EPos modes): (1) cam search at
+// p2605, (2) on to the next zero mark at p2608, (3) the reference point offset p2600 at p2611;
+// there x := p2599.
 void EposAxis::referencingStep(double dtS) {
   if (refPhase_ == 1) {
     const ProfileLimits lim = limits(p_.p2605, 100, 100);
@@ -287,7 +290,7 @@ void EposAxis::checkFlyingProbe(double before, double after) {
   const double probe = p_.probePos[test(posStw2_, pos2::Probe2) ? 1 : 0];
   const bool hit = test(posStw2_, pos2::ProbeFalling) ? (before > probe && after <= probe) : (before < probe && after >= probe);
   if (!hit) return;
-  offset_ = p_.p2599 - probe;  // §C.5: x := p2599 + (x_act - x_probe)
+  offset_ = p_.p2599 - probe;  // flying referencing: x := p2599 + (x_act - x_probe)
   referenced_ = true;
   flyingArmed_ = false;
   refLatched_ = true;
@@ -302,7 +305,7 @@ void EposAxis::motion(double dtS) {
   ProfileLimits lim = taskLimits();
   const bool reject = !test(stw1_, stw1::NoReject);
   if (state_ != DriveState::S4OperationEnabled || faults_.active() || stopping_ || reject || mode_ == Mode::None) {
-    // Brake: state-machine stops and rejected tasks with 100 % of p2573 (§C.10).
+    // Brake: state-machine stops and rejected tasks with 100 % of p2573 (EPos modes).
     if (state_ != DriveState::S4OperationEnabled || faults_.active() || reject) lim.decel = p_.p2573 * 1000.0;
     if (profile_.v() != 0 || taskActive()) {
       profile_.toVelocity(0, lim, dtS);

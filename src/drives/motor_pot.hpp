@@ -1,7 +1,8 @@
 #pragma once
 // Motorised potentiometer (MOP): a setpoint that integrates while "raise" or "lower" is held
-// (specs/drives.md §B.3.1 for SINAMICS STW1.13/.14, §A.4 Logic Command bits 7/15 for the
-// PF525). Shared by the Siemens and PowerFlex simulators; the caller scales it (rpm or Hz).
+// (docs/drive-simulators.md: `mop` of g120 for SINAMICS STW1.13/.14, of powerflex525 for Logic
+// Command bits 7/15). Shared by the Siemens and PowerFlex simulators; the caller scales it (rpm or
+// Hz).
 #include <algorithm>
 
 namespace virtcom::drives {

@@ -1,5 +1,5 @@
 #pragma once
-// Conversions between engineering values and telegram raw numbers (specs/drives.md §A.0).
+// Conversions between engineering values and telegram raw numbers (docs/drives.md, Units).
 // Real -> integer rounds to nearest, ties to even (S7 ROUND / Logix REAL->INT), then saturates
 // to the word's range. Pure functions, no allocation.
 #include <cmath>

@@ -1,5 +1,6 @@
 #pragma once
-// Online trapezoidal setpoint generator of the EPos position loop (specs/drives.md §B.4). Unlike
+// Online trapezoidal setpoint generator of the EPos position loop (docs/universal-axis.md, EPos
+// position loop and monitoring). Unlike
 // plant/motion_profile.hpp (a move planned once), it is stepped: target, velocity limit,
 // acceleration and deceleration may change between two steps (MDI targets on the fly, override
 // changes, intermediate stop), and it brakes along the deceleration it is given. Units are the

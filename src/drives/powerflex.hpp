@@ -1,11 +1,12 @@
 #pragma once
-// Rockwell PowerFlex 525 and 750 on EtherNet/IP (specs/drives.md §A.4, §A.5, §B.6, §B.7): Start
-// latching and Stop, jog, direction field, accel/decel time selection, reference select (comm
-// reference or presets), ramped output frequency passing through 0 Hz on reversal, AtReference,
-// ClearFaults on 0->1, a 10-entry fault queue (most recent first) and the comm-loss action of
-// C143 (fault F083/F073, stop, hold last), the PF525 MOP (bits 7/15) and the PF750 position mode
-// (Reference/Feedback in degrees of an external load encoder). Both variants share this model;
-// only the words differ (PF525: 16-bit logic words and 0.01 Hz INT; PF750: 32-bit logic words and REAL).
+// Rockwell PowerFlex 525 and 750 on EtherNet/IP (docs/drives.md; behaviour:
+// docs/drive-simulators.md, powerflex525 / powerflex750): Start latching and Stop, jog, direction
+// field, accel/decel time selection, reference select (comm reference or presets), ramped output
+// frequency passing through 0 Hz on reversal, AtReference, ClearFaults on 0->1, a 10-entry fault
+// queue (most recent first) and the comm-loss action of C143 (fault F083/F073, stop, hold last),
+// the PF525 MOP (bits 7/15) and the PF750 position mode (Reference/Feedback in degrees of an
+// external load encoder). Both variants share this model; only the words differ (PF525: 16-bit
+// logic words and 0.01 Hz INT; PF750: 32-bit logic words and REAL).
 #include <array>
 #include <memory>
 

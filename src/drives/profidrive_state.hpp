@@ -1,7 +1,7 @@
 #pragma once
-// The PROFIdrive/SINAMICS device state machine S1..S5 (specs/drives.md §B.2), shared by every
-// Siemens simulator. Pure: the caller supplies the accepted STW1 bits, the fault state and
-// whether the motor has come to a standstill; the machine never allocates.
+// The PROFIdrive/SINAMICS device state machine S1..S5 (docs/drive-simulators.md, PROFIdrive state
+// machine), shared by every Siemens simulator. Pure: the caller supplies the accepted STW1 bits,
+// the fault state and whether the motor has come to a standstill; the machine never allocates.
 #include <cstdint>
 
 #include "drives/drive_messages.hpp"

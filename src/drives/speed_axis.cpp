@@ -72,13 +72,13 @@ SpeedAxis::SpeedAxis(std::string name, DriveCommon common, SpeedAxisParams param
   alphaSpeed_ = 1.0 - std::exp(-dtS / p_.tauSpeedS);
   coastFactor_ = std::exp(-dtS / p_.tauCoastS);
   alphaGlatt_ = 1.0 - std::exp(-dtS / p_.p0045S);
-  // specs/drives.md §B.3.2: slopes are fractions of p1082 per ramp time.
+  // Slopes are fractions of p1082 per ramp time (docs/drive-simulators.md, Setpoint channel).
   upStep_ = p_.p1082 / p_.p1120S * dtS;
   off1Step_ = p_.p1082 / p_.p1121S * dtS;
   off3Step_ = p_.p1082 / p_.p1135S * dtS;
   radPerS2PerRpmStep_ = kRadPerRpm / dtS;
   n2PerRpm_ = kN2Full / p_.p2000;
-  // specs/drives.md §B.3.1: the MOP integrates at p1082/p1047 rpm/s.
+  // The MOP integrates at p1082/p1047 rpm/s (docs/drive-simulators.md, Setpoint channel).
   mop_.step = p_.p1082 / p_.p1047S * dtS;
   mop_.maximum = p_.p1082;
   mop_.value = mopStartRpm();
@@ -131,7 +131,8 @@ void SpeedAxis::integrate(double dtS) {
   torqueGlatt_ += (torqueNm_ - torqueGlatt_) * alphaGlatt_;
 }
 
-// Timers of §B.2 standstill detection (actual speed: p1228, setpoint: p1227 — the latter ends an
+// Timers of the standstill detection (docs/drive-simulators.md, PROFIdrive state machine;
+// actual speed: p1228, setpoint: p1227 — the latter ends an
 // OFF1/OFF3 ramp even when the load keeps the motor turning) and the ZSW1.8 comparison: within
 // p2163, out beyond p2163 + p2164 (the hysteresis keeps the bit from chattering at the edge), and
 // the time out of tolerance for the p2166 off delay.

@@ -1,10 +1,10 @@
 #pragma once
-// Siemens speed axis (G120-like) on Standard Telegram 1 or Telegram 352 (specs/drives.md §A.1,
-// §A.2, §B.2, §B.3, §B.5, §B.6): the PROFIdrive state machine, the ramp-function generator,
-// a first-order speed response, OFF1/OFF2/OFF3, ZSW1, smoothed actual values, current/torque
-// from the shaft load, fault/alarm buffers with acknowledge on the 0->1 edge of STW1.7, and
-// setpoint-timeout monitoring (F01910 / F08501, A01920 when not under PLC control), the
-// standstill timers p1228/p1227, the ZSW1.8 tolerance p2163 with hysteresis p2164 and off delay
+// Siemens speed axis (G120-like) on Standard Telegram 1 or Telegram 352 (docs/drives.md; behaviour:
+// docs/drive-simulators.md, g120 and shared behaviour): the PROFIdrive state machine, the
+// ramp-function generator, a first-order speed response, OFF1/OFF2/OFF3, ZSW1, smoothed actual
+// values, current/torque from the shaft load, fault/alarm buffers with acknowledge on the 0->1 edge
+// of STW1.7, and setpoint-timeout monitoring (F01910 / F08501, A01920 when not under PLC control),
+// the standstill timers p1228/p1227, the ZSW1.8 tolerance p2163 with hysteresis p2164 and off delay
 // p2166, and the optional MOP (STW1.13/.14).
 // Parameters keep their SINAMICS numbers; every one is a simulator default [S] set in the cell file.
 #include <algorithm>
@@ -55,7 +55,7 @@ class SpeedAxis final : public TelegramDevice {
   const AlarmBuffer& alarmBuffer() const { return alarms_; }
   double rfgOutputRpm() const { return rfgOut_; }
   double mopRpm() const { return mop_.value; }
-  // Test entry points for the §B.5 buffers (the cell file injects through `faults:`).
+  // Test entry points for the fault and alarm buffers (the cell file injects through `faults:`).
   void raiseFault(uint16_t number, Reaction reaction, int64_t nowNs);
   void removeFaultCause(uint16_t number);
   void raiseAlarm(uint16_t number, int64_t nowNs);

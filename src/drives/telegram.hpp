@@ -5,7 +5,7 @@
 //
 // Values travel in three forms:
 //   wire image   bytes as on the fieldbus, in the telegram's byte order (Big: PROFINET,
-//                Little: EtherNet/IP), 32-bit values as one 4-byte unit (specs/drives.md §A.0);
+//                Little: EtherNet/IP), 32-bit values as one 4-byte unit (docs/drives.md);
 //   raw words    one uint32_t per telegram word, index = position in words(telegram, dir), the
 //                word's bit pattern zero-extended (an I16 of -8192 is 0xE000, an F32 its bits);
 //   numbers      signedValue()/realValue() and the normalisation helpers (normalisation.hpp).

@@ -1,5 +1,5 @@
-// The declarative UNIVERSAL_AXIS <-> telegram mapping (specs/drives.md §D.5): the bundled files
-// load, pack/unpack produce the spec's raw words and wire bytes (E31), and every kind of mistake
+// The declarative UNIVERSAL_AXIS <-> telegram mapping (docs/universal-axis.md, Mapping files): the
+// bundled files load, pack/unpack produce the expected raw words and wire bytes, and every kind of mistake
 // is reported at its file position.
 #include <gtest/gtest.h>
 
@@ -219,7 +219,7 @@ TEST(AxisMapping, Pf750SignsTheRealReference) {
   EXPECT_EQ(at(s, AxisSignal::Status_ActualSpeed), -1000) << "600 rpm = 1000 x 0.01 Hz (thesis figure)";
 }
 
-// S7 byte.bit aliases convert with the §A.0 formula: "STW1 0.2" = bit 10, "STW1 1.0" = bit 0.
+// S7 byte.bit aliases convert with the formula of docs/drives.md (introduction): "STW1 0.2" = bit 10, "STW1 1.0" = bit 0.
 // A mapped drive skips the wire image: toDrive()/fromDrive() give what writing the image in one
 // byte order and decoding it in the telegram's gives, for either byte order of the mapping.
 TEST(AxisMapping, ToDriveAndFromDriveMatchTheWireImage) {

@@ -1,6 +1,5 @@
 // EPos jog, incremental jog, set reference point, reference point approach and flying
-// referencing (specs/drives.md §C.4-§C.6, §C.8, §C.9; scenarios E10-E12, E16, E17), with raw
-// telegram 111 words.
+// referencing (docs/universal-axis.md, EPos modes), with raw telegram 111 words.
 #include <gtest/gtest.h>
 
 #include "epos_rig.hpp"

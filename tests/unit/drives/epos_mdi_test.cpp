@@ -1,6 +1,6 @@
 // EPos MDI positioning (relative, absolute), MDI setup, software limit switches, intermediate
-// stop / reject and traversing blocks (specs/drives.md §C.1-§C.3, §C.7, §C.10; scenarios
-// E13-E15), with raw telegram 111 words.
+// stop / reject and traversing blocks (docs/universal-axis.md, EPos modes), with raw telegram 111
+// words.
 #include <gtest/gtest.h>
 
 #include "epos_rig.hpp"

@@ -1,6 +1,7 @@
 // EPos monitoring: following error F07452, positioning window F07451, standstill window
-// F07450, sign-of-life F01912 (E29), setpoint timeout F01910 and acknowledge on the rising edge
-// (specs/drives.md §B.4-§B.6), with raw telegram 111 words.
+// F07450, sign-of-life F01912, setpoint timeout F01910 and acknowledge on the rising edge
+// (docs/universal-axis.md, EPos position loop and monitoring; docs/drive-simulators.md, Faults
+// and alarms), with raw telegram 111 words.
 #include <gtest/gtest.h>
 
 #include "epos_rig.hpp"

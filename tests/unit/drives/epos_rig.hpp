@@ -1,6 +1,6 @@
 #pragma once
 // Test rig for the EPos positioning axis: telegram 111 words sent one 2 ms bus cycle at a time,
-// replies read back as raw words (specs/drives.md §A.3).
+// replies read back as raw words (docs/drives.md, Siemens Standard Telegram 111).
 #include <functional>
 
 #include "drive_rig.hpp"

@@ -1,4 +1,4 @@
-// PowerFlex 525 / 750: the acceptance scenarios of specs/drives.md §E seen from the drive, with
+// PowerFlex 525 / 750: acceptance scenarios of docs/drive-simulators.md seen from the drive, with
 // raw logic words (P044 = 60 Hz, P041 = P042 = 10 s, one pole pair: 1 Hz = 60 rpm).
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Siemens speed axis on telegram 1 / 352: the acceptance scenarios of specs/drives.md §E seen
+// Siemens speed axis on telegram 1 / 352: acceptance scenarios of docs/drive-simulators.md seen
 // from the drive, with raw words (p2000 = 1350 rpm).
 #include <gtest/gtest.h>
 
@@ -21,7 +21,7 @@ TEST(SpeedAxis, E1RunsAtHalfSpeedFromNsoll0x2000) {
   EXPECT_TRUE(rig.zsw1() & (1u << 14));  // rotates forward
   EXPECT_TRUE(rig.zsw1() & (1u << 10));  // comparison speed reached
   EXPECT_TRUE(rig.zsw1() & (1u << 8));   // setpoint/actual within tolerance
-  EXPECT_EQ(rig.zsw1(), 0xEF37);         // the typical running word of §A.1
+  EXPECT_EQ(rig.zsw1(), 0xEF37);         // the typical running word of telegram 1
 }
 
 TEST(SpeedAxis, E2OverrideChangeTo75Percent) {

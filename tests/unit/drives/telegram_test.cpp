@@ -1,4 +1,4 @@
-// Telegram tables and codec: wire bytes, bits, normalisation (specs/drives.md §A, §E31).
+// Telegram tables and codec: wire bytes, bits, normalisation (docs/drives.md).
 #include <gtest/gtest.h>
 
 #include <array>

@@ -1,4 +1,4 @@
-// The point of the universal axis (specs/drives.md §D): one UNIVERSAL_AXIS instance and one PLC
+// The point of the universal axis (docs/universal-axis.md): one UNIVERSAL_AXIS instance and one PLC
 // program drive a Siemens G120 (telegram 1) and a Rockwell PowerFlex 525 (EtherNet/IP) through
 // the cell's `mapping:` only; both reach 675 rpm forward and -675 rpm backward.
 #include <gtest/gtest.h>

@@ -565,7 +565,7 @@ std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e
     return convert(callNative(pick(Native::STR_FIND), {*a, *b}, elemId(ElemType::Dint)), intT, e.loc);
   }
 
-  // ---- scaling (TIA style, seed 004 §1.10.4) ----
+  // ---- scaling (TIA style: docs/st-dialect.md, SCALE_X NORM_X) ----
   if (name == "SCALE_X" || name == "NORM_X") {
     if (!arity(3, 3)) return Value::error();
     Value mn = arg(0), v = arg(1), mx = arg(2);

@@ -1,7 +1,7 @@
 #pragma once
 // A drive's `mapping: lib/mappings/telegram1.yaml` names a UNIVERSAL_AXIS mapping file
-// (docs/drives.md). The loader replaces the file name by the file's parsed tree, so the drive's
-// factory reads it like an inline map and its diagnostics point into the mapping file.
+// (docs/universal-axis.md). The loader replaces the file name by the file's parsed tree, so the
+// drive's factory reads it like an inline map and its diagnostics point into the mapping file.
 #include <filesystem>
 
 #include "core/config_node.hpp"

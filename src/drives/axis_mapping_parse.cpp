@@ -1,4 +1,4 @@
-// parseMapping(): reads and validates a mapping file (format: docs/drives.md, "Mapping files").
+// parseMapping(): reads and validates a mapping file (format: docs/universal-axis.md, "Mapping files").
 // Load time only; every problem becomes a diagnostic at its file position.
 #include <algorithm>
 #include <cstdlib>

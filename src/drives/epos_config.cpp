@@ -1,4 +1,4 @@
-// The cell-file entry of an `s120_epos` positioning axis (docs/drives.md lists every key).
+// The cell-file entry of an `s120_epos` positioning axis (docs/universal-axis.md lists every key).
 #include <cmath>
 
 #include "drives/drive_config.hpp"

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "lang/st/codegen/check.hpp"
 #include "lang/st/codegen/codegen.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 #include "lang/st/parse/lexer.hpp"

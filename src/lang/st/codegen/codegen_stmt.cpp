@@ -1,6 +1,7 @@
 // Code generation: statements and the body of one POU.
 #include <algorithm>
 
+#include "lang/st/codegen/check.hpp"
 #include "lang/st/codegen/codegen.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 #include "lang/st/codegen/init_program.hpp"
@@ -64,17 +65,6 @@ void PouCompiler::statement(const Stmt& s) {
   tempTop_ = tempMark;
 }
 
-static bool isInsideOwnPou(const Place& p, const PouSym& pou) {
-  if (!p.var) return false;
-  for (const auto& l : pou.locals)
-    if (&l == p.var) return true;
-  const PouSym* owner = pou.kind == PouKind::FunctionBlock || pou.kind == PouKind::Program ? &pou : pou.owner;
-  if (owner)
-    for (const auto& m : owner->members)
-      if (&m == p.var) return true;
-  return false;
-}
-
 void PouCompiler::assignment(const Stmt& s) {
   if (s.kind == StmtKind::Assign && propertySet(*s.lhs, *s.rhs, s.loc)) return;
   auto target = place(*s.lhs, true);
@@ -82,13 +72,7 @@ void PouCompiler::assignment(const Stmt& s) {
     (void)expr(*s.rhs);  // still report errors on the right-hand side
     return;
   }
-  if (target->constant) {
-    diags().error(diag::E204, s.lhs->loc, "'" + (target->var ? target->var->name : std::string("value")) +
-                                              "' is a CONSTANT and cannot be assigned");
-    return;
-  }
-  if (target->isInput && isInsideOwnPou(*target, pou_) && pou_.kind == PouKind::FunctionBlock)
-    diags().warning(diag::W304, s.lhs->loc, "writing the input '" + target->var->name + "' inside its own FUNCTION_BLOCK; the next call overwrites it");
+  if (!checkAssignable(diags(), *target, pou_, s.lhs->loc)) return;
   if (s.kind == StmtKind::RefAssign) {
     if (!target->viaReference) {
       diags().error(diag::E209, s.lhs->loc, "REF= needs a REFERENCE TO variable on the left");

@@ -1,0 +1,54 @@
+#pragma once
+// The checks of code generation that emit nothing: argument binding and counting, method
+// access, writability of assignment targets, relations between FB and interface types. Each
+// reports its diagnostics (E2xx, W3xx) and says whether emission may go on; none touches the
+// module. The checks that need a value first (types of expressions, constants) stay with the
+// emitters that compute the value (codegen_*.cpp, builtin_*.cpp).
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "lang/st/codegen/codegen.hpp"
+#include "lang/st/declare/standard_functions.hpp"
+
+namespace virtcom::st {
+
+// --- standard functions (check_arguments.cpp) ---
+
+// The arguments of the standard function call `call` in parameter order: positional ones where
+// they stand, named ones by their IEC names (`naming`, `listed`). Nullopt after E203 for an
+// output, an unknown name, an input given twice or a gap.
+std::optional<std::vector<const Expr*>> orderStandardArguments(Diagnostics& diags, const std::string& name,
+                                                               ParameterNaming naming, std::string_view listed,
+                                                               const Expr& call);
+// False after E203 if `count` is outside fn's argument range.
+bool checkArgumentCount(Diagnostics& diags, const StandardFunction& fn, SourceLocation loc, size_t count);
+
+// --- calls of POUs (check_calls.cpp) ---
+
+// Binds the arguments of `call` to `params` of `callee` (positional in declaration order, or
+// by name; never both), one Binding per argument in the order written. False after E203 for
+// mixed forms, too many, unknown, repeated or wrongly connected arguments, a missing input of
+// a function called positionally, or an unconnected VAR_IN_OUT of a function or method.
+bool bindArguments(Diagnostics& diags, const Expr& call, const std::vector<const VarInfo*>& params, PouSym* callee,
+                   std::vector<PouCompiler::Binding>& out);
+// PRIVATE methods are callable inside their FB only, PROTECTED ones in derived FBs too; false
+// after E216. `caller` is the POU whose body makes the call.
+bool checkMethodAccess(Diagnostics& diags, const PouSym& caller, const PouSym& method, SourceLocation loc);
+
+// --- assignments (check_assign.cpp) ---
+
+// False after E204 if `target` is a CONSTANT; W304 when an FB writes its own input.
+bool checkAssignable(Diagnostics& diags, const Place& target, const PouSym& pou, SourceLocation loc);
+
+// --- type relations (check_types.cpp) ---
+
+// True if FB `c` is `base` or EXTENDS it (directly or further up).
+bool derivesFrom(const PouSym* c, const PouSym* base);
+// Interface and class names are upper-cased. True if interface `itf` is `target` or extends it.
+bool interfaceExtends(const ProgramModel& m, const std::string& itf, const std::string& target);
+// True if FB `c` or one of its bases implements `itf` or an interface extending it.
+bool implementsInterface(const ProgramModel& m, const PouSym* c, const std::string& itf);
+
+}  // namespace virtcom::st

@@ -67,8 +67,8 @@ Value emitStringQuery(BuiltinCall& c) {
   StringInputs strings(c);
   auto regs = operands(c, strings);
   if (!regs) return Value::error();
-  Value position = c.pc.callNative(strings.native(), *regs, TypeTable::elem(ElemType::Dint));
-  return c.pc.convert(position, TypeTable::elem(ElemType::Int), c.loc());
+  Value lengthOrPosition = c.pc.callNative(strings.native(), *regs, TypeTable::elem(ElemType::Dint));
+  return c.pc.convert(lengthOrPosition, TypeTable::elem(ElemType::Int), c.loc());
 }
 
 Value emitStringEdit(BuiltinCall& c) {

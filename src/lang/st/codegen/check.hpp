@@ -33,19 +33,39 @@ bool checkArgumentCount(Diagnostics& diags, const StandardFunction& fn, SourceLo
 // a function called positionally, or an unconnected VAR_IN_OUT of a function or method.
 bool bindArguments(Diagnostics& diags, const Expr& call, const std::vector<const VarInfo*>& params, PouSym* callee,
                    std::vector<PouCompiler::Binding>& out);
+// The variable `actual` passed to VAR_IN_OUT (or REFERENCE TO input) `param`, which wants a
+// `wanted`: false after E202 (another type; a derived FB and any string length are fine), E204
+// (a CONSTANT, unless the parameter is VAR_IN_OUT CONSTANT) or E203 (a single bit).
+bool checkInOutActual(Diagnostics& diags, const ProgramModel& m, const TypeTable& types, const VarInfo& param,
+                      TypeId wanted, const Place& actual, SourceLocation loc);
 // PRIVATE methods are callable inside their FB only, PROTECTED ones in derived FBs too; false
 // after E216. `caller` is the POU whose body makes the call.
 bool checkMethodAccess(Diagnostics& diags, const PouSym& caller, const PouSym& method, SourceLocation loc);
 
-// --- assignments (check_assign.cpp) ---
+// --- statements (check_statements.cpp) ---
 
 // False after E204 if `target` is a CONSTANT; W304 when an FB writes its own input.
 bool checkAssignable(Diagnostics& diags, const Place& target, const PouSym& pou, SourceLocation loc);
+// False after E202 (not an integer) or E204 (a CONSTANT) for the control variable of a FOR.
+bool checkForVariable(Diagnostics& diags, const TypeTable& types, const Place& var, SourceLocation loc);
+
+// The values lo..hi of one CASE label (lo == hi for a single value) and where it is written.
+struct CaseLabelRange {
+  int64_t lo;
+  int64_t hi;
+  SourceLocation loc;
+};
+// Reports E208 for each earlier label in `seen` that `label` overlaps, then adds it to `seen`;
+// W302 if no value of the integer type `selector` can match it. `isRange`: written as lo..hi.
+void checkCaseLabel(Diagnostics& diags, const TypeTable& types, TypeId selector, const CaseLabelRange& label,
+                    bool isRange, std::vector<CaseLabelRange>& seen);
 
 // --- type relations (check_types.cpp) ---
 
 // True if FB `c` is `base` or EXTENDS it (directly or further up).
 bool derivesFrom(const PouSym* c, const PouSym* base);
+// The types are equal, or both FBs and `actual` EXTENDS `wanted` (directly or further up).
+bool sameOrDerivedFb(const ProgramModel& m, TypeId actual, TypeId wanted);
 // Interface and class names are upper-cased. True if interface `itf` is `target` or extends it.
 bool interfaceExtends(const ProgramModel& m, const std::string& itf, const std::string& target);
 // True if FB `c` or one of its bases implements `itf` or an interface extending it.

@@ -48,7 +48,7 @@ bool bindArguments(Diagnostics& diags, const Expr& call, const std::vector<const
       index = positional++;
       if (index >= params.size()) {
         diags.error(diag::E203, arg.loc, "too many arguments for '" + calleeName + "' (it takes " +
-                                               std::to_string(params.size()) + ")");
+                                             std::to_string(params.size()) + ")");
         ok = false;
         continue;
       }
@@ -70,8 +70,8 @@ bool bindArguments(Diagnostics& diags, const Expr& call, const std::vector<const
     }
     if (arg.output != (p.section == VarSection::Output)) {
       diags.error(diag::E203, arg.loc, p.section == VarSection::Output
-                                             ? "'" + p.name + "' is an output: connect it with '=>'"
-                                             : "'" + p.name + "' is an input: pass it with ':='");
+                                           ? "'" + p.name + "' is an output: connect it with '=>'"
+                                           : "'" + p.name + "' is an input: pass it with ':='");
       ok = false;
       continue;
     }
@@ -96,6 +96,28 @@ bool bindArguments(Diagnostics& diags, const Expr& call, const std::vector<const
   return ok;
 }
 
+bool checkInOutActual(Diagnostics& diags, const ProgramModel& m, const TypeTable& types, const VarInfo& param,
+                      TypeId wanted, const Place& actual, SourceLocation loc) {
+  const bool readOnly = param.byReference && param.constant;
+  // A derived FB instance may be passed for its base, as CODESYS allows: its layout starts
+  // with the base's members, and methods dispatch on its class id.
+  if (!sameOrDerivedFb(m, actual.type, wanted) && !(types.isString(actual.type) && types.isString(wanted))) {
+    diags.error(diag::E202, loc, "'" + param.name + "' needs a " + describe(types, wanted) + " variable, found " +
+                                     describe(types, actual.type));
+    return false;
+  }
+  if (actual.constant && !readOnly) {
+    diags.error(diag::E204, loc, "the CONSTANT '" + (actual.var ? actual.var->name : std::string("value")) +
+                                     "' cannot be passed to '" + param.name + "', which may write it");
+    return false;
+  }
+  if (actual.bit >= 0 || actual.valueBit >= 0) {
+    diags.error(diag::E203, loc, "a single bit cannot be passed to VAR_IN_OUT '" + param.name + "'");
+    return false;
+  }
+  return true;
+}
+
 bool checkMethodAccess(Diagnostics& diags, const PouSym& pou, const PouSym& method, SourceLocation loc) {
   Access access = method.ast->access;
   if (access != Access::Private && access != Access::Protected) return true;
@@ -111,7 +133,7 @@ bool checkMethodAccess(Diagnostics& diags, const PouSym& pou, const PouSym& meth
   }
   if (!allowed)
     diags.error(diag::E216, loc, "METHOD " + method.qualifiedName + " is " +
-                                       (access == Access::Private ? "PRIVATE" : "PROTECTED") + " and cannot be called from here");
+                                     (access == Access::Private ? "PRIVATE" : "PROTECTED") + " and cannot be called from here");
   return allowed;
 }
 

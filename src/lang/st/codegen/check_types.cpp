@@ -25,6 +25,12 @@ bool derivesFrom(const PouSym* c, const PouSym* base) {
   return false;
 }
 
+bool sameOrDerivedFb(const ProgramModel& m, TypeId actual, TypeId wanted) {
+  if (actual == wanted) return true;
+  auto a = m.fbByType.find(actual), w = m.fbByType.find(wanted);
+  return a != m.fbByType.end() && w != m.fbByType.end() && derivesFrom(a->second, w->second);
+}
+
 bool interfaceExtends(const ProgramModel& m, const std::string& itf, const std::string& target) {
   return extendsWithin(m, itf, target, 0);
 }

@@ -193,8 +193,6 @@ class PouCompiler {
   TypeId staticTypeOf(const Expr& object);
   TypeId staticMemberType(const Expr& member);  // staticTypeOf of `a.b`
   bool hasProperty(TypeId type, const std::string& upperName);  // an FB or interface type's
-  // The types are equal, or both FBs and `actual` EXTENDS `wanted` (directly or further up).
-  bool sameOrDerivedFb(TypeId actual, TypeId wanted);
 
   // CODESYS operators (codegen_operators.cpp)
   struct InstanceOperand {

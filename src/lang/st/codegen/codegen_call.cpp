@@ -53,22 +53,7 @@ void PouCompiler::evaluateInputs(const std::vector<const VarInfo*>& params, std:
       }
       auto target = place(*arg.value, !readOnly);
       if (!target) continue;
-      // A derived FB instance may be passed for its base, as CODESYS allows: its layout starts
-      // with the base's members, and methods dispatch on its class id.
-      if (!sameOrDerivedFb(target->type, wanted) && !(types().isString(target->type) && types().isString(wanted))) {
-        diags().error(diag::E202, arg.loc, "'" + p.name + "' needs a " + describe(types(), wanted) +
-                                               " variable, found " + describe(types(), target->type));
-        continue;
-      }
-      if (target->constant && !readOnly) {
-        diags().error(diag::E204, arg.loc, "the CONSTANT '" + (target->var ? target->var->name : std::string("value")) +
-                                               "' cannot be passed to '" + p.name + "', which may write it");
-        continue;
-      }
-      if (target->bit >= 0 || target->valueBit >= 0) {
-        diags().error(diag::E203, arg.loc, "a single bit cannot be passed to VAR_IN_OUT '" + p.name + "'");
-        continue;
-      }
+      if (!checkInOutActual(diags(), model(), types(), p, wanted, *target, arg.loc)) continue;
       b.address = addressOf(*target);
       continue;
     }
@@ -214,18 +199,11 @@ Value PouCompiler::callFbInstance(const Place& inst, PouSym& fb, const Expr& e) 
 
 Value PouCompiler::callAction(PouSym& action, uint16_t thisReg) {
   pou_.callees.push_back(&action);
-  std::vector<Binding> none;
   uint16_t frame = emitFrameCall(action, thisReg);
   emitBx(Op::CALL, frame, action.bcIndex);
   Value v;
   v.kind = Value::Kind::Void;
   return v;
-}
-
-bool PouCompiler::sameOrDerivedFb(TypeId actual, TypeId wanted) {
-  if (actual == wanted) return true;
-  auto a = model().fbByType.find(actual), w = model().fbByType.find(wanted);
-  return a != model().fbByType.end() && w != model().fbByType.end() && derivesFrom(a->second, w->second);
 }
 
 std::vector<std::pair<uint32_t, PouSym*>> PouCompiler::dispatchTargets(const Receiver& recv, const std::string& key,

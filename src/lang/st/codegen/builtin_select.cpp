@@ -1,6 +1,7 @@
 // Code generation: the selection standard functions MIN, MAX, LIMIT, SEL and MUX, lowered to
 // compares, moves and jumps.
 #include "lang/st/codegen/builtin.hpp"
+#include "lang/st/codegen/check.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 
 namespace virtcom::st {
@@ -21,7 +22,7 @@ std::optional<TypeId> extremumType(BuiltinCall& c, const std::vector<Value>& val
     }
     Value a = c.pc.regValue(common, 0), b = v;
     a.untyped = false;
-    common = c.pc.commonType(a, b);
+    common = commonType(c.types(), a, b);
     if (common == kNoType) {
       if (v.type != values.front().type) {
         c.diags().error(diag::E202, c.loc(), c.name() + " needs arguments of compatible types");

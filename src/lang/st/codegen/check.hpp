@@ -62,6 +62,11 @@ void checkCaseLabel(Diagnostics& diags, const TypeTable& types, TypeId selector,
 
 // --- type relations (check_types.cpp) ---
 
+// The type two operands of an operator are computed in (IEC widening; an untyped literal takes
+// the other side's type; a REAL literal with an integer gives REAL; signed with unsigned gives
+// the signed type one rank up); kNoType if they do not combine.
+TypeId commonType(const TypeTable& types, const Value& a, const Value& b);
+
 // True if FB `c` is `base` or EXTENDS it (directly or further up).
 bool derivesFrom(const PouSym* c, const PouSym* base);
 // The types are equal, or both FBs and `actual` EXTENDS `wanted` (directly or further up).

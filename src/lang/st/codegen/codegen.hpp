@@ -140,7 +140,6 @@ class PouCompiler {
   Value stringResult(bc::Native n, std::vector<uint16_t> args, TypeId stringType);
   Value compare(const Expr& e, Value a, Value b);
   Value arithmetic(const Expr& e, Value a, Value b);
-  TypeId commonType(Value& a, Value& b);
 
   PouSym& pou() { return pou_; }
   CompileContext& ctx() { return ctx_; }

@@ -108,6 +108,8 @@ class PouCompiler {
 
   // Places
   std::optional<Place> place(const Expr& e, bool forWrite);
+  // The variable a bare name denotes (local, member, VAR_INST, global); nullopt, silently, if none.
+  std::optional<Place> namePlace(const Expr& e, bool forWrite);
   uint16_t load(const Place& p);
   void store(const Place& p, uint16_t reg);
   // Stores a small integer constant with one STK_*; false (nothing emitted) if it cannot.
@@ -130,7 +132,7 @@ class PouCompiler {
   std::optional<Value> memberProperty(const Expr& e);
   // `x.P := v` / `P := v` as a property write; false if the target is not a property.
   bool propertySet(const Expr& target, const Expr& value, SourceLocation loc);
-  // Builtins (codegen_builtin.cpp); nullopt if `name` is not a standard function.
+  // Standard functions (codegen_builtin.cpp, builtin_*.cpp); nullopt if `name` is not one.
   std::optional<Value> builtin(const std::string& upperName, const Expr& e, TypeId expected);
   // CODESYS operators (codegen_operators.cpp); nullopt if `name` is not one of them.
   std::optional<Value> codesysOperator(const std::string& upperName, const Expr& e);
@@ -138,7 +140,6 @@ class PouCompiler {
   Value stringResult(bc::Native n, std::vector<uint16_t> args, TypeId stringType);
   Value compare(const Expr& e, Value a, Value b);
   Value arithmetic(const Expr& e, Value a, Value b);
-  TypeId commonType(Value& a, Value& b);
 
   PouSym& pou() { return pou_; }
   CompileContext& ctx() { return ctx_; }
@@ -162,7 +163,6 @@ class PouCompiler {
   Value binary(const Expr& e, TypeId expected);
   Value shortCircuit(const Expr& e);
   Value dateArithmetic(const Expr& e, Value a, Value b);
-  std::optional<Place> namePlace(const Expr& e, bool forWrite);
   std::optional<Place> memberPlace(const Expr& e, bool forWrite);
   std::optional<Place> indexPlace(const Expr& e, bool forWrite);
   std::optional<Place> valuePlace(const Value& v);
@@ -176,7 +176,6 @@ class PouCompiler {
   // VAR_IN_OUT and REFERENCE TO inputs receive the address of the actual variable.
   bool passesAddress(const VarInfo& p);
  private:
-  bool bindArgs(const Expr& call, const std::vector<const VarInfo*>& params, PouSym* callee, std::vector<Binding>& out);
   void evaluateInputs(const std::vector<const VarInfo*>& params, std::vector<Binding>& bindings);
   // ENTER for `callee` and its `this` (0xffff: none); returns the callee's window register.
   uint16_t emitFrameCall(PouSym& callee, uint16_t thisReg);
@@ -189,14 +188,10 @@ class PouCompiler {
   Value callAction(PouSym& action, uint16_t thisReg);
   std::vector<std::pair<uint32_t, PouSym*>> dispatchTargets(const Receiver& recv, const std::string& upperName, bool property, bool setter);
   bool receiverOf(const Expr& objectExpr, Receiver& recv);
-  // PRIVATE methods are callable inside their FB only, PROTECTED ones in derived FBs too.
-  bool accessible(const PouSym& method, SourceLocation loc);
   // The declared type of a bare name or THIS^/SUPER^ without generating code; kNoType otherwise.
   TypeId staticTypeOf(const Expr& object);
   TypeId staticMemberType(const Expr& member);  // staticTypeOf of `a.b`
   bool hasProperty(TypeId type, const std::string& upperName);  // an FB or interface type's
-  // The types are equal, or both FBs and `actual` EXTENDS `wanted` (directly or further up).
-  bool sameOrDerivedFb(TypeId actual, TypeId wanted);
 
   // CODESYS operators (codegen_operators.cpp)
   struct InstanceOperand {
@@ -233,9 +228,5 @@ bc::Op loadAbsOp(ElemType e);
 bc::Op storeOp(ElemType e);
 bc::Op storeAbsOp(ElemType e);
 std::string describe(const TypeTable& types, TypeId t);
-// Interface and class names are upper-cased. True if interface `itf` is `target` or extends it.
-bool interfaceExtends(const ProgramModel& m, const std::string& itf, const std::string& target);
-// True if FB `c` or one of its bases implements `itf` or an interface extending it.
-bool implementsInterface(const ProgramModel& m, const PouSym* c, const std::string& itf);
 
 }  // namespace virtcom::st

@@ -3,29 +3,13 @@
 #include <algorithm>
 #include <set>
 
+#include "lang/st/codegen/check.hpp"
 #include "lang/st/codegen/codegen.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 
 namespace virtcom::st {
 
 using bc::Op;
-
-// IEC and CODESYS spell some standard FB inputs differently; both are accepted.
-static std::string canonicalParam(const PouSym* callee, const std::string& upperName) {
-  if (!callee || !callee->isLibrary) return upperName;
-  struct Alias {
-    const char* fb;
-    const char* iec;
-    const char* codesys;
-  };
-  static const Alias kAliases[] = {{"CTU", "R", "RESET"},  {"CTD", "LD", "LOAD"}, {"CTUD", "R", "RESET"},
-                                   {"CTUD", "LD", "LOAD"}, {"SR", "S1", "SET1"},  {"SR", "R", "RESET"},
-                                   {"RS", "S", "SET"},     {"RS", "R1", "RESET1"}};
-  std::string fb = upper(callee->name);
-  for (const auto& a : kAliases)
-    if (fb == a.fb && upperName == a.iec) return a.codesys;
-  return upperName;
-}
 
 bool PouCompiler::passesAddress(const VarInfo& p) {
   return p.byReference || (p.section == VarSection::Input && types().isReference(p.type) &&
@@ -38,74 +22,6 @@ std::vector<const VarInfo*> PouCompiler::fbParams(PouSym& fb) {
     if (m.section == VarSection::Input || m.section == VarSection::Output || m.section == VarSection::InOut)
       out.push_back(&m);
   return out;
-}
-
-bool PouCompiler::bindArgs(const Expr& call, const std::vector<const VarInfo*>& params, PouSym* callee,
-                           std::vector<Binding>& out) {
-  std::set<size_t> used;
-  size_t positional = 0;
-  bool ok = true;
-  std::string calleeName = callee ? callee->qualifiedName : "?";
-  bool anyNamed = false, anyPositional = false;
-  for (const auto& arg : call.args) (arg.name.empty() ? anyPositional : anyNamed) = true;
-  if (anyNamed && anyPositional) {
-    diags().error(diag::E203, call.loc, "the call of '" + calleeName + "' mixes positional and named arguments; use one form");
-    return false;
-  }
-  for (const auto& arg : call.args) {
-    size_t index = params.size();
-    if (arg.name.empty()) {
-      // positional: inputs and in-outs in declaration order
-      while (positional < params.size() && params[positional]->section == VarSection::Output) ++positional;
-      index = positional++;
-      if (index >= params.size()) {
-        diags().error(diag::E203, arg.loc, "too many arguments for '" + calleeName + "' (it takes " +
-                                               std::to_string(params.size()) + ")");
-        ok = false;
-        continue;
-      }
-    } else {
-      std::string key = canonicalParam(callee, upper(arg.name));
-      for (size_t i = 0; i < params.size(); ++i)
-        if (upper(params[i]->name) == key) index = i;
-      if (index == params.size()) {
-        diags().error(diag::E203, arg.loc, "'" + calleeName + "' has no parameter '" + arg.name + "'");
-        ok = false;
-        continue;
-      }
-    }
-    const VarInfo& p = *params[index];
-    if (!used.insert(index).second) {
-      diags().error(diag::E203, arg.loc, "parameter '" + p.name + "' is given twice");
-      ok = false;
-      continue;
-    }
-    if (arg.output != (p.section == VarSection::Output)) {
-      diags().error(diag::E203, arg.loc, p.section == VarSection::Output
-                                             ? "'" + p.name + "' is an output: connect it with '=>'"
-                                             : "'" + p.name + "' is an input: pass it with ':='");
-      ok = false;
-      continue;
-    }
-    Binding b;
-    b.param = index;
-    b.arg = &arg;
-    out.push_back(b);
-  }
-  bool isFunction = callee && callee->kind == PouKind::Function;
-  for (size_t i = 0; i < params.size(); ++i)
-    if (isFunction && anyPositional && params[i]->section == VarSection::Input && !used.count(i) &&
-        !(params[i]->decl && params[i]->decl->init)) {
-      diags().error(diag::E203, call.loc, "too few arguments for '" + calleeName + "': input '" + params[i]->name + "' is missing");
-      ok = false;
-      break;
-    }
-  for (size_t i = 0; i < params.size(); ++i)
-    if (params[i]->section == VarSection::InOut && !used.count(i) && callee && callee->kind != PouKind::FunctionBlock) {
-      diags().error(diag::E203, call.loc, "VAR_IN_OUT '" + params[i]->name + "' of '" + calleeName + "' must be connected");
-      ok = false;
-    }
-  return ok;
 }
 
 static bool denotesVariable(const Expr& e) {
@@ -137,22 +53,7 @@ void PouCompiler::evaluateInputs(const std::vector<const VarInfo*>& params, std:
       }
       auto target = place(*arg.value, !readOnly);
       if (!target) continue;
-      // A derived FB instance may be passed for its base, as CODESYS allows: its layout starts
-      // with the base's members, and methods dispatch on its class id.
-      if (!sameOrDerivedFb(target->type, wanted) && !(types().isString(target->type) && types().isString(wanted))) {
-        diags().error(diag::E202, arg.loc, "'" + p.name + "' needs a " + describe(types(), wanted) +
-                                               " variable, found " + describe(types(), target->type));
-        continue;
-      }
-      if (target->constant && !readOnly) {
-        diags().error(diag::E204, arg.loc, "the CONSTANT '" + (target->var ? target->var->name : std::string("value")) +
-                                               "' cannot be passed to '" + p.name + "', which may write it");
-        continue;
-      }
-      if (target->bit >= 0 || target->valueBit >= 0) {
-        diags().error(diag::E203, arg.loc, "a single bit cannot be passed to VAR_IN_OUT '" + p.name + "'");
-        continue;
-      }
+      if (!checkInOutActual(diags(), model(), types(), p, wanted, *target, arg.loc)) continue;
       b.address = addressOf(*target);
       continue;
     }
@@ -245,7 +146,7 @@ static void storeInputs(PouCompiler& pc, const std::vector<const VarInfo*>& para
 Value PouCompiler::callFunction(PouSym& fn, const Expr& e) {
   pou_.callees.push_back(&fn);
   std::vector<Binding> bindings;
-  if (!bindArgs(e, fn.params, &fn, bindings)) return Value::error();
+  if (!bindArguments(diags(), e, fn.params, &fn, bindings)) return Value::error();
   evaluateInputs(fn.params, bindings);
   uint16_t frame = emitFrameCall(fn, 0xffff);
   storeInputs(*this, fn.params, bindings, frame);
@@ -280,7 +181,7 @@ Value PouCompiler::callFbInstance(const Place& inst, PouSym& fb, const Expr& e) 
   pou_.callees.push_back(&fb);
   std::vector<const VarInfo*> params = fbParams(fb);
   std::vector<Binding> bindings;
-  if (!bindArgs(e, params, &fb, bindings)) return Value::error();
+  if (!bindArguments(diags(), e, params, &fb, bindings)) return Value::error();
   evaluateInputs(params, bindings);
   uint16_t self = addressOf(inst);
   storeInputs(*this, params, bindings, self);
@@ -298,46 +199,11 @@ Value PouCompiler::callFbInstance(const Place& inst, PouSym& fb, const Expr& e) 
 
 Value PouCompiler::callAction(PouSym& action, uint16_t thisReg) {
   pou_.callees.push_back(&action);
-  std::vector<Binding> none;
   uint16_t frame = emitFrameCall(action, thisReg);
   emitBx(Op::CALL, frame, action.bcIndex);
   Value v;
   v.kind = Value::Kind::Void;
   return v;
-}
-
-static bool derivesFrom(const PouSym* c, const PouSym* base) {
-  for (; c; c = c->base)
-    if (c == base) return true;
-  return false;
-}
-
-bool PouCompiler::sameOrDerivedFb(TypeId actual, TypeId wanted) {
-  if (actual == wanted) return true;
-  auto a = model().fbByType.find(actual), w = model().fbByType.find(wanted);
-  return a != model().fbByType.end() && w != model().fbByType.end() && derivesFrom(a->second, w->second);
-}
-
-// The depth limit guards against EXTENDS cycles, which the declarer reports but keeps.
-static bool extendsWithin(const ProgramModel& m, const std::string& itf, const std::string& target, int depth) {
-  if (itf == target) return true;
-  if (depth > 16) return false;
-  auto it = m.interfaces.find(itf);
-  if (it == m.interfaces.end()) return false;
-  for (const auto& b : it->second.bases)
-    if (extendsWithin(m, b, target, depth + 1)) return true;
-  return false;
-}
-
-bool interfaceExtends(const ProgramModel& m, const std::string& itf, const std::string& target) {
-  return extendsWithin(m, itf, target, 0);
-}
-
-bool implementsInterface(const ProgramModel& m, const PouSym* c, const std::string& itf) {
-  for (; c; c = c->base)
-    for (const auto& i : c->interfaces)
-      if (interfaceExtends(m, i, itf)) return true;
-  return false;
 }
 
 std::vector<std::pair<uint32_t, PouSym*>> PouCompiler::dispatchTargets(const Receiver& recv, const std::string& key,
@@ -404,25 +270,6 @@ static void emitDispatch(PouCompiler& pc, const PouCompiler::Receiver& recv,
   for (uint32_t j : toEnd) pc.patchJump(j, pc.here());
 }
 
-bool PouCompiler::accessible(const PouSym& method, SourceLocation loc) {
-  Access access = method.ast->access;
-  if (access != Access::Private && access != Access::Protected) return true;
-  const PouSym* caller = pou_.kind == PouKind::FunctionBlock ? &pou_ : pou_.owner;
-  const PouSym* owner = method.owner;
-  bool allowed = caller == owner;
-  // PROTECTED: from the declaring FB and FBs derived from it. The method may be the override of
-  // a derived FB that a base FB's code dispatches to (a template method calling an ABSTRACT
-  // step), so the caller may also be a base of the method's owner.
-  if (access == Access::Protected) {
-    for (const PouSym* c = caller; c && !allowed; c = c->base) allowed = c == owner;
-    for (const PouSym* o = owner; o && !allowed; o = o->base) allowed = o == caller;
-  }
-  if (!allowed)
-    diags().error(diag::E216, loc, "METHOD " + method.qualifiedName + " is " +
-                                       (access == Access::Private ? "PRIVATE" : "PROTECTED") + " and cannot be called from here");
-  return allowed;
-}
-
 Value PouCompiler::callMethod(const std::string& name, const Receiver& recv, const Expr& e) {
   std::string key = upper(name);
   auto targets = dispatchTargets(recv, key, false, false);
@@ -432,9 +279,9 @@ Value PouCompiler::callMethod(const std::string& name, const Receiver& recv, con
     return Value::error();
   }
   PouSym& proto = *targets.front().second;
-  if (!accessible(proto, e.loc)) return Value::error();
+  if (!checkMethodAccess(diags(), pou_, proto, e.loc)) return Value::error();
   std::vector<Binding> bindings;
-  if (!bindArgs(e, proto.params, &proto, bindings)) return Value::error();
+  if (!bindArguments(diags(), e, proto.params, &proto, bindings)) return Value::error();
   evaluateInputs(proto.params, bindings);
   uint16_t resultReg = allocReg();
   TypeId rt = proto.returnType;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "lang/st/codegen/check.hpp"
 #include "lang/st/codegen/codegen.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 #include "lang/st/parse/lexer.hpp"
@@ -472,7 +473,7 @@ Value PouCompiler::coerce(Value v, TypeId to, SourceLocation loc) {
     TypeId a = t[to].element, b = t[v.type].element;
     // ADR(buffer) for a POINTER TO its element type, as CODESYS code walks arrays (`p[i]`).
     while (b != kNoType && t[b].kind == bc::TypeKind::Array && a != b) b = t[b].element;
-    if (a == kNoType || b == kNoType || t.isElem(a, ElemType::Byte) || sameOrDerivedFb(b, a)) {
+    if (a == kNoType || b == kNoType || t.isElem(a, ElemType::Byte) || sameOrDerivedFb(model(), b, a)) {
       Value out = v;
       out.type = to;
       return out;

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lang/st/codegen/check.hpp"
 #include "lang/st/codegen/codegen.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 #include "lang/st/parse/lexer.hpp"
@@ -580,52 +581,6 @@ Value PouCompiler::unary(const Expr& e, TypeId expected) {
   return Value::error();
 }
 
-static int intRank(ElemType e) {
-  switch (e) {
-    case ElemType::Sint: case ElemType::Usint: case ElemType::Byte: return 1;
-    case ElemType::Int: case ElemType::Uint: case ElemType::Word: return 2;
-    case ElemType::Dint: case ElemType::Udint: case ElemType::Dword: return 3;
-    default: return 4;
-  }
-}
-
-static ElemType signedOfRank(int r) {
-  switch (r) {
-    case 1: return ElemType::Sint;
-    case 2: return ElemType::Int;
-    case 3: return ElemType::Dint;
-    default: return ElemType::Lint;
-  }
-}
-
-TypeId PouCompiler::commonType(Value& a, Value& b) {
-  TypeTable& t = types();
-  auto realLiteral = [&](const Value& v) { return v.untyped && v.c.kind == ConstValue::Kind::Real; };
-  if (realLiteral(b) && t.isInteger(a.type)) return TypeTable::elem(ElemType::Real);
-  if (realLiteral(a) && t.isInteger(b.type)) return TypeTable::elem(ElemType::Real);
-  if (a.untyped && !b.untyped) return b.type;
-  if (b.untyped && !a.untyped) return a.type;
-  if (a.type == b.type) return a.type;
-  if (t.isReal(a.type) || t.isReal(b.type)) {
-    if (t.isElem(a.type, ElemType::Lreal) || t.isElem(b.type, ElemType::Lreal)) return TypeTable::elem(ElemType::Lreal);
-    if (t.isNumeric(a.type) && t.isNumeric(b.type)) return TypeTable::elem(ElemType::Real);
-    return kNoType;
-  }
-  if (t.isInteger(a.type) && t.isInteger(b.type)) {
-    ElemType ea = t.storageElem(a.type), eb = t.storageElem(b.type);
-    int ra = intRank(ea), rb = intRank(eb);
-    bool sa = isSignedInt(ea), sb = isSignedInt(eb);
-    if (sa == sb) return ra >= rb ? a.type : b.type;
-    int su = sa ? ra : rb, uu = sa ? rb : ra;
-    return TypeTable::elem(signedOfRank(std::max(su, std::min(uu + 1, 4))));
-  }
-  if (t.isBool(a.type) && t.isBitString(b.type)) return b.type;
-  if (t.isBool(b.type) && t.isBitString(a.type)) return a.type;
-  if (t.isTimeLike(a.type) && t.isTimeLike(b.type)) return TypeTable::elem(ElemType::Ltime);
-  if (t.isEnum(a.type) && t.isEnum(b.type)) return kNoType;
-  return kNoType;
-}
-
 Value PouCompiler::shortCircuit(const Expr& e) {
   bool isAnd = e.binaryOp == BinaryOp::AndThen;
   uint16_t out = allocReg();
@@ -683,7 +638,7 @@ Value PouCompiler::compare(const Expr& e, Value a, Value b) {
     ra = cmp.reg;
     k = 0;
   } else {
-    TypeId common = commonType(a, b);
+    TypeId common = commonType(types(), a, b);
     if (common == kNoType && t.isEnum(a.type) && a.type == b.type) common = a.type;
     if (common == kNoType && (t.isPointer(a.type) || t.isPointer(b.type))) common = TypeTable::elem(ElemType::Lword);
     if (common == kNoType || !t.isScalar(common)) {
@@ -803,7 +758,7 @@ Value PouCompiler::arithmetic(const Expr& e, Value a, Value b) {
     Value r = callNative(bc::Native::EXPT, {x, y}, TypeTable::elem(ElemType::Lreal));
     return convert(r, rt, e.loc);
   }
-  TypeId common = commonType(a, b);
+  TypeId common = commonType(types(), a, b);
   bool ok = common != kNoType &&
             (logical ? (t.isBitString(common) || t.isInteger(common))
                      : ((t.isNumeric(common) || t.isTimeLike(common)) && !(op == BinaryOp::Mod && t.isReal(common))));

@@ -1,5 +1,6 @@
 // Code generation: the CODESYS operators on references and interfaces, __ISVALIDREF,
 // __QUERYINTERFACE and __QUERYPOINTER, lowered to loads, compares and jumps.
+#include "lang/st/codegen/check.hpp"
 #include "lang/st/codegen/codegen.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 

@@ -1,6 +1,7 @@
 // Code generation: statements and the body of one POU.
 #include <algorithm>
 
+#include "lang/st/codegen/check.hpp"
 #include "lang/st/codegen/codegen.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 #include "lang/st/codegen/init_program.hpp"
@@ -64,17 +65,6 @@ void PouCompiler::statement(const Stmt& s) {
   tempTop_ = tempMark;
 }
 
-static bool isInsideOwnPou(const Place& p, const PouSym& pou) {
-  if (!p.var) return false;
-  for (const auto& l : pou.locals)
-    if (&l == p.var) return true;
-  const PouSym* owner = pou.kind == PouKind::FunctionBlock || pou.kind == PouKind::Program ? &pou : pou.owner;
-  if (owner)
-    for (const auto& m : owner->members)
-      if (&m == p.var) return true;
-  return false;
-}
-
 void PouCompiler::assignment(const Stmt& s) {
   if (s.kind == StmtKind::Assign && propertySet(*s.lhs, *s.rhs, s.loc)) return;
   auto target = place(*s.lhs, true);
@@ -82,13 +72,7 @@ void PouCompiler::assignment(const Stmt& s) {
     (void)expr(*s.rhs);  // still report errors on the right-hand side
     return;
   }
-  if (target->constant) {
-    diags().error(diag::E204, s.lhs->loc, "'" + (target->var ? target->var->name : std::string("value")) +
-                                              "' is a CONSTANT and cannot be assigned");
-    return;
-  }
-  if (target->isInput && isInsideOwnPou(*target, pou_) && pou_.kind == PouKind::FunctionBlock)
-    diags().warning(diag::W304, s.lhs->loc, "writing the input '" + target->var->name + "' inside its own FUNCTION_BLOCK; the next call overwrites it");
+  if (!checkAssignable(diags(), *target, pou_, s.lhs->loc)) return;
   if (s.kind == StmtKind::RefAssign) {
     if (!target->viaReference) {
       diags().error(diag::E209, s.lhs->loc, "REF= needs a REFERENCE TO variable on the left");
@@ -96,7 +80,7 @@ void PouCompiler::assignment(const Stmt& s) {
     }
     auto src = place(*s.rhs, false);
     if (!src) return;
-    if (!sameOrDerivedFb(src->type, target->type)) {
+    if (!sameOrDerivedFb(model(), src->type, target->type)) {
       diags().error(diag::E202, s.rhs->loc, "REF= binds a REFERENCE TO " + describe(types(), target->type) + " to a " +
                                                 describe(types(), src->type));
       return;
@@ -154,11 +138,7 @@ void PouCompiler::caseStatement(const Stmt& s) {
     return;
   }
   uint16_t r = toReg(sel);
-  struct Range {
-    int64_t lo, hi;
-    SourceLocation loc;
-  };
-  std::vector<Range> seen;
+  std::vector<CaseLabelRange> seen;
   auto labelValue = [&](const Expr& e) -> std::optional<int64_t> {
     Value v = expr(e, sel.type);
     if (!v.ok()) return std::nullopt;
@@ -182,19 +162,7 @@ void PouCompiler::caseStatement(const Stmt& s) {
       auto lo = labelValue(*label.lo);
       auto hi = label.hi ? labelValue(*label.hi) : lo;
       if (!lo || !hi) continue;
-      for (const auto& prev : seen)
-        if (*lo <= prev.hi && *hi >= prev.lo)
-          diags().error(diag::E208, label.lo->loc, "CASE label " + std::to_string(*lo) + (label.hi ? ".." + std::to_string(*hi) : "") +
-                                                       " overlaps an earlier label (line " + std::to_string(prev.loc.line) + ")");
-      seen.push_back({*lo, *hi, label.lo->loc});
-      if (t.isInteger(sel.type)) {
-        uint32_t bits = t.bits(sel.type);
-        bool sgn = t.isSignedInt(sel.type);
-        int64_t min = bits >= 64 ? INT64_MIN : sgn ? -(int64_t(1) << (bits - 1)) : 0;
-        int64_t max = bits >= 64 ? INT64_MAX : sgn ? (int64_t(1) << (bits - 1)) - 1 : (int64_t(1) << bits) - 1;
-        if (*hi < min || *lo > max)
-          diags().warning(diag::W302, label.lo->loc, "CASE label can never match a selector of type " + describe(t, sel.type));
-      }
+      checkCaseLabel(diags(), t, sel.type, {*lo, *hi, label.lo->loc}, label.hi != nullptr, seen);
       uint16_t c = allocReg();
       auto compareWith = [&](Op op, Op opK, uint16_t into, int64_t k, bool constFirst) {
         if (k >= INT16_MIN && k <= INT16_MAX) emit(opK, into, r, static_cast<uint16_t>(k));
@@ -225,15 +193,8 @@ void PouCompiler::caseStatement(const Stmt& s) {
 void PouCompiler::forStatement(const Stmt& s) {
   auto var = place(*s.lhs, true);
   if (!var) return;
+  if (!checkForVariable(diags(), types(), *var, s.lhs->loc)) return;
   TypeTable& t = types();
-  if (!t.isInteger(var->type)) {
-    diags().error(diag::E202, s.lhs->loc, "a FOR control variable must be an integer, found " + describe(t, var->type));
-    return;
-  }
-  if (var->constant) {
-    diags().error(diag::E204, s.lhs->loc, "a CONSTANT cannot be a FOR control variable");
-    return;
-  }
   assign(*var, *s.rhs, s.rhs->loc);
   Value endV = coerce(expr(*s.to, var->type), var->type, s.to->loc);
   if (!endV.ok()) return;

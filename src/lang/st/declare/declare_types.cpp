@@ -5,7 +5,7 @@
 
 #include "lang/st/declare/declare.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
-#include "lang/st/declare/standard_names.hpp"
+#include "lang/st/declare/standard_functions.hpp"
 
 namespace virtcom::st {
 

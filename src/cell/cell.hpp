@@ -26,9 +26,6 @@ struct Wire {
   uint32_t address = 0;                     // in the PLC memory image
   int8_t bit = -1;
   ElemType varType = ElemType::Bool;        // storage type of the PLC variable
-  uint8_t varSize = 1;                      // bytes of the PLC variable
-  bool varIsReal = false;
-  ElemType tagType = ElemType::Bool;        // the port's type (the tag's)
   std::string varName;                      // for messages
 };
 
@@ -128,7 +125,7 @@ bool evaluate(const Condition& c, const uint8_t* memory);
 
 // Typed transfers between the PLC memory image and the tag bus (no allocation).
 void readVariable(const Wire& w, const uint8_t* memory, TagBus& bus);
-Wire makeWire(TagId tag, ElemType tagType, plant::PortDir dir, const bc::VarRef& ref, ElemType varType, std::string varName);
+Wire makeWire(TagId tag, plant::PortDir dir, const bc::VarRef& ref, ElemType varType, std::string varName);
 // Returns true if the PLC variable's bytes changed.
 bool writeVariable(const Wire& w, const TagBus& bus, uint8_t* memory);
 

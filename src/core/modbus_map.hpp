@@ -2,6 +2,8 @@
 // Which tag bus signal sits at which Modbus address, with which type, word order and scaling:
 // the `modbus:` section of a cell file (a served cell) and the `map:` of `plc: modbus:` (the
 // client bridge to an external PLC), or the automatic mapping. docs/modbus.md has the format.
+// A description only, no sockets: the cell loader reads and checks it, proto/modbus serves and
+// polls it, so it sits below both.
 #include <cstdint>
 #include <span>
 #include <string>
@@ -11,7 +13,7 @@
 #include "core/diagnostics.hpp"
 #include "core/tag_bus.hpp"
 
-namespace virtcom::proto::modbus {
+namespace virtcom::modbus_map {
 
 enum class Table : uint8_t { Coil, DiscreteInput, HoldingRegister, InputRegister };
 const char* tableName(Table t);  // "coil", "discrete", "holding", "input" (the cell file's words)
@@ -19,7 +21,7 @@ inline bool isBitTable(Table t) { return t == Table::Coil || t == Table::Discret
 
 enum class ValueType : uint8_t {
 #define MODBUS_VALUE_TYPE(name, text, registers, isSigned, isFloat) name,
-#include "proto/modbus/value_types.def"
+#include "core/modbus_value_types.def"
 #undef MODBUS_VALUE_TYPE
 };
 const char* valueTypeName(ValueType t);
@@ -75,4 +77,4 @@ SignalMap parseSignalMap(ConfigReader* section, std::span<const BusSignal> signa
 std::string formatMapCsv(const SignalMap& map);
 std::string formatMapMarkdown(const SignalMap& map);
 
-}  // namespace virtcom::proto::modbus
+}  // namespace virtcom::modbus_map

@@ -9,13 +9,15 @@
 #include <vector>
 
 #include "bytecode/module.hpp"
+#include "core/ams_net_id.hpp"
 #include "core/diagnostics.hpp"
+#include "core/endpoint.hpp"
+#include "core/modbus_map.hpp"
 #include "core/source.hpp"
 #include "core/tag_bus.hpp"
 #include "core/trace.hpp"
 #include "plant/device.hpp"
 #include "plant/world.hpp"
-#include "proto/modbus/signal_map.hpp"
 
 namespace virtcom::cell {
 
@@ -26,9 +28,6 @@ struct Wire {
   uint32_t address = 0;                     // in the PLC memory image
   int8_t bit = -1;
   ElemType varType = ElemType::Bool;        // storage type of the PLC variable
-  uint8_t varSize = 1;                      // bytes of the PLC variable
-  bool varIsReal = false;
-  ElemType tagType = ElemType::Bool;        // the port's type (the tag's)
   std::string varName;                      // for messages
 };
 
@@ -56,14 +55,16 @@ struct RunSettings {
   TagId cycleDoneTag = kNoTag;            // external PLC: the cycle_done variable as a BOOL tag
 };
 
-// `plc: modbus:` — the cell's controller is an external PLC, polled over Modbus TCP.
+// `plc: modbus:` — the cell's controller is an external PLC, polled over Modbus TCP. Checked
+// by the loader: the bridge takes the values as they are.
 struct ModbusClientSettings {
-  std::string address;                 // HOST:PORT of the PLC's Modbus server
+  std::string address;                 // HOST:PORT as written (messages quote it)
+  Endpoint peer;                       // the PLC's Modbus server (port never 0)
   int unit = 1;                        // unit id sent with every request
   int64_t pollNs = 10'000'000;         // read commands / write changed status this often
   int64_t timeoutNs = 500'000'000;     // a request unanswered this long means the link is lost
   bool faultOnLoss = true;             // on_loss: fault (end the run) or hold (keep, reconnect)
-  proto::modbus::SignalMap map;        // the PLC's tables (Client role)
+  modbus_map::SignalMap map;           // the PLC's tables (Client role)
 };
 
 // A device port wired to a variable of an external PLC by name (`plc: ads:`): resolved, checked
@@ -79,13 +80,14 @@ struct ExternalWire {
 };
 
 // `plc: ads:` — the cell's controller is an external PLC reached over ADS (a TwinCAT runtime or
-// `virtcom exec --ads`). Strings are checked by the loader.
+// `virtcom exec --ads`). Checked by the loader: the bridge takes the values as they are.
 struct AdsClientSettings {
-  std::string address;                 // HOST:PORT of its AMS router (TwinCAT: port 48898)
+  std::string address;                 // HOST:PORT as written (messages quote it)
+  Endpoint router;                     // its AMS router (TwinCAT: port 48898; port never 0)
   SourceLocation addressLoc;           // where connection problems are reported
-  std::string netId = "127.0.0.1.1.1"; // the target AmsNetId
+  AmsNetId netId = kLocalAliasNetId;   // the target AmsNetId
   uint16_t port = 851;                 // the target AMS port (851 = PLC runtime 1)
-  std::string localNetId;              // our source AmsNetId; empty: local IPv4 address + .1.1
+  std::optional<AmsNetId> localNetId;  // our source AmsNetId; none: local IPv4 address + .1.1
   int64_t timeoutNs = 500'000'000;     // connect and each request
   bool faultOnLoss = true;             // on_loss: fault (end the run) or hold (keep, reconnect)
   bool disconnectWhenStopped = true;   // release the handles and disconnect when the run ends
@@ -102,14 +104,14 @@ struct Cell {
   std::vector<std::unique_ptr<plant::Device>> devices;
   std::vector<Wire> wires;
   RunSettings run;
-  proto::modbus::SignalMap modbus;     // what `virtcom serve --modbus` serves: `modbus:` or automatic
+  modbus_map::SignalMap modbus;        // what `virtcom serve --modbus` serves: `modbus:` or automatic
   std::optional<ModbusClientSettings> plcModbus;
   std::optional<AdsClientSettings> plcAds;
 };
 
 // Every device port as a signal a protocol map can name ("Press.execute"), in device and port
 // order; input ports are commands, output ports status.
-std::vector<proto::modbus::BusSignal> busSignals(const Cell& cell);
+std::vector<modbus_map::BusSignal> busSignals(const Cell& cell);
 
 // Makes the controller external: drops the soft PLC and everything that names its variables
 // (wiring, run conditions, recorded variables); the devices then take their commands from
@@ -128,7 +130,7 @@ bool evaluate(const Condition& c, const uint8_t* memory);
 
 // Typed transfers between the PLC memory image and the tag bus (no allocation).
 void readVariable(const Wire& w, const uint8_t* memory, TagBus& bus);
-Wire makeWire(TagId tag, ElemType tagType, plant::PortDir dir, const bc::VarRef& ref, ElemType varType, std::string varName);
+Wire makeWire(TagId tag, plant::PortDir dir, const bc::VarRef& ref, ElemType varType, std::string varName);
 // Returns true if the PLC variable's bytes changed.
 bool writeVariable(const Wire& w, const TagBus& bus, uint8_t* memory);
 

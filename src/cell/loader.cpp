@@ -436,7 +436,7 @@ class Loader {
       diags_.error("C033", loc, "'" + var + "' is read-only (CONSTANT) and cannot receive " + d.name() + "." + spec.name);
       return 0;
     }
-    cell.wires.push_back(makeWire(d.tag(port), spec.type, spec.dir, *ref, t.elem, var));
+    cell.wires.push_back(makeWire(d.tag(port), spec.dir, *ref, t.elem, var));
     return 1;
   }
 

@@ -1,17 +1,15 @@
 #include "cell/modbus_settings.hpp"
 
-#include <cmath>
-
-#include "proto/net/endpoint.hpp"
+#include "cell/peer_settings.hpp"
 
 namespace virtcom::cell {
 
-std::vector<proto::modbus::BusSignal> busSignals(const Cell& cell) {
-  std::vector<proto::modbus::BusSignal> out;
+std::vector<modbus_map::BusSignal> busSignals(const Cell& cell) {
+  std::vector<modbus_map::BusSignal> out;
   for (const auto& d : cell.devices)
     for (size_t i = 0; i < d->ports().size(); ++i) {
       const plant::PortSpec& p = d->ports()[i];
-      auto dir = p.dir == plant::PortDir::In ? proto::modbus::SignalDir::Command : proto::modbus::SignalDir::Status;
+      auto dir = p.dir == plant::PortDir::In ? modbus_map::SignalDir::Command : modbus_map::SignalDir::Status;
       out.push_back({d->tag(i), d->name() + "." + p.name, p.type, dir});
     }
   return out;
@@ -29,7 +27,7 @@ void detachSoftPlc(Cell& cell) {
 void readModbusSection(Cell& cell, const ConfigNode* node, Diagnostics& diags) {
   auto signals = busSignals(cell);
   if (!node) {
-    cell.modbus = proto::modbus::parseSignalMap(nullptr, signals, proto::modbus::MapRole::Server);
+    cell.modbus = modbus_map::parseSignalMap(nullptr, signals, modbus_map::MapRole::Server);
     return;
   }
   ConfigReader r(*node, diags, "'modbus'");
@@ -37,7 +35,7 @@ void readModbusSection(Cell& cell, const ConfigNode* node, Diagnostics& diags) {
     r.error(node->loc(), "'modbus' must be a map with 'map:' (a list of entries) and optional 'word_order:'");
     return;
   }
-  cell.modbus = proto::modbus::parseSignalMap(&r, signals, proto::modbus::MapRole::Server);
+  cell.modbus = modbus_map::parseSignalMap(&r, signals, modbus_map::MapRole::Server);
   r.rejectUnknownKeys();
 }
 
@@ -48,25 +46,15 @@ void readModbusClient(Cell& cell, const ConfigNode& node, Diagnostics& diags) {
     return;
   }
   ModbusClientSettings s;
-  s.address = r.requireString("address");
-  if (!s.address.empty()) {
-    auto endpoint = proto::net::parseEndpoint(s.address);
-    if (!endpoint || endpoint->port == 0)
-      r.error(node.find("address")->loc(), "'address': " + (endpoint ? std::string("port 0 cannot be connected to") : endpoint.error()) +
-                                               " (expected HOST:PORT, e.g. 127.0.0.1:502)");
-  }
+  readPeerAddress(r, node, "127.0.0.1:502", s.address, s.peer);
   int64_t unit = r.optInt("unit", 1);
   if (unit < 0 || unit > 255) r.error(node.find("unit")->loc(), "'unit' must be 0..255");
   s.unit = static_cast<int>(unit);
-  s.pollNs = static_cast<int64_t>(std::llround(r.optQuantity("poll", Dimension::Time, 0.01) * 1e9));
-  if (s.pollNs < 1'000'000) r.error(node.find("poll")->loc(), "'poll' must be at least 1 ms");
-  s.timeoutNs = static_cast<int64_t>(std::llround(r.optQuantity("timeout", Dimension::Time, 0.5) * 1e9));
-  if (s.timeoutNs < 1'000'000) r.error(node.find("timeout")->loc(), "'timeout' must be at least 1 ms");
-  std::string onLoss = r.optString("on_loss", "fault");
-  if (onLoss != "fault" && onLoss != "hold") r.error(node.find("on_loss")->loc(), "'on_loss' must be fault or hold, not '" + onLoss + "'");
-  s.faultOnLoss = onLoss == "fault";
+  s.pollNs = readLinkDurationNs(r, node, "poll", 0.01);
+  s.timeoutNs = readLinkDurationNs(r, node, "timeout", 0.5);
+  s.faultOnLoss = readFaultOnLoss(r, node);
   auto signals = busSignals(cell);
-  s.map = proto::modbus::parseSignalMap(&r, signals, proto::modbus::MapRole::Client);
+  s.map = modbus_map::parseSignalMap(&r, signals, modbus_map::MapRole::Client);
   r.rejectUnknownKeys();
   cell.plcModbus = std::move(s);
 }

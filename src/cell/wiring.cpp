@@ -14,16 +14,13 @@ bool writeVariable(const Wire& w, const TagBus& bus, uint8_t* memory) {
   return storeVariable(memory + w.address, w.bit, w.varType, bus, w.tag);
 }
 
-Wire makeWire(TagId tag, ElemType tagType, plant::PortDir dir, const bc::VarRef& ref, ElemType varType, std::string varName) {
+Wire makeWire(TagId tag, plant::PortDir dir, const bc::VarRef& ref, ElemType varType, std::string varName) {
   Wire w;
   w.tag = tag;
-  w.tagType = tagType;
   w.dir = dir;
   w.address = ref.address;
   w.bit = ref.bit;
   w.varType = varType;
-  w.varSize = static_cast<uint8_t>(ref.bit >= 0 ? 1 : elemTypeInfo(varType).sizeBytes);
-  w.varIsReal = isRealType(varType);
   w.varName = std::move(varName);
   return w;
 }

@@ -47,7 +47,7 @@ std::expected<std::unique_ptr<proto::ads::PlcServer>, std::string> startAdsServe
   config.device.readOnly = o.readOnly;
   if (!o.netId.empty()) {
     auto id = ads::parseNetId(o.netId);
-    if (!id) return std::unexpected("--ads-netid: '" + o.netId + "' is not an AmsNetId (six numbers 0-255, e.g. 192.168.1.10.1.1)");
+    if (!id) return std::unexpected("--ads-netid: " + id.error());
     config.device.netId = *id;
   }
   if (!o.allow.empty()) {

@@ -5,6 +5,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "core/modbus_map.hpp"
 
 namespace virtcom::cli {
 
@@ -26,7 +27,7 @@ int printMap(const MapOptions& o) {
     return kExitUsage;
   }
   const auto& map = o.bridge ? cell->plcModbus->map : cell->modbus;
-  std::string text = o.format == "csv" ? proto::modbus::formatMapCsv(map) : proto::modbus::formatMapMarkdown(map);
+  std::string text = o.format == "csv" ? modbus_map::formatMapCsv(map) : modbus_map::formatMapMarkdown(map);
   if (o.output.empty()) {
     std::cout << text;
     return kExitOk;

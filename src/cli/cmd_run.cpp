@@ -86,7 +86,7 @@ int exitCodeFor(RunEnd end) {
 // `plc: modbus:`: the external PLC polled as the cell's controller.
 std::unique_ptr<proto::modbus::ClientBridge> startClientBridge(const cell::ModbusClientSettings& s) {
   proto::modbus::ClientConfig config;
-  config.peer = *proto::net::parseEndpoint(s.address);  // checked by the loader
+  config.peer = s.peer;
   config.unit = s.unit;
   config.pollNs = s.pollNs;
   config.timeoutNs = s.timeoutNs;
@@ -103,10 +103,10 @@ std::unique_ptr<proto::modbus::ClientBridge> startClientBridge(const cell::Modbu
 std::unique_ptr<proto::ads::ClientBridge> startAdsBridge(cell::Cell& cell, const SourceManager& sources) {
   namespace ads = proto::ads;
   const cell::AdsClientSettings& s = *cell.plcAds;
-  ads::BridgeConfig config;  // the strings were checked by the loader
-  config.client.router = *proto::net::parseEndpoint(s.address);
-  config.client.target = {*ads::parseNetId(s.netId), s.port};
-  if (!s.localNetId.empty()) config.client.localNetId = *ads::parseNetId(s.localNetId);
+  ads::BridgeConfig config;
+  config.client.router = s.router;
+  config.client.target = {s.netId, s.port};
+  config.client.localNetId = s.localNetId;
   config.client.timeoutNs = s.timeoutNs;
   config.faultOnLoss = s.faultOnLoss;
   config.disconnectWhenStopped = s.disconnectWhenStopped;

@@ -54,17 +54,36 @@ std::string messageName(MessageKind kind, uint16_t number) {
   return buf;
 }
 
-const MessageDef* parseMessageCode(const std::string& text, std::string& error) {
+namespace {
+
+std::expected<InjectableMessage, std::string> sinamicsCode(const std::string& text) {
   const bool wellFormed = text.size() >= 2 && (text[0] == 'F' || text[0] == 'A') && text.size() <= 6 &&
                           std::all_of(text.begin() + 1, text.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
   const MessageDef* found = nullptr;
   if (wellFormed) found = findMessage(text[0] == 'F' ? MessageKind::Fault : MessageKind::Alarm,
                                       static_cast<uint16_t>(std::stoul(text.substr(1))));
-  if (found) return found;
+  if (found) return InjectableMessage{found->kind, found->number, found->reaction};
   std::string known;
   for (const MessageDef& m : kCatalogue) known += (known.empty() ? "" : ", ") + messageName(m.kind, m.number);
-  error = "'" + text + "' is not a known SINAMICS fault or alarm (expected one of: " + known + ")";
-  return nullptr;
+  return std::unexpected("'" + text + "' is not a known SINAMICS fault or alarm (expected one of: " + known + ")");
+}
+
+std::expected<InjectableMessage, std::string> powerFlexCode(const std::string& text) {
+  std::string digits = text;
+  if (!digits.empty() && digits[0] == 'F') digits.erase(0, 1);
+  const bool numeric = !digits.empty() && digits.size() <= 3 &&
+                       std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (numeric && findPowerFlexFault(static_cast<uint16_t>(std::stoi(digits))))
+    return InjectableMessage{MessageKind::Fault, static_cast<uint16_t>(std::stoi(digits)), Reaction::None};
+  std::string known;
+  for (const PowerFlexFaultDef& f : kPowerFlexFaults) known += (known.empty() ? "" : ", ") + std::to_string(f.number);
+  return std::unexpected("'" + text + "' is not a PowerFlex fault number (expected F and one of: " + known + ")");
+}
+
+}  // namespace
+
+std::expected<InjectableMessage, std::string> parseInjectionCode(MessageFamily family, const std::string& text) {
+  return family == MessageFamily::PowerFlex ? powerFlexCode(text) : sinamicsCode(text);
 }
 
 bool FaultBuffer::raise(uint16_t number, int32_t value, Reaction reaction, int64_t nowNs) {

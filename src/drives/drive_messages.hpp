@@ -4,6 +4,7 @@
 // and acknowledging never allocate, so they run on the per-tick path.
 #include <array>
 #include <cstdint>
+#include <expected>
 #include <optional>
 #include <span>
 #include <string>
@@ -25,9 +26,6 @@ struct MessageDef {
 
 std::span<const MessageDef> messageCatalogue();
 const MessageDef* findMessage(MessageKind kind, uint16_t number);
-// "F07900" / "A01920" -> its catalogue entry; error text (expected forms, known codes) if the
-// text is malformed or not in the catalogue.
-const MessageDef* parseMessageCode(const std::string& text, std::string& error);
 // "F07900" for (Fault, 7900).
 std::string messageName(MessageKind kind, uint16_t number);
 
@@ -38,6 +36,18 @@ struct PowerFlexFaultDef {
 };
 std::span<const PowerFlexFaultDef> powerFlexFaults();
 const PowerFlexFaultDef* findPowerFlexFault(uint16_t number);
+
+// Whose codes a drive accepts for injection (the cell file's `faults: inject: [{code: ...}]`).
+enum class MessageFamily : uint8_t { Sinamics, PowerFlex };
+struct InjectableMessage {
+  MessageKind kind = MessageKind::Fault;
+  uint16_t number = 0;
+  Reaction reaction = Reaction::None;
+};
+// A code of `family` as the message it raises: SINAMICS "F07900" / "A01920" from the catalogue
+// (with its reaction); PowerFlex "F4" or "4" from powerflex_faults.def (a fault, no reaction).
+// Error text naming the expected form and the known codes if the text is not one.
+std::expected<InjectableMessage, std::string> parseInjectionCode(MessageFamily family, const std::string& text);
 
 struct DriveMessage {
   uint16_t number = 0;       // 0 = empty slot

@@ -21,7 +21,7 @@ constexpr double kRadPerRpm = 2.0 * std::numbers::pi / 60.0;
 }  // namespace
 
 EposAxis::EposAxis(std::string name, DriveCommon common, EposParams params)
-    : TelegramDevice(std::move(name), "s120_epos", std::move(common)), p_(std::move(params)) {
+    : TelegramDevice(std::move(name), "s120_epos", std::move(common), MessageFamily::Sinamics), p_(std::move(params)) {
   alphaX_ = 1.0 - std::exp(-static_cast<double>(common_.stepNs) * 1e-9 / p_.tauXS);
   machinePos_ = target_ = p_.startPosition;
   profile_.reset(machinePos_);
@@ -158,16 +158,6 @@ void EposAxis::raiseInjected(Injection& inj, int64_t nowNs) {
 void EposAxis::clearInjected(Injection& inj, int64_t nowNs) {
   if (inj.kind == MessageKind::Fault) faults_.causeGone(inj.number);
   else alarms_.clear(inj.number, nowNs);
-}
-
-std::string EposAxis::checkInjection(Injection& inj, const std::string& code) const {
-  std::string error;
-  const MessageDef* m = parseMessageCode(code, error);
-  if (!m) return error;
-  inj.kind = m->kind;
-  inj.number = m->number;
-  inj.reaction = m->reaction;
-  return {};
 }
 
 bool EposAxis::settled() const {

@@ -97,7 +97,6 @@ class EposAxis final : public TelegramDevice {
   void raiseInjected(Injection& inj, int64_t nowNs) override;
   void clearInjected(Injection& inj, int64_t nowNs) override;
   bool settled() const override;
-  std::string checkInjection(Injection& inj, const std::string& code) const override;
 
  private:
   // epos_axis.cpp: frames, state machine, monitoring, status words

@@ -84,7 +84,7 @@ double approach(double from, double to, double maxStep) {
 }  // namespace
 
 PowerFlex::PowerFlex(std::string name, std::string type, DriveCommon common, PowerFlexParams params)
-    : TelegramDevice(std::move(name), std::move(type), std::move(common)), p_(params) {
+    : TelegramDevice(std::move(name), std::move(type), std::move(common), MessageFamily::PowerFlex), p_(params) {
   pf750_ = telegramId() == TelegramId::Pf750;
   const double dtS = static_cast<double>(common_.stepNs) * 1e-9;
   coastFactor_ = std::exp(-dtS / p_.tauCoastS);
@@ -309,21 +309,6 @@ bool PowerFlex::settled() const {
   if (p_.mop && !commLost_ && mop_.moving(cmd_.mopIncrement, cmd_.mopDecrement)) return false;
   if (p_.positionMode) return !coasting_ && !jogging_ && profile_.v() == 0 && (inPosition_ || (!startLatched_ && !cmd_.run));
   return outHz_ == targetHz() && !coasting_;
-}
-
-std::string PowerFlex::checkInjection(Injection& inj, const std::string& code) const {
-  std::string digits = code;
-  if (!digits.empty() && digits[0] == 'F') digits.erase(0, 1);
-  const bool numeric = !digits.empty() && digits.size() <= 3 &&
-                       std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
-  if (numeric && findPowerFlexFault(static_cast<uint16_t>(std::stoi(digits)))) {
-    inj.kind = MessageKind::Fault;
-    inj.number = static_cast<uint16_t>(std::stoi(digits));
-    return {};
-  }
-  std::string known;
-  for (const PowerFlexFaultDef& f : powerFlexFaults()) known += (known.empty() ? "" : ", ") + std::to_string(f.number);
-  return "'" + code + "' is not a PowerFlex fault number (expected F and one of: " + known + ")";
 }
 
 }  // namespace virtcom::drives

@@ -61,7 +61,6 @@ class PowerFlex final : public TelegramDevice {
   void raiseInjected(Injection& inj, int64_t nowNs) override;
   void clearInjected(Injection& inj, int64_t nowNs) override;
   bool settled() const override;
-  std::string checkInjection(Injection& inj, const std::string& code) const override;
 
  private:
   struct Command {

@@ -65,7 +65,7 @@ double approach(double from, double to, double maxStep) {
 }  // namespace
 
 SpeedAxis::SpeedAxis(std::string name, DriveCommon common, SpeedAxisParams params)
-    : TelegramDevice(std::move(name), "g120", std::move(common)), p_(params) {
+    : TelegramDevice(std::move(name), "g120", std::move(common), MessageFamily::Sinamics), p_(params) {
   if (p_.p1082 <= 0) p_.p1082 = p_.p2000;
   if (p_.p2141 < 0) p_.p2141 = 0.01 * p_.p2000;
   const double dtS = static_cast<double>(common_.stepNs) * 1e-9;
@@ -268,16 +268,6 @@ bool SpeedAxis::settled() const {
   if (state_ == DriveState::S5aOff1RampDown || state_ == DriveState::S5bOff3QuickStop) return false;
   if (!pulsesEnabled(state_)) return speedRpm_ == 0;
   return rfgOut_ == setpointRpm() && std::abs(speedRpm_ - rfgOut_) < 1e-9;
-}
-
-std::string SpeedAxis::checkInjection(Injection& inj, const std::string& code) const {
-  std::string error;
-  const MessageDef* m = parseMessageCode(code, error);
-  if (!m) return error;
-  inj.kind = m->kind;
-  inj.number = m->number;
-  inj.reaction = m->reaction;
-  return {};
 }
 
 }  // namespace virtcom::drives

@@ -69,7 +69,6 @@ class SpeedAxis final : public TelegramDevice {
   void raiseInjected(Injection& inj, int64_t nowNs) override;
   void clearInjected(Injection& inj, int64_t nowNs) override;
   bool settled() const override;
-  std::string checkInjection(Injection& inj, const std::string& code) const override;
 
  private:
   double setpointRpm() const;

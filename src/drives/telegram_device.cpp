@@ -23,8 +23,8 @@ void rawToTag(TagBus& bus, TagId tag, WireType type, uint32_t raw) {
 
 }  // namespace
 
-TelegramDevice::TelegramDevice(std::string name, std::string type, DriveCommon common)
-    : plant::Device(std::move(name), std::move(type)), common_(std::move(common)) {
+TelegramDevice::TelegramDevice(std::string name, std::string type, DriveCommon common, MessageFamily family)
+    : plant::Device(std::move(name), std::move(type)), common_(std::move(common)), family_(family) {
   if (common_.mapping) {
     mapped_.emplace(common_.mapping);
     mapped_->setFirstPort(ports().size());
@@ -161,8 +161,13 @@ void TelegramDevice::readFaults(ConfigReader& f) {
         if (hasDuration) inj.durationNs = plant::requireDurationNs(r, "duration");
         inj.minSpeedRpm = r.optNumber("at_speed_rpm", 0);
         if (!code.empty()) {
-          std::string problem = checkInjection(inj, code);
-          if (!problem.empty()) r.error(item.find("code")->loc(), problem);
+          if (auto message = parseInjectionCode(family_, code)) {
+            inj.kind = message->kind;
+            inj.number = message->number;
+            inj.reaction = message->reaction;
+          } else {
+            r.error(item.find("code")->loc(), message.error());
+          }
         }
         // Without a duration a fault's cause is gone at once (the first acknowledge clears it)
         // and an alarm stays for the rest of the run.

@@ -61,7 +61,8 @@ struct DriveCommon {
 
 class TelegramDevice : public plant::Device {
  public:
-  TelegramDevice(std::string name, std::string type, DriveCommon common);
+  // `family`: whose fault and alarm codes the cell file may inject into this drive.
+  TelegramDevice(std::string name, std::string type, DriveCommon common, MessageFamily family);
 
   void prepare(plant::World& world, Trace& trace) override;
   void step(const plant::StepContext& ctx) final;
@@ -91,8 +92,6 @@ class TelegramDevice : public plant::Device {
   virtual void clearInjected(Injection& inj, int64_t nowNs) = 0;
   // True while the model changes on its own (motion, ramps, pending timers).
   virtual bool settled() const = 0;
-  // Validates an injection's code for this drive family; error text if it is not one.
-  virtual std::string checkInjection(Injection& inj, const std::string& code) const = 0;
 
   // Torque the load needs at the motor for an acceleration (rad/s^2) at speed n (rpm). Inline:
   // every drive calls it every integration step.
@@ -112,6 +111,7 @@ class TelegramDevice : public plant::Device {
   void applyInjections(int64_t nowNs);
   bool commLost(int64_t nowNs) const;
 
+  MessageFamily family_;  // the injection codes readFaults() accepts
   double stepS_ = 0, travelPerRpmStep_ = 0, joulesPerNmRpmStep_ = 0;  // per integration step
   RawWords rx_{}, tx_{};
   std::optional<MappedPorts> mapped_;

@@ -18,7 +18,7 @@ Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), opti
   for (const auto& name : cell_.run.recordVars) {
     auto ref = bc::resolveVariable(*cell_.module, name);
     const bc::TypeDesc& t = cell_.module->types[ref->type];
-    recordWires_.push_back(cell::makeWire(cell_.bus.add(name, t.elem), t.elem, plant::PortDir::In, *ref, t.elem, name));
+    recordWires_.push_back(cell::makeWire(cell_.bus.add(name, t.elem), plant::PortDir::In, *ref, t.elem, name));
   }
   if (!cell_.run.cycleDoneVar.empty()) {
     auto ref = bc::resolveVariable(*cell_.module, cell_.run.cycleDoneVar);

@@ -189,6 +189,18 @@ TEST_F(AdsBridgeE2e, ProblemsAreReportedAtStartWithTheirPosition) {
   EXPECT_EQ(plc->stop(), 0) << plc->errorOutput();
 }
 
+// `netid:` in the cell file and `--ads-netid` read an AmsNetId with one parser, so they refuse the
+// same text in the same words, each after its own key or option.
+TEST_F(AdsBridgeE2e, TheCellFileAndTheOptionRefuseABadAmsNetIdInTheSameWords) {
+  const std::string refusal = "'1.2.3' is not an AmsNetId (six numbers 0-255, e.g. 192.168.1.10.1.1)";
+  std::string out;
+  EXPECT_EQ(shell(kExe + " run " + bridgeCell(48898, "netid: 127.0.0.1.1.1", "netid: 1.2.3"), out), 1) << out;
+  EXPECT_NE(out.find("bridge.yaml:13:12: error[C010]: 'netid': " + refusal), std::string::npos) << out;
+  out.clear();
+  EXPECT_EQ(shell(kExe + " serve " + kExample + "/cell.yaml --ads 127.0.0.1:0 --ads-netid 1.2.3", out), 64) << out;
+  EXPECT_NE(out.find("error: --ads-netid: " + refusal), std::string::npos) << out;
+}
+
 // The seed's setting: the gearbox cell against its PLC program over ADS, the signals named like
 // the PLC's variables (`wiring: MAIN.Robot1` -> MAIN.Robot1.busy, ...), both sides at 10x speed.
 TEST_F(AdsBridgeE2e, TheGearboxCellCommissionsAgainstItsProgramInAnotherProcess) {

@@ -1,7 +1,5 @@
 #include "proto/ads/ams.hpp"
 
-#include <charconv>
-
 #include "proto/ads/byte_io.hpp"
 
 namespace virtcom::proto::ads {
@@ -49,32 +47,6 @@ const char* errorText(uint32_t code) {
 #undef ADS_ERROR
   }
   return "ADS error";
-}
-
-std::optional<AmsNetId> parseNetId(std::string_view text) {
-  AmsNetId id{};
-  for (size_t i = 0; i < id.size(); ++i) {
-    unsigned v = 0;
-    auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (ec != std::errc{} || end == text.data() || v > 255) return std::nullopt;
-    id[i] = static_cast<uint8_t>(v);
-    text.remove_prefix(static_cast<size_t>(end - text.data()));
-    if (i + 1 < id.size()) {
-      if (text.empty() || text.front() != '.') return std::nullopt;
-      text.remove_prefix(1);
-    }
-  }
-  if (!text.empty()) return std::nullopt;
-  return id;
-}
-
-std::string formatNetId(const AmsNetId& id) {
-  std::string s;
-  for (size_t i = 0; i < id.size(); ++i) {
-    if (i) s += '.';
-    s += std::to_string(id[i]);
-  }
-  return s;
 }
 
 FrameScan scanFrame(std::span<const uint8_t> buffer, size_t maxFrameBytes) {

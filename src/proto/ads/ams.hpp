@@ -14,6 +14,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/ams_net_id.hpp"
+
 namespace virtcom::proto::ads {
 
 inline constexpr size_t kAmsTcpHeaderSize = 6;
@@ -52,11 +54,11 @@ inline constexpr uint16_t kResponse = 0x0005;      // response | ADS command (ad
 inline constexpr uint16_t kNotification = 0x0004;  // ADS command, no response bit
 }  // namespace state_flags
 
-using AmsNetId = std::array<uint8_t, 6>;
-inline constexpr AmsNetId kLocalAliasNetId{127, 0, 0, 1, 1, 1};
-// "a.b.c.d.e.f" with six numbers 0..255; nullopt otherwise.
-std::optional<AmsNetId> parseNetId(std::string_view text);
-std::string formatNetId(const AmsNetId& id);
+// The AmsNetId text is core's (the cell file names AmsNetIds too); named here for ADS.
+using virtcom::AmsNetId;
+using virtcom::formatNetId;
+using virtcom::kLocalAliasNetId;
+using virtcom::parseNetId;
 
 struct AmsAddress {
   AmsNetId netId{};

@@ -1,26 +1,21 @@
 #pragma once
-// TCP endpoints and listening sockets shared by the protocol servers (Modbus TCP, ADS).
-// POSIX sockets, IPv4 only; nothing here knows a protocol.
+// Listening sockets shared by the protocol servers (Modbus TCP, ADS). POSIX sockets, IPv4
+// only; nothing here knows a protocol.
 #include <cstdint>
 #include <expected>
 #include <string>
-#include <string_view>
-#include <vector>
+
+#include "core/endpoint.hpp"
 
 namespace virtcom::proto::net {
 
-struct Endpoint {
-  uint32_t ipv4 = 0x7f000001;  // host byte order
-  uint16_t port = 0;
-};
-// "HOST:PORT" with an IPv4 address or "localhost"; port 0 picks a free port. Error text on failure.
-std::expected<Endpoint, std::string> parseEndpoint(std::string_view text);
-// An IPv4 address (or "localhost") in host byte order. Error text on failure.
-std::expected<uint32_t, std::string> parseIpv4(std::string_view text);
-// "ADDR,ADDR,..." of IPv4 peer addresses (host byte order). Error text on failure.
-std::expected<std::vector<uint32_t>, std::string> parseAllowList(std::string_view text);
-std::string formatIpv4(uint32_t ipv4);
-std::string formatEndpoint(const Endpoint& e);
+// The endpoint text is core's (the cell file names endpoints too); named here for the servers.
+using virtcom::Endpoint;
+using virtcom::formatEndpoint;
+using virtcom::formatIpv4;
+using virtcom::parseAllowList;
+using virtcom::parseEndpoint;
+using virtcom::parseIpv4;
 
 // A bound, listening, non-blocking, close-on-exec TCP socket.
 struct Listener {

@@ -36,9 +36,11 @@ TEST_F(AdsSection, TheSettingsAndTheWiringByNameAreKeptForTheBridge) {
   ASSERT_TRUE(cell->plcAds);
   const AdsClientSettings& s = *cell->plcAds;
   EXPECT_EQ(s.address, "10.1.2.3:48898");
-  EXPECT_EQ(s.netId, "10.1.2.3.1.1");
+  EXPECT_EQ(s.router.ipv4, 0x0a010203u);
+  EXPECT_EQ(s.router.port, 48898);
+  EXPECT_EQ(s.netId, (AmsNetId{10, 1, 2, 3, 1, 1}));
   EXPECT_EQ(s.port, 852);
-  EXPECT_EQ(s.localNetId, "10.1.2.4.1.1");
+  EXPECT_EQ(s.localNetId, (AmsNetId{10, 1, 2, 4, 1, 1}));
   EXPECT_EQ(s.timeoutNs, 250'000'000);
   EXPECT_FALSE(s.faultOnLoss);
   EXPECT_FALSE(s.disconnectWhenStopped);
@@ -76,6 +78,30 @@ TEST_F(AdsSection, MistakesAreReportedAtTheirPosition) {
                           ::testing::HasSubstr("cell.yaml:8:5: error[C011]: "),
                           "cell.yaml:10:10: error[C010]: 'until' needs the soft PLC ('plc: sources'); with 'plc: ads' end the run with "
                           "'cycle_done' or 'time_limit'"));
+}
+
+TEST_F(AdsSection, TheAddressIsKeptAsWrittenForMessagesAndParsedForTheBridge) {
+  auto cell = loads(std::string("plc:\n  ads: { address: 'localhost:48898' }\n") + kDevices);
+  ASSERT_TRUE(cell);
+  const AdsClientSettings& s = *cell->plcAds;
+  EXPECT_EQ(s.address, "localhost:48898");
+  EXPECT_EQ(s.router.ipv4, 0x7f000001u);
+  EXPECT_EQ(s.router.port, 48898);
+  EXPECT_EQ(s.addressLoc.line, 2u);
+  EXPECT_EQ(s.netId, kLocalAliasNetId);
+  EXPECT_EQ(s.port, 851);
+  EXPECT_FALSE(s.localNetId);
+  EXPECT_EQ(s.timeoutNs, 500'000'000);
+  EXPECT_TRUE(s.faultOnLoss);
+}
+
+// `netid` and `local_netid` share the AmsNetId reader of `--ads-netid` (core/ams_net_id.hpp),
+// and `address` the endpoint reader of `plc: modbus:`.
+TEST_F(AdsSection, AmsNetIdsAndAddressesAreRefusedInTheSharedReadersWords) {
+  EXPECT_THAT(fails(std::string("plc:\n  ads:\n    address: 127.0.0.1:0\n    local_netid: 1.2.3.4.5.300\n") + kDevices),
+              ElementsAre("cell.yaml:3:14: error[C010]: 'address': port 0 cannot be connected to (expected HOST:PORT, e.g. "
+                          "127.0.0.1:48898)",
+                          "cell.yaml:4:18: error[C010]: 'local_netid': " + parseNetId("1.2.3.4.5.300").error()));
 }
 
 TEST_F(AdsSection, OneExternalPlcAtATime) {

@@ -4,13 +4,13 @@
 #include <gtest/gtest.h>
 
 #include "cell_files.hpp"
-#include "proto/modbus/signal_map.hpp"
+#include "core/modbus_map.hpp"
 
 namespace virtcom::cell::test {
 namespace {
 
 using ::testing::ElementsAre;
-namespace mb = proto::modbus;
+namespace mb = modbus_map;
 
 // A clamp (command port INT `programNumber`, execute; status done, error, busy) and a press
 // (adds LREAL actualForce and position), no soft PLC.
@@ -117,6 +117,8 @@ TEST_F(ModbusSection, TheClientBridgeSettingsAndItsMapDefaults) {
   ASSERT_TRUE(cell->plcModbus);
   const ModbusClientSettings& s = *cell->plcModbus;
   EXPECT_EQ(s.address, "127.0.0.1:1502");
+  EXPECT_EQ(s.peer.ipv4, 0x7f000001u);
+  EXPECT_EQ(s.peer.port, 1502);
   EXPECT_EQ(s.unit, 3);
   EXPECT_EQ(s.pollNs, 20'000'000);
   EXPECT_EQ(s.timeoutNs, 500'000'000);
@@ -159,6 +161,18 @@ TEST_F(ModbusSection, ClientBridgeMistakes) {
                           "holding register, not discrete",
                           "cell.yaml:10:10: error[C010]: 'until' names PLC variables, but the cell has no soft PLC ('plc: "
                           "sources')"));
+}
+
+TEST_F(ModbusSection, TheAddressIsKeptAsWrittenForMessagesAndParsedForTheBridge) {
+  auto cell = loads(std::string("plc:\n  modbus: { address: 'localhost:1502' }\n") + kDevices);
+  ASSERT_TRUE(cell);
+  EXPECT_EQ(cell->plcModbus->address, "localhost:1502");
+  EXPECT_EQ(cell->plcModbus->peer.ipv4, 0x7f000001u);
+  EXPECT_EQ(cell->plcModbus->peer.port, 1502);
+  EXPECT_THAT(fails(std::string("plc:\n  modbus:\n    address: 'localhost:0'\n    timeout: 0.5 ms\n") + kDevices),
+              ElementsAre("cell.yaml:3:14: error[C010]: 'address': port 0 cannot be connected to (expected HOST:PORT, e.g. "
+                          "127.0.0.1:502)",
+                          "cell.yaml:4:14: error[C010]: 'timeout' must be at least 1 ms"));
 }
 
 TEST_F(ModbusSection, WiringNeedsASoftPlc) {

@@ -9,6 +9,7 @@
 #include "core/diagnostics.hpp"
 #include "core/source.hpp"
 #include "core/trace.hpp"
+#include "drives/drive_messages.hpp"
 #include "drives/drive_registry.hpp"
 #include "drives/speed_axis.hpp"
 
@@ -100,6 +101,30 @@ TEST(DriveConfig, DelayAndMopKeysReportWrongValues) {
   EXPECT_NE(m.errors().find("'control_mode' must be speed or position, not 'torque'"), std::string::npos) << m.errors();
   Loaded u("type: powerflex750\ncontrol_mode: position\nspeed_units: rpm\n");
   EXPECT_NE(u.errors().find("'speed_units' does not apply"), std::string::npos) << u.errors();
+}
+
+// One reader for every drive's injection codes; the family says whose codes it accepts.
+TEST(DriveConfig, EachDriveFamilyInjectsItsOwnCodes) {
+  auto fault = drives::parseInjectionCode(drives::MessageFamily::Sinamics, "F07900");
+  ASSERT_TRUE(fault);
+  EXPECT_EQ(fault->kind, drives::MessageKind::Fault);
+  EXPECT_EQ(fault->number, 7900);
+  EXPECT_EQ(fault->reaction, drives::Reaction::Off2);
+  auto alarm = drives::parseInjectionCode(drives::MessageFamily::Sinamics, "A01920");
+  ASSERT_TRUE(alarm);
+  EXPECT_EQ(alarm->kind, drives::MessageKind::Alarm);
+  EXPECT_EQ(alarm->number, 1920);
+  for (const char* code : {"F4", "4"}) {
+    auto powerFlex = drives::parseInjectionCode(drives::MessageFamily::PowerFlex, code);
+    ASSERT_TRUE(powerFlex) << code;
+    EXPECT_EQ(powerFlex->kind, drives::MessageKind::Fault);
+    EXPECT_EQ(powerFlex->number, 4);
+    EXPECT_EQ(powerFlex->reaction, drives::Reaction::None);
+  }
+  EXPECT_EQ(drives::parseInjectionCode(drives::MessageFamily::PowerFlex, "F07900").error().rfind("'F07900' is not a PowerFlex fault number (expected F and one of: 2, 3, 4", 0), 0u);
+  EXPECT_EQ(drives::parseInjectionCode(drives::MessageFamily::Sinamics, "F4").error().rfind("'F4' is not a known SINAMICS fault or alarm (expected one of: F01000, F01001", 0), 0u);
+  Loaded epos("type: s120_epos\nfaults:\n  inject:\n    - {code: F4}\n");
+  EXPECT_NE(epos.errors().find("'F4' is not a known SINAMICS fault or alarm"), std::string::npos) << epos.errors();
 }
 
 TEST(DriveConfig, UnknownInjectionCodesListTheCatalogue) {

@@ -1,4 +1,4 @@
-#include "proto/modbus/signal_map.hpp"
+#include "core/modbus_map.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 #include <optional>
 #include <sstream>
 
-namespace virtcom::proto::modbus {
+namespace virtcom::modbus_map {
 
 namespace {
 
@@ -19,7 +19,7 @@ struct ValueTypeInfo {
 
 constexpr ValueTypeInfo kValueTypes[] = {
 #define MODBUS_VALUE_TYPE(name, text, registers, isSigned, isFloat) {ValueType::name, text, registers},
-#include "proto/modbus/value_types.def"
+#include "core/modbus_value_types.def"
 #undef MODBUS_VALUE_TYPE
 };
 
@@ -302,4 +302,4 @@ std::string formatMapMarkdown(const SignalMap& map) {
   return out;
 }
 
-}  // namespace virtcom::proto::modbus
+}  // namespace virtcom::modbus_map

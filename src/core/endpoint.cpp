@@ -1,0 +1,66 @@
+#include "core/endpoint.hpp"
+
+#include <arpa/inet.h>
+
+#include <charconv>
+
+namespace virtcom {
+
+namespace {
+
+// "'TEXT'" + tail, built by appending (GCC 12 warns falsely about "'" + std::string(...)).
+std::string quotedThen(std::string_view text, const char* tail) {
+  std::string out(1, '\'');
+  return out.append(text).append(tail);
+}
+
+}  // namespace
+
+std::expected<uint32_t, std::string> parseIpv4(std::string_view text) {
+  std::string host(text);
+  if (host == "localhost") host = "127.0.0.1";
+  in_addr addr{};
+  if (::inet_pton(AF_INET, host.c_str(), &addr) != 1) return std::unexpected(quotedThen(text, "' is not an IPv4 address"));
+  return ntohl(addr.s_addr);
+}
+
+std::string formatIpv4(uint32_t ipv4) {
+  in_addr addr{htonl(ipv4)};
+  char text[INET_ADDRSTRLEN] = {};
+  ::inet_ntop(AF_INET, &addr, text, sizeof text);
+  return text;
+}
+
+std::expected<Endpoint, std::string> parseEndpoint(std::string_view text) {
+  auto colon = text.rfind(':');
+  if (colon == std::string_view::npos) return std::unexpected("expected HOST:PORT, found " + quotedThen(text, "'"));
+  auto ip = parseIpv4(text.substr(0, colon));
+  if (!ip) return std::unexpected(ip.error());
+  std::string_view portText = text.substr(colon + 1);
+  unsigned port = 0;
+  auto [end, ec] = std::from_chars(portText.data(), portText.data() + portText.size(), port);
+  if (ec != std::errc{} || end != portText.data() + portText.size() || port > 65535 || portText.empty())
+    return std::unexpected(quotedThen(portText, "' is not a port number (0-65535)"));
+  return Endpoint{*ip, static_cast<uint16_t>(port)};
+}
+
+std::expected<std::vector<uint32_t>, std::string> parseAllowList(std::string_view text) {
+  std::vector<uint32_t> out;
+  while (!text.empty()) {
+    auto comma = text.find(',');
+    std::string_view item = text.substr(0, comma);
+    if (!item.empty()) {
+      auto ip = parseIpv4(item);
+      if (!ip) return std::unexpected(ip.error());
+      out.push_back(*ip);
+    }
+    if (comma == std::string_view::npos) break;
+    text.remove_prefix(comma + 1);
+  }
+  if (out.empty()) return std::unexpected(std::string("the allow-list names no address"));
+  return out;
+}
+
+std::string formatEndpoint(const Endpoint& e) { return formatIpv4(e.ipv4) + ":" + std::to_string(e.port); }
+
+}  // namespace virtcom

@@ -38,8 +38,26 @@ struct RunOptions {
   std::string backend = "interp";
 };
 
+// Prints every signal change as it happens (single-step mode).
+class ChangePrinter final : public ChangeSink {
+ public:
+  void begin(const Trace& trace) override { trace_ = &trace; }
+  void change(const SignalChange& c) override {
+    const SignalInfo& s = trace_->signals[c.tag];
+    std::cout << "  " << static_cast<double>(c.timeNs) * 1e-9 << " s  " << s.name << " = ";
+    if (isFloat(s.type)) std::cout << std::bit_cast<double>(c.raw);
+    else if (s.type == ElemType::Bool) std::cout << (c.raw ? "TRUE" : "FALSE");
+    else std::cout << static_cast<int64_t>(c.raw);
+    std::cout << "\n";
+  }
+  void end(const Trace&) override {}
+
+ private:
+  const Trace* trace_ = nullptr;
+};
+
 // Single-step mode: one PLC base tick per line read from stdin (empty line: one tick, a number N:
-// N ticks, q: stop), printing the time and every signal that changed.
+// N ticks, q: stop); the ChangePrinter among the run's sinks prints every signal that changed.
 RunEnd stepInteractively(sim::Simulation& simulation, const Trace& trace) {
   std::cout << "single step: Enter = one tick, N = N ticks, q = quit\n";
   std::string line;
@@ -47,22 +65,48 @@ RunEnd stepInteractively(sim::Simulation& simulation, const Trace& trace) {
     std::cout << "[" << static_cast<double>(simulation.nowNs()) * 1e-9 << " s] > " << std::flush;
     if (!std::getline(std::cin, line) || line == "q") break;
     long count = line.empty() ? 1 : std::strtol(line.c_str(), nullptr, 10);
-    size_t before = trace.changes.size();
     bool running = true;
     for (long i = 0; i < std::max(count, 1L) && running; ++i) running = simulation.step();
-    for (size_t k = before; k < trace.changes.size(); ++k) {
-      const SignalChange& c = trace.changes[k];
-      const SignalInfo& s = trace.signals[c.tag];
-      std::cout << "  " << static_cast<double>(c.timeNs) * 1e-9 << " s  " << s.name << " = ";
-      if (isFloat(s.type)) std::cout << std::bit_cast<double>(c.raw);
-      else if (s.type == ElemType::Bool) std::cout << (c.raw ? "TRUE" : "FALSE");
-      else std::cout << static_cast<int64_t>(c.raw);
-      std::cout << "\n";
-    }
     if (!running) break;
   }
   if (trace.endNs == 0 && simulation.nowNs() > 0) return RunEnd::Interrupted;
   return trace.end;
+}
+
+// A file written as the run goes (--vcd, --csv): opened before the run so a bad path is reported
+// before any simulation time is spent.
+struct StreamedFile {
+  std::string path;
+  std::ofstream out;
+  std::unique_ptr<ChangeSink> writer;
+};
+
+template <class Writer>
+bool openStreamedFile(const std::string& path, std::vector<std::unique_ptr<StreamedFile>>& files) {
+  if (path.empty()) return true;
+  auto file = std::make_unique<StreamedFile>();
+  file->path = path;
+  file->out.open(path, std::ios::binary);
+  if (!file->out) {
+    std::cerr << "error: cannot write " << path << "\n";
+    return false;
+  }
+  file->writer = std::make_unique<Writer>(file->out);
+  files.push_back(std::move(file));
+  return true;
+}
+
+// Flushes the streamed files; false (with a message) if one could not be written completely.
+bool closeStreamedFiles(std::vector<std::unique_ptr<StreamedFile>>& files) {
+  bool ok = true;
+  for (auto& f : files) {
+    f->out.close();
+    if (!f->out) {
+      std::cerr << "error: cannot write " << f->path << "\n";
+      ok = false;
+    }
+  }
+  return ok;
 }
 
 bool writeFile(const std::string& path, const std::string& content) {
@@ -209,6 +253,15 @@ int runCell(const RunOptions& o) {
     options.bridges.push_back(adsBridge.get());
     if (options.speed == 0) options.speed = 1;  // the external PLC runs in real time
   }
+  // Only the report's timeline signals stay in memory; files get every change as the run goes.
+  std::vector<std::string> timeline = o.signals.empty() ? cell->run.recordVars : o.signals;
+  options.keepAllChanges = false;
+  options.keptSignals = timeline;
+  std::vector<std::unique_ptr<StreamedFile>> files;
+  if (!openStreamedFile<report::VcdWriter>(o.vcd, files) || !openStreamedFile<report::CsvWriter>(o.csv, files)) return kExitUsage;
+  for (auto& f : files) options.changeSinks.push_back(f->writer.get());
+  ChangePrinter printer;
+  if (o.step) options.changeSinks.push_back(&printer);
   sim::Simulation simulation(*cell, options);
   std::signal(SIGINT, onRunSignal);
   std::signal(SIGTERM, onRunSignal);
@@ -219,12 +272,10 @@ int runCell(const RunOptions& o) {
   report::HtmlOptions html;
   html.title = cell->name;
   // Without --signal the timeline shows what the cell file asked to record.
-  html.signals = o.signals.empty() ? cell->run.recordVars : o.signals;
-  bool ok = true;
+  html.signals = timeline;
+  bool ok = closeStreamedFiles(files);
   if (!o.html.empty()) ok = writeFile(o.html, report::htmlReport(trace, kpis, html)) && ok;
   if (!o.json.empty()) ok = writeFile(o.json, report::jsonReport(trace, kpis)) && ok;
-  if (!o.vcd.empty()) ok = writeFile(o.vcd, report::vcdReport(trace)) && ok;
-  if (!o.csv.empty()) ok = writeFile(o.csv, report::csvChanges(trace)) && ok;
   if (!ok) return kExitUsage;
   return exitCodeFor(end);
 }

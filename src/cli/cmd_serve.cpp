@@ -123,6 +123,7 @@ int serveCell(const ServeOptions& o) {
   options.speed = o.speed;
   options.interrupt = &gServeStop;
   options.timeLimitNs = INT64_MAX;
+  options.keepAllChanges = false;  // serves for days: no signal history in memory
   for (auto& b : *bridges) options.bridges.push_back(b.get());
   if (cell->module) options.compiled = compiledBackend(o.backend, *cell->module);
   if (ads) {

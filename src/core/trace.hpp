@@ -3,6 +3,10 @@
 // collisions, faults and per-device totals. The simulation and the devices append to it; reports
 // read only this. Appends are amortised O(1); labels are interned at load time so recording an
 // activity on the per-tick path never builds a string.
+// Signal changes are the one part that grows with simulated time at the rate signals toggle:
+// every change also streams to ChangeSinks (VCD/CSV files, live views) as the run goes, and a run
+// may keep in `Trace::changes` only the signals a report needs (sim::SimOptions::keptSignals), so
+// its memory does not grow with the run's length.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -57,12 +61,26 @@ struct DeviceTotals {
   double energyJ = 0;     // all energy, idle included
 };
 
+struct Trace;
+
+// Receives the run's signal changes as they happen, in trace order. begin() is called once the
+// signals and their initial values are known (before the first change), end() when the run has
+// ended (Trace::endNs set). change() is on the per-tick path: it must not throw, and should not
+// allocate beyond amortised buffering.
+class ChangeSink {
+ public:
+  virtual ~ChangeSink() = default;
+  virtual void begin(const Trace& trace) = 0;
+  virtual void change(const SignalChange& c) = 0;
+  virtual void end(const Trace& trace) = 0;
+};
+
 enum class RunEnd { Completed, TimeLimit, PlcFault, DeviceError, Collision, Interrupted };
 const char* runEndName(RunEnd e);
 
 struct Trace {
   std::vector<SignalInfo> signals;        // indexed by TagId
-  std::vector<SignalChange> changes;      // in time order
+  std::vector<SignalChange> changes;      // in time order; all, or only the kept signals'
   std::vector<DeviceInfo> devices;
   std::vector<std::string> labels;
   std::vector<ActivityRecord> activities; // in start order

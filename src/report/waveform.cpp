@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <map>
+#include <sstream>
 
 #include "report/text_util.hpp"
 
@@ -80,9 +81,11 @@ std::string csvField(std::string_view s) {
 
 }  // namespace
 
-std::string vcdReport(const Trace& trace) {
+void VcdWriter::begin(const Trace& trace) {
+  trace_ = &trace;
+  now_ = 0;
   std::string out = "$version virtcom $end\n$timescale 1 ns $end\n";
-  std::vector<std::string> ids(trace.signals.size());
+  ids_.assign(trace.signals.size(), {});
   std::string skipped;
   // Scope per prefix, in order of first appearance, each with its vars in signal order.
   std::vector<std::string> scopeOrder;
@@ -97,13 +100,13 @@ std::string vcdReport(const Trace& trace) {
       skipped += vcdName(s.name);
       continue;
     }
-    ids[i] = vcdId(next++);
+    ids_[i] = vcdId(next++);
     const char* type = kind == VcdKind::Wire1 ? "wire" : kind == VcdKind::Real ? "real"
                        : kind == VcdKind::Integer ? "integer" : "wire";
     uint32_t width = kind == VcdKind::Real ? 64 : bitWidth(s.type);
     size_t dot = s.name.find('.');
     std::string ref = vcdName(dot == std::string::npos ? s.name : s.name.substr(dot + 1));
-    std::string decl = "$var " + std::string(type) + " " + std::to_string(width) + " " + ids[i] +
+    std::string decl = "$var " + std::string(type) + " " + std::to_string(width) + " " + ids_[i] +
                        " " + ref + " $end\n";
     if (dot == std::string::npos || dot == 0) {
       rootVars += decl;
@@ -119,42 +122,59 @@ std::string vcdReport(const Trace& trace) {
     out += "$scope module " + scope + " $end\n" + scopeVars[scope] + "$upscope $end\n";
   out += "$upscope $end\n$enddefinitions $end\n#0\n$dumpvars\n";
   for (size_t i = 0; i < trace.signals.size(); ++i)
-    if (!ids[i].empty()) out += vcdValue(trace.signals[i].type, trace.signals[i].initial, ids[i]) + "\n";
+    if (!ids_[i].empty()) out += vcdValue(trace.signals[i].type, trace.signals[i].initial, ids_[i]) + "\n";
   out += "$end\n";
-  int64_t now = 0;
-  for (const SignalChange& c : trace.changes) {
-    if (c.tag >= trace.signals.size() || ids[c.tag].empty() || c.timeNs < 0) continue;
-    if (c.timeNs > now) {
-      now = c.timeNs;
-      out += '#';
-      out += std::to_string(now);
-      out += '\n';
-    }
-    out += vcdValue(trace.signals[c.tag].type, c.raw, ids[c.tag]) + "\n";
+  out_ << out;
+}
+
+void VcdWriter::change(const SignalChange& c) {
+  if (c.tag >= ids_.size() || ids_[c.tag].empty() || c.timeNs < 0) return;
+  if (c.timeNs > now_) {
+    now_ = c.timeNs;
+    out_ << '#' << now_ << '\n';
   }
-  if (trace.endNs > now) {
-    out += '#';
-    out += std::to_string(trace.endNs);
-    out += '\n';
+  out_ << vcdValue(trace_->signals[c.tag].type, c.raw, ids_[c.tag]) << '\n';
+}
+
+void VcdWriter::end(const Trace& trace) {
+  if (trace.endNs > now_) out_ << '#' << trace.endNs << '\n';
+}
+
+void CsvWriter::begin(const Trace& trace) {
+  trace_ = &trace;
+  out_ << "time_s,signal,value\n";
+  names_.clear();
+  names_.reserve(trace.signals.size());
+  for (const SignalInfo& s : trace.signals) names_.push_back(csvField(s.name));
+  for (size_t i = 0; i < trace.signals.size(); ++i) {
+    const SignalInfo& s = trace.signals[i];
+    if (isPlottable(s.type)) out_ << "0.000000000," << names_[i] << ',' << signalText(s.type, s.initial) << '\n';
   }
-  return out;
+}
+
+void CsvWriter::change(const SignalChange& c) {
+  if (c.tag >= names_.size() || !isPlottable(trace_->signals[c.tag].type)) return;
+  out_ << formatSeconds(c.timeNs, 9) << ',' << names_[c.tag] << ',' << signalText(trace_->signals[c.tag].type, c.raw) << '\n';
+}
+
+void replay(const Trace& trace, ChangeSink& sink) {
+  sink.begin(trace);
+  for (const SignalChange& c : trace.changes) sink.change(c);
+  sink.end(trace);
+}
+
+std::string vcdReport(const Trace& trace) {
+  std::ostringstream out;
+  VcdWriter writer(out);
+  replay(trace, writer);
+  return std::move(out).str();
 }
 
 std::string csvChanges(const Trace& trace) {
-  std::string out = "time_s,signal,value\n";
-  std::vector<std::string> names;
-  names.reserve(trace.signals.size());
-  for (const SignalInfo& s : trace.signals) names.push_back(csvField(s.name));
-  for (size_t i = 0; i < trace.signals.size(); ++i) {
-    const SignalInfo& s = trace.signals[i];
-    if (isPlottable(s.type)) out += "0.000000000," + names[i] + "," + signalText(s.type, s.initial) + "\n";
-  }
-  for (const SignalChange& c : trace.changes) {
-    if (c.tag >= trace.signals.size() || !isPlottable(trace.signals[c.tag].type)) continue;
-    out += formatSeconds(c.timeNs, 9) + "," + names[c.tag] + "," +
-           signalText(trace.signals[c.tag].type, c.raw) + "\n";
-  }
-  return out;
+  std::ostringstream out;
+  CsvWriter writer(out);
+  replay(trace, writer);
+  return std::move(out).str();
 }
 
 }  // namespace virtcom::report

@@ -1,5 +1,7 @@
 #include "sim/simulation.hpp"
 
+#include <algorithm>
+
 namespace virtcom::sim {
 
 Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), options_(options) {
@@ -29,7 +31,10 @@ Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), opti
   }
   trace.signals.clear();
   for (TagId id = 0; id < cell_.bus.size(); ++id) trace.signals.push_back({cell_.bus.name(id), cell_.bus.type(id), 0});
-  trace.changes.reserve(1 << 16);
+  keepChange_.assign(cell_.bus.size(), options_.keepAllChanges ? 1 : 0);
+  for (TagId id = 0; id < cell_.bus.size(); ++id)
+    if (std::ranges::find(options_.keptSignals, cell_.bus.name(id)) != options_.keptSignals.end()) keepChange_[id] = 1;
+  if (options_.keepAllChanges) trace.changes.reserve(1 << 16);
   trace.activities.reserve(1024);
 }
 
@@ -47,11 +52,16 @@ void Simulation::start() {
   }
   for (TagId id = 0; id < cell_.bus.size(); ++id) cell_.trace.signals[id].initial = cell_.bus.raw(id);
   cell_.bus.clearChanges();
+  for (ChangeSink* sink : options_.changeSinks) sink->begin(cell_.trace);
 }
 
 void Simulation::recordChanges() {
   Trace& trace = cell_.trace;
-  cell_.bus.forEachChanged([&](TagId id) { trace.changes.push_back({nowNs_, id, cell_.bus.raw(id)}); });
+  cell_.bus.forEachChanged([&](TagId id) {
+    SignalChange c{nowNs_, id, cell_.bus.raw(id)};
+    for (ChangeSink* sink : options_.changeSinks) sink->change(c);
+    if (keepChange_[id]) trace.changes.push_back(c);
+  });
   cell_.bus.clearChanges();
 }
 
@@ -63,6 +73,7 @@ void Simulation::finish(RunEnd end, std::string message) {
   trace.endNs = nowNs_;  // without a completed cycle the window stays empty: reports use the whole run
   for (auto& d : cell_.devices) d->finish(nowNs_, trace);
   for (BusBridge* b : options_.bridges) b->simulationStopped();
+  for (ChangeSink* sink : options_.changeSinks) sink->end(trace);
 }
 
 // A level of the cycle marker: its rising edge ends a cycle. True if that ends the run.

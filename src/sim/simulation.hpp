@@ -12,6 +12,7 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "cell/cell.hpp"
@@ -36,6 +37,13 @@ struct SimOptions {
   // queued writes and RUN/STOP before, the image snapshot after; its first snapshot is taken
   // in `preset`). Must not allocate.
   std::function<void(plc::Runtime& plc)> beforeScan, afterScan;
+  // Every recorded signal change goes to these sinks as the run goes (they must outlive the run).
+  std::vector<ChangeSink*> changeSinks;
+  // Which changes stay in Trace::changes for the whole run: all of them, or (keepAllChanges =
+  // false) only those of the signals named in keptSignals (e.g. the report's timeline; unknown
+  // names are ignored here), so a long run's memory stays bounded.
+  bool keepAllChanges = true;
+  std::vector<std::string> keptSignals;
   // Machine code for the soft PLC's module (src/aot); null runs the interpreter.
   std::shared_ptr<const vm::CompiledCode> compiled;
 };
@@ -73,6 +81,7 @@ class Simulation {
   std::unique_ptr<Clock> clock_;
   std::unique_ptr<plc::Runtime> runtime_;
   std::vector<TagId> recordTags_;
+  std::vector<uint8_t> keepChange_;      // per tag: 1 = its changes stay in Trace::changes
   std::vector<cell::Wire> recordWires_;  // extra PLC variables recorded as signals
   cell::Wire cycleWire_;
   bool hasCycleWire_ = false;

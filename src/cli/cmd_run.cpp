@@ -9,6 +9,7 @@
 #include "cell/cell.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "core/cell_diagnostic_codes.hpp"
 #include "proto/ads/client_bridge.hpp"
 #include "proto/modbus/client_bridge.hpp"
 #include "report/html_report.hpp"
@@ -119,11 +120,12 @@ std::unique_ptr<proto::ads::ClientBridge> startAdsBridge(cell::Cell& cell, const
   bool linked = true;
   for (const auto& p : report.problems) {
     if (p.signal == ads::ClientBridge::kNoSignal) {
-      diags.error("C034", s.addressLoc, p.text);
+      diags.error(celldiag::C034, s.addressLoc, p.text);
       linked = false;
       continue;
     }
-    diags.error(p.kind == ads::ClientBridge::Problem::Kind::Unknown ? "C032" : "C033", s.wires[p.signal].loc, p.text);
+    const bool unknown = p.kind == ads::ClientBridge::Problem::Kind::Unknown;
+    diags.error(unknown ? celldiag::C032 : celldiag::C033, s.wires[p.signal].loc, p.text);
   }
   // Wiring by prefix: each such device needs at least one port whose variable the PLC has.
   for (size_t i = 0; linked && i < s.wires.size(); ++i) {
@@ -134,7 +136,7 @@ std::unique_ptr<proto::ads::ClientBridge> startAdsBridge(cell::Cell& cell, const
     if (any) continue;
     std::string device = w.port.substr(0, w.port.find('.'));
     std::string prefix = w.variable.substr(0, w.variable.size() - (w.port.size() - device.size()));
-    diags.error("C030", w.loc, "ads: no port of '" + device + "' matches a variable under '" + prefix + "' on the PLC at " + s.address +
+    diags.error(celldiag::C030, w.loc, "ads: no port of '" + device + "' matches a variable under '" + prefix + "' on the PLC at " + s.address +
                                    " (expected e.g. " + w.variable + ")");
   }
   if (diags.hasErrors()) {

@@ -76,11 +76,11 @@ bool writeFile(const std::string& path, const std::string& content) {
   return true;
 }
 
-int exitCodeFor(RunEnd end) {
+ExitCode exitCodeFor(RunEnd end) {
   switch (end) {
-    case RunEnd::Completed: return kExitOk;
-    case RunEnd::PlcFault: return kExitRuntimeFault;
-    default: return 3;  // device error, collision, time limit, interrupted
+    case RunEnd::Completed: return ExitCode::Ok;
+    case RunEnd::PlcFault: return ExitCode::PlcFault;
+    default: return ExitCode::RunStopped;  // device error, collision, time limit, interrupted
   }
 }
 
@@ -150,25 +150,25 @@ std::unique_ptr<proto::ads::ClientBridge> startAdsBridge(cell::Cell& cell, const
   return bridge;
 }
 
-int runCell(const RunOptions& o) {
+ExitCode runCell(const RunOptions& o) {
   SourceManager sources;
   auto cell = loadCellFile(o.cellFile, sources);
-  if (!cell) return kExitCompileError;
+  if (!cell) return ExitCode::InputError;
   if (!cell->module && !cell->plcModbus && !cell->plcAds) {
     std::cerr << "error: " << o.cellFile << ": the cell has no controller: add 'plc: sources' (the soft PLC), 'plc: modbus' or "
                  "'plc: ads' (an external PLC), or serve it to a PLC with virtcom serve\n";
-    return kExitUsage;
+    return ExitCode::Usage;
   }
   if (!cell->module && (!o.until.empty() || !o.sets.empty())) {
     std::cerr << "error: --until and --set name soft PLC variables, but the controller of " << o.cellFile << " is an external PLC\n";
-    return kExitUsage;
+    return ExitCode::Usage;
   }
   if (!o.until.empty()) {
     Diagnostics d;
     cell->run.until = cell::parseCondition(*cell->module, o.until, {}, d);
     if (d.hasErrors()) {
       std::cerr << d.render(sources);
-      return kExitUsage;
+      return ExitCode::Usage;
     }
   }
   sim::SimOptions options;
@@ -179,7 +179,7 @@ int runCell(const RunOptions& o) {
     auto ns = parseDurationNs(o.timeLimit);
     if (!ns) {
       std::cerr << "error: --time-limit: '" << o.timeLimit << "' is not a duration (e.g. 300s, 5m)\n";
-      return kExitUsage;
+      return ExitCode::Usage;
     }
     options.timeLimitNs = *ns;
   }
@@ -190,7 +190,7 @@ int runCell(const RunOptions& o) {
       std::string problem = presetVariable(*cell->module, set, scratch.data(), nullptr);
       if (!problem.empty()) {
         std::cerr << "error: --set " << problem << "\n";
-        return kExitUsage;
+        return ExitCode::Usage;
       }
     }
     const bc::Module& module = *cell->module;
@@ -207,7 +207,7 @@ int runCell(const RunOptions& o) {
   std::unique_ptr<proto::ads::ClientBridge> adsBridge;
   if (cell->plcAds) {
     adsBridge = startAdsBridge(*cell, sources);
-    if (!adsBridge) return kExitCompileError;
+    if (!adsBridge) return ExitCode::InputError;
     options.bridges.push_back(adsBridge.get());
     if (options.speed == 0) options.speed = 1;  // the external PLC runs in real time
   }
@@ -227,13 +227,13 @@ int runCell(const RunOptions& o) {
   if (!o.json.empty()) ok = writeFile(o.json, report::jsonReport(trace, kpis)) && ok;
   if (!o.vcd.empty()) ok = writeFile(o.vcd, report::vcdReport(trace)) && ok;
   if (!o.csv.empty()) ok = writeFile(o.csv, report::csvChanges(trace)) && ok;
-  if (!ok) return kExitUsage;
+  if (!ok) return ExitCode::Usage;
   return exitCodeFor(end);
 }
 
 }  // namespace
 
-void addRunCommand(CLI::App& app, std::function<void(int)> setExit) {
+void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Simulate a cell file (PLC program + devices) and report cycle time, Gantt chart and energy");
   cmd->add_option("cell", o->cellFile, "the cell file (YAML)")->required()->check(CLI::ExistingFile);

@@ -189,7 +189,7 @@ class Loader {
     cell.module = st::compileProgram(inputs, sources_, diags_);
     if (!cell.module) return false;
     for (auto& t : cell.module->tasks)
-      if (t.name == "MainTask") t.intervalNs = cell.run.plcCycleNs;
+      if (t.isDefault) t.intervalNs = cell.run.plcCycleNs;
     return true;
   }
 

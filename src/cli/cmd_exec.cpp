@@ -110,7 +110,7 @@ ExitCode runExec(const ExecOptions& o) {
     }
     // The cycle time applies to the default task; configured tasks keep their INTERVAL.
     for (auto& t : module->tasks)
-      if (t.name == "MainTask" || t.name == "__DEFAULT") t.intervalNs = *ns;
+      if (t.isDefault) t.intervalNs = *ns;
   }
   std::vector<bc::VarRef> printRefs, traceRefs;
   std::vector<std::string> traceNames;

@@ -111,6 +111,9 @@ struct TaskInfo {
   int64_t intervalNs = 10'000'000;
   int32_t priority = 0;
   std::vector<uint32_t> programs;  // indices into Module::programs, in call order
+  // The compiler's implicit task (`MainTask` or `__DEFAULT`), not one a TASK declares: the
+  // cycle time of `--cycle-time` or a cell's `plc.cycle_time` replaces its interval.
+  bool isDefault = false;
 };
 
 // Process image areas (%I, %Q, %M): fixed regions of the memory image.

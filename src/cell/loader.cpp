@@ -12,6 +12,7 @@
 #include "cell/mapping_file.hpp"
 #include "cell/modbus_settings.hpp"
 #include "cell/yaml_config.hpp"
+#include "core/cell_diagnostic_codes.hpp"
 #include "core/value_codec.hpp"
 #include "drives/drive_registry.hpp"
 #include "lang/plcopen/importer.hpp"
@@ -46,7 +47,7 @@ class Loader {
     cell->file = path;
     std::string text;
     if (!readText(path, text)) {
-      diags_.error("C002", {}, "cannot read cell file '" + path + "'");
+      diags_.error(celldiag::C002, {}, "cannot read cell file '" + path + "'");
       return nullptr;
     }
     ConfigNode root;
@@ -84,22 +85,22 @@ class Loader {
     const ConfigNode* ext = root.kind() == ConfigNode::Kind::Map ? root.find("extends") : nullptr;
     const ConfigNode* replacements = root.kind() == ConfigNode::Kind::Map ? root.find("replace_devices") : nullptr;
     if (replacements && !ext)
-      diags_.error("C010", root.keyLoc("replace_devices"),
+      diags_.error(celldiag::C010, root.keyLoc("replace_devices"),
                    "'replace_devices' replaces devices of the cell file named by 'extends', but this file has no 'extends'");
     if (replacements && root.has("devices"))
-      diags_.error("C010", root.keyLoc("replace_devices"),
+      diags_.error(celldiag::C010, root.keyLoc("replace_devices"),
                    "'replace_devices' replaces devices of the base file, but this file has its own 'devices'");
     if (!ext) return true;
     std::filesystem::path basePath = (path.parent_path() / ext->scalar()).lexically_normal();
     std::string text;
     if (ext->kind() != ConfigNode::Kind::Scalar || !readText(basePath, text)) {
-      diags_.error("C002", ext->loc(), "cannot read cell file '" + basePath.string() + "' named by 'extends'");
+      diags_.error(celldiag::C002, ext->loc(), "cannot read cell file '" + basePath.string() + "' named by 'extends'");
       return false;
     }
     ConfigNode base;
     if (!parseYaml(basePath.string(), text, sources_, diags_, base)) return false;
     if (base.find("extends")) {
-      diags_.error("C010", base.keyLoc("extends"), "a cell file named by 'extends' cannot itself extend another file");
+      diags_.error(celldiag::C010, base.keyLoc("extends"), "a cell file named by 'extends' cannot itself extend another file");
       return false;
     }
     // built before root grows: `replacements` points into root
@@ -117,7 +118,7 @@ class Loader {
   ConfigNode replacedDevices(const ConfigNode& devices, const ConfigNode& replacements) {
     if (devices.kind() != ConfigNode::Kind::List) return devices;  // readDevices() reports it
     if (replacements.kind() != ConfigNode::Kind::List) {
-      diags_.error("C010", replacements.loc(), "'replace_devices' must be a list of devices, each named like a device of the base file");
+      diags_.error(celldiag::C010, replacements.loc(), "'replace_devices' must be a list of devices, each named like a device of the base file");
       return devices;
     }
     std::vector<const ConfigNode*> chosen;
@@ -131,11 +132,11 @@ class Loader {
       const auto it = std::find_if(devices.items().begin(), devices.items().end(), same);
       const size_t at = static_cast<size_t>(it - devices.items().begin());
       if (it == devices.items().end())
-        diags_.error("C010", name ? name->loc() : r.loc(),
+        diags_.error(celldiag::C010, name ? name->loc() : r.loc(),
                      name ? "'replace_devices': the base file has no device '" + name->scalar() + "' to replace"
                           : std::string("'replace_devices': every entry needs the 'name' of the base file's device it replaces"));
       else if (chosen[at] != &*it)
-        diags_.error("C010", name->loc(), "'replace_devices': device '" + name->scalar() + "' is replaced twice");
+        diags_.error(celldiag::C010, name->loc(), "'replace_devices': device '" + name->scalar() + "' is replaced twice");
       else
         chosen[at] = &r;
     }
@@ -188,7 +189,7 @@ class Loader {
     cell.module = st::compileProgram(inputs, sources_, diags_);
     if (!cell.module) return false;
     for (auto& t : cell.module->tasks)
-      if (t.name == "MainTask") t.intervalNs = cell.run.plcCycleNs;
+      if (t.isDefault) t.intervalNs = cell.run.plcCycleNs;
     return true;
   }
 
@@ -350,7 +351,7 @@ class Loader {
       return;
     }
     if (!cell.module) {
-      diags_.error("C030", wiring->loc(), "'wiring' connects ports to PLC variables, but the cell has no soft PLC ('plc: sources') "
+      diags_.error(celldiag::C030, wiring->loc(), "'wiring' connects ports to PLC variables, but the cell has no soft PLC ('plc: sources') "
                                           "and no ADS PLC ('plc: ads'); a Modbus PLC reaches the signals through its map");
       return;
     }
@@ -363,12 +364,12 @@ class Loader {
         wired += connect(cell, d, i, var, wiring->loc());
       }
       if (wired == 0)
-        diags_.error("C030", wiring->loc(), "no port of '" + d.name() + "' matches a variable under '" + wiring->scalar() +
+        diags_.error(celldiag::C030, wiring->loc(), "no port of '" + d.name() + "' matches a variable under '" + wiring->scalar() +
                                                  "' (expected e.g. " + wiring->scalar() + "." + (ports.empty() ? "execute" : ports[0].name) + ")");
       return;
     }
     if (wiring->kind() != ConfigNode::Kind::Map) {
-      diags_.error("C030", wiring->loc(), "'wiring' must be a PLC variable prefix (MAIN.Robot1) or a map port: variable");
+      diags_.error(celldiag::C030, wiring->loc(), "'wiring' must be a PLC variable prefix (MAIN.Robot1) or a map port: variable");
       return;
     }
     for (const auto& [port, var] : wiring->entries()) {
@@ -376,11 +377,11 @@ class Loader {
       if (index < 0) {
         std::string known;
         for (const auto& p : ports) known += (known.empty() ? "" : ", ") + p.name;
-        diags_.error("C031", wiring->keyLoc(port), "device '" + d.name() + "' has no port '" + port + "' (ports: " + known + ")");
+        diags_.error(celldiag::C031, wiring->keyLoc(port), "device '" + d.name() + "' has no port '" + port + "' (ports: " + known + ")");
         continue;
       }
       if (!bc::resolveVariable(*cell.module, var.scalar())) {
-        diags_.error("C032", var.loc(), "the PLC has no variable '" + var.scalar() + "' to wire to " + d.name() + "." + port);
+        diags_.error(celldiag::C032, var.loc(), "the PLC has no variable '" + var.scalar() + "' to wire to " + d.name() + "." + port);
         continue;
       }
       connect(cell, d, static_cast<size_t>(index), var.scalar(), var.loc());
@@ -408,7 +409,7 @@ class Loader {
       return;
     }
     if (wiring.kind() != ConfigNode::Kind::Map) {
-      diags_.error("C030", wiring.loc(), "'wiring' must be a PLC variable prefix (MAIN.Robot1) or a map port: variable");
+      diags_.error(celldiag::C030, wiring.loc(), "'wiring' must be a PLC variable prefix (MAIN.Robot1) or a map port: variable");
       return;
     }
     for (const auto& [port, var] : wiring.entries()) {
@@ -416,7 +417,7 @@ class Loader {
       if (index < 0) {
         std::string known;
         for (const auto& p : ports) known += (known.empty() ? "" : ", ") + p.name;
-        diags_.error("C031", wiring.keyLoc(port), "device '" + d.name() + "' has no port '" + port + "' (ports: " + known + ")");
+        diags_.error(celldiag::C031, wiring.keyLoc(port), "device '" + d.name() + "' has no port '" + port + "' (ports: " + known + ")");
         continue;
       }
       wire(static_cast<size_t>(index), var.scalar(), var.loc(), false);
@@ -428,12 +429,12 @@ class Loader {
     auto ref = bc::resolveVariable(*cell.module, var);
     const bc::TypeDesc& t = cell.module->types[ref->type];
     if (!compatible(spec.type, t) && !(ref->bit >= 0 && spec.type == ElemType::Bool)) {
-      diags_.error("C033", loc, "'" + var + "' is " + t.name + " but " + dirText(spec.dir) + " '" + spec.name + "' of " +
+      diags_.error(celldiag::C033, loc, "'" + var + "' is " + t.name + " but " + dirText(spec.dir) + " '" + spec.name + "' of " +
                                     d.name() + " is " + std::string(elemTypeInfo(spec.type).name));
       return 0;
     }
     if (spec.dir == plant::PortDir::Out && ref->readOnly) {
-      diags_.error("C033", loc, "'" + var + "' is read-only (CONSTANT) and cannot receive " + d.name() + "." + spec.name);
+      diags_.error(celldiag::C033, loc, "'" + var + "' is read-only (CONSTANT) and cannot receive " + d.name() + "." + spec.name);
       return 0;
     }
     cell.wires.push_back(makeWire(d.tag(port), spec.dir, *ref, t.elem, var));

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "cell/yaml_config.hpp"
+#include "core/cell_diagnostic_codes.hpp"
 
 namespace virtcom::cell {
 
@@ -16,7 +17,7 @@ ConfigNode resolveMappingFile(const ConfigNode& device, const std::filesystem::p
   ConfigNode tree;
   bool ok = false;
   if (!in) {
-    diags.error("C002", mapping->loc(), "cannot read mapping file '" + file.string() + "'");
+    diags.error(celldiag::C002, mapping->loc(), "cannot read mapping file '" + file.string() + "'");
   } else {
     std::stringstream text;
     text << in.rdbuf();

@@ -2,6 +2,7 @@
 #include <cstring>
 
 #include "cell/cell.hpp"
+#include "core/cell_diagnostic_codes.hpp"
 #include "core/value_codec.hpp"
 
 namespace virtcom::cell {
@@ -66,19 +67,19 @@ Condition parseCondition(const bc::Module& m, const std::string& text, SourceLoc
   std::string value = pos == std::string::npos ? "TRUE" : trim(text.substr(pos + len));
   auto ref = bc::resolveVariable(m, name);
   if (!ref) {
-    diags.error("C020", loc, "condition '" + text + "': the PLC has no variable '" + name + "'");
+    diags.error(celldiag::C020, loc, "condition '" + text + "': the PLC has no variable '" + name + "'");
     return c;
   }
   const bc::TypeDesc& t = m.types[ref->type];
   if (t.kind != bc::TypeKind::Elementary && t.kind != bc::TypeKind::Enum) {
-    diags.error("C020", loc, "condition '" + text + "': '" + name + "' is not an elementary variable");
+    diags.error(celldiag::C020, loc, "condition '" + text + "': '" + name + "' is not an elementary variable");
     return c;
   }
   // Parse the value with the module's own literal parser into a scratch copy of the variable.
   std::vector<uint8_t> scratch(m.memorySize(), 0);
   std::string problem = bc::writeValueFromText(m, *ref, value, scratch.data());
   if (!problem.empty()) {
-    diags.error("C020", loc, "condition '" + text + "': " + problem);
+    diags.error(celldiag::C020, loc, "condition '" + text + "': " + problem);
     return c;
   }
   c.address = ref->address;

@@ -2,6 +2,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "core/cell_diagnostic_codes.hpp"
+
 namespace virtcom::cell {
 
 namespace {
@@ -39,7 +41,7 @@ bool parseYaml(const std::string& path, const std::string& text, SourceManager& 
     out = convert(root, fileId);
     return true;
   } catch (const YAML::Exception& e) {
-    diags.error("C001", at(fileId, e.mark), "YAML syntax error: " + e.msg);
+    diags.error(celldiag::C001, at(fileId, e.mark), "YAML syntax error: " + e.msg);
     return false;
   }
 }

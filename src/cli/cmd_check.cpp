@@ -5,7 +5,7 @@
 
 namespace virtcom::cli {
 
-void addCheckCommand(CLI::App& app, std::function<void(int)> setExit) {
+void addCheckCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   auto files = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand("check", "Compile ST files and report every diagnostic (exit 0 clean, 1 on errors)");
   cmd->add_option("files", *files, kSourceFilesHelp)->required()->check(CLI::ExistingFile);
@@ -14,7 +14,7 @@ void addCheckCommand(CLI::App& app, std::function<void(int)> setExit) {
     Diagnostics diags;
     auto module = compileFiles(*files, sources, diags);
     if (module && diags.warningCount() == 0) std::cerr << "ok: " << files->size() << " file(s), no diagnostics\n";
-    setExit(module ? kExitOk : kExitCompileError);
+    setExit(module ? ExitCode::Ok : ExitCode::InputError);
   });
 }
 

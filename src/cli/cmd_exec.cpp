@@ -97,20 +97,20 @@ std::expected<std::unique_ptr<proto::modbus::Server>, std::string> startModbus(c
   return server;
 }
 
-int runExec(const ExecOptions& o) {
+ExitCode runExec(const ExecOptions& o) {
   SourceManager sources;
   Diagnostics diags;
   auto module = compileFiles(o.files, sources, diags);
-  if (!module) return kExitCompileError;
+  if (!module) return ExitCode::InputError;
   if (!o.cycleTime.empty()) {
     auto ns = parseDurationNs(o.cycleTime);
     if (!ns) {
       std::cerr << "error: --cycle-time: '" << o.cycleTime << "' is not a duration (e.g. 10ms, 1s, 250us)\n";
-      return kExitUsage;
+      return ExitCode::Usage;
     }
     // The cycle time applies to the default task; configured tasks keep their INTERVAL.
     for (auto& t : module->tasks)
-      if (t.name == "MainTask" || t.name == "__DEFAULT") t.intervalNs = *ns;
+      if (t.isDefault) t.intervalNs = *ns;
   }
   std::vector<bc::VarRef> printRefs, traceRefs;
   std::vector<std::string> traceNames;
@@ -120,14 +120,14 @@ int runExec(const ExecOptions& o) {
     while (std::getline(ss, name, ','))
       if (!name.empty()) traceNames.push_back(name);
   }
-  if (!resolveAll(*module, o.prints, printRefs) || !resolveAll(*module, traceNames, traceRefs)) return kExitUsage;
+  if (!resolveAll(*module, o.prints, printRefs) || !resolveAll(*module, traceNames, traceRefs)) return ExitCode::Usage;
   std::vector<sfc::StepVariable> steps;
   std::string activeSteps;
   if (o.traceSteps) {
     steps = sfc::findSteps(*module);
     if (steps.empty()) {
       std::cerr << "error: --trace-steps: the program has no SFC steps (INITIAL_STEP / STEP, see docs/st-dialect.md)\n";
-      return kExitUsage;
+      return ExitCode::Usage;
     }
   }
 
@@ -142,21 +142,21 @@ int runExec(const ExecOptions& o) {
   runtime.machine().useCompiled(compiledBackend(o.backend, *module));
   if (!runtime.coldStart()) {
     std::cerr << "runtime fault: " << runtime.faultText() << "\n";
-    return kExitRuntimeFault;
+    return ExitCode::PlcFault;
   }
   if (!o.retainFile.empty()) {
     size_t restored = 0;
     std::string problem = plc::loadRetainFile(o.retainFile, *module, runtime.machine().memory(), restored);
     if (!problem.empty()) {
       std::cerr << "error: --retain-file: " << problem << "\n";
-      return kExitUsage;
+      return ExitCode::Usage;
     }
   }
   for (const auto& set : o.sets) {
     std::string problem = presetVariable(*module, set, runtime.machine().memory(), runtime.inputImage());
     if (!problem.empty()) {
       std::cerr << "error: --set " << problem << "\n";
-      return kExitUsage;
+      return ExitCode::Usage;
     }
   }
 
@@ -166,7 +166,7 @@ int runExec(const ExecOptions& o) {
     traceFile.open(o.traceFile);
     if (!traceFile) {
       std::cerr << "error: cannot write " << o.traceFile << "\n";
-      return kExitUsage;
+      return ExitCode::Usage;
     }
     trace = &traceFile;
   }
@@ -186,7 +186,7 @@ int runExec(const ExecOptions& o) {
     auto server = startModbus(o, runtime);
     if (!server) {
       std::cerr << "error: " << server.error() << "\n";
-      return kExitUsage;
+      return ExitCode::Usage;
     }
     modbus = std::move(*server);
     std::cerr << "modbus: serving on " << proto::modbus::formatEndpoint(modbus->endpoint()) << "\n";
@@ -196,14 +196,14 @@ int runExec(const ExecOptions& o) {
     auto server = startAdsServer(o.ads, *module);
     if (!server) {
       std::cerr << "error: " << server.error() << "\n";
-      return kExitUsage;
+      return ExitCode::Usage;
     }
     ads = std::move(*server);
     ads->afterScan(runtime);
     announceAdsServer(o.ads, *ads);
   }
   int64_t cycles = o.cycles < 0 ? (forever ? INT64_MAX : 1) : o.cycles;
-  int exitCode = kExitOk;
+  ExitCode exitCode = ExitCode::Ok;
   for (int64_t k = 0; k < cycles && !gInterrupted; ++k) {
     int64_t now = runtime.nextTickNs();
     if (modbus && modbus->applyPendingWrites(modbusView(runtime)) > 0) runtime.inputsTouched();
@@ -215,7 +215,7 @@ int runExec(const ExecOptions& o) {
     if (!ok && runtime.state() != plc::PlcState::Fault) ok = true;
     if (!ok) {
       std::cerr << "runtime fault: " << runtime.faultText() << "\n";
-      exitCode = kExitRuntimeFault;
+      exitCode = ExitCode::PlcFault;
       break;
     }
     if (!traceRefs.empty()) writeTraceRow(*trace, *module, runtime.machine().memory(), static_cast<uint64_t>(k), now, traceRefs);
@@ -226,11 +226,11 @@ int runExec(const ExecOptions& o) {
   }
   if (modbus) modbus->stop();
   if (ads) ads->stop();
-  if (!o.retainFile.empty() && exitCode == kExitOk) {
+  if (!o.retainFile.empty() && exitCode == ExitCode::Ok) {
     std::string problem = plc::saveRetainFile(o.retainFile, *module, runtime.machine().memory());
     if (!problem.empty()) {
       std::cerr << "error: --retain-file: " << problem << "\n";
-      exitCode = kExitUsage;
+      exitCode = ExitCode::Usage;
     }
   }
   for (size_t i = 0; i < o.prints.size(); ++i)
@@ -247,7 +247,7 @@ int runExec(const ExecOptions& o) {
 
 }  // namespace
 
-void addExecCommand(CLI::App& app, std::function<void(int)> setExit) {
+void addExecCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   auto o = std::make_shared<ExecOptions>();
   CLI::App* cmd = app.add_subcommand("exec", "Run ST programs on the soft PLC for N scans in virtual time and print variables");
   cmd->add_option("files", o->files, kSourceFilesHelp)->required()->check(CLI::ExistingFile);

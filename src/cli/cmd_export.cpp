@@ -29,14 +29,14 @@ std::string newestModificationTime(const std::vector<std::string>& paths) {
   return text;
 }
 
-int exportPlcopen(const std::string& out, const std::string& name, const std::vector<std::string>& files) {
+ExitCode exportPlcopen(const std::string& out, const std::string& name, const std::vector<std::string>& files) {
   {
     SourceManager sources;
     Diagnostics diags;
-    if (!compileFiles(files, sources, diags)) return kExitCompileError;  // only a valid program is exported
+    if (!compileFiles(files, sources, diags)) return ExitCode::InputError;  // only a valid program is exported
   }
   auto inputs = readSources(files);
-  if (!inputs) return kExitCompileError;
+  if (!inputs) return ExitCode::InputError;
   SourceManager sources;
   Diagnostics parseDiags;  // already shown by the compile above
   st::NodeId nextId = 0;
@@ -49,19 +49,19 @@ int exportPlcopen(const std::string& out, const std::string& name, const std::ve
   options.timestamp = newestModificationTime(files);
   std::string xml = plcopen::exportProject(pointers, options, diags);
   std::cerr << diags.render(sources);
-  if (xml.empty()) return kExitCompileError;
+  if (xml.empty()) return ExitCode::InputError;
   std::ofstream file(out, std::ios::binary);
   file << xml;
   if (!file.flush()) {
     std::cerr << out << ": error: cannot write the file\n";
-    return kExitCompileError;
+    return ExitCode::InputError;
   }
-  return kExitOk;
+  return ExitCode::Ok;
 }
 
 }  // namespace
 
-void addExportCommand(CLI::App& app, std::function<void(int)> setExit) {
+void addExportCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   auto files = std::make_shared<std::vector<std::string>>();
   auto out = std::make_shared<std::string>();
   auto name = std::make_shared<std::string>();

@@ -18,31 +18,31 @@ struct MapOptions {
   bool bridge = false;
 };
 
-int printMap(const MapOptions& o) {
+ExitCode printMap(const MapOptions& o) {
   SourceManager sources;
   auto cell = loadCellFile(o.cellFile, sources);
-  if (!cell) return kExitCompileError;
+  if (!cell) return ExitCode::InputError;
   if (o.bridge && !cell->plcModbus) {
     std::cerr << "error: " << o.cellFile << ": --bridge: the cell has no 'plc: modbus:' section (an external PLC it polls)\n";
-    return kExitUsage;
+    return ExitCode::Usage;
   }
   const auto& map = o.bridge ? cell->plcModbus->map : cell->modbus;
   std::string text = o.format == "csv" ? modbus_map::formatMapCsv(map) : modbus_map::formatMapMarkdown(map);
   if (o.output.empty()) {
     std::cout << text;
-    return kExitOk;
+    return ExitCode::Ok;
   }
   std::ofstream out(o.output, std::ios::binary);
   if (!(out << text)) {
     std::cerr << "error: cannot write " << o.output << "\n";
-    return kExitUsage;
+    return ExitCode::Usage;
   }
-  return kExitOk;
+  return ExitCode::Ok;
 }
 
 }  // namespace
 
-void addModbusMapCommand(CLI::App& app, std::function<void(int)> setExit) {
+void addModbusMapCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   auto o = std::make_shared<MapOptions>();
   CLI::App* cmd = app.add_subcommand("modbus-map", "Print the Modbus map of a cell (address, table, type, signal, direction, scaling)");
   cmd->add_option("cell", o->cellFile, "the cell file (YAML)")->required()->check(CLI::ExistingFile);

@@ -9,6 +9,7 @@
 #include "cell/cell.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "core/cell_diagnostic_codes.hpp"
 #include "proto/ads/client_bridge.hpp"
 #include "proto/modbus/client_bridge.hpp"
 #include "report/html_report.hpp"
@@ -119,11 +120,11 @@ bool writeFile(const std::string& path, const std::string& content) {
   return true;
 }
 
-int exitCodeFor(RunEnd end) {
+ExitCode exitCodeFor(RunEnd end) {
   switch (end) {
-    case RunEnd::Completed: return kExitOk;
-    case RunEnd::PlcFault: return kExitRuntimeFault;
-    default: return 3;  // device error, collision, time limit, interrupted
+    case RunEnd::Completed: return ExitCode::Ok;
+    case RunEnd::PlcFault: return ExitCode::PlcFault;
+    default: return ExitCode::RunStopped;  // device error, collision, time limit, interrupted
   }
 }
 
@@ -163,11 +164,12 @@ std::unique_ptr<proto::ads::ClientBridge> startAdsBridge(cell::Cell& cell, const
   bool linked = true;
   for (const auto& p : report.problems) {
     if (p.signal == ads::ClientBridge::kNoSignal) {
-      diags.error("C034", s.addressLoc, p.text);
+      diags.error(celldiag::C034, s.addressLoc, p.text);
       linked = false;
       continue;
     }
-    diags.error(p.kind == ads::ClientBridge::Problem::Kind::Unknown ? "C032" : "C033", s.wires[p.signal].loc, p.text);
+    const bool unknown = p.kind == ads::ClientBridge::Problem::Kind::Unknown;
+    diags.error(unknown ? celldiag::C032 : celldiag::C033, s.wires[p.signal].loc, p.text);
   }
   // Wiring by prefix: each such device needs at least one port whose variable the PLC has.
   for (size_t i = 0; linked && i < s.wires.size(); ++i) {
@@ -178,7 +180,7 @@ std::unique_ptr<proto::ads::ClientBridge> startAdsBridge(cell::Cell& cell, const
     if (any) continue;
     std::string device = w.port.substr(0, w.port.find('.'));
     std::string prefix = w.variable.substr(0, w.variable.size() - (w.port.size() - device.size()));
-    diags.error("C030", w.loc, "ads: no port of '" + device + "' matches a variable under '" + prefix + "' on the PLC at " + s.address +
+    diags.error(celldiag::C030, w.loc, "ads: no port of '" + device + "' matches a variable under '" + prefix + "' on the PLC at " + s.address +
                                    " (expected e.g. " + w.variable + ")");
   }
   if (diags.hasErrors()) {
@@ -192,25 +194,25 @@ std::unique_ptr<proto::ads::ClientBridge> startAdsBridge(cell::Cell& cell, const
   return bridge;
 }
 
-int runCell(const RunOptions& o) {
+ExitCode runCell(const RunOptions& o) {
   SourceManager sources;
   auto cell = loadCellFile(o.cellFile, sources);
-  if (!cell) return kExitCompileError;
+  if (!cell) return ExitCode::InputError;
   if (!cell->module && !cell->plcModbus && !cell->plcAds) {
     std::cerr << "error: " << o.cellFile << ": the cell has no controller: add 'plc: sources' (the soft PLC), 'plc: modbus' or "
                  "'plc: ads' (an external PLC), or serve it to a PLC with virtcom serve\n";
-    return kExitUsage;
+    return ExitCode::Usage;
   }
   if (!cell->module && (!o.until.empty() || !o.sets.empty())) {
     std::cerr << "error: --until and --set name soft PLC variables, but the controller of " << o.cellFile << " is an external PLC\n";
-    return kExitUsage;
+    return ExitCode::Usage;
   }
   if (!o.until.empty()) {
     Diagnostics d;
     cell->run.until = cell::parseCondition(*cell->module, o.until, {}, d);
     if (d.hasErrors()) {
       std::cerr << d.render(sources);
-      return kExitUsage;
+      return ExitCode::Usage;
     }
   }
   sim::SimOptions options;
@@ -221,7 +223,7 @@ int runCell(const RunOptions& o) {
     auto ns = parseDurationNs(o.timeLimit);
     if (!ns) {
       std::cerr << "error: --time-limit: '" << o.timeLimit << "' is not a duration (e.g. 300s, 5m)\n";
-      return kExitUsage;
+      return ExitCode::Usage;
     }
     options.timeLimitNs = *ns;
   }
@@ -232,7 +234,7 @@ int runCell(const RunOptions& o) {
       std::string problem = presetVariable(*cell->module, set, scratch.data(), nullptr);
       if (!problem.empty()) {
         std::cerr << "error: --set " << problem << "\n";
-        return kExitUsage;
+        return ExitCode::Usage;
       }
     }
     const bc::Module& module = *cell->module;
@@ -249,7 +251,7 @@ int runCell(const RunOptions& o) {
   std::unique_ptr<proto::ads::ClientBridge> adsBridge;
   if (cell->plcAds) {
     adsBridge = startAdsBridge(*cell, sources);
-    if (!adsBridge) return kExitCompileError;
+    if (!adsBridge) return ExitCode::InputError;
     options.bridges.push_back(adsBridge.get());
     if (options.speed == 0) options.speed = 1;  // the external PLC runs in real time
   }
@@ -258,7 +260,7 @@ int runCell(const RunOptions& o) {
   options.keepAllChanges = false;
   options.keptSignals = timeline;
   std::vector<std::unique_ptr<StreamedFile>> files;
-  if (!openStreamedFile<report::VcdWriter>(o.vcd, files) || !openStreamedFile<report::CsvWriter>(o.csv, files)) return kExitUsage;
+  if (!openStreamedFile<report::VcdWriter>(o.vcd, files) || !openStreamedFile<report::CsvWriter>(o.csv, files)) return ExitCode::Usage;
   for (auto& f : files) options.changeSinks.push_back(f->writer.get());
   ChangePrinter printer;
   if (o.step) options.changeSinks.push_back(&printer);
@@ -276,13 +278,13 @@ int runCell(const RunOptions& o) {
   bool ok = closeStreamedFiles(files);
   if (!o.html.empty()) ok = writeFile(o.html, report::htmlReport(trace, kpis, html)) && ok;
   if (!o.json.empty()) ok = writeFile(o.json, report::jsonReport(trace, kpis)) && ok;
-  if (!ok) return kExitUsage;
+  if (!ok) return ExitCode::Usage;
   return exitCodeFor(end);
 }
 
 }  // namespace
 
-void addRunCommand(CLI::App& app, std::function<void(int)> setExit) {
+void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Simulate a cell file (PLC program + devices) and report cycle time, Gantt chart and energy");
   cmd->add_option("cell", o->cellFile, "the cell file (YAML)")->required()->check(CLI::ExistingFile);

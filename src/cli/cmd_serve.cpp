@@ -77,19 +77,19 @@ void keepSoftPlcCommands(cell::Cell& cell) {
   }
 }
 
-int serveCell(const ServeOptions& o) {
+ExitCode serveCell(const ServeOptions& o) {
   if (o.modbus.empty() && !o.ads.enabled()) {
     std::cerr << "error: nothing to serve: give --modbus HOST:PORT and/or --ads HOST:PORT\n";
-    return kExitUsage;
+    return ExitCode::Usage;
   }
   SourceManager sources;
   auto cell = loadCellFile(o.cellFile, sources);
-  if (!cell) return kExitCompileError;
+  if (!cell) return ExitCode::InputError;
   if (o.ads.enabled()) {
     // The soft PLC is the controller, served over ADS; it runs until interrupted.
     if (!cell->module) {
       std::cerr << "error: --ads serves the cell's soft PLC, but " << o.cellFile << " has none ('plc: sources')\n";
-      return kExitUsage;
+      return ExitCode::Usage;
     }
     cell->run.until = {};
     cell->run.cycles = UINT32_MAX;  // cycles are counted for the summary, never end the run
@@ -108,14 +108,14 @@ int serveCell(const ServeOptions& o) {
   auto bridges = startServers(o, *cell);
   if (!bridges) {
     std::cerr << "error: " << bridges.error() << "\n";
-    return kExitUsage;
+    return ExitCode::Usage;
   }
   std::unique_ptr<proto::ads::PlcServer> ads;
   if (o.ads.enabled()) {
     auto server = startAdsServer(o.ads, *cell->module);
     if (!server) {
       std::cerr << "error: " << server.error() << "\n";
-      return kExitUsage;
+      return ExitCode::Usage;
     }
     ads = std::move(*server);
   }
@@ -144,14 +144,14 @@ int serveCell(const ServeOptions& o) {
   if (!o.quiet) std::cout << report::summaryTable(trace, report::computeKpis(trace));
   if (end == RunEnd::PlcFault) {
     std::cerr << "runtime fault: " << trace.endMessage << "\n";
-    return kExitRuntimeFault;
+    return ExitCode::PlcFault;
   }
-  return kExitOk;
+  return ExitCode::Ok;
 }
 
 }  // namespace
 
-void addServeCommand(CLI::App& app, std::function<void(int)> setExit) {
+void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   auto o = std::make_shared<ServeOptions>();
   CLI::App* cmd = app.add_subcommand(
       "serve", "Run a cell paced to the wall clock until SIGINT/SIGTERM, serving its device signals to an external PLC (Modbus TCP) "

@@ -4,15 +4,17 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/exit_code.hpp"
+
 namespace virtcom::cli {
 // `--backend interp|aot` (see compiledBackend in common.hpp), stored into `backend`.
 void addBackendOption(CLI::App& cmd, std::string& backend);
 
-// Each subcommand registers itself and reports its exit code through `setExit`.
-void addCheckCommand(CLI::App& app, std::function<void(int)> setExit);
-void addExecCommand(CLI::App& app, std::function<void(int)> setExit);
-void addRunCommand(CLI::App& app, std::function<void(int)> setExit);
-void addServeCommand(CLI::App& app, std::function<void(int)> setExit);
-void addModbusMapCommand(CLI::App& app, std::function<void(int)> setExit);
-void addExportCommand(CLI::App& app, std::function<void(int)> setExit);
+// Each subcommand registers itself and reports its exit status through `setExit`.
+void addCheckCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
+void addExecCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
+void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
+void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
+void addModbusMapCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
+void addExportCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 }  // namespace virtcom::cli

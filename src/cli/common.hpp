@@ -14,9 +14,6 @@
 
 namespace virtcom::cli {
 
-// Exit codes of every subcommand.
-enum ExitCode { kExitOk = 0, kExitCompileError = 1, kExitRuntimeFault = 2, kExitUsage = 64 };
-
 // Reads and compiles the files; prints diagnostics to stderr. Null on a read or compile error.
 std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, SourceManager& sources,
                                          Diagnostics& diags, bool printWarnings = true);

@@ -8,8 +8,9 @@ int main(int argc, char** argv) {
   CLI::App app{"virtcom - virtual commissioning engine: runs IEC 61131-3 control logic against a simulated cell"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "virtcom 0.1.0");
-  int exitCode = virtcom::cli::kExitOk;
-  auto setExit = [&](int code) { exitCode = code; };
+  using virtcom::cli::ExitCode;
+  ExitCode exitCode = ExitCode::Ok;
+  auto setExit = [&](ExitCode code) { exitCode = code; };
   virtcom::cli::addCheckCommand(app, setExit);
   virtcom::cli::addExecCommand(app, setExit);
   virtcom::cli::addRunCommand(app, setExit);
@@ -23,14 +24,14 @@ int main(int argc, char** argv) {
     if (!known) {
       std::cerr << "virtcom: unknown " << (first.rfind('-', 0) == 0 ? "option '" : "command '") << first
                 << "' (commands: check, exec, run, serve, modbus-map, export; see virtcom --help)\n";
-      return virtcom::cli::kExitUsage;
+      return static_cast<int>(ExitCode::Usage);
     }
   }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);
-    return code == 0 ? 0 : virtcom::cli::kExitUsage;
+    // CLI11 prints --help and --version through this path too, with status 0.
+    return static_cast<int>(app.exit(e) == 0 ? ExitCode::Ok : ExitCode::Usage);
   }
-  return exitCode;
+  return static_cast<int>(exitCode);
 }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "core/cell_diagnostic_codes.hpp"
+
 namespace virtcom {
 
 const char* dimensionName(Dimension d) {
@@ -121,7 +123,7 @@ ConfigReader::ConfigReader(const ConfigNode& node, Diagnostics& diags, std::stri
 
 void ConfigReader::error(SourceLocation loc, std::string message) {
   ok_ = false;
-  diags_.error("C010", loc, std::move(message));
+  diags_.error(celldiag::C010, loc, std::move(message));
 }
 
 const ConfigNode* ConfigReader::child(const std::string& key) {
@@ -260,7 +262,7 @@ void ConfigReader::rejectUnknownKeys() {
         known += (known.empty() ? "" : ", ") + u;
       }
       ok_ = false;
-      diags_.error("C011", node_.keyLoc(k), "unknown key '" + k + "' in " + what_ + " (expected one of: " + known + ")");
+      diags_.error(celldiag::C011, node_.keyLoc(k), "unknown key '" + k + "' in " + what_ + " (expected one of: " + known + ")");
     }
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // A configuration tree (maps, lists, scalars) where every node knows its file position, so a
-// device factory can report `cell.yaml:12:7: error[C012]: ...` without knowing YAML. The cell
+// device factory can report `cell.yaml:12:7: error[C010]: ...` without knowing YAML. The cell
 // loader builds it from YAML; devices read their parameters through the typed getters below,
 // which also parse quantities with explicit units ("500 mm/s", "2 s", "150 W").
 #include <map>

@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "core/cell_diagnostic_codes.hpp"
 #include "drives/axis_mapping.hpp"
 #include "drives/normalisation.hpp"
 
@@ -75,7 +76,7 @@ class Parser {
 
  private:
   void error(SourceLocation loc, std::string message) {
-    diags_.error("C010", loc, std::move(message));
+    diags_.error(celldiag::C010, loc, std::move(message));
     ok_ = false;
   }
 

@@ -188,7 +188,7 @@ std::unique_ptr<bc::Module> compileCase(const GoldenCase& c, const Header& h, So
 
 void setCycleTime(bc::Module& module, const Header& h) {
   for (auto& t : module.tasks)
-    if (t.name == "MainTask" || t.name == "__DEFAULT") t.intervalNs = parseCycleTimeNs(h.cycleTime);
+    if (t.isDefault) t.intervalNs = parseCycleTimeNs(h.cycleTime);
 }
 
 plc::RuntimeOptions runtimeOptions() {

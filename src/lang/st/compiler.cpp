@@ -75,6 +75,7 @@ void fillSymbols(ProgramModel& model, bc::Module& module, TypeTable& types) {
     info.name = t.name;
     info.intervalNs = t.intervalNs;
     info.priority = t.priority;
+    info.isDefault = t.isDefault;
     for (const auto& name : t.programInstances)
       for (size_t i = 0; i < model.programInstances.size(); ++i)
         if (upper(model.programInstances[i].name) == name) info.programs.push_back(static_cast<uint32_t>(i));

@@ -177,6 +177,45 @@ TEST_F(Loader, RunPlcAndWorldSettings) {
   EXPECT_TRUE(found);
 }
 
+// The program's own CONFIGURATION: `p1` has no WITH, so the compiler runs it in its implicit
+// `__DEFAULT` task, which takes plc.cycle_time like `MainTask` does; a declared TASK keeps its
+// INTERVAL, even one named MainTask.
+const char* const kConfiguredSt = R"st(
+PROGRAM P1
+VAR runs : INT; END_VAR
+runs := runs + 1;
+END_PROGRAM
+
+PROGRAM P2
+VAR runs : INT; END_VAR
+runs := runs + 1;
+END_PROGRAM
+
+CONFIGURATION Cell
+  RESOURCE Cpu ON PLC
+    TASK MainTask(INTERVAL := T#30ms, PRIORITY := 2);
+    PROGRAM p1 : P1;
+    PROGRAM p2 WITH MainTask : P2;
+  END_RESOURCE
+END_CONFIGURATION
+)st";
+
+TEST_F(Loader, PlcCycleTimeAppliesToTheImplicitDefaultTaskOfAConfiguration) {
+  write("configured.st", kConfiguredSt);
+  auto cell = loads("name: configured\nplc:\n  sources: [configured.st]\n  cycle_time: 5 ms\ndevices: []\n");
+  ASSERT_NE(cell, nullptr);
+  ASSERT_NE(cell->module, nullptr);
+  ASSERT_EQ(cell->module->tasks.size(), 2u);
+  const bc::TaskInfo& implicit = cell->module->tasks[0];
+  EXPECT_EQ(implicit.name, "__DEFAULT");
+  EXPECT_TRUE(implicit.isDefault);
+  EXPECT_EQ(implicit.intervalNs, 5'000'000) << "the implicit task runs at plc.cycle_time";
+  const bc::TaskInfo& declared = cell->module->tasks[1];
+  EXPECT_EQ(declared.name, "MainTask");
+  EXPECT_FALSE(declared.isDefault);
+  EXPECT_EQ(declared.intervalNs, 30'000'000) << "a declared TASK keeps its INTERVAL";
+}
+
 // `extends`: the sections this file lacks (devices, world, plc) come from the base file; its
 // own sections (name, run) replace the base's.
 TEST_F(Loader, ExtendsTakesTheSectionsTheFileLacksFromTheBase) {

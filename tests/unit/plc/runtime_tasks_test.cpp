@@ -73,6 +73,8 @@ TEST(RuntimeTasks, ConfiguredTasksAreInTheModule) {
   EXPECT_EQ(module->tasks[1].name, "slow");
   EXPECT_EQ(module->tasks[1].intervalNs, 30 * kMs);
   EXPECT_EQ(module->tasks[1].priority, 2);
+  EXPECT_FALSE(module->tasks[0].isDefault) << "declared by a TASK";
+  EXPECT_FALSE(module->tasks[1].isDefault) << "declared by a TASK";
 }
 
 TEST(RuntimeTasks, EachProgramRunsAtItsOwnRate) {
@@ -165,6 +167,7 @@ END_PROGRAM
   ASSERT_NE(module, nullptr);
   ASSERT_EQ(module->tasks.size(), 1u);
   EXPECT_EQ(module->tasks[0].name, "MainTask");
+  EXPECT_TRUE(module->tasks[0].isDefault) << "the compiler's task of a program without CONFIGURATION";
   module->tasks[0].intervalNs = 50 * kMs;  // what `exec --cycle-time 50ms` does
   VirtualClock clock;
   Runtime rt(*module, clock);
@@ -259,6 +262,8 @@ END_CONFIGURATION
   ASSERT_NE(module, nullptr);
   ASSERT_EQ(module->tasks.size(), 2u);
   EXPECT_EQ(module->tasks[0].name, "__DEFAULT");
+  EXPECT_TRUE(module->tasks[0].isDefault) << "the compiler's task of a configured program without WITH";
+  EXPECT_FALSE(module->tasks[1].isDefault);
   EXPECT_EQ(module->tasks[0].intervalNs, 10 * kMs);
   VirtualClock clock;
   Runtime rt(*module, clock);

@@ -3,13 +3,14 @@
 // it, and the page documents no E/W code that does not exist.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "support/doc_sections.hpp"
+
+namespace virtcom {
 namespace {
 
 struct CodeTitle {
@@ -25,34 +26,7 @@ constexpr CodeTitle kCodes[] = {
 
 const char* const kDocPath = VIRTCOM_SOURCE_DIR "/docs/diagnostics.md";
 
-struct Section {
-  std::string title;  // the rest of the heading line after the code
-  std::string body;   // the text up to the next heading
-};
-
-// The `### CODE title` sections of docs/diagnostics.md, by code. Empty if the file is missing.
-std::map<std::string, Section> readSections(bool& found) {
-  std::ifstream in(kDocPath, std::ios::binary);
-  found = static_cast<bool>(in);
-  std::map<std::string, Section> sections;
-  Section* current = nullptr;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.rfind("#", 0) == 0) current = nullptr;  // any heading ends the current section
-    if (line.rfind("### ", 0) == 0) {
-      std::string rest = line.substr(4);
-      size_t space = rest.find(' ');
-      std::string code = rest.substr(0, space);
-      Section& s = sections[code];
-      s.title = space == std::string::npos ? "" : rest.substr(space + 1);
-      current = &s;
-      continue;
-    }
-    if (current != nullptr) current->body += line + "\n";
-  }
-  return sections;
-}
+std::map<std::string, test::DocSection> readSections(bool& found) { return test::readDocSections(kDocPath, found); }
 
 bool isStCode(const std::string& code) {
   if (code.size() != 4 || (code[0] != 'E' && code[0] != 'W')) return false;
@@ -112,3 +86,4 @@ TEST(DiagnosticsDoc, DocumentsNoUnknownStCode) {
 }
 
 }  // namespace
+}  // namespace virtcom

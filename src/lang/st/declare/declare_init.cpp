@@ -286,9 +286,10 @@ void Declarer::declareConfiguration() {
           }
           if (!task) {
             // A program without WITH runs in a default cyclic task.
-            if (model_.tasks.empty() || model_.tasks.front().name != "__DEFAULT") {
+            if (model_.tasks.empty() || !model_.tasks.front().isDefault) {
               TaskSym def;
               def.name = "__DEFAULT";
+              def.isDefault = true;
               model_.tasks.insert(model_.tasks.begin(), def);
             }
             task = &model_.tasks.front();
@@ -302,6 +303,7 @@ void Declarer::declareConfiguration() {
   // No configuration: one 10 ms task running every PROGRAM in declaration order.
   TaskSym task;
   task.name = "MainTask";
+  task.isDefault = true;
   for (auto& sym : model_.pous) {
     if (sym->kind != PouKind::Program || sym->owner || sym->isLibrary) continue;
     if (addInstance(sym->name, sym.get(), sym->ast->loc)) task.programInstances.push_back(upper(sym->name));

@@ -123,6 +123,10 @@ struct TaskSym {
   int64_t intervalNs = 10'000'000;
   int32_t priority = 0;
   std::vector<std::string> programInstances;  // upper-cased instance names in order
+  // Created by the compiler, not declared by a TASK: `MainTask` without a CONFIGURATION,
+  // `__DEFAULT` for configured programs without WITH. A cycle time the user gives outside the
+  // program (`--cycle-time`, `plc.cycle_time`) applies to it; declared tasks keep their INTERVAL.
+  bool isDefault = false;
 };
 
 struct ProgramInstanceSym {

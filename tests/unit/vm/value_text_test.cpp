@@ -272,7 +272,7 @@ TEST_F(ValueText, ReadsLiteralBodiesLikeTheStLexer) {
   EXPECT_EQ(at(kWord, "16#ff_ff"), "65535");
   EXPECT_EQ(at(kWord, "8#17"), "15");
   EXPECT_EQ(at(kTime, "T#5x"), "error: invalid duration '5x'");
-  EXPECT_EQ(at(kTime, "T#-"), "error: empty duration ''");
+  EXPECT_EQ(at(kTime, "T#-"), "error: empty duration '-'");
   EXPECT_EQ(at(kLtime, "LT#99999999999d"), "error: duration out of range '99999999999d'");
   EXPECT_EQ(at(kTime, "T#25d"), "error: value out of range for TIME");
   EXPECT_EQ(at(kDate, "D#2024-02-30"), "error: invalid DATE literal 'D#2024-02-30'");

@@ -1,8 +1,9 @@
 #include "bytecode/module.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <string>
+
+#include "core/ascii.hpp"
 
 namespace virtcom::bc {
 
@@ -27,16 +28,7 @@ uint32_t Module::pouAt(uint32_t pc) const {
 
 namespace {
 
-char upper(char c) { return static_cast<char>(std::toupper(static_cast<unsigned char>(c))); }
-
-bool equalsNoCase(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (upper(a[i]) != upper(b[i])) return false;
-  return true;
-}
-
-bool isIdentChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+bool isIdentChar(char c) { return isAsciiLetter(c) || isAsciiDigit(c) || c == '_'; }
 
 // A position in a path while it is being resolved.
 struct Cursor {
@@ -54,7 +46,7 @@ std::optional<Cursor> findRoot(const Module& m, std::string_view path, size_t& u
   size_t bestLen = 0;
   auto consider = [&](std::string_view name, TypeId type, uint32_t address, bool readOnly) {
     if (name.size() <= bestLen || name.size() > path.size()) return;
-    if (!equalsNoCase(path.substr(0, name.size()), name)) return;
+    if (!iequalsAscii(path.substr(0, name.size()), name)) return;
     if (name.size() < path.size() && path[name.size()] != '.' && path[name.size()] != '[') return;
     best = Cursor{type, address, -1, readOnly};
     bestLen = name.size();
@@ -72,7 +64,7 @@ std::optional<Cursor> findRoot(const Module& m, std::string_view path, size_t& u
   const Symbol* unique = nullptr;
   for (const Symbol& s : m.symbols) {
     const size_t dot = s.name.rfind('.');
-    if (dot == std::string::npos || !equalsNoCase(std::string_view(s.name).substr(dot + 1), shortName)) continue;
+    if (dot == std::string::npos || !iequalsAscii(std::string_view(s.name).substr(dot + 1), shortName)) continue;
     if (unique) return std::nullopt;  // ambiguous
     unique = &s;
   }
@@ -88,9 +80,9 @@ bool parseIndex(std::string_view& rest, int64_t& out) {
     negative = rest.front() == '-';
     rest.remove_prefix(1);
   }
-  if (rest.empty() || !std::isdigit(static_cast<unsigned char>(rest.front()))) return false;
+  if (rest.empty() || !isAsciiDigit(rest.front())) return false;
   int64_t v = 0;
-  while (!rest.empty() && std::isdigit(static_cast<unsigned char>(rest.front()))) {
+  while (!rest.empty() && isAsciiDigit(rest.front())) {
     if (v > 100'000'000'000'000'000) return false;
     v = v * 10 + (rest.front() - '0');
     rest.remove_prefix(1);
@@ -141,7 +133,7 @@ bool applyMember(const Module& m, Cursor& cur, std::string_view& rest) {
   const TypeDesc& t = m.types[cur.type];
   if (t.kind == TypeKind::Struct) {
     for (const Field& f : t.fields) {
-      if (!equalsNoCase(f.name, name)) continue;
+      if (!iequalsAscii(f.name, name)) continue;
       cur.type = f.type;
       cur.address = f.absolute ? f.offset : cur.address + f.offset;
       if (f.bit >= 0) {

@@ -171,13 +171,12 @@ struct VarRef {
 std::optional<VarRef> resolveVariable(const Module& m, std::string_view path);
 
 // The IEC literal form of the value at `ref` in `memory` (e.g. 42, TRUE, T#1s500ms, 'abc',
-// Color#Red, [1, 2, 3], (x := 1, y := 2)).
+// Color#Red, [1, 2, 3], (x := 1, y := 2)). Defined in value_print.cpp.
 std::string formatValue(const Module& m, const VarRef& ref, const uint8_t* memory);
 
-}  // namespace virtcom::bc
-
-namespace virtcom::bc {
 // Parses an IEC literal (42, -7, 16#FF, 1.5, TRUE, T#1s, 'text', Color#Red, Red) of the type at
-// `ref` and writes it into `memory`. Returns an error message, empty on success.
+// `ref` and writes it into `memory`. Returns an error message, empty on success. Defined in
+// value_parse.cpp, which reads time, date and integer text with core/iec_literal.
 std::string writeValueFromText(const Module& m, const VarRef& ref, std::string_view text, uint8_t* memory);
+
 }  // namespace virtcom::bc

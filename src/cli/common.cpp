@@ -1,7 +1,6 @@
 #include "cli/common.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cstring>
 #include <cstdio>
 #include <fstream>
@@ -10,6 +9,8 @@
 
 #include "aot/compile.hpp"
 #include "cli/commands.hpp"
+#include "core/ascii.hpp"
+#include "core/duration_units.hpp"
 #include "lang/plcopen/importer.hpp"
 #include "lang/st/compiler.hpp"
 
@@ -64,40 +65,30 @@ std::string presetVariable(const bc::Module& m, const std::string& assignment, u
 }
 
 std::optional<int64_t> parseDurationNs(const std::string& raw) {
-  std::string text = raw;
-  for (auto& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  std::string text = asciiLower(raw);
   if (text.rfind("t#", 0) == 0) text = text.substr(2);
   else if (text.rfind("time#", 0) == 0) text = text.substr(5);
   if (text.empty()) return std::nullopt;
   // a bare number is milliseconds
   bool bare = true;
   for (char c : text)
-    if (!std::isdigit(static_cast<unsigned char>(c)) && c != '.') bare = false;
+    if (!isAsciiDigit(c) && c != '.') bare = false;
   if (bare) text += "ms";
-  static const std::pair<const char*, double> kUnits[] = {{"ms", 1e6}, {"us", 1e3}, {"ns", 1.0}, {"d", 86400e9},
-                                                         {"h", 3600e9}, {"m", 60e9},   {"s", 1e9}};
   double total = 0;
   size_t i = 0;
   while (i < text.size()) {
     size_t start = i;
-    while (i < text.size() && (std::isdigit(static_cast<unsigned char>(text[i])) || text[i] == '.' || text[i] == '_')) ++i;
+    while (i < text.size() && (isAsciiDigit(text[i]) || text[i] == '.' || text[i] == '_')) ++i;
     if (start == i) return std::nullopt;
     std::string number;
     for (size_t k = start; k < i; ++k)
       if (text[k] != '_') number += text[k];
     if (std::count(number.begin(), number.end(), '.') > 1) return std::nullopt;
     double value = std::strtod(number.c_str(), nullptr);
-    bool matched = false;
-    for (const auto& [unit, scale] : kUnits) {
-      size_t n = std::char_traits<char>::length(unit);
-      if (text.compare(i, n, unit) == 0) {
-        total += value * scale;
-        i += n;
-        matched = true;
-        break;
-      }
-    }
-    if (!matched) return std::nullopt;
+    const DurationUnit* unit = iecDurationUnitAtStart(std::string_view(text).substr(i));
+    if (unit == nullptr) return std::nullopt;
+    total += value * static_cast<double>(unit->ns);
+    i += unit->iec.size();
   }
   int64_t ns = static_cast<int64_t>(total + 0.5);
   if (ns <= 0) return std::nullopt;

@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "core/cell_diagnostic_codes.hpp"
+#include "core/duration_units.hpp"
 
 namespace virtcom {
 
@@ -33,13 +34,10 @@ struct Unit {
   Dimension dim;
   double factor;
 };
-// One table for every accepted unit spelling.
+// Every accepted unit spelling but those of durations, which come from kDurationUnits.
 constexpr Unit kUnits[] = {
     {"mm", Dimension::Length, 1e-3},         {"cm", Dimension::Length, 1e-2},
-    {"m", Dimension::Length, 1.0},           {"ns", Dimension::Time, 1e-9},
-    {"us", Dimension::Time, 1e-6},           {"ms", Dimension::Time, 1e-3},
-    {"s", Dimension::Time, 1.0},             {"min", Dimension::Time, 60.0},
-    {"h", Dimension::Time, 3600.0},          {"mm/s", Dimension::Speed, 1e-3},
+    {"m", Dimension::Length, 1.0},           {"mm/s", Dimension::Speed, 1e-3},
     {"m/s", Dimension::Speed, 1.0},          {"m/min", Dimension::Speed, 1.0 / 60},
     {"mm/s^2", Dimension::Acceleration, 1e-3}, {"mm/s2", Dimension::Acceleration, 1e-3},
     {"m/s^2", Dimension::Acceleration, 1.0}, {"m/s2", Dimension::Acceleration, 1.0},
@@ -51,6 +49,16 @@ constexpr Unit kUnits[] = {
     {"g", Dimension::Mass, 1e-3},            {"deg", Dimension::Angle, 3.14159265358979323846 / 180},
     {"rad", Dimension::Angle, 1.0},          {"Hz", Dimension::Frequency, 1.0},
 };
+// The unit spelled exactly `name`, of any dimension; nullopt if none. Durations convert as
+// ns / 1e9, which rounds to the same double as the decimal factors (1e-3 for ms).
+std::optional<Unit> findUnit(std::string_view name) {
+  for (const Unit& unit : kUnits)
+    if (name == unit.name) return unit;
+  if (const DurationUnit* unit = quantityDurationUnit(name))
+    return Unit{"", Dimension::Time, static_cast<double>(unit->ns) / 1e9};
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::string parseQuantity(const std::string& text, Dimension dim, double& si) {
@@ -66,10 +74,9 @@ std::string parseQuantity(const std::string& text, Dimension dim, double& si) {
     return {};
   }
   if (unit.empty()) return "'" + text + "' needs a unit: expected " + dimensionName(dim);
-  for (const auto& u : kUnits) {
-    if (unit != u.name) continue;
-    if (u.dim != dim) return "'" + text + "' is not " + dimensionName(dim);
-    si = value * u.factor;
+  if (std::optional<Unit> u = findUnit(unit)) {
+    if (u->dim != dim) return "'" + text + "' is not " + dimensionName(dim);
+    si = value * u->factor;
     return {};
   }
   return "unknown unit '" + unit + "' in '" + text + "': expected " + dimensionName(dim);

@@ -1,40 +1,61 @@
 #include "core/iec_literal.hpp"
 
+#include <array>
 #include <cmath>
 #include <limits>
 
+#include "core/ascii.hpp"
+#include "core/duration_units.hpp"
 #include "core/iec_value.hpp"
 
 namespace virtcom {
 
 namespace {
 
-bool isDigit(char c) { return c >= '0' && c <= '9'; }
-bool isAlpha(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
 bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
-char toUpper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
 
-bool equalsNoCase(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (toUpper(a[i]) != toUpper(b[i])) return false;
-  return true;
+std::string_view trimmed(std::string_view text) {
+  while (!text.empty() && isBlank(text.front())) text.remove_prefix(1);
+  while (!text.empty() && isBlank(text.back())) text.remove_suffix(1);
+  return text;
 }
 
 bool fail(LiteralError& why, const char* what, std::string_view quoted = {}) {
-  why = {what, quoted};
+  why = {LiteralError::Kind::Malformed, what, quoted};
   return false;
 }
 
-struct DurationUnit {
-  std::string_view name;
-  uint64_t ns;
-};
-constexpr DurationUnit kDurationUnits[] = {
-    {"d", 86'400'000'000'000ull}, {"h", 3'600'000'000'000ull}, {"m", 60'000'000'000ull},
-    {"s", 1'000'000'000ull},      {"ms", 1'000'000ull},        {"us", 1'000ull},
-    {"ns", 1ull},
-};
+bool failEmpty(LiteralError& why) {
+  why = {LiteralError::Kind::Empty, "no value", {}};
+  return false;
+}
+
+bool failTooLarge(LiteralError& why) {
+  why = {LiteralError::Kind::TooLarge, "value too large", {}};
+  return false;
+}
+
+// "missing unit (d, h, m, s, ms, us, ns)", listing kDurationUnits so the message cannot go stale.
+constexpr std::string_view kMissingUnitHead = "missing unit (";
+constexpr size_t missingUnitLength() {
+  size_t n = kMissingUnitHead.size() + 1;  // and ')'
+  for (const DurationUnit& unit : kDurationUnits) n += unit.iec.size() + 2;
+  return n - 2 + 1;  // no ", " after the last, a terminating NUL
+}
+constexpr auto kMissingUnit = [] {
+  std::array<char, missingUnitLength()> text{};
+  size_t at = 0;
+  auto append = [&](std::string_view part) {
+    for (char c : part) text[at++] = c;
+  };
+  append(kMissingUnitHead);
+  for (const DurationUnit& unit : kDurationUnits) {
+    if (&unit != kDurationUnits) append(", ");
+    append(unit.iec);
+  }
+  append(")");
+  return text;
+}();
 
 // Splits `s` at `sep` into at most `maxParts` pieces.
 size_t splitParts(std::string_view s, char sep, std::string_view* parts, size_t maxParts) {
@@ -57,38 +78,36 @@ bool decodeDuration(std::string_view body, uint64_t& ns, bool& negative, Literal
   negative = false;
   size_t i = 0;
   if (i < body.size() && (body[i] == '-' || body[i] == '+')) negative = body[i++] == '-';
-  if (i >= body.size()) return fail(why, "no value");
+  if (i >= body.size()) return failEmpty(why);
   while (i < body.size()) {
     size_t numStart = i;
-    while (i < body.size() && (isDigit(body[i]) || body[i] == '_')) ++i;
+    while (i < body.size() && (isAsciiDigit(body[i]) || body[i] == '_')) ++i;
     uint64_t whole = 0;
     if (!parseDecimal(body.substr(numStart, i - numStart), whole)) return fail(why, "expected a number");
     std::string_view fraction;
     if (i < body.size() && body[i] == '.') {
       size_t fracStart = ++i;
-      while (i < body.size() && isDigit(body[i])) ++i;
+      while (i < body.size() && isAsciiDigit(body[i])) ++i;
       fraction = body.substr(fracStart, i - fracStart);
     }
     size_t unitStart = i;
-    while (i < body.size() && isAlpha(body[i])) ++i;
+    while (i < body.size() && isAsciiLetter(body[i])) ++i;
     std::string_view unitName = body.substr(unitStart, i - unitStart);
-    const DurationUnit* unit = nullptr;
-    for (const DurationUnit& u : kDurationUnits)
-      if (equalsNoCase(u.name, unitName)) unit = &u;
-    if (unit == nullptr && unitName.empty()) return fail(why, "missing unit (d, h, m, s, ms, us, ns)");
+    const DurationUnit* unit = iecDurationUnit(unitName);
+    if (unit == nullptr && unitName.empty()) return fail(why, kMissingUnit.data());
     if (unit == nullptr) return fail(why, "unknown unit", unitName);
     uint64_t part = 0;
-    if (__builtin_mul_overflow(whole, unit->ns, &part)) return fail(why, "value too large");
+    if (__builtin_mul_overflow(whole, unit->ns, &part)) return failTooLarge(why);
     if (!fraction.empty()) {
       long double frac = 0, scale = 1;
       for (char c : fraction.substr(0, 18)) frac += (c - '0') * (scale /= 10);
       uint64_t fracNs = static_cast<uint64_t>(std::llround(frac * static_cast<long double>(unit->ns)));
-      if (__builtin_add_overflow(part, fracNs, &part)) return fail(why, "value too large");
+      if (__builtin_add_overflow(part, fracNs, &part)) return failTooLarge(why);
     }
-    if (__builtin_add_overflow(ns, part, &ns)) return fail(why, "value too large");
+    if (__builtin_add_overflow(ns, part, &ns)) return failTooLarge(why);
     while (i < body.size() && body[i] == '_') ++i;
   }
-  if (ns > static_cast<uint64_t>(std::numeric_limits<int64_t>::max())) return fail(why, "value too large");
+  if (ns > static_cast<uint64_t>(std::numeric_limits<int64_t>::max())) return failTooLarge(why);
   return true;
 }
 
@@ -120,7 +139,7 @@ bool decodeTimeOfDay(std::string_view body, int64_t& ms, LiteralError& why) {
       std::string_view frac = secPart.substr(dot + 1);
       uint64_t scale = 100;
       for (char c : frac) {
-        if (!isDigit(c)) return fail(why, "malformed fraction of a second");
+        if (!isAsciiDigit(c)) return fail(why, "malformed fraction of a second");
         fracMs += static_cast<uint64_t>(c - '0') * scale;
         scale /= 10;
       }
@@ -144,48 +163,7 @@ bool decodeDateAndTime(std::string_view body, int64_t& seconds, LiteralError& wh
   return true;
 }
 
-
-LiteralFamily literalFamily(std::string_view prefix) {
-  struct Entry {
-    std::string_view prefix;
-    LiteralFamily family;
-  };
-  static constexpr Entry kEntries[] = {
-      {"T", LiteralFamily::Time},  {"TIME", LiteralFamily::Time},         {"LT", LiteralFamily::Ltime},
-      {"LTIME", LiteralFamily::Ltime}, {"D", LiteralFamily::Date},         {"DATE", LiteralFamily::Date},
-      {"TOD", LiteralFamily::Tod}, {"TIME_OF_DAY", LiteralFamily::Tod},   {"DT", LiteralFamily::Dt},
-      {"DATE_AND_TIME", LiteralFamily::Dt},
-  };
-  for (const Entry& e : kEntries)
-    if (equalsNoCase(e.prefix, prefix)) return e.family;
-  return LiteralFamily::None;
-}
-
-bool parseDecimal(std::string_view digits, uint64_t& out) {
-  out = 0;
-  bool any = false;
-  for (char c : digits) {
-    if (c == '_') continue;
-    if (!isDigit(c)) return false;
-    if (__builtin_mul_overflow(out, 10u, &out) || __builtin_add_overflow(out, uint64_t(c - '0'), &out))
-      return false;
-    any = true;
-  }
-  return any;
-}
-
-namespace {
-
-std::string_view trimmed(std::string_view text) {
-  while (!text.empty() && isBlank(text.front())) text.remove_prefix(1);
-  while (!text.empty() && isBlank(text.back())) text.remove_suffix(1);
-  return text;
-}
-
-// Date bodies may contain underscores in literals; run-time text has none to drop, so a body
-// with one is simply malformed.
-bool decodeFamily(std::string_view body, LiteralFamily family, int64_t& value) {
-  LiteralError why;
+bool decodeLiteralBody(std::string_view body, LiteralFamily family, int64_t& value, LiteralError& why) {
   switch (family) {
     case LiteralFamily::Time:
     case LiteralFamily::Ltime: {
@@ -201,11 +179,50 @@ bool decodeFamily(std::string_view body, LiteralFamily family, int64_t& value) {
     case LiteralFamily::Dt: return decodeDateAndTime(body, value, why);
     case LiteralFamily::None: break;
   }
-  return false;
+  return fail(why, "not a time or date literal");
 }
 
-}  // namespace
+LiteralFamily literalFamily(std::string_view prefix) {
+  struct Entry {
+    std::string_view prefix;
+    LiteralFamily family;
+  };
+  static constexpr Entry kEntries[] = {
+      {"T", LiteralFamily::Time},  {"TIME", LiteralFamily::Time},         {"LT", LiteralFamily::Ltime},
+      {"LTIME", LiteralFamily::Ltime}, {"D", LiteralFamily::Date},         {"DATE", LiteralFamily::Date},
+      {"TOD", LiteralFamily::Tod}, {"TIME_OF_DAY", LiteralFamily::Tod},   {"DT", LiteralFamily::Dt},
+      {"DATE_AND_TIME", LiteralFamily::Dt},
+  };
+  for (const Entry& e : kEntries)
+    if (iequalsAscii(e.prefix, prefix)) return e.family;
+  return LiteralFamily::None;
+}
 
+bool parseDigits(std::string_view digits, unsigned base, uint64_t& out) {
+  out = 0;
+  bool any = false;
+  for (char c : digits) {
+    if (c == '_') continue;
+    const int digit = asciiDigitValue(c);
+    if (digit < 0 || static_cast<unsigned>(digit) >= base) return false;
+    if (__builtin_mul_overflow(out, uint64_t{base}, &out) || __builtin_add_overflow(out, uint64_t(digit), &out))
+      return false;
+    any = true;
+  }
+  return any;
+}
+
+bool parseDecimal(std::string_view digits, uint64_t& out) { return parseDigits(digits, 10, out); }
+
+bool parseRadix(std::string_view text, unsigned& base) {
+  uint64_t value = 0;
+  if (!parseDecimal(text, value) || (value != 2 && value != 8 && value != 16)) return false;
+  base = static_cast<unsigned>(value);
+  return true;
+}
+
+// Date bodies may contain underscores in literals; run-time text has none to drop, so a body
+// with one is simply malformed.
 bool parseTimeOrDateText(std::string_view text, LiteralFamily family, int64_t& value) {
   text = trimmed(text);
   size_t hash = text.find('#');
@@ -213,7 +230,8 @@ bool parseTimeOrDateText(std::string_view text, LiteralFamily family, int64_t& v
     if (literalFamily(text.substr(0, hash)) != family) return false;
     text.remove_prefix(hash + 1);
   }
-  return decodeFamily(text, family, value);
+  LiteralError why;
+  return decodeLiteralBody(text, family, value, why);
 }
 
 bool parseIntegerText(std::string_view text, int64_t& value) {
@@ -224,25 +242,19 @@ bool parseIntegerText(std::string_view text, int64_t& value) {
     text.remove_prefix(1);
   }
   // A type prefix (INT#5, DINT#16#FF) says nothing about the value here.
-  if (size_t hash = text.find('#'); hash != std::string_view::npos && hash > 0 && isAlpha(text[0]))
+  if (size_t hash = text.find('#'); hash != std::string_view::npos && hash > 0 && isAsciiLetter(text[0]))
     text.remove_prefix(hash + 1);
-  uint64_t base = 10;
-  if (size_t hash = text.find('#'); hash != std::string_view::npos && hash > 0) {
-    uint64_t b = 0;
-    if (parseDecimal(text.substr(0, hash), b) && (b == 2 || b == 8 || b == 16)) {
-      base = b;
-      text.remove_prefix(hash + 1);
-    }
-  }
+  unsigned base = 10;
+  if (size_t hash = text.find('#'); hash != std::string_view::npos && hash > 0 && parseRadix(text.substr(0, hash), base))
+    text.remove_prefix(hash + 1);
   const uint64_t limit = negative ? uint64_t{1} << 63 : (uint64_t{1} << 63) - 1;
   uint64_t magnitude = 0;
   bool any = false;
   for (char c : text) {
     if (c == '_' && any) continue;
-    uint64_t digit = isDigit(c) ? static_cast<uint64_t>(c - '0')
-                     : isAlpha(c) ? static_cast<uint64_t>(toUpper(c) - 'A' + 10)
-                                  : base;
-    if (digit >= base) break;
+    const int digitOrNone = asciiDigitValue(c);
+    if (digitOrNone < 0 || static_cast<unsigned>(digitOrNone) >= base) break;
+    const uint64_t digit = static_cast<uint64_t>(digitOrNone);
     magnitude = magnitude > (limit - digit) / base ? limit : magnitude * base + digit;
     any = true;
   }

@@ -1,15 +1,23 @@
 #pragma once
-// The bodies of IEC time and date literals (what follows T#, LTIME#, D#, TOD#, DT#) and IEC
-// integer texts (42, -7, 16#FF, 2#1010_1010), decoded without allocating: the ST lexer decodes
-// literals with them, and the VM's STRING_TO_* conversions decode run-time text the same way.
+// The one reader of IEC literal text: the bodies of time and date literals (what follows T#,
+// LTIME#, D#, TOD#, DT#), their prefixes, and integer digits in bases 2, 8, 10 and 16, decoded
+// without allocating. The ST lexer decodes literals with it, the VM's STRING_TO_* conversions
+// decode run-time text with it, and bytecode's value parser (--set, cell wiring) reads typed
+// values with it, so all three accept the same spellings.
 #include <cstdint>
 #include <string_view>
 
 namespace virtcom {
 
-// Why a body was refused: a fixed text, and the part of the input it is about (the unit of
-// `T#5x`), empty when there is none.
+// Why a body was refused: the kind (for callers with their own wording), a fixed text, and
+// the part of the input it is about (the unit of `T#5x`), empty when there is none.
 struct LiteralError {
+  enum class Kind : uint8_t {
+    Malformed,  // not the literal's syntax, or no such date or time of day
+    Empty,      // nothing after the prefix and sign
+    TooLarge,   // well formed, but beyond the range the decoder can hold
+  };
+  Kind kind = Kind::Malformed;
   const char* what = "";
   std::string_view quoted;
 };
@@ -28,9 +36,18 @@ bool decodeDate(std::string_view body, int64_t& seconds, LiteralError& why);
 bool decodeTimeOfDay(std::string_view body, int64_t& ms, LiteralError& why);
 // yyyy-mm-dd-hh:mm:ss[.f] to seconds since 1970 (the fraction is dropped: DT counts seconds).
 bool decodeDateAndTime(std::string_view body, int64_t& seconds, LiteralError& why);
+// Any body of `family` to its value: TIME (truncated toward zero) and TOD in milliseconds,
+// LTIME in nanoseconds, DATE and DT in seconds since 1970. Refuses LiteralFamily::None.
+bool decodeLiteralBody(std::string_view body, LiteralFamily family, int64_t& value, LiteralError& why);
 
-// Decimal digits, underscores ignored; false if empty, not a digit, or beyond 64 bits.
+// Digits of `base` (2..36, letters in either case), underscores ignored anywhere; false if
+// there is no digit, a character that is not a digit of the base, or the value is beyond 64 bits.
+bool parseDigits(std::string_view digits, unsigned base, uint64_t& out);
+// parseDigits in base 10.
 bool parseDecimal(std::string_view digits, uint64_t& out);
+// The radix of a based integer (the `16` of 16#FF): true for 2, 8 and 16, the bases IEC
+// 61131-3 allows; `base` is untouched otherwise.
+bool parseRadix(std::string_view text, unsigned& base);
 
 // Run-time text to a value of the family, as STRING_TO_TIME and friends read it: leading and
 // trailing blanks ignored, the prefix optional (`T#1s`, `TIME#1s` or `1s`; `DT#...`). TIME and

@@ -1,8 +1,10 @@
 #include "core/iec_value.hpp"
 
-#include <cctype>
 #include <charconv>
 #include <cstdio>
+
+#include "core/ascii.hpp"
+#include "core/duration_units.hpp"
 
 namespace virtcom {
 
@@ -14,19 +16,11 @@ static const ElemTypeInfo kElemInfo[] = {
 
 const ElemTypeInfo& elemTypeInfo(ElemType t) { return kElemInfo[static_cast<size_t>(t)]; }
 
-static bool equalsNoCase(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (std::toupper(static_cast<unsigned char>(a[i])) != std::toupper(static_cast<unsigned char>(b[i])))
-      return false;
-  return true;
-}
-
 bool elemTypeByName(std::string_view name, ElemType& out) {
-  if (equalsNoCase(name, "TOD")) { out = ElemType::Tod; return true; }
-  if (equalsNoCase(name, "DT")) { out = ElemType::Dt; return true; }
+  if (iequalsAscii(name, "TOD")) { out = ElemType::Tod; return true; }
+  if (iequalsAscii(name, "DT")) { out = ElemType::Dt; return true; }
   for (size_t i = 0; i < std::size(kElemInfo); ++i) {
-    if (equalsNoCase(name, kElemInfo[i].name)) {
+    if (iequalsAscii(name, kElemInfo[i].name)) {
       out = static_cast<ElemType>(i);
       return true;
     }
@@ -62,7 +56,7 @@ struct TextBuf {
   }
 };
 
-void addUnit(TextBuf& out, uint64_t& rest, uint64_t unit, const char* suffix) {
+void addUnit(TextBuf& out, uint64_t& rest, uint64_t unit, std::string_view suffix) {
   if (rest >= unit) {
     out.addNumber(rest / unit);
     out.add(suffix);
@@ -80,15 +74,11 @@ size_t formatDurationInto(char* buf, const char* prefix, int64_t value, bool nan
     out.add(nanos ? "0ns" : "0ms");
     return out.n;
   }
-  const uint64_t ms = nanos ? 1000000 : 1;
-  addUnit(out, rest, 86400000 * ms, "d");
-  addUnit(out, rest, 3600000 * ms, "h");
-  addUnit(out, rest, 60000 * ms, "m");
-  addUnit(out, rest, 1000 * ms, "s");
-  addUnit(out, rest, ms, "ms");
-  if (nanos) {
-    addUnit(out, rest, 1000, "us");
-    addUnit(out, rest, 1, "ns");
+  // TIME counts milliseconds, so it stops at ms; LTIME goes down to ns.
+  constexpr uint64_t kNsPerMs = 1'000'000;
+  for (const DurationUnit& unit : kDurationUnits) {
+    if (!nanos && unit.ns < kNsPerMs) break;
+    addUnit(out, rest, nanos ? unit.ns : unit.ns / kNsPerMs, unit.iec);
   }
   return out.n;
 }

@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <optional>
 #include <sstream>
+
+#include "core/ascii.hpp"
 
 namespace virtcom::modbus_map {
 
@@ -32,9 +33,8 @@ std::optional<Table> tableFromText(const std::string& text) {
 }
 
 std::optional<ValueType> valueTypeFromText(std::string text) {
-  for (auto& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   for (const auto& info : kValueTypes)
-    if (text == info.text) return info.type;
+    if (iequalsAscii(text, info.text)) return info.type;
   return std::nullopt;
 }
 

@@ -1,9 +1,9 @@
 #include "report/html_chart.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 
+#include "core/ascii.hpp"
 #include "report/text_util.hpp"
 
 namespace virtcom::report::html {
@@ -171,11 +171,9 @@ Rgb LabelColors::color(uint32_t label) const {
 
 std::string laneGroup(const DeviceInfo& d) {
   if (!d.group.empty()) return d.group;
-  std::string type;
-  for (char c : d.type) type += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (type == "robot") return "Robots";
-  if (type == "press") return "Press";
-  if (type == "axis") return "Axes";
+  if (iequalsAscii(d.type, "robot")) return "Robots";
+  if (iequalsAscii(d.type, "press")) return "Press";
+  if (iequalsAscii(d.type, "axis")) return "Axes";
   return "Other";
 }
 

@@ -1,9 +1,9 @@
 #include "report/html_report.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 
+#include "core/ascii.hpp"
 #include "report/html_chart.hpp"
 #include "report/text_util.hpp"
 
@@ -135,11 +135,7 @@ const char* endClass(RunEnd e) {
   }
 }
 
-bool isRobot(const DeviceInfo& d) {
-  std::string t;
-  for (char c : d.type) t += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return t == "robot";
-}
+bool isRobot(const DeviceInfo& d) { return iequalsAscii(d.type, "robot"); }
 
 std::string card(const std::string& key, const std::string& value, const std::string& unit,
                  const std::string& detail, bool bad = false) {

@@ -16,6 +16,7 @@
 #include <charconv>
 #include <cstring>
 
+#include "core/ascii.hpp"
 #include "core/iec_literal.hpp"
 #include "core/iec_value.hpp"
 #include "vm/natives.hpp"
@@ -343,8 +344,7 @@ FaultKind native_STR_TO_BOOL(uint64_t* a, const NativeContext& c) {
   std::string_view text = asView(s);
   while (!text.empty() && isSpace(static_cast<uint8_t>(text.front()))) text.remove_prefix(1);
   int64_t v = 0;
-  bool isTrue = text.size() >= 4 && (text[0] | 0x20) == 't' && (text[1] | 0x20) == 'r' && (text[2] | 0x20) == 'u' &&
-                (text[3] | 0x20) == 'e';
+  bool isTrue = istartsWithAscii(text, "TRUE");
   a[0] = isTrue || (parseIntegerText(text, v) && v != 0) ? 1 : 0;
   return FaultKind::None;
 }

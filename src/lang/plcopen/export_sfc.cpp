@@ -5,9 +5,9 @@
 #include <string_view>
 #include <vector>
 
+#include "core/ascii.hpp"
 #include "lang/plcopen/export_internal.hpp"
 #include "lang/syntax/printer.hpp"
-#include "lang/st/declare/program_model.hpp"
 
 namespace virtcom::plcopen::detail {
 
@@ -88,9 +88,8 @@ class ChartWriter {
   }
 
   size_t stepIndex(const std::string& name) const {
-    std::string key = st::upper(name);
     for (size_t k = 0; k < chart_.steps.size(); ++k)
-      if (st::upper(chart_.steps[k].name) == key) return k;
+      if (iequalsAscii(chart_.steps[k].name, name)) return k;
     return chart_.steps.size();
   }
   // The point a step's outgoing transitions connect to: the step, or its selection divergence.
@@ -142,9 +141,8 @@ class ChartWriter {
   }
 
   bool isChartAction(const std::string& name) const {
-    std::string key = st::upper(name);
     return std::any_of(chart_.actions.begin(), chart_.actions.end(),
-                       [&](const sfc::Action& a) { return st::upper(a.name) == key; });
+                       [&](const sfc::Action& a) { return iequalsAscii(a.name, name); });
   }
 
   void actionBlock(size_t k) {
@@ -163,7 +161,7 @@ class ChartWriter {
         continue;
       }
       for (const sfc::Action& body : chart_.actions)
-        if (st::upper(body.name) == st::upper(assoc.action.name))
+        if (iequalsAscii(body.name, assoc.action.name))
           writeStText(a.append_child("inline").append_child("ST"), st::printStatements(body.body));
     }
   }

@@ -5,6 +5,7 @@
 #include <span>
 #include <sstream>
 
+#include "core/ascii.hpp"
 #include "core/iec_value.hpp"
 #include "lang/plcopen/diagnostic_codes.hpp"
 #include "lang/plcopen/export_internal.hpp"
@@ -62,8 +63,7 @@ const char* pouTypeName(st::PouKind kind) {
 
 // TC6 spells the elementary types as elements (<INT/>); the long date/time names have short forms.
 std::string elementaryElement(const std::string& name) {
-  std::string up;
-  for (char c : name) up += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  const std::string up = asciiUpper(name);
   if (up == "TIME_OF_DAY") return "TOD";
   if (up == "DATE_AND_TIME") return "DT";
   ElemType type{};
@@ -271,8 +271,7 @@ void Exporter::configuration(pugi::xml_node configurations, const st::Configurat
       pugi::xml_node t = r.append_child("task");
       t.append_attribute("name") = task.name.c_str();
       for (const auto& s : task.settings) {
-        std::string key;
-        for (char ch : s.name) key += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+        const std::string key = asciiLower(s.name);
         if (s.value) t.append_attribute(key.c_str()) = st::printExpr(*s.value).c_str();
       }
       for (const auto& prog : res.programs) {

@@ -2,6 +2,7 @@
 // import_internal.hpp.
 #include <algorithm>
 
+#include "core/ascii.hpp"
 #include "lang/plcopen/diagnostic_codes.hpp"
 #include "lang/plcopen/import_internal.hpp"
 #include "lang/plcopen/importer.hpp"
@@ -325,9 +326,7 @@ st::CompilationUnit importProject(uint32_t fileId, std::string_view text, Diagno
 }
 
 bool isPlcopenPath(std::string_view path) {
-  if (path.size() < 4) return false;
-  std::string_view ext = path.substr(path.size() - 4);
-  return ext[0] == '.' && (ext[1] | 0x20) == 'x' && (ext[2] | 0x20) == 'm' && (ext[3] | 0x20) == 'l';
+  return iendsWithAscii(path, ".xml");
 }
 
 st::SourceInput sourceInput(std::string path, std::string text) {

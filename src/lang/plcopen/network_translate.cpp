@@ -2,9 +2,9 @@
 #include "lang/plcopen/network_translate.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <limits>
 
+#include "core/ascii.hpp"
 #include "lang/plcopen/diagnostic_codes.hpp"
 
 namespace virtcom::plcopen::detail {
@@ -15,13 +15,6 @@ namespace {
 constexpr int kMaxChain = 256;
 
 bool isTrueLiteral(const st::Expr& e) { return e.kind == st::ExprKind::BoolLit && e.intValue == 1; }
-
-bool sameName(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (std::toupper(static_cast<unsigned char>(a[i])) != std::toupper(static_cast<unsigned char>(b[i]))) return false;
-  return true;
-}
 
 class Translator {
  public:
@@ -248,7 +241,7 @@ st::ExprPtr Translator::connectorValue(size_t i) {
 
 const Pin* Translator::enablePin(const Element& e) const {
   for (const Pin& pin : e.inputs)
-    if (sameName(pin.formal, "EN")) return &pin;
+    if (iequalsAscii(pin.formal, "EN")) return &pin;
   return nullptr;
 }
 
@@ -256,7 +249,7 @@ st::ExprPtr Translator::blockOutput(size_t i, const Connection& conn) {
   const Element& e = net_.elements[i];
   const BlockOutput* out = nullptr;
   for (const BlockOutput& o : e.outputs)
-    if (conn.formal.empty() ? !sameName(o.formal, "ENO") : sameName(o.formal, conn.formal)) {
+    if (conn.formal.empty() ? !iequalsAscii(o.formal, "ENO") : iequalsAscii(o.formal, conn.formal)) {
       out = &o;
       break;
     }
@@ -266,7 +259,7 @@ st::ExprPtr Translator::blockOutput(size_t i, const Connection& conn) {
   }
   SourceLocation loc = imp_.xml().at(e.node);
   st::ExprPtr value;
-  if (sameName(out->formal, "ENO")) {
+  if (iequalsAscii(out->formal, "ENO")) {
     const Pin* en = enablePin(e);
     if (!e.instanceName.empty() && en && !en->sources.empty()) {
       if (state_[i] == State::Unvisited) execute(i);
@@ -276,7 +269,7 @@ st::ExprPtr Translator::blockOutput(size_t i, const Connection& conn) {
       if (!value) value = b_.boolLit(true, loc);
     }
   } else if (e.instanceName.empty()) {
-    auto result = std::find_if(e.outputs.begin(), e.outputs.end(), [](const BlockOutput& o) { return !sameName(o.formal, "ENO"); });
+    auto result = std::find_if(e.outputs.begin(), e.outputs.end(), [](const BlockOutput& o) { return !iequalsAscii(o.formal, "ENO"); });
     if (&*result != out && !out->inOut) {
       imp_.unsupported(e.node, "reading output '" + out->formal + "' of function '" + e.name +
                                    "' (only the function's result can be connected)");
@@ -307,7 +300,7 @@ st::ExprPtr Translator::functionCall(size_t i) {
   call->lhs = b_.name(e.name, loc);
   for (size_t k = 0; k < e.inputs.size(); ++k) {
     const Pin& pin = e.inputs[k];
-    if (sameName(pin.formal, "EN")) {
+    if (iequalsAscii(pin.formal, "EN")) {
       if (st::ExprPtr en = pinValue(pin, e); en && !isTrueLiteral(*en)) guards_.push_back(std::move(en));
       continue;
     }
@@ -317,7 +310,7 @@ st::ExprPtr Translator::functionCall(size_t i) {
     call->args.push_back(std::move(arg));
   }
   state_[i] = State::Unvisited;  // read again, it is inlined again
-  if (sameName(e.name, "MOVE") && call->args.size() == 1) return std::move(call->args.front().value);
+  if (iequalsAscii(e.name, "MOVE") && call->args.size() == 1) return std::move(call->args.front().value);
   return call;
 }
 
@@ -349,7 +342,7 @@ void Translator::executeBlock(size_t i) {
   call->lhs = b_.name(e.instanceName, loc);
   for (const Pin& pin : e.inputs) {
     st::ExprPtr v = pinValue(pin, e);
-    if (sameName(pin.formal, "EN")) {
+    if (iequalsAscii(pin.formal, "EN")) {
       en = std::move(v);
       continue;
     }
@@ -405,7 +398,7 @@ void Translator::executeJump(size_t i) {
   if (e.kind == ElementKind::Return) {
     body.push_back(b_.simple(st::StmtKind::Return, loc));
   } else {
-    auto label = std::find_if(labels_.begin(), labels_.end(), [&](const std::string& l) { return sameName(l, e.name); });
+    auto label = std::find_if(labels_.begin(), labels_.end(), [&](const std::string& l) { return iequalsAscii(l, e.name); });
     if (label == labels_.end()) {
       imp_.error(diag::X010, e.node, describe(e.node) + ": there is no label '" + e.name + "' in this body");
       return;

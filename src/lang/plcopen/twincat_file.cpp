@@ -1,9 +1,9 @@
 #include "lang/plcopen/twincat_file.hpp"
 
-#include <cctype>
 #include <string>
 #include <vector>
 
+#include "core/ascii.hpp"
 #include "lang/plcopen/diagnostic_codes.hpp"
 #include "lang/plcopen/xml_file.hpp"
 #include "lang/st/parse/lexer.hpp"
@@ -229,15 +229,6 @@ class TwinCatReader {
   StLayout layout_;
 };
 
-bool endsWithNoCase(std::string_view text, std::string_view suffix) {
-  if (text.size() < suffix.size()) return false;
-  for (size_t i = 0; i < suffix.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(text[text.size() - suffix.size() + i])) !=
-        std::tolower(static_cast<unsigned char>(suffix[i])))
-      return false;
-  return true;
-}
-
 }  // namespace
 
 st::CompilationUnit importTwinCatFile(uint32_t fileId, std::string_view text, Diagnostics& diags,
@@ -250,7 +241,7 @@ st::CompilationUnit importTwinCatFile(uint32_t fileId, std::string_view text, Di
 
 bool isTwinCatPath(std::string_view path) {
   for (std::string_view ext : {".TcPOU", ".TcIO", ".TcDUT", ".TcGVL", ".TcTTO"})
-    if (endsWithNoCase(path, ext)) return true;
+    if (iendsWithAscii(path, ext)) return true;
   return false;
 }
 

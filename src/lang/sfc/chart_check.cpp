@@ -5,18 +5,14 @@
 #include <map>
 #include <set>
 
+#include "core/ascii.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 
 namespace virtcom::sfc::detail {
 
 namespace diag = st::diag;
 
-std::string nameKey(std::string_view name) {
-  std::string key(name);
-  for (char& c : key)
-    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
-  return key;
-}
+std::string nameKey(std::string_view name) { return asciiUpper(name); }
 
 namespace {
 

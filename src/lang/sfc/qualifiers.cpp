@@ -1,5 +1,6 @@
 #include <array>
 
+#include "core/ascii.hpp"
 #include "lang/sfc/sfc_model.hpp"
 
 namespace virtcom::sfc {
@@ -17,8 +18,6 @@ constexpr std::array kQualifiers = {
 #undef X
 };
 
-char upperChar(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
-
 }  // namespace
 
 std::string_view qualifierSpelling(Qualifier q) { return kQualifiers[static_cast<size_t>(q)].spelling; }
@@ -27,10 +26,7 @@ bool qualifierNeedsTime(Qualifier q) { return kQualifiers[static_cast<size_t>(q)
 
 std::optional<Qualifier> qualifierFromText(std::string_view text) {
   for (size_t i = 0; i < kQualifiers.size(); ++i) {
-    std::string_view s = kQualifiers[i].spelling;
-    bool same = s.size() == text.size();
-    for (size_t k = 0; same && k < s.size(); ++k) same = upperChar(text[k]) == s[k];
-    if (same) return static_cast<Qualifier>(i);
+    if (iequalsAscii(text, kQualifiers[i].spelling)) return static_cast<Qualifier>(i);
   }
   return std::nullopt;
 }

@@ -1,14 +1,10 @@
 #include "proto/ads/symbol_table.hpp"
 
-#include <cctype>
+#include "core/ascii.hpp"
 
 namespace virtcom::proto::ads {
 
-std::string lowerCase(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
+std::string lowerCase(std::string_view s) { return asciiLower(s); }
 
 SymbolTable::SymbolTable(std::vector<Symbol> symbols, std::vector<DataType> types, MemoryLayout layout, Resolver resolver)
     : symbols_(std::move(symbols)),

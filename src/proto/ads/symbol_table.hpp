@@ -108,7 +108,8 @@ class SymbolTable {
   std::vector<bool> readOnlyBytes_;
 };
 
-// Lower-case ASCII copy (TwinCAT names are case-insensitive).
+// The key of the symbol and type indexes: an asciiLower copy (TwinCAT names are
+// case-insensitive). Compare two names in place with iequalsAscii (core/ascii.hpp).
 std::string lowerCase(std::string_view s);
 
 }  // namespace virtcom::proto::ads

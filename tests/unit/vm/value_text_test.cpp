@@ -251,6 +251,40 @@ TEST_F(ValueText, ScalarTypesByTypeId) {
   EXPECT_EQ(at(kBool, "1"), "TRUE");
 }
 
+// Time, date and integer text goes through core/iec_literal, so --set and cell wiring accept
+// what an ST literal accepts (tests/unit/core/literal_syntax_test.cpp pins that syntax).
+TEST_F(ValueText, ReadsLiteralBodiesLikeTheStLexer) {
+  auto at = [&](TypeId type, std::string_view text) {
+    bc::VarRef r{type, 400, -1, false};
+    std::string e = bc::writeValueFromText(m, r, text, mem.data());
+    return e.empty() ? bc::formatValue(m, r, mem.data()) : "error: " + e;
+  };
+  EXPECT_EQ(at(kLtime, "ltime#1D2H3M4S5MS6US7NS"), "LTIME#1d2h3m4s5ms6us7ns");
+  EXPECT_EQ(at(kLtime, "LT#1_000ms"), "LTIME#1s");
+  EXPECT_EQ(at(kTime, "T#1d_2h"), "T#1d2h");
+  EXPECT_EQ(at(kTime, "T#-1.5ms"), "T#-1ms");
+  EXPECT_EQ(at(kTod, "time_of_day#1:2:3"), "TOD#01:02:03");
+  EXPECT_EQ(at(kTod, "TOD#12:30"), "TOD#12:30:00");
+  EXPECT_EQ(at(kTod, "TOD#12:30:00.1239"), "TOD#12:30:00.123");
+  EXPECT_EQ(at(kDate, "date#2024-2-29"), "D#2024-02-29");
+  EXPECT_EQ(at(kDate, "19724"), "D#1970-01-01");  // the raw count of seconds
+  EXPECT_EQ(at(kDt, "date_and_time#2024-01-02-12:30:00.9"), "DT#2024-01-02-12:30:00");
+  EXPECT_EQ(at(kWord, "16#ff_ff"), "65535");
+  EXPECT_EQ(at(kWord, "8#17"), "15");
+  EXPECT_EQ(at(kTime, "T#5x"), "error: invalid duration '5x'");
+  EXPECT_EQ(at(kTime, "T#-"), "error: empty duration '-'");
+  EXPECT_EQ(at(kLtime, "LT#99999999999d"), "error: duration out of range '99999999999d'");
+  EXPECT_EQ(at(kTime, "T#25d"), "error: value out of range for TIME");
+  EXPECT_EQ(at(kDate, "D#2024-02-30"), "error: invalid DATE literal 'D#2024-02-30'");
+  EXPECT_EQ(at(kDate, "D#2106-02-08"), "error: invalid DATE literal 'D#2106-02-08'");  // beyond 32 bits
+  EXPECT_EQ(at(kTod, "TOD#24:00"), "error: invalid TIME_OF_DAY literal 'TOD#24:00'");
+  EXPECT_EQ(at(kDt, "DT#2024-01-02"), "error: invalid DATE_AND_TIME literal 'DT#2024-01-02'");
+  EXPECT_EQ(at(kTime, "LT#1s"), "error: invalid TIME literal 'LT#1s'");
+  EXPECT_EQ(at(kWord, "3#12"), "error: invalid WORD literal '3#12'");
+  EXPECT_EQ(at(kWord, "_1"), "error: invalid WORD literal '_1'");
+  EXPECT_EQ(at(kWord, "16#1_"), "error: invalid WORD literal '16#1_'");
+}
+
 TEST_F(ValueText, ReportsErrors) {
   EXPECT_EQ(write("MAIN.b", "300"), "value 300 out of range for USINT (0..255)");
   EXPECT_EQ(write("MAIN.b", "-1"), "value -1 out of range for USINT (0..255)");

@@ -1,19 +1,12 @@
 // Declaration pass, part 1: names, named types (STRUCT, enums, aliases, subranges) and the
 // resolution of written types.
 #include <algorithm>
-#include <cctype>
 
 #include "lang/st/declare/declare.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 #include "lang/st/declare/standard_functions.hpp"
 
 namespace virtcom::st {
-
-std::string upper(std::string_view s) {
-  std::string out(s);
-  for (auto& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return out;
-}
 
 std::string configCallerName(std::string_view instanceName) { return "__CONFIG_" + std::string(instanceName); }
 

@@ -6,13 +6,14 @@
 #include <string>
 #include <vector>
 
+#include "core/ascii.hpp"
 #include "lang/syntax/ast.hpp"
 #include "lang/st/declare/type_table.hpp"
 
 namespace virtcom::st {
 
 // Upper-cased name: the key of every case-insensitive lookup.
-std::string upper(std::string_view s);
+inline std::string upper(std::string_view name) { return asciiUpper(name); }
 
 // The generated PROGRAM that runs a configured program instance with its arguments
 // (`PROGRAM p WITH t : P(in := g, out => h)`): it calls `p` as `p(in := g, out => h)`, so inputs

@@ -1,11 +1,13 @@
 #include "lang/st/parse/lexer.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
 #include <string>
 #include <unordered_map>
 
+#include "core/ascii.hpp"
 #include "core/iec_literal.hpp"
 #include "core/iec_value.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
@@ -14,38 +16,12 @@ namespace virtcom::st {
 
 namespace {
 
-bool isLetter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
-bool isAlpha(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
-bool isDigit(char c) { return c >= '0' && c <= '9'; }
-bool isIdentChar(char c) { return isLetter(c) || isDigit(c); }
-char toUpper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
-
-std::string upper(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = toUpper(c);
-  return out;
-}
-
-bool equalsNoCase(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (toUpper(a[i]) != toUpper(b[i])) return false;
-  return true;
-}
+bool isLetter(char c) { return isAsciiLetter(c) || c == '_'; }
+bool isIdentChar(char c) { return isLetter(c) || isAsciiDigit(c); }
 
 int hexDigitValue(char c) {
-  if (isDigit(c)) return c - '0';
-  char u = toUpper(c);
-  if (u >= 'A' && u <= 'F') return u - 'A' + 10;
-  return -1;
-}
-
-// Value of a digit in bases up to 36, or -1.
-int digitValue(char c) {
-  if (isDigit(c)) return c - '0';
-  char u = toUpper(c);
-  if (u >= 'A' && u <= 'Z') return u - 'A' + 10;
-  return -1;
+  const int digit = asciiDigitValue(c);
+  return digit < 16 ? digit : -1;
 }
 
 void appendUtf8(std::string& out, uint32_t cp) {
@@ -137,7 +113,7 @@ class Lexer {
     }
     if (c == '{') return lexPragma();
     if (isLetter(c)) return lexIdentifier();
-    if (isDigit(c)) return lexNumber();
+    if (isAsciiDigit(c)) return lexNumber();
     if (c == '\'' || c == '"') return lexString(c);
     if (c == '%') return lexDirectAddress();
     lexPunctuation();
@@ -188,12 +164,12 @@ class Lexer {
     while (isIdentChar(peek())) bump();
     std::string_view word = textFrom(start);
     if (peek() == '#') return lexTypedLiteral(start, loc, word);
-    if (equalsNoCase(word, "REF") && peek() == '=' && peek(1) != '>') {
+    if (iequalsAscii(word, "REF") && peek() == '=' && peek(1) != '>') {
       bump();
       emit(Tok::RefAssignOp, start, loc);
       return;
     }
-    auto it = keywordTable().find(upper(word));
+    auto it = keywordTable().find(asciiUpper(word));
     emit(it == keywordTable().end() ? Tok::Identifier : it->second, start, loc);
   }
 
@@ -204,9 +180,9 @@ class Lexer {
     switch (literalFamily(word)) {
       case LiteralFamily::Time: return lexDuration(start, loc, "TIME");
       case LiteralFamily::Ltime: return lexDuration(start, loc, "LTIME");
-      case LiteralFamily::Date: return lexDateLike(start, loc, "DATE");
-      case LiteralFamily::Tod: return lexDateLike(start, loc, "TOD");
-      case LiteralFamily::Dt: return lexDateLike(start, loc, "DT");
+      case LiteralFamily::Date: return lexDateLike(start, loc, LiteralFamily::Date, "DATE");
+      case LiteralFamily::Tod: return lexDateLike(start, loc, LiteralFamily::Tod, "TOD");
+      case LiteralFamily::Dt: return lexDateLike(start, loc, LiteralFamily::Dt, "DT");
       case LiteralFamily::None: break;
     }
     Token& t = emit(Tok::TypedPrefix, start, loc);
@@ -216,7 +192,7 @@ class Lexer {
   void lexDuration(size_t start, SourceLocation loc, std::string_view typeName) {
     size_t bodyStart = pos_;
     if (peek() == '-' || peek() == '+') bump();
-    while (isIdentChar(peek()) || (peek() == '.' && isDigit(peek(1)))) bump();
+    while (isIdentChar(peek()) || (peek() == '.' && isAsciiDigit(peek(1)))) bump();
     std::string_view body = textFrom(bodyStart);
     Token& t = emit(Tok::TimeLiteral, start, loc);
     t.str = typeName;
@@ -224,9 +200,9 @@ class Lexer {
     if (!decodeDuration(body, t.intValue, t.negative, why)) malformedLiteral(loc, typeName, t.text, why);
   }
 
-  void lexDateLike(size_t start, SourceLocation loc, std::string_view typeName) {
+  void lexDateLike(size_t start, SourceLocation loc, LiteralFamily family, std::string_view typeName) {
     size_t bodyStart = pos_;
-    while (isIdentChar(peek()) || peek() == ':' || peek() == '-' || (peek() == '.' && isDigit(peek(1)))) bump();
+    while (isIdentChar(peek()) || peek() == ':' || peek() == '-' || (peek() == '.' && isAsciiDigit(peek(1)))) bump();
     std::string body;
     for (char c : textFrom(bodyStart))
       if (c != '_') body += c;
@@ -234,16 +210,14 @@ class Lexer {
     t.str = typeName;
     int64_t value = 0;
     LiteralError why;
-    bool ok = typeName == "DATE" ? decodeDate(body, value, why)
-              : typeName == "TOD" ? decodeTimeOfDay(body, value, why)
-                                  : decodeDateAndTime(body, value, why);
+    bool ok = decodeLiteralBody(body, family, value, why);
     t.intValue = static_cast<uint64_t>(value);
     if (!ok) malformedLiteral(loc, typeName, t.text, why);
   }
 
   void malformedLiteral(SourceLocation loc, std::string_view typeName, std::string_view text, const LiteralError& why) {
     std::string message = "malformed " + std::string(typeName) + " literal '" + std::string(text) + "': " + why.what;
-    if (!why.quoted.empty()) message += " '" + upper(why.quoted) + "'";
+    if (!why.quoted.empty()) message += " '" + asciiUpper(why.quoted) + "'";
     error(diag::E005, loc, message);
   }
 
@@ -251,7 +225,7 @@ class Lexer {
   // the underscores.
   std::string takeDigits(bool alnum) {
     std::string digits;
-    while (isDigit(peek()) || peek() == '_' || (alnum && isAlpha(peek()))) {
+    while (isAsciiDigit(peek()) || peek() == '_' || (alnum && isAsciiLetter(peek()))) {
       if (peek() != '_') digits += peek();
       bump();
     }
@@ -266,18 +240,18 @@ class Lexer {
     std::string digits = takeDigits(false);
     if (peek() == '#') return lexBasedInteger(start, loc, digits);
     bool isReal = false;
-    if (!bitIndex && peek() == '.' && isDigit(peek(1))) {
+    if (!bitIndex && peek() == '.' && isAsciiDigit(peek(1))) {
       isReal = true;
       bump();
       digits += '.' + takeDigits(false);
     }
     bool exponent = peek() == 'e' || peek() == 'E';
     char afterE = peek(1);
-    if (!bitIndex && exponent && (isDigit(afterE) || ((afterE == '+' || afterE == '-') && isDigit(peek(2))))) {
+    if (!bitIndex && exponent && (isAsciiDigit(afterE) || ((afterE == '+' || afterE == '-') && isAsciiDigit(peek(2))))) {
       isReal = true;
       bump();
       digits += 'e';
-      if (!isDigit(peek())) {
+      if (!isAsciiDigit(peek())) {
         digits += peek();
         bump();
       }
@@ -295,19 +269,19 @@ class Lexer {
     std::string digits = takeDigits(true);
     Token& t = emit(Tok::IntLiteral, start, loc);
     std::string text(t.text);
-    uint64_t base = 0;
-    if (!parseDecimal(baseDigits, base) || (base != 2 && base != 8 && base != 16))
+    unsigned base = 0;
+    if (!parseRadix(baseDigits, base))
       return error(diag::E004, loc, "malformed numeric literal '" + text + "': the base must be 2, 8 or 16");
     if (digits.empty()) return error(diag::E004, loc, "malformed numeric literal '" + text + "': no digits after '#'");
+    // The first problem from the left is reported: an overflow before a bad digit wins.
+    auto notOfBase = [base](char c) { return static_cast<unsigned>(asciiDigitValue(c)) >= base; };
+    const size_t bad = static_cast<size_t>(std::find_if(digits.begin(), digits.end(), notOfBase) - digits.begin());
     uint64_t value = 0;
-    for (char c : digits) {
-      int d = digitValue(c);
-      if (d < 0 || static_cast<uint64_t>(d) >= base)
-        return error(diag::E004, loc, "malformed numeric literal '" + text + "': '" + c + "' is not a base-" +
-                                          std::to_string(base) + " digit");
-      if (__builtin_mul_overflow(value, base, &value) || __builtin_add_overflow(value, uint64_t(d), &value))
-        return error(diag::E004, loc, "integer literal '" + text + "' is too large");
-    }
+    if (bad > 0 && !parseDigits(std::string_view(digits).substr(0, bad), base, value))
+      return error(diag::E004, loc, "integer literal '" + text + "' is too large");
+    if (bad < digits.size())
+      return error(diag::E004, loc, "malformed numeric literal '" + text + "': '" + digits[bad] + "' is not a base-" +
+                                        std::to_string(base) + " digit");
     t.intValue = value;
   }
 
@@ -359,7 +333,7 @@ class Lexer {
     SourceLocation loc = here();
     bump();  // '$'
     char c = peek();
-    switch (toUpper(c)) {
+    switch (asciiUpper(c)) {
       case '$': case '\'': case '"': out += c; return bump();
       case 'L': case 'N': out += '\n'; return bump();
       case 'P': out += '\f'; return bump();
@@ -391,14 +365,14 @@ class Lexer {
     SourceLocation loc = here();
     bump();
     size_t lettersStart = pos_;
-    while (isAlpha(peek())) bump();
-    std::string letters = upper(textFrom(lettersStart));
+    while (isAsciiLetter(peek())) bump();
+    std::string letters = asciiUpper(textFrom(lettersStart));
     bool star = peek() == '*';
     size_t digitsStart = pos_;
     if (star) {
       bump();
     } else {
-      while (isDigit(peek()) || (peek() == '.' && isDigit(peek(1)))) bump();
+      while (isAsciiDigit(peek()) || (peek() == '.' && isAsciiDigit(peek(1)))) bump();
     }
     bool hasDigits = pos_ > digitsStart && !star;
     Token& t = emit(Tok::DirectAddress, start, loc);

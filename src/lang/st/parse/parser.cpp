@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "core/ascii.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 #include "lang/st/parse/lexer.hpp"
 #include "lang/st/parse/parser_internal.hpp"
@@ -12,15 +13,6 @@ namespace virtcom::st {
 namespace detail {
 
 namespace {
-
-char upperChar(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
-
-bool startsWithNoCase(std::string_view s, std::string_view prefix) {
-  if (s.size() < prefix.size()) return false;
-  for (size_t i = 0; i < prefix.size(); ++i)
-    if (upperChar(s[i]) != upperChar(prefix[i])) return false;
-  return true;
-}
 
 void trimSpaces(std::string_view& s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r' || s.front() == '\n')) s.remove_prefix(1);
@@ -42,7 +34,7 @@ bool decodeAttribute(std::string_view text, Attribute& out) {
   if (text.size() < 2) return false;
   text = text.substr(1, text.size() - 2);
   trimSpaces(text);
-  if (!startsWithNoCase(text, "attribute")) return false;
+  if (!istartsWithAscii(text, "attribute")) return false;
   text.remove_prefix(9);
   trimSpaces(text);
   if (!readQuoted(text, out.name)) return false;

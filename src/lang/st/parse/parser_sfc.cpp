@@ -4,6 +4,7 @@
 //   TRANSITION [name] [(PRIORITY := n)] FROM steps TO steps (:= condition ; | : statements)
 //   END_TRANSITION                                   steps ::= name | ( name {, name} )
 // ACTION ... END_ACTION blocks are the POU's ordinary ACTIONs (parser_pous.cpp).
+#include "core/ascii.hpp"
 #include "lang/sfc/lower.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 #include "lang/st/parse/parser_internal.hpp"
@@ -13,14 +14,7 @@ namespace virtcom::st::detail {
 namespace {
 
 // `word` is upper case; SFC keywords are identifiers to the lexer.
-bool isWord(const Token& tok, std::string_view word) {
-  if (tok.kind != Tok::Identifier || tok.text.size() != word.size()) return false;
-  for (size_t i = 0; i < word.size(); ++i) {
-    char c = tok.text[i];
-    if ((c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c) != word[i]) return false;
-  }
-  return true;
-}
+bool isWord(const Token& tok, std::string_view word) { return tok.kind == Tok::Identifier && iequalsAscii(tok.text, word); }
 
 }  // namespace
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <unordered_set>
 
+#include "core/ascii.hpp"
 #include "proto/ads/index_group.hpp"
 
 namespace virtcom::proto::ads {
@@ -172,7 +173,7 @@ class Builder {
 };
 
 bool isProgramInstance(const bc::Module& m, const bc::Symbol& s) {
-  return std::any_of(m.programs.begin(), m.programs.end(), [&](const bc::ProgramInstance& p) { return lowerCase(p.name) == lowerCase(s.name); });
+  return std::any_of(m.programs.begin(), m.programs.end(), [&](const bc::ProgramInstance& p) { return iequalsAscii(p.name, s.name); });
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
-// formatValue: the IEC literal text of a value in the memory image (monitoring, CLI --print).
+// formatValue: the IEC literal text of a value in the memory image (monitoring, CLI --print);
+// the inverse of value_parse.cpp.
 #include <cstdio>
 #include <cstring>
 

@@ -15,4 +15,5 @@ void addRunCommand(CLI::App& app, std::function<void(int)> setExit);
 void addServeCommand(CLI::App& app, std::function<void(int)> setExit);
 void addModbusMapCommand(CLI::App& app, std::function<void(int)> setExit);
 void addExportCommand(CLI::App& app, std::function<void(int)> setExit);
+void addAdCommand(CLI::App& app, std::function<void(int)> setExit);
 }  // namespace virtcom::cli

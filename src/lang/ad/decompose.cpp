@@ -2,6 +2,7 @@
 #include "lang/ad/decompose.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <map>
 
 namespace virtcom::ad {
@@ -75,21 +76,23 @@ class Decomposer {
     }
   }
 
-  // Bars in flow order (checkProgram guarantees no cycle among them).
+  // Bars in flow order: repeatedly the first bar no remaining bar feeds.
   void orderBars(LogicUnit& unit) {
     std::vector<size_t> bars;
     for (size_t a : unit.arcs)
       for (size_t n : {d_.arcs[a].from, d_.arcs[a].to})
         if (barAt(n)) addOnce(bars, n);
     while (!bars.empty()) {
-      for (size_t i = 0; i < bars.size(); ++i) {
-        bool fed = false;
-        for (size_t a : unit.arcs) fed = fed || (d_.arcs[a].to == bars[i] && std::count(bars.begin(), bars.end(), d_.arcs[a].from));
-        if (fed) continue;
-        unit.bars.push_back(bars[i]);
-        bars.erase(bars.begin() + static_cast<std::ptrdiff_t>(i));
-        break;
-      }
+      auto unfed = std::find_if(bars.begin(), bars.end(), [&](size_t bar) {
+        return std::none_of(unit.arcs.begin(), unit.arcs.end(), [&](size_t a) {
+          return d_.arcs[a].to == bar && std::count(bars.begin(), bars.end(), d_.arcs[a].from) > 0;
+        });
+      });
+      // checkProgram reports every cycle among bars (A010), so one is always unfed.
+      assert(unfed != bars.end());
+      if (unfed == bars.end()) return;
+      unit.bars.push_back(*unfed);
+      bars.erase(unfed);
     }
   }
 

@@ -24,9 +24,25 @@ bool isIdentifier(std::string_view s) {
   return true;
 }
 
-// An activity's binding: an identifier, a dotted path (GVL.x) or a located address (%IX0.0).
+bool isDigits(std::string_view s) {
+  if (s.empty() || s.size() > 9) return false;
+  for (char c : s)
+    if (!std::isdigit(static_cast<unsigned char>(c))) return false;
+  return true;
+}
+
+// %IX3.5, %QX0.0, %MX10.7 (any case): one BOOL of the process image; the area letter is s[1].
+bool isBitAddress(std::string_view s) {
+  if (s.size() < 6 || s[0] != '%' || std::toupper(static_cast<unsigned char>(s[2])) != 'X') return false;
+  char area = static_cast<char>(std::toupper(static_cast<unsigned char>(s[1])));
+  size_t dot = s.find('.', 3);
+  return (area == 'I' || area == 'Q' || area == 'M') && dot != std::string_view::npos &&
+         isDigits(s.substr(3, dot - 3)) && s.size() == dot + 2 && s[dot + 1] >= '0' && s[dot + 1] <= '7';
+}
+
+// An activity's binding: an identifier, a dotted path (GVL.x) or a bit address (%IX0.0).
 bool isVariable(std::string_view s) {
-  if (!s.empty() && s[0] == '%') return s.size() > 2;
+  if (!s.empty() && s[0] == '%') return isBitAddress(s);
   size_t start = 0;
   for (size_t dot = s.find('.'); ; dot = s.find('.', start)) {
     if (!isIdentifier(s.substr(start, dot - start))) return false;
@@ -138,8 +154,7 @@ class Reader {
       return;
     }
     port.kind = kind == "i" ? PortKind::Input : kind == "o" ? PortKind::Output : PortKind::Memory;
-    if (!port.address.empty() && (port.address.size() < 4 || lower(port.address.substr(0, 2)) != lower(area) ||
-                                  std::toupper(static_cast<unsigned char>(port.address[2])) != 'X')) {
+    if (!port.address.empty() && (!isBitAddress(port.address) || lower(port.address.substr(0, 2)) != lower(area))) {
       diags_.error(diag::A013, w[3].loc, "a BOOL port of kind " + std::string(w[2].text) + " is located at " + area +
                                              "X<byte>.<bit>, not '" + port.address + "'");
       return;
@@ -199,7 +214,7 @@ class Reader {
         if (!expectCount(w, 2, 3, "activity ID [VARIABLE]")) return false;
         node.variable = w.back().text;
         if (isVariable(node.variable)) return true;
-        diags_.error(diag::A001, w.back().loc, "'" + node.variable + "' is neither a name nor a located address");
+        diags_.error(diag::A001, w.back().loc, "'" + node.variable + "' is neither a name nor a bit address such as %IX0.0");
         return false;
       case NodeKind::Timer:
         return expectCount(w, 4, 4, "timer ID TON|TOF|TP T#PRESET") && readBlock(node, w, true);

@@ -107,6 +107,19 @@ TEST(AdChecks, CycleWithoutMemory) {
   EXPECT_EQ(diagnose(text), "");
 }
 
+TEST(AdReader, ActivitiesBoundToAddresses) {
+  EXPECT_EQ(diagnose(withDiagram("  activity L %QW0.0\n")), "A001 9:14\n");
+  EXPECT_EQ(diagnose(withDiagram("  activity L %QX0.8\n")), "A001 9:14\n");
+  EXPECT_EQ(diagnose(withDiagram("  activity L %IX0.1\n  A -> L\n")), "A009 10:5\n");  // the area says input
+  EXPECT_EQ(diagnose(withDiagram("  activity L %qx2.7\n  A -> L\n")), "");
+}
+
+TEST(AdCompile, AddressBoundActivityCompiles) {
+  Diagnostics diags;
+  auto module = test::compileText("d.ad", withDiagram("  activity L %QX2.7\n  A -> L\n"), diags);
+  EXPECT_NE(module, nullptr) << test::codesAndPlaces(diags);
+}
+
 TEST(AdCompile, UnknownVariableIsReportedAtTheActivity) {
   Diagnostics diags;
   auto module = test::compileText("d.ad", withDiagram("  activity Lamp Nowhere\n  A -> Lamp\n"), diags);

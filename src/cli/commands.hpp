@@ -17,4 +17,5 @@ void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addModbusMapCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addExportCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
+void addAdCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 }  // namespace virtcom::cli

@@ -3,6 +3,8 @@
 #include <algorithm>
 
 #include "core/ascii.hpp"
+#include "lang/ad/lower.hpp"
+#include "lang/ad/reader.hpp"
 #include "lang/plcopen/diagnostic_codes.hpp"
 #include "lang/plcopen/import_internal.hpp"
 #include "lang/plcopen/importer.hpp"
@@ -333,6 +335,7 @@ st::SourceInput sourceInput(std::string path, std::string text) {
   st::FrontEnd frontEnd;
   if (isPlcopenPath(path)) frontEnd = importProject;
   else if (isTwinCatPath(path)) frontEnd = importTwinCatFile;
+  else if (ad::isDiagramPath(path)) frontEnd = ad::importDiagrams;
   return {std::move(path), std::move(text), std::move(frontEnd)};
 }
 

@@ -25,8 +25,8 @@ st::CompilationUnit importProject(uint32_t fileId, std::string_view text, Diagno
 bool isPlcopenPath(std::string_view path);
 
 // A compiler input for a file of any kind: .xml files get importProject() as front end,
-// TwinCAT source files (.TcPOU, .TcIO, .TcDUT, .TcGVL) importTwinCatFile(), all others are
-// Structured Text. Every command and the cell loader pick front ends only here.
+// TwinCAT source files (.TcPOU, .TcIO, .TcDUT, .TcGVL) importTwinCatFile(), activity diagrams
+// (.ad) ad::importDiagrams(), all others are Structured Text. Every command and the cell loader pick front ends only here.
 st::SourceInput sourceInput(std::string path, std::string text);
 
 }  // namespace virtcom::plcopen

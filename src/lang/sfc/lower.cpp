@@ -4,15 +4,15 @@
 #include <algorithm>
 #include <set>
 
-#include "lang/sfc/ast_builder.hpp"
 #include "lang/sfc/chart_check.hpp"
+#include "lang/syntax/ast_builder.hpp"
 #include "lang/syntax/ast_clone.hpp"
 
 namespace virtcom::sfc {
 
 namespace {
 
-using detail::AstBuilder;
+using st::AstBuilder;
 using detail::nameKey;
 using st::BinaryOp;
 

@@ -1,0 +1,168 @@
+// Lowering of rule tables to ST (lower.hpp).
+#include "lang/ad/lower.hpp"
+
+#include <memory>
+
+#include "lang/ad/decompose.hpp"
+#include "lang/ad/reader.hpp"
+#include "lang/syntax/ast_builder.hpp"
+
+namespace virtcom::ad {
+
+namespace {
+
+// Holds a rule's IF while it drives timers or counters as well as activities, so it is
+// evaluated once, before the rule's own writes.
+constexpr std::string_view kRuleVariable = "__ad_rule";
+
+class Lowering {
+ public:
+  Lowering(const Program& program, st::NodeId& nextNodeId) : program_(program), b_(nextNodeId) {}
+
+  std::unique_ptr<st::Pou> run() {
+    auto pou = std::make_unique<st::Pou>();
+    pou->kind = st::PouKind::Program;
+    pou->name = program_.name;
+    pou->loc = pou->endLoc = program_.loc;
+    pou->hasBody = true;
+    for (const Port& port : program_.ports) declarePort(port);
+    for (const Diagram& d : program_.diagrams) {
+      pou->actions.push_back(lowerDiagram(d));
+      b_.at(d.loc);
+      pou->body.push_back(b_.callStmt(d.name));
+    }
+    b_.at(program_.loc);
+    pou->varBlocks.push_back(b_.varBlock(st::VarSection::Var, std::move(vars_)));
+    if (!hidden_.empty()) pou->varBlocks.push_back(b_.varBlock(st::VarSection::Var, std::move(hidden_)));
+    return pou;
+  }
+
+ private:
+  void declarePort(const Port& port) {
+    b_.at(port.loc);
+    st::VarDecl decl = b_.varDecl(port.name, "BOOL", false);
+    decl.location = port.address;
+    vars_.push_back(std::move(decl));
+  }
+
+  std::unique_ptr<st::Pou> lowerDiagram(const Diagram& d) {
+    DiagramTables tables = decompose(d);
+    auto action = std::make_unique<st::Pou>();
+    action->kind = st::PouKind::Action;
+    action->name = d.name;
+    action->loc = action->endLoc = d.loc;
+    action->hasBody = true;
+    for (const Node& n : d.nodes) declareNode(d, n, tables);
+    for (const Rule& rule : tables.rules) lowerRule(d, rule, action->body);
+    return action;
+  }
+
+  void declareNode(const Diagram& d, const Node& n, const DiagramTables& tables) {
+    b_.at(n.loc);
+    if (isBlock(n.kind)) vars_.push_back(b_.varDecl(n.id, blockTypeName(n.block), false));
+    if (!isJoin(n.kind)) return;
+    for (const Rule& rule : tables.rules)
+      for (const GroupDefinition& g : rule.groups)
+        if (&d.nodes[g.bar] == &n) return vars_.push_back(b_.varDecl(n.id, "BOOL", false));
+  }
+
+  st::ExprPtr activityState(const Node& n) {
+    if (isBlock(n.kind)) return b_.member(n.id, "Q");
+    if (!n.variable.empty() && n.variable[0] == '%') {
+      st::ExprPtr e = b_.name(n.variable);
+      e->kind = st::ExprKind::DirectAddr;
+      return e;
+    }
+    return dottedName(n.variable);
+  }
+
+  // GVL.x -> Member(Name GVL, x); a plain name -> Name.
+  st::ExprPtr dottedName(std::string_view path) {
+    size_t dot = path.rfind('.');
+    if (dot == std::string_view::npos) return b_.name(path);
+    st::ExprPtr e = b_.member("", path.substr(dot + 1));
+    e->lhs = dottedName(path.substr(0, dot));
+    return e;
+  }
+
+  st::ExprPtr condition(const Diagram& d, const Condition& c) {
+    const Node& n = d.nodes[c.node];
+    b_.at(n.loc);
+    switch (c.kind) {
+      case Condition::Kind::Term: return c.on ? activityState(n) : b_.notOf(activityState(n));
+      case Condition::Kind::Group: return b_.name(n.id);
+      default: break;
+    }
+    st::BinaryOp op = c.kind == Condition::Kind::And ? st::BinaryOp::And : st::BinaryOp::Or;
+    st::ExprPtr out;
+    for (const Condition& operand : c.operands) {
+      st::ExprPtr e = condition(d, operand);
+      out = out ? b_.binary(op, std::move(out), std::move(e)) : std::move(e);
+    }
+    return out;
+  }
+
+  void lowerRule(const Diagram& d, const Rule& rule, st::StmtList& body) {
+    for (const GroupDefinition& g : rule.groups) {
+      st::ExprPtr value = condition(d, g.value);
+      b_.at(d.nodes[g.bar].loc);
+      body.push_back(b_.assign(b_.name(d.nodes[g.bar].id), std::move(value)));
+    }
+    bool drivesBlock = false;
+    for (const RuleAction& a : rule.actions) drivesBlock = drivesBlock || isBlock(d.nodes[a.node].kind);
+    st::ExprPtr cond = condition(d, rule.condition);
+    if (drivesBlock) {
+      if (hidden_.empty()) hidden_.push_back(b_.varDecl(kRuleVariable, "BOOL", true));
+      body.push_back(b_.assign(b_.name(kRuleVariable), std::move(cond)));
+    }
+    st::StmtList writes;
+    for (const RuleAction& a : rule.actions) {
+      const Node& target = d.nodes[a.node];
+      b_.at(target.loc);
+      if (isBlock(target.kind)) continue;
+      writes.push_back(b_.assign(activityState(target), b_.boolLit(a.on)));
+    }
+    if (!writes.empty()) body.push_back(b_.ifThen(drivesBlock ? b_.name(kRuleVariable) : std::move(cond), std::move(writes)));
+    for (const RuleAction& a : rule.actions)
+      if (isBlock(d.nodes[a.node].kind)) body.push_back(driveBlock(d.nodes[a.node], a.on));
+  }
+
+  // A counter's reset is assigned (the block runs at its counting rule); the driven input
+  // calls the block with its preset.
+  st::StmtPtr driveBlock(const Node& block, bool on) {
+    b_.at(block.loc);
+    std::string_view input = blockInput(block.block, on);
+    if (!on) return b_.assign(b_.member(block.id, input), b_.name(kRuleVariable));
+    std::vector<std::pair<std::string, st::ExprPtr>> args;
+    args.emplace_back(std::string(input), b_.name(kRuleVariable));
+    if (isTimerBlock(block.block)) args.emplace_back("PT", b_.timeLit(block.presetNs));
+    else args.emplace_back("PV", b_.intLit(block.presetCount));
+    return b_.callNamed(block.id, std::move(args));
+  }
+
+  const Program& program_;
+  st::AstBuilder b_;
+  std::vector<st::VarDecl> vars_, hidden_;
+};
+
+}  // namespace
+
+st::CompilationUnit lowerProgram(const Program& program, uint32_t fileId, st::NodeId& nextNodeId) {
+  st::CompilationUnit unit;
+  unit.fileId = fileId;
+  unit.pous.push_back(Lowering(program, nextNodeId).run());
+  return unit;
+}
+
+st::CompilationUnit importDiagrams(uint32_t fileId, std::string_view text, Diagnostics& diags, st::NodeId& nextNodeId) {
+  size_t errorsBefore = diags.errorCount();
+  Program program = readProgram(fileId, text, diags);
+  if (diags.errorCount() != errorsBefore) {
+    st::CompilationUnit empty;
+    empty.fileId = fileId;
+    return empty;
+  }
+  return lowerProgram(program, fileId, nextNodeId);
+}
+
+}  // namespace virtcom::ad

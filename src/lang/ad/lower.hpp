@@ -1,0 +1,30 @@
+#pragma once
+// Activity diagrams to the shared syntax tree, so they compile to the same bytecode as ST with
+// no second runtime. The file's program becomes one PROGRAM; each diagram (function) one ACTION
+// of it, called by the PROGRAM's body in file order; each rule of a diagram's rule table becomes
+// the statements that fire it, in rule order.
+#include <cstdint>
+#include <string_view>
+
+#include "core/diagnostics.hpp"
+#include "lang/ad/diagram.hpp"
+#include "lang/syntax/ast.hpp"
+
+namespace virtcom::ad {
+
+// The PROGRAM of a checked program (reader.hpp):
+// - VAR: every port as a BOOL (`AT %IX0.0` when located), every timer and counter as an
+//   instance of its block, every grouped join as a BOOL, so all are readable as PROGRAM.name;
+// - per rule: its groups assigned (`K := C1 OR L;`), then for normal activities
+//   `IF <IF> THEN Y := TRUE (FALSE for NOT-OUT); END_IF`, for timers `T(IN := <IF>, PT := preset)`
+//   and counters `C(CU|CD := <IF>, PV := preset)` / `C.RESET|LOAD := <IF>` every scan.
+// The scan is the seed's: inputs are read before the rules (the PLC's input image), every rule
+// is checked in order and sees what earlier rules wrote, outputs go out after the last rule.
+// Nodes carry the location of the element or arc they come from. Allocates; never throws.
+st::CompilationUnit lowerProgram(const Program& program, uint32_t fileId, st::NodeId& nextNodeId);
+
+// A compiler front end (st::FrontEnd) for .ad files: readProgram, then lowerProgram if the file
+// had no error (an empty unit otherwise).
+st::CompilationUnit importDiagrams(uint32_t fileId, std::string_view text, Diagnostics& diags, st::NodeId& nextNodeId);
+
+}  // namespace virtcom::ad

@@ -5,10 +5,14 @@ BUILD      ?= build/release
 TESTBUILD  ?= build/asan
 FUZZBUILD  ?= build/fuzz
 CMAKE_GEN  := -G Ninja
+# ccache (Debian) keeps rebuilds cheap, also across clones: paths are hashed relative to the checkout.
+export CCACHE_BASEDIR := $(CURDIR)
+export CCACHE_NOHASHDIR := 1
+LAUNCHER   := -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 
 APT_PACKAGES := build-essential cmake ninja-build g++ clang libclang-rt-14-dev \
                 libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
-                libyaml-cpp-dev nlohmann-json3-dev libpugixml-dev chromium libmodbus-dev mbpoll pkg-config nodejs
+                libyaml-cpp-dev nlohmann-json3-dev libpugixml-dev chromium libmodbus-dev mbpoll pkg-config nodejs ccache
 
 .PHONY: all deps build test demo bench fuzz clean
 
@@ -26,13 +30,13 @@ deps:
 	fi
 
 build: deps
-	@cmake -S . -B $(BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake -S . -B $(BUILD) $(CMAKE_GEN) $(LAUNCHER) -DCMAKE_BUILD_TYPE=Release >/dev/null
 	@cmake --build $(BUILD) -j $(JOBS)
 
 test: deps
-	@cmake -S . -B $(TESTBUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=Debug -DVIRTCOM_SANITIZE=ON >/dev/null
+	@cmake -S . -B $(TESTBUILD) $(CMAKE_GEN) $(LAUNCHER) -DCMAKE_BUILD_TYPE=Debug -DVIRTCOM_SANITIZE=ON >/dev/null
 	@cmake --build $(TESTBUILD) -j $(JOBS)
-	@cmake -S . -B $(FUZZBUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	@cmake -S . -B $(FUZZBUILD) $(CMAKE_GEN) $(LAUNCHER) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DVIRTCOM_FUZZ_ONLY=ON >/dev/null
 	@cmake --build $(FUZZBUILD) -j $(JOBS)
 	@# The npm ads-client for the ADS e2e tests (Debian's nodejs may come without npm).

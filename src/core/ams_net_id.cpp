@@ -26,11 +26,11 @@ std::optional<AmsNetId> netIdFrom(std::string_view text) {
 
 }  // namespace
 
-std::expected<AmsNetId, std::string> parseNetId(std::string_view text) {
+TextResult<AmsNetId> parseNetId(std::string_view text) {
   if (auto id = netIdFrom(text)) return *id;
   // appended, not "'" + std::string(text): GCC 12 warns falsely about the latter
   std::string message(1, '\'');
-  return std::unexpected(message.append(text).append("' is not an AmsNetId (six numbers 0-255, e.g. 192.168.1.10.1.1)"));
+  return TextResult<AmsNetId>::failure(message.append(text).append("' is not an AmsNetId (six numbers 0-255, e.g. 192.168.1.10.1.1)"));
 }
 
 std::string formatNetId(const AmsNetId& id) {

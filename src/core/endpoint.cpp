@@ -16,11 +16,11 @@ std::string quotedThen(std::string_view text, const char* tail) {
 
 }  // namespace
 
-std::expected<uint32_t, std::string> parseIpv4(std::string_view text) {
+TextResult<uint32_t> parseIpv4(std::string_view text) {
   std::string host(text);
   if (host == "localhost") host = "127.0.0.1";
   in_addr addr{};
-  if (::inet_pton(AF_INET, host.c_str(), &addr) != 1) return std::unexpected(quotedThen(text, "' is not an IPv4 address"));
+  if (::inet_pton(AF_INET, host.c_str(), &addr) != 1) return TextResult<uint32_t>::failure(quotedThen(text, "' is not an IPv4 address"));
   return ntohl(addr.s_addr);
 }
 
@@ -31,33 +31,33 @@ std::string formatIpv4(uint32_t ipv4) {
   return text;
 }
 
-std::expected<Endpoint, std::string> parseEndpoint(std::string_view text) {
+TextResult<Endpoint> parseEndpoint(std::string_view text) {
   auto colon = text.rfind(':');
-  if (colon == std::string_view::npos) return std::unexpected("expected HOST:PORT, found " + quotedThen(text, "'"));
+  if (colon == std::string_view::npos) return TextResult<Endpoint>::failure("expected HOST:PORT, found " + quotedThen(text, "'"));
   auto ip = parseIpv4(text.substr(0, colon));
-  if (!ip) return std::unexpected(ip.error());
+  if (!ip) return TextResult<Endpoint>::failure(ip.error());
   std::string_view portText = text.substr(colon + 1);
   unsigned port = 0;
   auto [end, ec] = std::from_chars(portText.data(), portText.data() + portText.size(), port);
   if (ec != std::errc{} || end != portText.data() + portText.size() || port > 65535 || portText.empty())
-    return std::unexpected(quotedThen(portText, "' is not a port number (0-65535)"));
+    return TextResult<Endpoint>::failure(quotedThen(portText, "' is not a port number (0-65535)"));
   return Endpoint{*ip, static_cast<uint16_t>(port)};
 }
 
-std::expected<std::vector<uint32_t>, std::string> parseAllowList(std::string_view text) {
+TextResult<std::vector<uint32_t>> parseAllowList(std::string_view text) {
   std::vector<uint32_t> out;
   while (!text.empty()) {
     auto comma = text.find(',');
     std::string_view item = text.substr(0, comma);
     if (!item.empty()) {
       auto ip = parseIpv4(item);
-      if (!ip) return std::unexpected(ip.error());
+      if (!ip) return TextResult<std::vector<uint32_t>>::failure(ip.error());
       out.push_back(*ip);
     }
     if (comma == std::string_view::npos) break;
     text.remove_prefix(comma + 1);
   }
-  if (out.empty()) return std::unexpected(std::string("the allow-list names no address"));
+  if (out.empty()) return TextResult<std::vector<uint32_t>>::failure(std::string("the allow-list names no address"));
   return out;
 }
 

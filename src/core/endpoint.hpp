@@ -3,10 +3,11 @@
 // peer: the cell file's external PLCs and the protocol servers' listen options read the same
 // text with the same messages. Text only: sockets live in proto/net.
 #include <cstdint>
-#include <expected>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "core/text_result.hpp"
 
 namespace virtcom {
 
@@ -15,11 +16,11 @@ struct Endpoint {
   uint16_t port = 0;
 };
 // "HOST:PORT" with an IPv4 address or "localhost"; port 0 picks a free port. Error text on failure.
-std::expected<Endpoint, std::string> parseEndpoint(std::string_view text);
+TextResult<Endpoint> parseEndpoint(std::string_view text);
 // An IPv4 address (or "localhost") in host byte order. Error text on failure.
-std::expected<uint32_t, std::string> parseIpv4(std::string_view text);
+TextResult<uint32_t> parseIpv4(std::string_view text);
 // "ADDR,ADDR,..." of IPv4 peer addresses (host byte order). Error text on failure.
-std::expected<std::vector<uint32_t>, std::string> parseAllowList(std::string_view text);
+TextResult<std::vector<uint32_t>> parseAllowList(std::string_view text);
 std::string formatIpv4(uint32_t ipv4);
 std::string formatEndpoint(const Endpoint& e);
 

@@ -1,13 +1,10 @@
 #include "lang/syntax/diagnostic_codes.hpp"
 
+#include "core/code_titles.hpp"
+
 namespace virtcom::st {
 
 namespace {
-struct CodeTitle {
-  std::string_view code;
-  std::string_view title;
-};
-
 constexpr CodeTitle kCodeTitles[] = {
 #define X(code, title) {#code, title},
 #include "lang/syntax/diagnostic_codes.def"
@@ -15,10 +12,6 @@ constexpr CodeTitle kCodeTitles[] = {
 };
 }  // namespace
 
-std::string_view diagnosticTitle(std::string_view code) {
-  for (const CodeTitle& entry : kCodeTitles)
-    if (entry.code == code) return entry.title;
-  return {};
-}
+std::string_view diagnosticTitle(std::string_view code) { return codeTitle(kCodeTitles, code); }
 
 }  // namespace virtcom::st

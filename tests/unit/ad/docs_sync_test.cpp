@@ -9,12 +9,11 @@
 #include <string>
 #include <string_view>
 
+#include "core/code_titles.hpp"
+
 namespace {
 
-struct CodeTitle {
-  std::string_view code;
-  std::string_view title;
-};
+using virtcom::CodeTitle;
 
 constexpr CodeTitle kCodes[] = {
 #define X(code, title) {#code, title},

@@ -9,17 +9,13 @@
 #include <string>
 #include <string_view>
 
+#include "core/code_titles.hpp"
 #include "core/cell_diagnostic_codes.hpp"
 #include "support/doc_sections.hpp"
 #include "support/read_file.hpp"
 
 namespace virtcom {
 namespace {
-
-struct CodeTitle {
-  std::string_view code;
-  std::string_view title;
-};
 
 constexpr CodeTitle kCodes[] = {
 #define X(code, title) {#code, title},

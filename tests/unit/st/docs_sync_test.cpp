@@ -8,15 +8,11 @@
 #include <string_view>
 #include <vector>
 
+#include "core/code_titles.hpp"
 #include "support/doc_sections.hpp"
 
 namespace virtcom {
 namespace {
-
-struct CodeTitle {
-  std::string_view code;
-  std::string_view title;
-};
 
 constexpr CodeTitle kCodes[] = {
 #define X(code, title) {#code, title},

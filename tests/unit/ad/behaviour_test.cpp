@@ -1,12 +1,14 @@
 // Each element of the diagram language against the Structured Text a controls engineer would
 // write for it: the same pseudo-random (seeded) input sequence drives both programs for many
-// scans, and every output must be identical after every scan.
+// scans, and every output must be identical after every scan; the diagram also runs as AOT machine
+// code, which must give the interpreter's outputs.
 #include <gtest/gtest.h>
 
 #include <random>
 #include <vector>
 
 #include "core/clock.hpp"
+#include "aot/compile.hpp"
 #include "plc/runtime.hpp"
 #include "ad_fixture.hpp"
 
@@ -98,19 +100,28 @@ struct Side {
   }
 };
 
-void start(Side& side, std::string path, std::string text) {
+// `native`: the program runs as machine code from the AOT backend instead of the interpreter.
+void start(Side& side, std::string path, std::string text, bool native = false) {
   Diagnostics diags;
   side.module = test::compileText(std::move(path), std::move(text), diags);
   ASSERT_NE(side.module, nullptr) << test::codesAndPlaces(diags) << (diags.all().empty() ? "" : diags.all()[0].message);
   side.runtime = std::make_unique<plc::Runtime>(*side.module, side.clock);
+  if (native) {
+    aot::CompileOptions options;
+    options.cacheDir = VIRTCOM_AOT_TEST_CACHE;
+    const aot::CompileResult compiled = aot::compileModule(*side.module, options);
+    ASSERT_TRUE(compiled.code) << compiled.error;
+    side.runtime->machine().useCompiled(compiled.code);
+  }
   ASSERT_TRUE(side.runtime->coldStart());
 }
 
 TEST_P(Behaviour, DiagramMatchesHandWrittenSt) {
   const Equivalence& c = GetParam();
   for (uint32_t seed : {1u, 2u, 3u}) {
-    Side diagram, st;
+    Side diagram, diagramAot, st;
     ASSERT_NO_FATAL_FAILURE(start(diagram, "case.ad", diagramText(c)));
+    ASSERT_NO_FATAL_FAILURE(start(diagramAot, "case.ad", diagramText(c), true));
     ASSERT_NO_FATAL_FAILURE(start(st, "case.st", stText(c)));
     std::mt19937 rng(seed);
     std::vector<bool> inputs(c.inputs.size());
@@ -118,12 +129,16 @@ TEST_P(Behaviour, DiagramMatchesHandWrittenSt) {
       for (size_t i = 0; i < inputs.size(); ++i) {
         if (rng() % 5 == 0) inputs[i] = !inputs[i];  // runs of a few scans, so timers elapse
         diagram.write(c.inputs[i], inputs[i]);
+        diagramAot.write(c.inputs[i], inputs[i]);
         st.write(c.inputs[i], inputs[i]);
       }
       ASSERT_TRUE(diagram.runtime->tick()) << diagram.runtime->faultText();
+      ASSERT_TRUE(diagramAot.runtime->tick()) << diagramAot.runtime->faultText();
       ASSERT_TRUE(st.runtime->tick()) << st.runtime->faultText();
-      for (const auto& out : c.outputs)
+      for (const auto& out : c.outputs) {
         ASSERT_EQ(diagram.read(out), st.read(out)) << out << " after scan " << scan << ", seed " << seed;
+        ASSERT_EQ(diagramAot.read(out), diagram.read(out)) << out << " (AOT) after scan " << scan << ", seed " << seed;
+      }
     }
   }
 }

@@ -40,7 +40,7 @@ struct RunOptions {
 };
 
 // Prints every signal change as it happens (single-step mode).
-class ChangePrinter final : public ChangeSink {
+class ChangePrinter final : public TraceSink {
  public:
   void begin(const Trace& trace) override { trace_ = &trace; }
   void change(const SignalChange& c) override {
@@ -79,7 +79,7 @@ RunEnd stepInteractively(sim::Simulation& simulation, const Trace& trace) {
 struct StreamedFile {
   std::string path;
   std::ofstream out;
-  std::unique_ptr<ChangeSink> writer;
+  std::unique_ptr<TraceSink> writer;
 };
 
 template <class Writer>
@@ -261,9 +261,9 @@ ExitCode runCell(const RunOptions& o) {
   options.keptSignals = timeline;
   std::vector<std::unique_ptr<StreamedFile>> files;
   if (!openStreamedFile<report::VcdWriter>(o.vcd, files) || !openStreamedFile<report::CsvWriter>(o.csv, files)) return ExitCode::Usage;
-  for (auto& f : files) options.changeSinks.push_back(f->writer.get());
+  for (auto& f : files) options.traceSinks.push_back(f->writer.get());
   ChangePrinter printer;
-  if (o.step) options.changeSinks.push_back(&printer);
+  if (o.step) options.traceSinks.push_back(&printer);
   sim::Simulation simulation(*cell, options);
   std::signal(SIGINT, onRunSignal);
   std::signal(SIGTERM, onRunSignal);

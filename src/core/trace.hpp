@@ -4,7 +4,7 @@
 // read only this. Appends are amortised O(1); labels are interned at load time so recording an
 // activity on the per-tick path never builds a string.
 // Signal changes are the one part that grows with simulated time at the rate signals toggle:
-// every change also streams to ChangeSinks (VCD/CSV files, live views) as the run goes, and a run
+// every change also streams to TraceSinks (VCD/CSV files, live views) as the run goes, and a run
 // may keep in `Trace::changes` only the signals a report needs (sim::SimOptions::keptSignals), so
 // its memory does not grow with the run's length.
 #include <cstdint>
@@ -63,15 +63,22 @@ struct DeviceTotals {
 
 struct Trace;
 
-// Receives the run's signal changes as they happen, in trace order. begin() is called once the
-// signals and their initial values are known (before the first change), end() when the run has
-// ended (Trace::endNs set). change() is on the per-tick path: it must not throw, and should not
-// allocate beyond amortised buffering.
-class ChangeSink {
+// Follows a run as it happens (VCD/CSV files, the historian, live views). begin() is called once
+// the signals and their initial values are known (before the first change); change() for every
+// signal change, in trace order; tick() after every base tick, once that tick's changes were
+// delivered, with the trace as the tick left it (activities begun or ended, collisions, faults and
+// cycles so far: a sink that follows them keeps its own position); end() when the run has ended
+// (Trace::endNs set). change() and tick() are on the per-tick path: they must not throw, and
+// should not allocate beyond amortised buffering.
+class TraceSink {
  public:
-  virtual ~ChangeSink() = default;
+  virtual ~TraceSink() = default;
   virtual void begin(const Trace& trace) = 0;
   virtual void change(const SignalChange& c) = 0;
+  virtual void tick(const Trace& trace, int64_t nowNs) {
+    (void)trace;
+    (void)nowNs;
+  }
   virtual void end(const Trace& trace) = 0;
 };
 

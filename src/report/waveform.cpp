@@ -157,7 +157,7 @@ void CsvWriter::change(const SignalChange& c) {
   out_ << formatSeconds(c.timeNs, 9) << ',' << names_[c.tag] << ',' << signalText(trace_->signals[c.tag].type, c.raw) << '\n';
 }
 
-void replay(const Trace& trace, ChangeSink& sink) {
+void replay(const Trace& trace, TraceSink& sink) {
   sink.begin(trace);
   for (const SignalChange& c : trace.changes) sink.change(c);
   sink.end(trace);

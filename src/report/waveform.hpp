@@ -1,6 +1,6 @@
 #pragma once
 // Signal histories for waveform viewers and spreadsheets: written as the run goes (VcdWriter,
-// CsvWriter are ChangeSinks on an output stream, so a run of any length needs no memory for
+// CsvWriter are TraceSinks on an output stream, so a run of any length needs no memory for
 // them), or from a finished trace's Trace::signals and Trace::changes (vcdReport, csvChanges:
 // the same writers fed from memory, so both give the same bytes).
 #include <ostream>
@@ -21,7 +21,7 @@ namespace virtcom::report {
 // time are skipped. No $date (the output is deterministic).
 std::string vcdReport(const Trace& trace);
 
-class VcdWriter final : public ChangeSink {
+class VcdWriter final : public TraceSink {
  public:
   explicit VcdWriter(std::ostream& out) : out_(out) {}
   void begin(const Trace& trace) override;
@@ -40,7 +40,7 @@ class VcdWriter final : public ChangeSink {
 // 0/1, integers decimal, reals the shortest round-trip text. Signal names are quoted when needed.
 std::string csvChanges(const Trace& trace);
 
-class CsvWriter final : public ChangeSink {
+class CsvWriter final : public TraceSink {
  public:
   explicit CsvWriter(std::ostream& out) : out_(out) {}
   void begin(const Trace& trace) override;
@@ -54,6 +54,6 @@ class CsvWriter final : public ChangeSink {
 };
 
 // Feeds a finished trace's initial values and kept changes to a sink, as a run would have.
-void replay(const Trace& trace, ChangeSink& sink);
+void replay(const Trace& trace, TraceSink& sink);
 
 }  // namespace virtcom::report

@@ -52,14 +52,14 @@ void Simulation::start() {
   }
   for (TagId id = 0; id < cell_.bus.size(); ++id) cell_.trace.signals[id].initial = cell_.bus.raw(id);
   cell_.bus.clearChanges();
-  for (ChangeSink* sink : options_.changeSinks) sink->begin(cell_.trace);
+  for (TraceSink* sink : options_.traceSinks) sink->begin(cell_.trace);
 }
 
 void Simulation::recordChanges() {
   Trace& trace = cell_.trace;
   cell_.bus.forEachChanged([&](TagId id) {
     SignalChange c{nowNs_, id, cell_.bus.raw(id)};
-    for (ChangeSink* sink : options_.changeSinks) sink->change(c);
+    for (TraceSink* sink : options_.traceSinks) sink->change(c);
     if (keepChange_[id]) trace.changes.push_back(c);
   });
   cell_.bus.clearChanges();
@@ -73,7 +73,7 @@ void Simulation::finish(RunEnd end, std::string message) {
   trace.endNs = nowNs_;  // without a completed cycle the window stays empty: reports use the whole run
   for (auto& d : cell_.devices) d->finish(nowNs_, trace);
   for (BusBridge* b : options_.bridges) b->simulationStopped();
-  for (ChangeSink* sink : options_.changeSinks) sink->end(trace);
+  for (TraceSink* sink : options_.traceSinks) sink->end(trace);
 }
 
 // A level of the cycle marker: its rising edge ends a cycle. True if that ends the run.
@@ -190,6 +190,7 @@ bool Simulation::step() {
   for (BusBridge* b : options_.bridges) b->push(cell_.bus, nowNs_);
   recordChanges();
   ++ticks_;
+  for (TraceSink* sink : options_.traceSinks) sink->tick(cell_.trace, nowNs_);
   return !checkStop();
 }
 

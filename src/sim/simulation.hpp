@@ -37,8 +37,9 @@ struct SimOptions {
   // queued writes and RUN/STOP before, the image snapshot after; its first snapshot is taken
   // in `preset`). Must not allocate.
   std::function<void(plc::Runtime& plc)> beforeScan, afterScan;
-  // Every recorded signal change goes to these sinks as the run goes (they must outlive the run).
-  std::vector<ChangeSink*> changeSinks;
+  // Follow the run as it goes: every recorded signal change, every tick, the end (core/trace.hpp;
+  // they must outlive the run). What a stop condition adds in the last tick (a fault) reaches end().
+  std::vector<TraceSink*> traceSinks;
   // Which changes stay in Trace::changes for the whole run: all of them, or (keepAllChanges =
   // false) only those of the signals named in keptSignals (e.g. the report's timeline; unknown
   // names are ignored here), so a long run's memory stays bounded.

@@ -11,9 +11,10 @@ namespace virtcom::sim::test {
 namespace {
 
 // Counts what reaches it and checks the sink contract (begin first, changes in time order, end last).
-struct CountingSink final : ChangeSink {
+struct CountingSink final : TraceSink {
   int begins = 0, ends = 0;
-  size_t changes = 0;
+  size_t changes = 0, ticks = 0;
+  size_t activitiesSeenAtTicks = 0;  // the trace's activity count at the last tick
   int64_t lastNs = 0;
   bool ordered = true;
   void begin(const Trace&) override { ++begins; }
@@ -21,6 +22,12 @@ struct CountingSink final : ChangeSink {
     ordered = ordered && begins == 1 && ends == 0 && c.timeNs >= lastNs;
     lastNs = c.timeNs;
     ++changes;
+  }
+  void tick(const Trace& trace, int64_t nowNs) override {
+    ordered = ordered && begins == 1 && ends == 0 && nowNs >= lastNs;  // after this tick's changes
+    lastNs = nowNs;
+    activitiesSeenAtTicks = trace.activities.size();
+    ++ticks;
   }
   void end(const Trace&) override { ++ends; }
 };
@@ -46,7 +53,7 @@ TEST(StreamingTrace, StreamedFilesEqualTheFilesOfARunThatKeptEveryChange) {
   options.preset = presets({{"MAIN.sequence", "3"}});
   options.keepAllChanges = false;
   options.keptSignals = {"Robot1.busy"};
-  options.changeSinks = {&vcdWriter, &csvWriter, &counter};
+  options.traceSinks = {&vcdWriter, &csvWriter, &counter};
   EXPECT_EQ(streamed->run(std::move(options)), RunEnd::Completed);
 
   EXPECT_EQ(vcd.str(), expectedVcd);
@@ -55,6 +62,9 @@ TEST(StreamingTrace, StreamedFilesEqualTheFilesOfARunThatKeptEveryChange) {
   EXPECT_EQ(counter.ends, 1);
   EXPECT_TRUE(counter.ordered);
   EXPECT_EQ(counter.changes, full->trace().changes.size());
+  // Every tick reached the sink, and by the last one it had seen every activity of the run.
+  EXPECT_EQ(counter.ticks, streamed->simulation->ticks());
+  EXPECT_EQ(counter.activitiesSeenAtTicks, full->trace().activities.size());
   // Only the kept signal stays in memory, with exactly its changes of the full run.
   std::vector<SignalChange> expectedKept;
   for (const SignalChange& c : full->trace().changes)
@@ -75,7 +85,7 @@ TEST(StreamingTrace, ARunThatKeepsNoSignalHoldsNoChangesHoweverLongItRuns) {
   SimOptions options;
   options.preset = presets({{"MAIN.sequence", "3"}});
   options.keepAllChanges = false;
-  options.changeSinks = {&counter};
+  options.traceSinks = {&counter};
   run->run(std::move(options));
   EXPECT_GT(counter.changes, 1000u);
   EXPECT_TRUE(run->trace().changes.empty());

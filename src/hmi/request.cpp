@@ -161,7 +161,9 @@ ParsedRequest parseGet(const Request& r) {
     return failed(404, "no such API: GET " + r.path.substr(0, kMaxText));
   } else {
     p.route = Route::Asset;
-    p.asset = r.path == "/" ? "index.html" : r.path.substr(1);
+    std::string_view asset = r.path;
+    if (!asset.empty() && asset.front() == '/') asset.remove_prefix(1);
+    p.asset = asset.empty() ? "index.html" : std::string(asset.substr(0, kMaxText));
   }
   return p;
 }

@@ -17,6 +17,7 @@ TEST(HmiRequest, GetsRouteToThePageModelStreamAndSearch) {
   WriteAccess open;
   EXPECT_EQ(parseRequest(get("/"), open).asset, "index.html");
   EXPECT_EQ(parseRequest(get("/app.js"), open).route, Route::Asset);
+  EXPECT_EQ(parseRequest(get(""), open).asset, "index.html") << "found by fuzz_hmi_request";
   EXPECT_EQ(parseRequest(get("/api/model"), open).route, Route::Model);
   ParsedRequest stream = parseRequest(get("/api/stream", {{"watch", "MAIN.a,,GVL.b"}}), open);
   EXPECT_EQ(stream.route, Route::Stream);

@@ -332,7 +332,7 @@ void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_option("--time-limit", o->timeLimit, "virtual time limit, e.g. 300s (overrides run.time_limit)");
   cmd->add_option("--set", o->sets, "NAME=VALUE set in the PLC before its first scan (repeatable), e.g. MAIN.sequence=3");
   cmd->add_option("--signal", o->signals, "signal shown in the report's timeline (repeatable), e.g. Robot1.busy; default: the cell's run.record variables");
-  cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible (1 with 'plc: modbus' or 'plc: ads')")
+  cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible (1 with 'plc: modbus', 'plc: ads' or --hmi)")
       ->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table");

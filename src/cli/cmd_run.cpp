@@ -2,13 +2,17 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <chrono>
 #include <csignal>
 #include <fstream>
 #include <iostream>
+#include <optional>
+#include <thread>
 
 #include "cell/cell.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "cli/hmi_options.hpp"
 #include "core/cell_diagnostic_codes.hpp"
 #include "proto/ads/client_bridge.hpp"
 #include "proto/modbus/client_bridge.hpp"
@@ -37,6 +41,7 @@ struct RunOptions {
   bool quiet = false;
   bool step = false;
   std::string backend = "interp";
+  HmiServeOptions hmi;  // --hmi: watch and steer the run in a browser
 };
 
 // Prints every signal change as it happens (single-step mode).
@@ -194,7 +199,26 @@ std::unique_ptr<proto::ads::ClientBridge> startAdsBridge(cell::Cell& cell, const
   return bridge;
 }
 
+// After a run watched in the HMI: the page keeps showing its end until the user stops the command.
+void lingerForViewers() {
+  std::cerr << "hmi: the run has ended; the page stays up until Ctrl-C\n";
+  while (!gStop.load()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+}
+
 ExitCode runCell(const RunOptions& o) {
+  std::optional<HmiBinding> hmiBinding;
+  if (o.hmi.enabled()) {
+    if (o.step) {
+      std::cerr << "error: --step and --hmi both step the run: the HMI has its own single step\n";
+      return ExitCode::Usage;
+    }
+    auto binding = checkHmiOptions(o.hmi, "--hmi");
+    if (!binding) {
+      std::cerr << "error: " << binding.error() << "\n";
+      return ExitCode::Usage;
+    }
+    hmiBinding = *binding;
+  }
   SourceManager sources;
   auto cell = loadCellFile(o.cellFile, sources);
   if (!cell) return ExitCode::InputError;
@@ -264,9 +288,17 @@ ExitCode runCell(const RunOptions& o) {
   for (auto& f : files) options.traceSinks.push_back(f->writer.get());
   ChangePrinter printer;
   if (o.step) options.traceSinks.push_back(&printer);
+  std::optional<LiveHmi> hmi;
+  if (hmiBinding) hmi.emplace(*cell, &gStop, o.hmi.paused, options);  // paced: speed 1 unless --speed
   sim::Simulation simulation(*cell, options);
   std::signal(SIGINT, onRunSignal);
   std::signal(SIGTERM, onRunSignal);
+  if (hmi) {
+    if (auto served = hmi->serve(*hmiBinding, simulation); !served) {
+      std::cerr << "error: --hmi: " << served.error() << "\n";
+      return ExitCode::Usage;
+    }
+  }
   RunEnd end = o.step ? stepInteractively(simulation, simulation.trace()) : simulation.run();
   const Trace& trace = simulation.trace();
   report::Kpis kpis = report::computeKpis(trace);
@@ -278,6 +310,10 @@ ExitCode runCell(const RunOptions& o) {
   bool ok = closeStreamedFiles(files);
   if (!o.html.empty()) ok = writeFile(o.html, report::htmlReport(trace, kpis, html)) && ok;
   if (!o.json.empty()) ok = writeFile(o.json, report::jsonReport(trace, kpis)) && ok;
+  if (hmi) {
+    lingerForViewers();
+    hmi->stop();
+  }
   if (!ok) return ExitCode::Usage;
   return exitCodeFor(end);
 }
@@ -296,11 +332,12 @@ void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_option("--time-limit", o->timeLimit, "virtual time limit, e.g. 300s (overrides run.time_limit)");
   cmd->add_option("--set", o->sets, "NAME=VALUE set in the PLC before its first scan (repeatable), e.g. MAIN.sequence=3");
   cmd->add_option("--signal", o->signals, "signal shown in the report's timeline (repeatable), e.g. Robot1.busy; default: the cell's run.record variables");
-  cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible (1 with 'plc: modbus' or 'plc: ads')")
+  cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible (1 with 'plc: modbus', 'plc: ads' or --hmi)")
       ->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table");
   cmd->add_flag("--step", o->step, "single step: advance one PLC tick per line read from stdin, printing changed signals");
+  addHmiOptions(cmd, o->hmi, "--hmi");
   cmd->callback([o, setExit] { setExit(runCell(*o)); });
 }
 

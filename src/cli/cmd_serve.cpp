@@ -2,7 +2,9 @@
 //  - `--modbus`: its device signals, to an external PLC that is the controller (Modbus TCP);
 //  - `--ads`: its soft PLC, which stays the controller, as a TwinCAT 3 runtime (ADS), the same
 //    server as `exec --ads`. With both, the Modbus map serves the device signals for reading,
-//    and only the commands the soft PLC does not drive for writing.
+//    and only the commands the soft PLC does not drive for writing;
+//  - `--http`: the web HMI (docs/hmi.md), watching and steering the run. Alone, or with --ads,
+//    the soft PLC is the controller; with --modbus the external PLC is.
 //
 // A signal protocol plugs in with an option group in addServeCommand(), a start function
 // returning a BusBridge over the cell's tag bus, and one line in startServers().
@@ -13,10 +15,12 @@
 #include <expected>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli/ads_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "cli/hmi_options.hpp"
 #include "cli/modbus_options.hpp"
 #include "proto/modbus/signal_server.hpp"
 #include "report/kpis.hpp"
@@ -37,6 +41,7 @@ struct ServeOptions {
   std::string modbus;       // HOST:PORT; empty: no Modbus server
   std::string modbusAllow;  // comma-separated peer addresses; empty: any
   AdsServeOptions ads;      // the soft PLC over ADS
+  HmiServeOptions hmi;      // the web HMI (--http)
   std::string backend = "interp";
 };
 
@@ -78,17 +83,27 @@ void keepSoftPlcCommands(cell::Cell& cell) {
 }
 
 ExitCode serveCell(const ServeOptions& o) {
-  if (o.modbus.empty() && !o.ads.enabled()) {
-    std::cerr << "error: nothing to serve: give --modbus HOST:PORT and/or --ads HOST:PORT\n";
+  if (o.modbus.empty() && !o.ads.enabled() && !o.hmi.enabled()) {
+    std::cerr << "error: nothing to serve: give --modbus HOST:PORT, --ads HOST:PORT and/or --http HOST:PORT\n";
     return ExitCode::Usage;
+  }
+  std::optional<HmiBinding> hmiBinding;
+  if (o.hmi.enabled()) {
+    auto binding = checkHmiOptions(o.hmi, "--http");
+    if (!binding) {
+      std::cerr << "error: " << binding.error() << "\n";
+      return ExitCode::Usage;
+    }
+    hmiBinding = *binding;
   }
   SourceManager sources;
   auto cell = loadCellFile(o.cellFile, sources);
   if (!cell) return ExitCode::InputError;
-  if (o.ads.enabled()) {
-    // The soft PLC is the controller, served over ADS; it runs until interrupted.
+  if (o.ads.enabled() || (o.hmi.enabled() && o.modbus.empty())) {
+    // The soft PLC is the controller (served over ADS, watched by the HMI); it runs until interrupted.
     if (!cell->module) {
-      std::cerr << "error: --ads serves the cell's soft PLC, but " << o.cellFile << " has none ('plc: sources')\n";
+      std::cerr << "error: " << (o.ads.enabled() ? "--ads serves" : "--http without --modbus runs") << " the cell's soft PLC, but "
+                << o.cellFile << " has none ('plc: sources')\n";
       return ExitCode::Usage;
     }
     cell->run.until = {};
@@ -136,10 +151,19 @@ ExitCode serveCell(const ServeOptions& o) {
     options.beforeScan = [&](plc::Runtime& plc) { ads->beforeScan(plc); };
     options.afterScan = [&](plc::Runtime& plc) { ads->afterScan(plc); };
   }
+  std::optional<LiveHmi> hmi;
+  if (hmiBinding) hmi.emplace(*cell, &gServeStop, o.hmi.paused, options);
   sim::Simulation simulation(*cell, options);
+  if (hmi) {
+    if (auto served = hmi->serve(*hmiBinding, simulation); !served) {
+      std::cerr << "error: --http: " << served.error() << "\n";
+      return ExitCode::Usage;
+    }
+  }
   RunEnd end = simulation.run();
   bridges->clear();  // stops the servers before the report
   if (ads) ads->stop();
+  if (hmi) hmi->stop();
   const Trace& trace = simulation.trace();
   if (!o.quiet) std::cout << report::summaryTable(trace, report::computeKpis(trace));
   if (end == RunEnd::PlcFault) {
@@ -154,14 +178,15 @@ ExitCode serveCell(const ServeOptions& o) {
 void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   auto o = std::make_shared<ServeOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "serve", "Run a cell paced to the wall clock until SIGINT/SIGTERM, serving its device signals to an external PLC (Modbus TCP) "
-               "and/or its soft PLC as a TwinCAT runtime (ADS)");
+      "serve", "Run a cell paced to the wall clock until SIGINT/SIGTERM, serving its device signals to an external PLC (Modbus TCP), "
+               "its soft PLC as a TwinCAT runtime (ADS) and/or the web HMI (HTTP)");
   cmd->add_option("cell", o->cellFile, "the cell file (YAML); its 'modbus:' section maps the signals (default: automatic)")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--modbus", o->modbus, "serve the signals over Modbus TCP on HOST:PORT (e.g. 127.0.0.1:1502; see docs/modbus.md)");
   cmd->add_option("--modbus-allow", o->modbusAllow, "comma-separated IPv4 peers allowed to connect to --modbus (default: any)");
   addAdsServeOptions(cmd, o->ads);
+  addHmiOptions(cmd, o->hmi, "--http");
   cmd->add_option("--speed", o->speed, "pace factor against the wall clock (default 1 = real time)")->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table when stopped");

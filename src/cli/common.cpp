@@ -13,6 +13,7 @@
 #include "core/duration_units.hpp"
 #include "lang/plcopen/importer.hpp"
 #include "lang/st/compiler.hpp"
+#include "plc/variable_text.hpp"
 
 namespace virtcom::cli {
 
@@ -54,13 +55,8 @@ std::string presetVariable(const bc::Module& m, const std::string& assignment, u
   auto ref = bc::resolveVariable(m, name);
   if (!ref) return "unknown variable '" + name + "' (use the qualified name, e.g. MAIN.count or GVL.x)";
   if (ref->readOnly) return "'" + name + "' is a CONSTANT and cannot be set";
-  std::string problem = bc::writeValueFromText(m, *ref, value, memory);
+  std::string problem = plc::writeVariableText(m, *ref, value, memory, inputImage);
   if (!problem.empty()) return name + ": " + problem;
-  const bc::ProcessArea& in = m.inputs;
-  if (inputImage && ref->address >= in.address && ref->address < in.address + in.size) {
-    uint32_t size = std::max<uint32_t>(m.types[ref->type].size, 1);
-    std::memcpy(inputImage + (ref->address - in.address), memory + ref->address, std::min(size, in.address + in.size - ref->address));
-  }
   return {};
 }
 

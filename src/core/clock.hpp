@@ -34,15 +34,23 @@ class VirtualClock final : public Clock {
 };
 
 // Virtual time that follows the wall clock at `speed` (1.0 = real time, 2.0 = twice as fast).
+// Pacing is measured from an anchor (wall time, virtual time) that setSpeed() and resume() move
+// to the present, so a changed speed or a pause (a live HMI) never makes the clock catch up.
 class PacedClock final : public Clock {
  public:
   explicit PacedClock(double speed);
   int64_t nowNs() const override { return nowNs_; }
   void advanceTo(int64_t targetNs) override;
+  double speed() const { return speed_; }
+  // From now on, follow the wall clock at `speed` (> 0; other values are ignored).
+  void setSpeed(double speed);
+  // After a pause: the time spent paused does not count.
+  void resume();
 
  private:
   double speed_;
-  int64_t startWallNs_;
+  int64_t anchorWallNs_;
+  int64_t anchorVirtualNs_ = 0;
   int64_t nowNs_ = 0;
 };
 

@@ -33,6 +33,7 @@ class Axis final : public SequencedDevice {
   };
 
   Axis(std::string name, Params params);
+  const Params& params() const { return p_; }
   double positionM() const { return pos_; }
 
  protected:

@@ -36,6 +36,7 @@ class Conveyor final : public Device {
   };
 
   Conveyor(std::string name, Params params);
+  const Params& params() const { return p_; }
   void prepare(World& world, Trace& trace) override;
   void step(const StepContext& ctx) override;
   int64_t nextEventNs() const override;

@@ -33,6 +33,7 @@ class Press final : public SequencedDevice {
   };
 
   Press(std::string name, Params params);
+  const Params& params() const { return p_; }
 
  protected:
   uint32_t commandLabel(double command) const override;

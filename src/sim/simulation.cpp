@@ -13,8 +13,13 @@ Simulation::WireSlot slotOf(const cell::Wire& w) { return {w.address, w.tag, w.b
 }  // namespace
 
 Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), options_(options) {
-  if (options_.speed > 0) clock_ = std::make_unique<PacedClock>(options_.speed);
-  else clock_ = std::make_unique<VirtualClock>();
+  if (options_.speed > 0 || options_.control) {
+    auto paced = std::make_unique<PacedClock>(options_.speed > 0 ? options_.speed : 1.0);
+    paced_ = paced.get();
+    clock_ = std::move(paced);
+  } else {
+    clock_ = std::make_unique<VirtualClock>();
+  }
   if (cell_.module) {
     plc::RuntimeOptions ropts;
     ropts.skipRepeatedScans = options_.skipRepeatedScans;
@@ -184,6 +189,10 @@ bool Simulation::pullBridges() {
 bool Simulation::step() {
   if (ended_) return false;
   if (!started_) start();
+  if (options_.control && !options_.control->beforeTick(*this)) {
+    finish(RunEnd::Interrupted, "interrupted");
+    return false;
+  }
   int64_t baseTickNs = runtime_ ? runtime_->baseTickNs() : cell_.run.plcCycleNs;
   if (runtime_) {
     nowNs_ = runtime_->nextTickNs();

@@ -19,6 +19,7 @@
 #include "core/bus_bridge.hpp"
 #include "core/clock.hpp"
 #include "plc/runtime.hpp"
+#include "sim/run_control.hpp"
 
 namespace virtcom::sim {
 
@@ -47,6 +48,9 @@ struct SimOptions {
   std::vector<std::string> keptSignals;
   // Machine code for the soft PLC's module (src/aot); null runs the interpreter.
   std::shared_ptr<const vm::CompiledCode> compiled;
+  // Steers the run before every tick (pause, step, speed; must outlive the run). A controlled
+  // run is always paced (speed 0 means 1), so that its speed can change while it runs.
+  RunControl* control = nullptr;
 };
 
 class Simulation {
@@ -61,8 +65,18 @@ class Simulation {
   // Advances one base tick (for single stepping); false once the run has ended.
   bool step();
 
+  bool hasPlc() const { return runtime_ != nullptr; }
   // Precondition: the cell has a soft PLC.
   plc::Runtime& plc() { return *runtime_; }
+  // Controlled runs (SimOptions::control): the pace factor, changeable between ticks; after a
+  // pause resumePacing() keeps the paused wall time from counting. No effect on unpaced runs.
+  double speed() const { return paced_ ? paced_->speed() : 0; }
+  void setSpeed(double speed) {
+    if (paced_) paced_->setSpeed(speed);
+  }
+  void resumePacing() {
+    if (paced_) paced_->resume();
+  }
 
   // A wire as the per-tick transfer needs it: cell::Wire's hot fields in 12 bytes, no name.
   struct WireSlot {
@@ -71,6 +85,7 @@ class Simulation {
     int8_t bit = -1;
     ElemType varType = ElemType::Bool;
   };
+
   Trace& trace() { return cell_.trace; }
   int64_t nowNs() const { return nowNs_; }
   uint64_t ticks() const { return ticks_; }
@@ -89,6 +104,7 @@ class Simulation {
   cell::Cell& cell_;
   SimOptions options_;
   std::unique_ptr<Clock> clock_;
+  PacedClock* paced_ = nullptr;  // clock_ when paced
   std::unique_ptr<plc::Runtime> runtime_;
   std::vector<TagId> recordTags_;
   std::vector<uint8_t> keepChange_;      // per tag: 1 = its changes stay in Trace::changes

@@ -49,6 +49,22 @@ TEST(PacedClock, ReportsVirtualTimeAndNeverGoesBackwards) {
   EXPECT_EQ(clock.nowNs(), 1000);
 }
 
+// The live HMI changes the pace while a run goes and pauses it: virtual time carries on from
+// where it was, and a speed that is not positive is ignored.
+TEST(PacedClock, SpeedChangesAndResumeKeepVirtualTime) {
+  PacedClock clock(1e9);
+  clock.advanceTo(1000);
+  clock.setSpeed(2e9);
+  EXPECT_EQ(clock.speed(), 2e9);
+  clock.setSpeed(0);
+  clock.setSpeed(-1);
+  EXPECT_EQ(clock.speed(), 2e9);
+  EXPECT_EQ(clock.nowNs(), 1000);
+  clock.resume();
+  clock.advanceTo(3000);
+  EXPECT_EQ(clock.nowNs(), 3000);
+}
+
 TEST(MonotonicNow, DoesNotDecrease) {
   int64_t a = monotonicNowNs();
   int64_t b = monotonicNowNs();

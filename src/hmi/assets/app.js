@@ -1,0 +1,178 @@
+// The HMI page: reads /api/model once, follows /api/stream (server-sent events, one JSON frame of
+// changes at a time; schema in docs/hmi.md) and sends controls, writes and faults as POSTs.
+import { Layout } from './layout.js';
+import { Gantt } from './gantt.js';
+
+const $ = (id) => document.getElementById(id);
+const seconds = (ns) => `${(ns / 1e9).toFixed(3)} s`;
+
+const state = {
+  model: null,
+  values: [],                 // signal value by tag
+  activities: new Map(),      // index -> [index, device, label, start, end, error, energy]
+  current: new Map(),         // trace device index -> running activity
+  injected: [],
+  forced: [],
+  watch: JSON.parse(localStorage.getItem('virtcom.watch') || '[]'),
+  vars: new Map(),            // watched name -> {value, forced}
+  nowNs: 0,
+  dirty: true,
+};
+let layout, gantt, stream;
+
+async function post(path, body) {
+  const headers = { 'Content-Type': 'application/json' };
+  const token = $('token').value;
+  if (token) headers.Authorization = `Bearer ${token}`;
+  const response = await fetch(path, { method: 'POST', headers, body: JSON.stringify(body) });
+  const reply = await response.json().catch(() => ({}));
+  $('message').textContent = response.ok ? '' : reply.error ?? `HTTP ${response.status}`;
+  return response.ok;
+}
+
+function deviceState(device) {
+  const error = device.ports.find(p => p.name === 'error');
+  const running = state.current.get(device.trace);
+  const index = state.model.devices.indexOf(device);
+  const op = running ? state.model.labels[running[2]] ?? '' : '';
+  if (error && state.values[error.tag]) return { state: 'error', op: `error ${state.values[error.tag]}` };
+  if (state.injected[index]) return { state: 'fault', op: op || `fault ${state.injected[index]} armed` };
+  return { state: running ? 'busy' : 'idle', op };
+}
+
+function applyFrame(f) {
+  state.nowNs = f.t;
+  const badge = $('run-state');
+  badge.textContent = f.ended !== undefined ? 'ended' : f.paused ? 'paused' : 'running';
+  badge.className = `badge ${f.ended !== undefined ? 'ended' : f.paused ? 'paused' : ''}`;
+  if (f.ended !== undefined) $('message').textContent = f.ended;
+  if (document.activeElement !== $('speed')) $('speed').value = f.speed;
+  for (const [tag, value] of f.signals ?? []) state.values[tag] = value;
+  for (const a of f.activities ?? []) {
+    state.activities.set(a[0], a);
+    if (a[4] < 0) state.current.set(a[1], a);
+    else if (state.current.get(a[1])?.[0] === a[0]) state.current.delete(a[1]);
+  }
+  for (const e of f.faults ?? []) addEvent(`${seconds(e.t)} ${e.source}: ${e.message}`, 'fault');
+  for (const c of f.collisions ?? []) {
+    const names = state.model.devices;
+    addEvent(`${seconds(c.t)} collision in ${state.model.labels[c.zone]}: ${names[c.a]?.name} and ${names[c.b]?.name}`, 'collision');
+    layout.flashZone(state.model.zones.indexOf(state.model.labels[c.zone]));
+  }
+  if (f.kpi) {
+    $('kpi-cycles').textContent = f.kpi.cycles;
+    $('kpi-cycle').textContent = seconds(f.kpi.cycleNs);
+    $('kpi-last').textContent = f.kpi.lastCycleNs ? seconds(f.kpi.lastCycleNs) : '–';
+    $('kpi-ops').textContent = f.kpi.operations;
+    $('kpi-energy').textContent = `${f.kpi.energyJ.toFixed(0)} J`;
+  }
+  if (f.injected) state.injected = f.injected;
+  if (f.forced) state.forced = f.forced;
+  for (const v of f.vars ?? []) state.vars.set(v.name, v);
+  state.dirty = true;
+}
+
+function addEvent(text, kind) {
+  const li = document.createElement('li');
+  li.className = kind;
+  li.textContent = text;
+  $('events').prepend(li);
+}
+
+function render() {
+  if (state.dirty && state.model) {
+    state.dirty = false;
+    $('vtime').textContent = seconds(state.nowNs);
+    $('vtime').dataset.ns = state.nowNs;
+    layout.update(state.values, deviceState);
+    gantt.render(state.activities, state.nowNs);
+    renderWatch();
+  }
+  requestAnimationFrame(render);
+}
+
+function renderWatch() {
+  for (const row of $('watch').tBodies[0].rows) {
+    const v = state.vars.get(row.dataset.name);
+    row.querySelector('.value').textContent = v ? v.value : '';
+    row.classList.toggle('forced', !!v?.forced);
+  }
+}
+
+function openStream() {
+  if (stream) stream.close();
+  stream = new EventSource(`/api/stream?watch=${encodeURIComponent(state.watch.join(','))}`);
+  stream.onmessage = (event) => applyFrame(JSON.parse(event.data));
+  stream.onerror = () => { $('run-state').textContent = 'reconnecting'; };
+}
+
+function addWatchRow(name) {
+  const row = $('watch').tBodies[0].insertRow();
+  row.dataset.name = name;
+  row.innerHTML = '<td class="name"></td><td class="value"></td><td><input class="new-value"></td>' +
+                  '<td><button class="write">Write</button><button class="force">Force</button><button class="release">Release</button>' +
+                  '<button class="unwatch" title="stop watching">×</button></td>';
+  row.querySelector('.name').textContent = name;
+  const value = () => row.querySelector('.new-value').value;
+  row.querySelector('.write').onclick = () => post('/api/write', { name, value: value(), force: false });
+  row.querySelector('.force').onclick = () => post('/api/write', { name, value: value(), force: true });
+  row.querySelector('.release').onclick = () => post('/api/release', { name });
+  row.querySelector('.unwatch').onclick = () => {
+    state.watch = state.watch.filter(n => n !== name);
+    row.remove();
+    saveWatch();
+  };
+}
+
+function saveWatch() {
+  localStorage.setItem('virtcom.watch', JSON.stringify(state.watch));
+  openStream();
+}
+
+function watch(name) {
+  if (state.watch.includes(name)) return;
+  state.watch.push(name);
+  addWatchRow(name);
+  saveWatch();
+}
+
+async function search() {
+  const response = await fetch(`/api/vars?match=${encodeURIComponent($('var-search').value)}`);
+  const { vars } = await response.json();
+  const list = $('var-results');
+  list.replaceChildren();
+  for (const v of vars) {
+    const li = document.createElement('li');
+    li.textContent = `${v.name} : ${v.type} = ${v.value}${v.forced ? ' (forced)' : ''}`;
+    li.dataset.name = v.name;
+    li.onclick = () => watch(v.name);
+    list.appendChild(li);
+  }
+}
+
+async function start() {
+  state.model = await (await fetch('/api/model')).json();
+  const m = state.model;
+  document.title = `${m.name} — virtcom HMI`;
+  $('cell-name').textContent = m.name;
+  $('token').hidden = !m.tokenRequired;
+  if (m.readOnly) for (const b of document.querySelectorAll('button, #speed')) b.disabled = true;
+  layout = new Layout($('layout'), m);
+  gantt = new Gantt($('gantt'), m);
+  for (const d of m.devices) $('fault-device').add(new Option(d.name, d.name));
+  for (const button of document.querySelectorAll('[data-action]'))
+    button.onclick = () => post('/api/control', { action: button.dataset.action });
+  $('speed').onchange = () => post('/api/control', { action: 'speed', value: Number($('speed').value) });
+  $('release-all').onclick = () => post('/api/release', {});
+  $('fault-form').onsubmit = (e) => {
+    e.preventDefault();
+    post('/api/fault', { device: $('fault-device').value, code: Number($('fault-code').value) });
+  };
+  $('var-search').oninput = search;
+  state.watch.forEach(addWatchRow);
+  openStream();
+  search();
+  requestAnimationFrame(render);
+}
+
+start();

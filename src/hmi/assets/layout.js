@@ -1,0 +1,134 @@
+// The layout view: a top view of the cell drawn from /api/model (places in cell millimetres,
+// y up, so the SVG's y is negated) and updated from the live state. Every device is a
+// <g class="device" data-name=... data-state=idle|busy|error|fault>.
+const SVG = 'http://www.w3.org/2000/svg';
+
+function el(parent, name, attrs = {}, text) {
+  const e = document.createElementNS(SVG, name);
+  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
+  if (text !== undefined) e.textContent = text;
+  parent.appendChild(e);
+  return e;
+}
+
+const portTag = (device, port) => device.ports.find(p => p.name === port)?.tag;
+
+export class Layout {
+  constructor(svg, model) {
+    this.views = [];
+    this.zoneShapes = new Map();  // zone index -> [SVG elements]
+    let minX = Infinity, minY = Infinity, maxX = -Infinity, maxY = -Infinity;
+    for (const d of model.devices) {
+      const p = d.place;
+      minX = Math.min(minX, p.x); maxX = Math.max(maxX, p.x + p.w);
+      minY = Math.min(minY, p.y); maxY = Math.max(maxY, p.y + p.h);
+    }
+    const pad = 100;
+    svg.setAttribute('viewBox', `${minX - pad} ${-maxY - pad} ${maxX - minX + 2 * pad} ${maxY - minY + 2 * pad}`);
+    for (const d of model.devices) this.views.push(this.drawDevice(svg, d, model));
+  }
+
+  drawDevice(svg, d, model) {
+    const p = d.place;
+    const g = el(svg, 'g', { class: `device ${d.type}`, 'data-name': d.name, 'data-state': 'idle' });
+    el(g, 'rect', { class: 'body', x: p.x, y: -(p.y + p.h), width: p.w, height: p.h, rx: 20 });
+    el(g, 'text', { x: p.x + 20, y: -(p.y + p.h) + 70 }, d.name);
+    const view = { device: d, g, op: el(g, 'text', { class: 'op', x: p.x + 20, y: -(p.y + p.h) + 130 }, ''), update: () => {} };
+    const draw = { robot: this.drawRobot, axis: this.drawAxis, press: this.drawPress, conveyor: this.drawConveyor, sensor: this.drawSensor }[d.type];
+    if (draw) draw.call(this, g, d, view, model);
+    return view;
+  }
+
+  drawRobot(g, d, view, model) {
+    const p = d.place, geo = d.geometry;
+    el(g, 'circle', { cx: p.originX, cy: -p.originY, r: 60, fill: '#345' });
+    for (const loc of geo.locations) {
+      const x = p.originX + loc.x, y = -(p.originY + loc.y);
+      if (loc.zone !== null) {
+        const zone = model.zones.indexOf(loc.zone);
+        const shape = el(g, 'circle', { class: 'zone', cx: x, cy: y, r: 140, 'data-zone': loc.zone });
+        if (!this.zoneShapes.has(zone)) this.zoneShapes.set(zone, []);
+        this.zoneShapes.get(zone).push(shape);
+      }
+      const l = el(g, 'g', { class: 'location' });
+      el(l, 'rect', { x: x - 20, y: y - 20, width: 40, height: 40 });
+      el(l, 'text', { x: x + 30, y: y + 12 }, loc.name);
+    }
+    const tx = portTag(d, 'actualX'), ty = portTag(d, 'actualY'), tt = portTag(d, 'toolAttached');
+    const tcp = el(g, 'circle', { class: 'tcp', r: 45, 'data-device': d.name, cx: p.originX, cy: -p.originY });
+    const tool = el(g, 'text', { class: 'tool' }, '');
+    view.update = (values) => {
+      const x = p.originX + (values[tx] ?? 0), y = -(p.originY + (values[ty] ?? 0));
+      tcp.setAttribute('cx', x.toFixed(1));
+      tcp.setAttribute('cy', y.toFixed(1));
+      tool.setAttribute('x', x + 55);
+      tool.setAttribute('y', y - 30);
+      const index = values[tt] ?? 0;
+      tool.textContent = index > 0 ? geo.tools[index - 1] ?? '' : '';
+    };
+  }
+
+  drawAxis(g, d, view) {
+    const p = d.place, geo = d.geometry, y = -(p.y + p.h / 2) + 60;
+    const x0 = p.x + 60, x1 = p.x + p.w - 60;
+    el(g, 'line', { class: 'rail', x1: x0, y1: y, x2: x1, y2: y });
+    const slider = el(g, 'rect', { class: 'slider', y: y - 50, width: 80, height: 100, x: x0 - 40 });
+    const tag = portTag(d, 'actualPosition');
+    const span = Math.max(geo.maxPosition - geo.minPosition, 1e-9);
+    view.update = (values) => {
+      const f = Math.min(Math.max(((values[tag] ?? 0) - geo.minPosition) / span, 0), 1);
+      slider.setAttribute('x', (x0 + f * (x1 - x0) - 40).toFixed(1));
+    };
+  }
+
+  drawPress(g, d, view) {
+    const p = d.place, stroke = d.geometry.stroke || 100;
+    const top = -(p.y + p.h) + 160, travel = p.h - 240;
+    const ram = el(g, 'rect', { class: 'ram', x: p.x + p.w / 2 - 60, y: top, width: 120, height: 20 });
+    const tag = portTag(d, 'position');
+    view.update = (values) => {
+      const f = Math.min(Math.max((values[tag] ?? 0) / stroke, 0), 1);
+      ram.setAttribute('height', (20 + f * travel).toFixed(1));
+    };
+  }
+
+  drawConveyor(g, d, view) {
+    const p = d.place, geo = d.geometry, y = -(p.y + p.h / 2) + 40;
+    const belt = el(g, 'rect', { class: 'belt', x: p.x + 40, y: y - 40, width: p.w - 80, height: 80 });
+    const length = Math.max(geo.length || 1, 1e-9);
+    const sensors = geo.sensors.map(s => ({
+      tag: portTag(d, s.name),
+      shape: el(g, 'circle', { class: 'sensor', r: 25, cx: p.x + 40 + (s.position / length) * (p.w - 80), cy: y + 80 }),
+    }));
+    const moving = portTag(d, 'moving');
+    view.update = (values) => {
+      belt.classList.toggle('moving', !!values[moving]);
+      for (const s of sensors) s.shape.classList.toggle('on', !!values[s.tag]);
+    };
+  }
+
+  drawSensor(g, d, view) {
+    const p = d.place;
+    const lamp = el(g, 'circle', { class: 'sensor', r: 60, cx: p.x + p.w / 2, cy: -(p.y + p.h / 2) + 40 });
+    const tag = portTag(d, 'value');
+    view.update = (values) => lamp.classList.toggle('on', !!values[tag]);
+  }
+
+  // values: signal values by tag; state(device) -> {state, op}.
+  update(values, state) {
+    for (const v of this.views) {
+      const s = state(v.device);
+      v.g.dataset.state = s.state;
+      v.op.textContent = s.op;
+      v.update(values);
+    }
+  }
+
+  flashZone(zone) {
+    for (const shape of this.zoneShapes.get(zone) ?? []) {
+      shape.classList.remove('flash');
+      void shape.getBBox();  // restart the animation
+      shape.classList.add('flash');
+    }
+  }
+}

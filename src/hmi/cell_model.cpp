@@ -1,0 +1,81 @@
+#include "hmi/cell_model.hpp"
+
+#include "hmi/layout.hpp"
+#include "plant/axis.hpp"
+#include "plant/conveyor.hpp"
+#include "plant/press.hpp"
+#include "plant/robot.hpp"
+
+namespace virtcom::hmi {
+
+namespace {
+
+using Json = nlohmann::json;
+
+Json robotGeometry(const plant::Robot& robot, const cell::Cell& cell) {
+  Json locations = Json::array();
+  for (const auto& loc : robot.params().locations)
+    locations.push_back({{"name", loc.name},
+                         {"x", loc.pos[0] * 1000},
+                         {"y", loc.pos[1] * 1000},
+                         {"z", loc.pos[2] * 1000},
+                         {"zone", loc.zone >= 0 ? Json(cell.world.zoneName(static_cast<uint32_t>(loc.zone))) : Json()}});
+  Json tools = Json::array();
+  for (const auto& tool : robot.params().tools) tools.push_back(tool.name);
+  return {{"locations", locations}, {"tools", tools}};
+}
+
+// What the layout view needs beyond the ports to draw the device's kind.
+Json geometry(const plant::Device& d, const cell::Cell& cell) {
+  if (const auto* robot = dynamic_cast<const plant::Robot*>(&d)) return robotGeometry(*robot, cell);
+  if (const auto* axis = dynamic_cast<const plant::Axis*>(&d))
+    return {{"minPosition", axis->params().minPosition * 1000}, {"maxPosition", axis->params().maxPosition * 1000}};
+  if (const auto* press = dynamic_cast<const plant::Press*>(&d)) return {{"stroke", press->params().strokeM * 1000}};
+  if (const auto* conveyor = dynamic_cast<const plant::Conveyor*>(&d)) {
+    const auto& p = conveyor->params();
+    Json sensors = Json::array();
+    for (const auto& s : p.sensors) sensors.push_back({{"name", s.name}, {"position", static_cast<double>(s.positionNm) * 1e-6}});
+    return {{"length", static_cast<double>(p.lengthNm) * 1e-6}, {"sensors", sensors}};
+  }
+  return Json::object();
+}
+
+Json deviceJson(const plant::Device& d, const Place& place, const cell::Cell& cell) {
+  Json ports = Json::array();
+  for (size_t i = 0; i < d.ports().size(); ++i) {
+    const plant::PortSpec& p = d.ports()[i];
+    ports.push_back({{"name", p.name},
+                     {"tag", d.tag(i)},
+                     {"type", elemTypeInfo(p.type).name},
+                     {"dir", p.dir == plant::PortDir::In ? "in" : "out"}});
+  }
+  const DeviceInfo& info = cell.trace.devices[d.traceIndex()];
+  return {{"name", d.name()},
+          {"type", d.type()},
+          {"group", info.group},
+          {"trace", d.traceIndex()},
+          {"ports", ports},
+          {"place", {{"x", place.x}, {"y", place.y}, {"w", place.w}, {"h", place.h}, {"originX", place.originX}, {"originY", place.originY}}},
+          {"geometry", geometry(d, cell)}};
+}
+
+}  // namespace
+
+Json cellModel(const cell::Cell& cell, int64_t baseTickNs) {
+  std::vector<Place> places = placeDevices(cell);
+  Json devices = Json::array();
+  for (size_t i = 0; i < cell.devices.size(); ++i) devices.push_back(deviceJson(*cell.devices[i], places[i], cell));
+  Json zones = Json::array();
+  for (uint32_t z = 0; z < cell.world.zoneCount(); ++z) zones.push_back(cell.world.zoneName(z));
+  Json signals = Json::array();
+  for (TagId id = 0; id < cell.bus.size(); ++id) signals.push_back({{"name", cell.bus.name(id)}, {"type", elemTypeInfo(cell.bus.type(id)).name}});
+  return {{"name", cell.name},
+          {"baseTickNs", baseTickNs},
+          {"hasPlc", cell.module != nullptr},
+          {"devices", devices},
+          {"zones", zones},
+          {"labels", cell.trace.labels},
+          {"signals", signals}};
+}
+
+}  // namespace virtcom::hmi

@@ -1,0 +1,130 @@
+#pragma once
+// The running cell as the HMI sees it, shared between the simulation's thread and the HTTP
+// threads without ever making the simulation wait:
+//  - the simulation publishes: as a TraceSink, after a tick, at most every kPublishPeriodNs of
+//    wall time, it copies what the page shows (signal values, new and ended activities, faults,
+//    collisions, cycles, the PLC's memory) into a Snapshot, under a try_lock: if an HTTP thread
+//    holds the snapshot at that moment the copy waits for a later tick, the scan never does;
+//  - the HTTP threads read the Snapshot (read(), a short copy under the lock) and queue Commands
+//    (post()), which the simulation applies between two ticks (RunControl::beforeTick), where it
+//    also waits while paused;
+//  - forced PLC variables are written before and after every scan (beforeScan/afterScan, hooked
+//    into sim::SimOptions by the caller), so neither the program nor the wiring changes them.
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "cell/cell.hpp"
+#include "core/trace.hpp"
+#include "plc/runtime.hpp"
+#include "sim/run_control.hpp"
+
+namespace virtcom::hmi {
+
+// What the HMI shows, as of one published tick. Sizes are fixed at begin() except the lists
+// that grow with the run (activities, faults, collisions), which only append.
+struct Snapshot {
+  uint64_t seq = 0;             // +1 per publication
+  int64_t nowNs = 0;            // virtual time of the last tick run
+  bool paused = false;
+  bool ended = false;
+  double speed = 0;             // pace factor
+  std::string endMessage;       // once ended
+  std::vector<uint64_t> tags;   // raw value per TagId (TagBus representation)
+  std::vector<ActivityRecord> activities;
+  std::vector<FaultRecord> faults;
+  std::vector<CollisionRecord> collisions;
+  uint32_t cyclesCompleted = 0;
+  int64_t lastCycleNs = 0;      // duration of the last completed cycle, 0 before the first
+  int64_t cycleStartNs = 0;     // start of the running cycle
+  double energyJ = 0;           // energy of the operations finished so far
+  std::vector<uint8_t> memory;  // the soft PLC's variables (Module::staticSize bytes), empty without one
+  std::vector<std::string> forced;  // names of the forced variables, in forcing order
+  std::vector<int32_t> injected;    // per device: the injected error code, 0 = none
+};
+
+// A request from an HTTP thread, applied on the simulation's thread between two ticks. Values
+// are already parsed (the bytes of the variable's type), so applying one never parses text.
+struct Command {
+  enum class Kind : uint8_t { Pause, Run, Step, Speed, Write, Release, Fault };
+  Kind kind = Kind::Pause;
+  double value = 0;              // Speed: the factor; Step: the tick count
+  bool force = false;            // Write: keep writing it before and after every scan
+  std::string name;              // Write/Release: the variable (Release: empty = all)
+  bc::VarRef ref;                // Write: where (bit included)
+  std::vector<uint8_t> bytes;    // Write: the value, the type's size (a BOOL bit: bit `ref.bit` of byte 0)
+  uint32_t device = 0;           // Fault: index into Cell::devices
+  int32_t code = 0;              // Fault: error code, 0 clears
+};
+
+class LiveState final : public TraceSink, public sim::RunControl {
+ public:
+  static constexpr int64_t kPublishPeriodNs = 50'000'000;
+
+  // `cell` and `interrupt` (may be null) must outlive this. `startPaused`: the first tick waits
+  // for run or step.
+  LiveState(cell::Cell& cell, const std::atomic<bool>* interrupt, bool startPaused = false);
+
+  // ---- the simulation's thread ----
+  void begin(const Trace& trace) override;
+  void change(const SignalChange&) override {}  // values are read from the bus when publishing
+  void tick(const Trace& trace, int64_t nowNs) override;
+  void end(const Trace& trace) override;
+  bool beforeTick(sim::Simulation& sim) override;
+  // Around every scan of the soft PLC (sim::SimOptions::beforeScan/afterScan): the forced values.
+  void beforeScan(plc::Runtime& plc) { applyForces(plc); }
+  void afterScan(plc::Runtime& plc) { applyForces(plc); }
+
+  // ---- any thread ----
+  void post(Command command);
+  // Calls f(const Snapshot&) under the snapshot's lock: keep it short (copy what is needed).
+  template <class F>
+  void read(F&& f) const {
+    std::lock_guard lock(snapshotMutex_);
+    f(snapshot_);
+  }
+
+ private:
+  struct Forced {
+    std::string name;
+    bc::VarRef ref;
+    std::vector<uint8_t> bytes;
+  };
+  // True if the snapshot was updated (false: a reader held it; try again later).
+  bool publish(const Trace& trace, bool wait);
+  void mirrorTrace(const Trace& trace);
+  void applyCommands(sim::Simulation& sim);
+  void apply(Command& c, sim::Simulation& sim);
+  void applyForces(plc::Runtime& plc);
+  static bool writeBytes(const Forced& f, uint8_t* memory);
+
+  cell::Cell& cell_;
+  const std::atomic<bool>* interrupt_;
+  const Trace* trace_ = nullptr;
+  plc::Runtime* plc_ = nullptr;
+
+  // simulation thread only
+  bool paused_;
+  uint64_t stepsLeft_ = 0;       // ticks to run before pausing again
+  bool dirty_ = false;           // something changed that is not published yet
+  int64_t nowNs_ = 0;            // the last tick's virtual time
+  int64_t lastPublishWallNs_ = 0;
+  double speed_ = 0;
+  std::vector<Forced> forced_;
+  std::vector<Command> applying_;
+  std::vector<uint32_t> open_;   // indices of activities still running in the snapshot
+
+  // HTTP threads -> simulation thread
+  std::mutex commandMutex_;
+  std::condition_variable commandReady_;
+  std::vector<Command> commands_;
+  std::atomic<bool> hasCommands_{false};
+
+  mutable std::mutex snapshotMutex_;
+  Snapshot snapshot_;
+};
+
+}  // namespace virtcom::hmi

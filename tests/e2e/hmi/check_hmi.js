@@ -1,0 +1,145 @@
+// Browser checks of the virtcom web HMI in real Chromium (Debian's /usr/bin/chromium driven by
+// npm playwright-core). Run by tests/e2e/hmi_e2e_test.cpp against a running virtcom:
+//   node check_hmi.js served PORT OUTDIR   the gearbox cell under `virtcom serve --http`
+//   node check_hmi.js ended PORT OUTDIR    a `virtcom run --hmi` that reaches its end
+// Screenshots go to OUTDIR (kept as artifacts). Prints "hmi checks passed" on success.
+'use strict';
+const assert = require('node:assert/strict');
+const path = require('node:path');
+const { chromium } = require('playwright-core');
+
+const [mode, port, outDir] = process.argv.slice(2);
+const url = `http://127.0.0.1:${port}/`;
+const kGearboxDevices = ['AxisX', 'AxisY', 'Press', 'Robot1', 'Robot2'];
+const kTimeoutMs = 30000;
+
+const kLaunch = {
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  args: ['--no-sandbox', '--disable-gpu', '--disable-dev-shm-usage'],
+};
+const launch = () => chromium.launch(kLaunch);
+
+const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+const virtualNs = (page) => page.$eval('#vtime', (e) => Number(e.dataset.ns));
+const api = async (route, body) => {
+  const response = await fetch(`${url}api/${route}`, body === undefined ? {} : {
+    method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) });
+  return { status: response.status, json: await response.json() };
+};
+const shot = (page, name) => page.screenshot({ path: path.join(outDir, `${name}.png`), fullPage: true });
+
+// Polls `read` until `accept` holds.
+async function eventually(read, accept, what) {
+  let last;
+  for (let waited = 0; waited < kTimeoutMs; waited += 50) {
+    last = await read();
+    if (accept(last)) return last;
+    await sleep(50);
+  }
+  assert.fail(`${what}: last value ${JSON.stringify(last)}`);
+}
+
+async function openHmi(browser) {
+  const page = await browser.newPage({ viewport: { width: 1500, height: 1000 } });
+  page.on('pageerror', (error) => { throw error; });
+  await page.goto(url);
+  await page.waitForSelector('g.device');
+  await eventually(() => virtualNs(page), (ns) => ns > 0, 'the page shows virtual time');
+  return page;
+}
+
+async function everyDeviceIsDrawn(page) {
+  const names = await page.$$eval('g.device', (gs) => gs.map((g) => g.dataset.name).sort());
+  assert.deepEqual(names, kGearboxDevices);
+}
+
+async function robotMovesAndGanttGrows(page) {
+  const marker = () => page.$eval('circle.tcp[data-device="Robot1"]', (c) => `${c.getAttribute('cx')},${c.getAttribute('cy')}`);
+  const bars = () => page.$$eval('#gantt rect.bar', (r) => r.length);
+  const firstMarker = await marker(), firstBars = await bars();
+  await eventually(marker, (m) => m !== firstMarker, "Robot1's tool centre point moves");
+  await eventually(bars, (n) => n > firstBars, 'the Gantt chart grows');
+  await eventually(() => page.$$eval('g.device[data-state="busy"]', (g) => g.length), (n) => n > 0, 'a device shows busy');
+}
+
+async function pauseAndStep(page, baseTickNs) {
+  await page.click('#btn-pause');
+  await eventually(() => page.textContent('#run-state'), (s) => s === 'paused', 'the badge says paused');
+  const paused = await virtualNs(page);
+  await sleep(400);
+  assert.equal(await virtualNs(page), paused, 'virtual time stands still while paused');
+  await shot(page, 'paused');
+  await page.click('#btn-step');
+  await eventually(() => virtualNs(page), (ns) => ns !== paused, 'a step advances virtual time');
+  await sleep(300);
+  assert.equal(await virtualNs(page), paused + baseTickNs, 'one step is one base tick');
+  await page.click('#btn-run');
+  await eventually(() => virtualNs(page), (ns) => ns > paused + baseTickNs, 'run resumes');
+}
+
+// Forcing MAIN.jobsFinished beyond the job count makes the PLC's own logic report a finished
+// cycle (cycleDone := jobsFinished >= jobCount), which the KPI panel counts.
+async function forcingChangesThePlc(page) {
+  await page.fill('#var-search', 'jobsfinished');
+  await page.click('#var-results li[data-name="MAIN.jobsFinished"]');
+  const row = page.locator('#watch tr[data-name="MAIN.jobsFinished"]');
+  await row.locator('.new-value').fill('99');
+  await row.locator('.force').click();
+  await eventually(() => row.getAttribute('class'), (c) => (c || '').includes('forced'), 'the forced row is marked');
+  await eventually(() => row.locator('.value').textContent(), (v) => v === '99', 'the forced value is shown');
+  await eventually(() => page.textContent('#kpi-cycles'), (c) => Number(c) >= 1, 'the PLC completes a cycle because of the force');
+  const vars = await api('vars?match=MAIN.jobsFinished');
+  assert.equal(vars.json.vars[0].value, '99');
+  assert.equal(vars.json.vars[0].forced, true);
+  await shot(page, 'forced');
+  await page.click('#release-all');
+  await eventually(() => row.getAttribute('class'), (c) => !(c || '').includes('forced'), 'release all unmarks the row');
+}
+
+async function served() {
+  const model = (await api('model')).json;
+  assert.deepEqual(model.devices.map((d) => d.name).sort(), kGearboxDevices);
+  const browser = await launch();
+  const secondServer = await chromium.launchServer(kLaunch);  // its process, to kill it
+  const second = await chromium.connect(secondServer.wsEndpoint());
+  try {
+    const page = await openHmi(browser);
+    const other = await openHmi(second);  // two viewers at once
+    await everyDeviceIsDrawn(page);
+    await everyDeviceIsDrawn(other);
+    await robotMovesAndGanttGrows(page);
+    await shot(page, 'running');
+    await shot(other, 'second-viewer');
+    // A browser killed mid-run: the run and the other viewer go on.
+    secondServer.process().kill('SIGKILL');
+    const before = await virtualNs(page);
+    await eventually(() => virtualNs(page), (ns) => ns > before + 500e6, 'the run goes on after a viewer was killed');
+    await pauseAndStep(page, model.baseTickNs);
+    await forcingChangesThePlc(page);
+    await shot(page, 'final');
+  } finally {
+    await browser.close();
+  }
+}
+
+async function ended() {
+  const browser = await launch();
+  try {
+    const page = await openHmi(browser);
+    await everyDeviceIsDrawn(page);
+    await eventually(() => page.textContent('#run-state'), (s) => s === 'ended', 'the page shows the end of the run');
+    await eventually(() => page.textContent('#kpi-cycles'), (c) => c === '1', 'one cycle completed');
+    const bars = await page.$$eval('#gantt rect.bar', (r) => r.length);
+    assert.ok(bars > 20, `the whole cycle's operations are in the Gantt chart (${bars})`);
+    await shot(page, 'ended');
+  } finally {
+    await browser.close();
+  }
+}
+
+({ served, ended }[mode] ?? (() => assert.fail(`unknown mode ${mode}`)))()
+  .then(() => console.log('hmi checks passed'))
+  .catch((error) => {
+    console.error(error);
+    process.exit(1);
+  });

@@ -1,0 +1,94 @@
+// End-to-end: the web HMI of the gearbox cell in real Chromium (tests/e2e/hmi/check_hmi.js, npm
+// playwright-core driving Debian's chromium; `make test` installs it with npm ci):
+//  - `virtcom serve cell.yaml --http`: every device drawn, a robot moves, the Gantt grows, two
+//    browsers at once, one killed mid-run, pause and single step, a forced variable changes the
+//    PLC; screenshots in the test's output directory (artifacts);
+//  - `virtcom run cell.yaml --hmi`: the page follows a paced run to its end;
+//  - the start-up checks of the HMI options.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "server_process.hpp"
+#include "shell_command.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using virtcom::e2e::ServerProcess;
+using virtcom::e2e::shell;
+
+const std::string kExe = VIRTCOM_EXE;
+const std::string kGearbox = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell";
+const std::string kClientDir = VIRTCOM_HMI_CLIENT_DIR;
+const std::string kAnnounce = "hmi: serving http://";
+constexpr const char* kChromium = "/usr/bin/chromium";
+
+// The screenshots' directory: kept after the test (build/.../hmi-artifacts/<test>).
+std::string artifactDir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  fs::path dir = fs::current_path() / "hmi-artifacts" / info->name();
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+// Skips (or, with VIRTCOM_REQUIRE_BROWSER=1 as `make test` sets, fails) without the browser.
+bool browserMissing() {
+  if (::access(kChromium, X_OK) == 0 && fs::exists(kClientDir + "/node_modules/playwright-core")) return false;
+  const char* require = std::getenv("VIRTCOM_REQUIRE_BROWSER");
+  if (require != nullptr && std::string(require) == "1")
+    ADD_FAILURE() << kChromium << " or npm playwright-core is missing: install chromium and run `npm ci --prefix tests/e2e/hmi`";
+  return true;
+}
+
+int runCheck(const std::string& mode, int port, std::string& out) {
+  return shell("cd '" + kClientDir + "' && node check_hmi.js " + mode + " " + std::to_string(port) + " '" + artifactDir() + "'", out);
+}
+
+TEST(Hmi, TheServedGearboxCellIsWatchedAndSteeredFromTwoBrowsers) {
+  if (browserMissing()) GTEST_SKIP() << "no browser";
+  ServerProcess cell(kExe, {"serve", kGearbox + "/cell.yaml", "--http", "127.0.0.1:0", "--quiet"}, kGearbox, kAnnounce);
+  ASSERT_GT(cell.port(), 0) << cell.errorOutput();
+  std::string out;
+  EXPECT_EQ(runCheck("served", cell.port(), out), 0) << out;
+  EXPECT_NE(out.find("hmi checks passed"), std::string::npos) << out;
+  EXPECT_EQ(cell.stop(), 0) << cell.errorOutput();
+}
+
+TEST(Hmi, APacedRunIsFollowedToItsEnd) {
+  if (browserMissing()) GTEST_SKIP() << "no browser";
+  ServerProcess run(kExe, {"run", kGearbox + "/cell.yaml", "--hmi", "127.0.0.1:0", "--speed", "20", "--quiet"}, kGearbox, kAnnounce);
+  ASSERT_GT(run.port(), 0) << run.errorOutput();
+  std::string out;
+  EXPECT_EQ(runCheck("ended", run.port(), out), 0) << out;
+  EXPECT_NE(out.find("hmi checks passed"), std::string::npos) << out;
+  EXPECT_EQ(run.stop(), 0) << run.errorOutput();
+  EXPECT_NE(run.errorOutput().find("the run has ended"), std::string::npos) << run.errorOutput();
+}
+
+TEST(Hmi, BindingBeyondLoopbackNeedsAnAllowList) {
+  std::string out;
+  EXPECT_EQ(shell(kExe + " serve '" + kGearbox + "/cell.yaml' --http 0.0.0.0:0 --quiet", out), 64) << out;
+  EXPECT_NE(out.find("--http-allow"), std::string::npos) << out;
+}
+
+TEST(Hmi, ABadAddressIsAUsageError) {
+  std::string out;
+  EXPECT_EQ(shell(kExe + " run '" + kGearbox + "/cell.yaml' --hmi 127.0.0.1:http --quiet", out), 64) << out;
+  EXPECT_NE(out.find("--hmi:"), std::string::npos) << out;
+}
+
+TEST(Hmi, HelpNamesTheOptions) {
+  std::string out;
+  EXPECT_EQ(shell(kExe + " serve --help", out), 0) << out;
+  for (const char* option : {"--http", "--http-allow", "--allow-any-peer", "--hmi-token", "--hmi-readonly", "--hmi-paused"})
+    EXPECT_NE(out.find(option), std::string::npos) << option;
+  out.clear();
+  EXPECT_EQ(shell(kExe + " run --help", out), 0) << out;
+  EXPECT_NE(out.find("--hmi "), std::string::npos) << out;
+}
+
+}  // namespace

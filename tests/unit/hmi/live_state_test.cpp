@@ -1,0 +1,123 @@
+// The live state over the gearbox cell: what the simulation publishes, commands applied between
+// ticks (pause, single step, force, fault), and the API's answers over it.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include <nlohmann/json.hpp>
+
+#include "hmi/api.hpp"
+#include "hmi/live_state.hpp"
+#include "sim/simulation.hpp"
+
+namespace virtcom::hmi {
+namespace {
+
+using Json = nlohmann::json;
+
+struct GearboxHmi : ::testing::Test {
+  SourceManager sources;
+  Diagnostics diags;
+  std::unique_ptr<cell::Cell> cell;
+  std::atomic<bool> interrupt{false};
+  std::unique_ptr<LiveState> live;
+  std::unique_ptr<sim::Simulation> simulation;
+  std::unique_ptr<Api> api;
+
+  void SetUp() override {
+    cell = cell::loadCell(std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell/cell.yaml", sources, diags);
+    ASSERT_TRUE(cell) << diags.render(sources);
+    cell->run.cycles = UINT32_MAX;  // as served: cycles are counted, never end the run
+    live = std::make_unique<LiveState>(*cell, &interrupt);
+    sim::SimOptions options;
+    options.speed = 1e6;  // paced (a controlled run always is), but fast
+    options.control = live.get();
+    options.traceSinks.push_back(live.get());
+    options.beforeScan = [this](plc::Runtime& plc) { live->beforeScan(plc); };
+    options.afterScan = [this](plc::Runtime& plc) { live->afterScan(plc); };
+    simulation = std::make_unique<sim::Simulation>(*cell, options);
+    api = std::make_unique<Api>(*cell, *live, simulation->plc().baseTickNs(), WriteAccess{});
+  }
+
+  Response call(const Request& r) { return api->handle(parseRequest(r, api->access())); }
+  Response postJson(const std::string& path, const std::string& body) { return call({"POST", path, {}, body, ""}); }
+  void steps(int n) {
+    for (int i = 0; i < n; ++i) ASSERT_TRUE(simulation->step());
+  }
+  int16_t jobsFinished() {
+    auto ref = bc::resolveVariable(*cell->module, "MAIN.jobsFinished");
+    int16_t v;
+    std::memcpy(&v, simulation->plc().machine().memory() + ref->address, 2);
+    return v;
+  }
+};
+
+TEST_F(GearboxHmi, TheModelListsEveryDeviceWithItsPortsAndPlace) {
+  Json model = Json::parse(call({"GET", "/api/model", {}, "", ""}).body);
+  ASSERT_EQ(model["devices"].size(), 5u);
+  EXPECT_EQ(model["devices"][0]["name"], "Robot1");
+  EXPECT_EQ(model["devices"][0]["geometry"]["locations"].size(), 8u);
+  EXPECT_GT(model["devices"][0]["place"]["w"].get<double>(), 0);
+  EXPECT_EQ(model["baseTickNs"], 10'000'000);
+  EXPECT_EQ(model["zones"], Json::array({"SharedTable", "PressArea"}));
+}
+
+TEST_F(GearboxHmi, TheFirstFrameHasEverythingThenOnlyChanges) {
+  steps(1);
+  auto stream = api->openStream(parseRequest({"GET", "/api/stream", {{"watch", "MAIN.jobsFinished,MAIN.nothing"}}, "", ""}, {}));
+  live->end(simulation->trace());  // publishes now, whatever the wall clock says
+  Json first = Json::parse(stream->nextFrame());
+  EXPECT_EQ(first["signals"].size(), cell->bus.size());
+  EXPECT_EQ(first["unknownWatch"], Json::array({"MAIN.nothing"}));
+  EXPECT_EQ(first["vars"][0]["name"], "MAIN.jobsFinished");
+  EXPECT_EQ(stream->nextFrame(), "") << "nothing published since";
+}
+
+TEST_F(GearboxHmi, PauseHoldsTheRunAndStepAdvancesOneTickAtATime) {
+  steps(5);
+  const int64_t before = simulation->nowNs();
+  EXPECT_EQ(postJson("/api/control", R"({"action": "step", "value": 2})").status, 200);
+  steps(2);
+  EXPECT_EQ(simulation->nowNs(), before + 2 * 10'000'000);
+  interrupt = true;  // paused now: the next tick waits, and an interrupt ends the wait
+  EXPECT_FALSE(simulation->step());
+  EXPECT_EQ(simulation->nowNs(), before + 2 * 10'000'000);
+  EXPECT_EQ(simulation->trace().end, RunEnd::Interrupted);
+}
+
+TEST_F(GearboxHmi, AForcedVariableHoldsAgainstTheProgramUntilReleased) {
+  steps(1);
+  ASSERT_EQ(postJson("/api/write", R"({"name": "main.jobsFinished", "value": "99", "force": true})").status, 200);
+  steps(3);
+  EXPECT_EQ(jobsFinished(), 99);
+  EXPECT_GE(simulation->trace().cyclesCompleted, 1u) << "cycleDone := jobsFinished >= jobCount";
+  live->end(simulation->trace());  // publishes now
+  Json vars = Json::parse(call({"GET", "/api/vars", {{"match", "jobsfinished"}}, "", ""}).body)["vars"];
+  EXPECT_EQ(vars[0]["value"], "99");
+  EXPECT_EQ(vars[0]["forced"], true);
+  ASSERT_EQ(postJson("/api/release", "{}").status, 200);
+  ASSERT_EQ(postJson("/api/write", R"({"name": "MAIN.jobsFinished", "value": "0"})").status, 200);
+  steps(1);
+  EXPECT_LT(jobsFinished(), 99) << "released: the program's value again";
+}
+
+TEST_F(GearboxHmi, BadWritesAreRefusedWithTheReason) {
+  EXPECT_EQ(postJson("/api/write", R"({"name": "MAIN.nothing", "value": "1"})").status, 404);
+  Response bad = postJson("/api/write", R"({"name": "MAIN.failed", "value": "maybe"})");
+  EXPECT_EQ(bad.status, 400);
+  EXPECT_NE(bad.body.find("BOOL"), std::string::npos) << bad.body;
+  EXPECT_EQ(postJson("/api/write", R"({"name": "MAIN.Robot1", "value": "1"})").status, 400);
+  EXPECT_EQ(postJson("/api/fault", R"({"device": "Nobody", "code": 1})").status, 404);
+}
+
+TEST_F(GearboxHmi, AnInjectedFaultFailsTheDevicesNextCommand) {
+  ASSERT_EQ(postJson("/api/fault", R"({"device": "Robot1", "code": 77})").status, 200);
+  for (int i = 0; i < 100 && simulation->step(); ++i) {
+  }
+  EXPECT_EQ(cell->devices[0]->faults().errorCode, 77);
+  EXPECT_EQ(simulation->trace().end, RunEnd::DeviceError);
+  EXPECT_EQ(simulation->trace().endMessage, "Robot1 reported error 77");
+}
+
+}  // namespace
+}  // namespace virtcom::hmi

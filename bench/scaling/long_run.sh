@@ -2,7 +2,8 @@
 # Memory and speed of a long run of the generated scaling cell (issue 21):
 #   bench/scaling/long_run.sh [STATIONS (128)] [TASK_MS (1)] [VIRTUAL_TIME (3600s)] [BUILD_DIR (build/release)]
 # Prints the peak resident memory, the CPU time, the real-time factor and the CPU ns per device
-# per tick of `virtcom run --quiet` (GNU time, Debian package `time`).
+# per tick of `virtcom run --quiet` (GNU time, Debian package `time`). VIRTCOM=path runs another
+# build of virtcom on the same generated cell (before/after comparisons).
 set -eu
 stations=${1:-128}
 task_ms=${2:-1}
@@ -12,7 +13,7 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 "$build/bench/make_scaling_cell" "$stations" "$dir" "$task_ms" >/dev/null
 # exit code 3 = the run ended at its time limit, as intended
-/usr/bin/time -f '%M %U %S' -o "$dir/time" "$build/src/cli/virtcom" run "$dir/scaling_cell.yaml" --quiet \
+/usr/bin/time -f '%M %U %S' -o "$dir/time" "${VIRTCOM:-$build/src/cli/virtcom}" run "$dir/scaling_cell.yaml" --quiet \
   --time-limit "$span" || [ $? -eq 3 ]
 read -r rss_kb user_s sys_s <<EOF2
 $(tail -n 1 "$dir/time")

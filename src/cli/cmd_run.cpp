@@ -9,6 +9,7 @@
 #include "cell/cell.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "cli/history_options.hpp"
 #include "core/cell_diagnostic_codes.hpp"
 #include "proto/ads/client_bridge.hpp"
 #include "proto/modbus/client_bridge.hpp"
@@ -37,6 +38,7 @@ struct RunOptions {
   bool quiet = false;
   bool step = false;
   std::string backend = "interp";
+  HistoryRecordOptions history;
 };
 
 // Prints every signal change as it happens (single-step mode).
@@ -108,16 +110,6 @@ bool closeStreamedFiles(std::vector<std::unique_ptr<StreamedFile>>& files) {
     }
   }
   return ok;
-}
-
-bool writeFile(const std::string& path, const std::string& content) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) {
-    std::cerr << "error: cannot write " << path << "\n";
-    return false;
-  }
-  out << content;
-  return true;
 }
 
 ExitCode exitCodeFor(RunEnd end) {
@@ -262,6 +254,12 @@ ExitCode runCell(const RunOptions& o) {
   std::vector<std::unique_ptr<StreamedFile>> files;
   if (!openStreamedFile<report::VcdWriter>(o.vcd, files) || !openStreamedFile<report::CsvWriter>(o.csv, files)) return ExitCode::Usage;
   for (auto& f : files) options.traceSinks.push_back(f->writer.get());
+  auto recorder = openRecorder(o.history, *cell, o.cellFile, timeline);
+  if (!recorder) {
+    std::cerr << "error: " << recorder.error() << "\n";
+    return ExitCode::HistoryError;
+  }
+  if (*recorder) options.traceSinks.push_back(recorder->get());
   ChangePrinter printer;
   if (o.step) options.traceSinks.push_back(&printer);
   sim::Simulation simulation(*cell, options);
@@ -279,6 +277,7 @@ ExitCode runCell(const RunOptions& o) {
   if (!o.html.empty()) ok = writeFile(o.html, report::htmlReport(trace, kpis, html)) && ok;
   if (!o.json.empty()) ok = writeFile(o.json, report::jsonReport(trace, kpis)) && ok;
   if (!ok) return ExitCode::Usage;
+  if (*recorder && !reportRecording(o.history, **recorder)) return ExitCode::HistoryError;
   return exitCodeFor(end);
 }
 
@@ -299,6 +298,7 @@ void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible (1 with 'plc: modbus' or 'plc: ads')")
       ->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);
+  addHistoryOptions(cmd, o->history);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table");
   cmd->add_flag("--step", o->step, "single step: advance one PLC tick per line read from stdin, printing changed signals");
   cmd->callback([o, setExit] { setExit(runCell(*o)); });

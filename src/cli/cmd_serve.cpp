@@ -17,6 +17,7 @@
 #include "cli/ads_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "cli/history_options.hpp"
 #include "cli/modbus_options.hpp"
 #include "proto/modbus/signal_server.hpp"
 #include "report/kpis.hpp"
@@ -38,6 +39,7 @@ struct ServeOptions {
   std::string modbusAllow;  // comma-separated peer addresses; empty: any
   AdsServeOptions ads;      // the soft PLC over ADS
   std::string backend = "interp";
+  HistoryRecordOptions history;
 };
 
 using Bridges = std::vector<std::unique_ptr<BusBridge>>;
@@ -102,6 +104,12 @@ ExitCode serveCell(const ServeOptions& o) {
   // Serving lasts until interrupted; a device error or collision is for the PLC to handle.
   cell->run.stopOnDeviceError = false;
   cell->run.stopOnCollision = false;
+  // Before the servers announce themselves: a history file that cannot be used stops serve first.
+  auto recorder = openRecorder(o.history, *cell, o.cellFile, cell->run.recordVars);
+  if (!recorder) {
+    std::cerr << "error: " << recorder.error() << "\n";
+    return ExitCode::HistoryError;
+  }
   // Handlers first: a client may send SIGTERM as soon as a server announces itself.
   std::signal(SIGINT, onServeSignal);
   std::signal(SIGTERM, onServeSignal);
@@ -136,12 +144,14 @@ ExitCode serveCell(const ServeOptions& o) {
     options.beforeScan = [&](plc::Runtime& plc) { ads->beforeScan(plc); };
     options.afterScan = [&](plc::Runtime& plc) { ads->afterScan(plc); };
   }
+  if (*recorder) options.traceSinks.push_back(recorder->get());
   sim::Simulation simulation(*cell, options);
   RunEnd end = simulation.run();
   bridges->clear();  // stops the servers before the report
   if (ads) ads->stop();
   const Trace& trace = simulation.trace();
   if (!o.quiet) std::cout << report::summaryTable(trace, report::computeKpis(trace));
+  if (*recorder && !reportRecording(o.history, **recorder)) return ExitCode::HistoryError;
   if (end == RunEnd::PlcFault) {
     std::cerr << "runtime fault: " << trace.endMessage << "\n";
     return ExitCode::PlcFault;
@@ -164,6 +174,7 @@ void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   addAdsServeOptions(cmd, o->ads);
   cmd->add_option("--speed", o->speed, "pace factor against the wall clock (default 1 = real time)")->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);
+  addHistoryOptions(cmd, o->history);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table when stopped");
   cmd->callback([o, setExit] { setExit(serveCell(*o)); });
 }

@@ -35,7 +35,7 @@ Recorder::Recorder(Connection db, RecorderOptions options)
 Recorder::~Recorder() { stopWriter(); }
 
 void Recorder::begin(const Trace& trace) {
-  run_ = writer_.writeStart(trace, {options_.cellName, options_.cellFile, utcNowNs()});
+  run_ = writer_.writeStart(trace, {options_.cellName, options_.cellFile, utcNowNs(), options_.timeline});
   if (run_ < 0) {
     error_ = writer_.error();
     return;  // every event then counts as dropped: nothing takes them off the queue

@@ -26,6 +26,7 @@ namespace virtcom::history {
 struct RecorderOptions {
   std::string cellName;
   std::string cellFile;
+  std::vector<std::string> timeline;            // the report's timeline signals
   size_t queueEvents = 1 << 16;                  // 48 bytes each: 3 MiB
   int64_t flushPeriodNs = 200'000'000;           // longest wall time between commits
   Retention retention;                           // applied when opened, then every minute

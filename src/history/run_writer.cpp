@@ -53,8 +53,11 @@ bool RunWriter::writeLabels(const Trace& trace) {
 
 int64_t RunWriter::writeStart(const Trace& trace, const RunIdentity& identity) {
   Transaction tx(db_);
-  Statement run(db_, "INSERT INTO runs (cell_name, cell_file, wall_start_ns) VALUES (?1, ?2, ?3)");
-  if (!tx.began() || !run.bind(1, identity.cellName).bind(2, identity.cellFile).bind(3, identity.wallStartNs).run()) return fail(), -1;
+  std::string timeline;
+  for (const std::string& name : identity.timeline) timeline += (timeline.empty() ? "" : "\n") + name;
+  Statement run(db_, "INSERT INTO runs (cell_name, cell_file, wall_start_ns, timeline) VALUES (?1, ?2, ?3, ?4)");
+  if (!tx.began() || !run.bind(1, identity.cellName).bind(2, identity.cellFile).bind(3, identity.wallStartNs).bind(4, timeline).run())
+    return fail(), -1;
   run_ = db_.lastInsertRowid();
   Statement signal(db_, "INSERT INTO signals (run, id, name, type, initial) VALUES (?1, ?2, ?3, ?4, ?5)");
   for (size_t i = 0; i < trace.signals.size(); ++i) {

@@ -5,6 +5,7 @@
 // writeBatch on the writer thread.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/trace.hpp"
 #include "history/event_queue.hpp"
@@ -16,6 +17,7 @@ struct RunIdentity {
   std::string cellName;
   std::string cellFile;
   int64_t wallStartNs = 0;  // UTC ns since 1970
+  std::vector<std::string> timeline;  // the report's timeline signals, in order
 };
 
 class RunWriter {

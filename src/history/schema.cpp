@@ -16,6 +16,7 @@ CREATE TABLE runs (
   id INTEGER PRIMARY KEY,
   cell_name TEXT NOT NULL,
   cell_file TEXT NOT NULL,
+  timeline TEXT NOT NULL,
   wall_start_ns INTEGER NOT NULL,
   end_ns INTEGER NOT NULL DEFAULT 0,
   end_reason TEXT,

@@ -13,7 +13,7 @@ namespace {
 constexpr const char* kMigrations[] = {
     R"sql(
 CREATE TABLE runs (
-  id INTEGER PRIMARY KEY,
+  id INTEGER PRIMARY KEY AUTOINCREMENT,  -- never reused, even after retention deleted the newest
   cell_name TEXT NOT NULL,
   cell_file TEXT NOT NULL,
   timeline TEXT NOT NULL,

@@ -161,37 +161,5 @@ TEST_F(Recorder_, RecordingAllocatesNothingPerChangeOrTick) {
   EXPECT_EQ(recorder->drops(), 0u);
 }
 
-TEST_F(Recorder_, RetentionByAgeDeletesOldRunsWhenOpened) {
-  for (int i = 0; i < 2; ++i) recordSample(*open("h.sqlite"));
-  {
-    auto db = openDatabase(path("h.sqlite"), OpenMode::Record);
-    ASSERT_TRUE(db.has_value());
-    ASSERT_TRUE(db->exec("UPDATE runs SET wall_start_ns = wall_start_ns - 3 * 86400000000000 WHERE id = 1"));
-  }
-  RecorderOptions options;
-  options.retention.keepDays = 2;
-  auto recorder = open("h.sqlite", options);
-  EXPECT_EQ(recorder->pruned(), 1);
-  recordSample(*recorder);
-  recorder.reset();
-  HistoryReader reader = read("h.sqlite");
-  auto runs = reader.runs();
-  ASSERT_EQ(runs.size(), 2u);
-  EXPECT_EQ(runs[0].id, 2);
-  EXPECT_EQ(reader.changes(1, {}).size(), 0u);  // its rows went with it
-  EXPECT_EQ(reader.activities(1, {}).size(), 0u);
-}
-
-TEST_F(Recorder_, RetentionBySizeKeepsTheNewestRuns) {
-  for (int i = 0; i < 4; ++i) recordSample(*open("h.sqlite"));
-  auto db = openDatabase(path("h.sqlite"), OpenMode::Record);
-  ASSERT_TRUE(db.has_value());
-  EXPECT_EQ(pruneRuns(*db, {0, usedBytes(*db)}, 4, 0), 0);  // within the limit
-  EXPECT_EQ(pruneRuns(*db, {0, 1}, 4, 0), 3);  // oldest first, all but the current run
-  int64_t runs = 0;
-  ASSERT_TRUE(db->queryInt("SELECT MIN(id) + COUNT(*) * 10 FROM runs", runs));
-  EXPECT_EQ(runs, 14);  // run 4 alone
-}
-
 }  // namespace
 }  // namespace virtcom::history

@@ -1,12 +1,14 @@
 // End-to-end: `virtcom run/serve --history` and `virtcom history` as a user runs them: exports
 // byte-identical to the run's own files, time ranges, errors with their exit status, drops
 // reported, and a `serve` killed with SIGKILL leaving a readable history.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
 

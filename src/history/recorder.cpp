@@ -47,7 +47,8 @@ void Recorder::begin(const Trace& trace) {
 template <class Fill>
 void Recorder::push(size_t n, bool wait, Fill&& fill) {
   while (!queue_.tryPush(n, fill)) {
-    if (!wait || !thread_.joinable()) {
+    // Waiting only helps with a writer to make room, and room enough for n.
+    if (!wait || !thread_.joinable() || n > queue_.capacity()) {
       drops_.fetch_add(1, std::memory_order_relaxed);
       return;
     }

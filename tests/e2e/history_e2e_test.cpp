@@ -162,6 +162,8 @@ TEST_F(History, BadFilesAndRunsAreClearErrors) {
 
 TEST_F(History, HelpNamesEveryOption) {
   std::string output;
+  ASSERT_EQ(virtcom("--help", output), 0);
+  EXPECT_THAT(output, HasSubstr("history"));
   ASSERT_EQ(virtcom("history --help", output), 0);
   for (const char* option : {"--run", "--from", "--to", "--csv", "--vcd", "--report", "--json", "--signal"})
     EXPECT_THAT(output, HasSubstr(option)) << option;

@@ -122,6 +122,7 @@ TEST_F(Recorder_, FullQueueDropsAndCountsEveryLostEvent) {
   constexpr int kChanges = 5000;
   for (int i = 0; i < kChanges; ++i) recorder->change({1'000'000 + i, 1, static_cast<uint64_t>(i)});
   recorder->tick(t, 1'000'000 + kChanges);
+  t.faults.push_back({t.endNs, "PLC", std::string(200, 'f')});  // never fits: dropped at the end too, not waited for
   t.endNs = 1'000'000 + kChanges;
   t.end = RunEnd::Interrupted;
   recorder->end(t);
@@ -132,7 +133,7 @@ TEST_F(Recorder_, FullQueueDropsAndCountsEveryLostEvent) {
   auto run = reader.run(1);
   ASSERT_TRUE(run.has_value());
   EXPECT_EQ(static_cast<uint64_t>(run->drops), drops);
-  EXPECT_EQ(static_cast<uint64_t>(run->changes) + drops, static_cast<uint64_t>(kChanges));
+  EXPECT_EQ(static_cast<uint64_t>(run->changes) + drops, static_cast<uint64_t>(kChanges) + 1);  // + the fault
 }
 
 // The scan thread's side: no allocation per change or per tick, activities beginning and ending

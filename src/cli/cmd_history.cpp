@@ -38,7 +38,7 @@ std::string utcText(int64_t utcNs) {
 
 std::string endText(const history::RunSummary& r) {
   if (!r.writerError.empty()) return "recording failed: " + r.writerError;
-  return r.ended ? r.endReason : "not ended (process killed?)";
+  return r.ended ? r.endReason : "not ended: running or killed";
 }
 
 void printRuns(const std::vector<history::RunSummary>& runs) {

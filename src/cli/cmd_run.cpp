@@ -254,7 +254,7 @@ ExitCode runCell(const RunOptions& o) {
   std::vector<std::unique_ptr<StreamedFile>> files;
   if (!openStreamedFile<report::VcdWriter>(o.vcd, files) || !openStreamedFile<report::CsvWriter>(o.csv, files)) return ExitCode::Usage;
   for (auto& f : files) options.traceSinks.push_back(f->writer.get());
-  auto recorder = openRecorder(o.history, *cell, o.cellFile, timeline);
+  auto recorder = openRecorder(o.history, *cell, o.cellFile, timeline, options.speed > 0);
   if (!recorder) {
     std::cerr << "error: " << recorder.error() << "\n";
     return ExitCode::HistoryError;

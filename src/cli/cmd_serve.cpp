@@ -105,7 +105,7 @@ ExitCode serveCell(const ServeOptions& o) {
   cell->run.stopOnDeviceError = false;
   cell->run.stopOnCollision = false;
   // Before the servers announce themselves: a history file that cannot be used stops serve first.
-  auto recorder = openRecorder(o.history, *cell, o.cellFile, cell->run.recordVars);
+  auto recorder = openRecorder(o.history, *cell, o.cellFile, cell->run.recordVars, true);
   if (!recorder) {
     std::cerr << "error: " << recorder.error() << "\n";
     return ExitCode::HistoryError;

@@ -15,13 +15,13 @@ void addHistoryOptions(CLI::App* cmd, HistoryRecordOptions& o) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--history-queue", o.queueEvents,
                   "with --history: events buffered between the simulation and the database writer (default 65536); "
-                  "when full, events are dropped and counted")
+                  "when full, a run paced to the wall clock (serve, --speed) drops events and counts them, a run in virtual time waits")
       ->check(CLI::PositiveNumber);
 }
 
 std::expected<std::unique_ptr<history::Recorder>, std::string> openRecorder(const HistoryRecordOptions& o, const cell::Cell& cell,
                                                                            const std::string& cellFile,
-                                                                           std::vector<std::string> timeline) {
+                                                                           std::vector<std::string> timeline, bool paced) {
   if (o.path.empty()) return nullptr;
   history::RecorderOptions options;
   options.cellName = cell.name;
@@ -30,6 +30,7 @@ std::expected<std::unique_ptr<history::Recorder>, std::string> openRecorder(cons
   options.cellFile = ec ? cellFile : absolute.lexically_normal().string();
   options.timeline = std::move(timeline);
   options.queueEvents = o.queueEvents;
+  options.waitWhenFull = !paced;
   options.retention = {o.keepDays, o.maxMb * 1024 * 1024};
   auto recorder = history::Recorder::open(o.path, std::move(options));
   if (!recorder) return std::unexpected("--history: " + recorder.error());

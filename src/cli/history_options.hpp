@@ -26,9 +26,11 @@ void addHistoryOptions(CLI::App* cmd, HistoryRecordOptions& o);
 
 // The recorder for `cell` (null without --history), or the error naming the file.
 // `timeline`: the signals the run's report shows, kept with the run for `virtcom history --report`.
+// `paced`: the run follows the wall clock (serve, --speed, an external PLC), so a full queue
+// drops events; otherwise the simulation waits for the writer and every event is recorded.
 std::expected<std::unique_ptr<history::Recorder>, std::string> openRecorder(const HistoryRecordOptions& o, const cell::Cell& cell,
                                                                            const std::string& cellFile,
-                                                                           std::vector<std::string> timeline);
+                                                                           std::vector<std::string> timeline, bool paced);
 
 // After the run: one line on stderr naming the run recorded, and a warning for dropped events
 // or a database failure. False if the recording failed.

@@ -46,6 +46,7 @@ void Recorder::begin(const Trace& trace) {
 
 template <class Fill>
 void Recorder::push(size_t n, bool wait, Fill&& fill) {
+  wait = wait || options_.waitWhenFull;
   while (!queue_.tryPush(n, fill)) {
     // Waiting only helps with a writer to make room, and room enough for n.
     if (!wait || !thread_.joinable() || n > queue_.capacity()) {

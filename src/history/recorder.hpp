@@ -4,7 +4,8 @@
 // queue (no allocation, no lock, no I/O per change or per tick); a writer thread of its own
 // drains the queue into SQLite in batched transactions, committing at least every flush period,
 // so the scan never waits for the disk. When the queue is full an event is dropped and counted,
-// never silently: drops() and the run's row say how many.
+// never silently: drops() and the run's row say how many. A run in virtual time, which has no
+// wall-clock deadline, may instead wait for room (RecorderOptions::waitWhenFull) and lose nothing.
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
@@ -29,6 +30,7 @@ struct RecorderOptions {
   std::vector<std::string> timeline;            // the report's timeline signals
   size_t queueEvents = 1 << 16;                  // 48 bytes each: 3 MiB
   int64_t flushPeriodNs = 200'000'000;           // longest wall time between commits
+  bool waitWhenFull = false;                     // wait for the writer instead of dropping (unpaced runs only)
   Retention retention;                           // applied when opened, then every minute
 };
 

@@ -174,18 +174,35 @@ TEST_F(History, HelpNamesEveryOption) {
   }
 }
 
-// A queue of one event cannot keep up: events are dropped, counted, and reported on stderr and in
-// the listing; the run itself is not held up.
+// Paced to the wall clock (here 2000 times real time), a queue of one event cannot keep up: events
+// are dropped, counted, and reported on stderr and in the listing; the run is not held up.
 TEST_F(History, FullQueueDropsAreCountedAndReported) {
   std::string output;
   const std::string db = out("h.sqlite");
-  ASSERT_EQ(virtcom("run " + kData + "/cells/pressing_forever.yaml --time-limit 600s --quiet --history-queue 1 --history " + db, output), 3)
+  ASSERT_EQ(virtcom("run " + kData + "/cells/pressing_forever.yaml --time-limit 600s --speed 2000 --quiet --history-queue 1 --history " + db,
+                    output),
+            3)
       << output;
   EXPECT_THAT(output, ::testing::ContainsRegex("warning: history: [1-9][0-9]* event\\(s\\) dropped"));
   const int64_t drops = sqlInt(db, "SELECT drops FROM runs WHERE id = 1");
   EXPECT_GT(drops, 0);
   ASSERT_EQ(virtcom("history " + db, output), 0) << output;
   EXPECT_THAT(output, HasSubstr(" " + std::to_string(drops) + "\n"));
+}
+
+// In virtual time nothing is late: the same tiny queue makes the simulation wait, nothing is lost.
+TEST_F(History, RunInVirtualTimeWaitsInsteadOfDropping) {
+  std::string output;
+  const std::string db = out("h.sqlite");
+  ASSERT_EQ(virtcom("run " + kData + "/cells/pressing_forever.yaml --time-limit 60s --quiet --history-queue 1 --csv " + out("run.csv") +
+                        " --history " + db,
+                    output),
+            3)
+      << output;
+  EXPECT_EQ(output.find("dropped"), std::string::npos) << output;
+  EXPECT_EQ(sqlInt(db, "SELECT drops FROM runs WHERE id = 1"), 0);
+  ASSERT_EQ(virtcom("history " + db + " --csv " + out("h.csv"), output), 0) << output;
+  EXPECT_TRUE(readFile(out("run.csv")) == readFile(out("h.csv")));
 }
 
 // Durability: SIGKILL (no chance to clean up) while serving; what was committed before stays

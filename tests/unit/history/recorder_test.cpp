@@ -136,6 +136,22 @@ TEST_F(Recorder_, FullQueueDropsAndCountsEveryLostEvent) {
   EXPECT_EQ(static_cast<uint64_t>(run->changes) + drops, static_cast<uint64_t>(kChanges) + 1);  // + the fault
 }
 
+TEST_F(Recorder_, WaitWhenFullRecordsEveryEvent) {
+  RecorderOptions options;
+  options.queueEvents = 1;
+  options.waitWhenFull = true;
+  auto recorder = open("h.sqlite", options);
+  Trace t = sampleTrace();
+  recorder->begin(t);
+  for (int i = 0; i < 2000; ++i) recorder->change({1'000'000 + i, 1, static_cast<uint64_t>(i)});
+  t.faults.push_back({0, "PLC", "short"});  // two events: larger than the queue, so dropped
+  t.endNs = 1'000'000 + 2000;
+  recorder->end(t);
+  EXPECT_EQ(recorder->drops(), 1u);
+  recorder.reset();
+  EXPECT_EQ(read("h.sqlite").changes(1, {}).size(), 2000u);
+}
+
 // The scan thread's side: no allocation per change or per tick, activities beginning and ending
 // included (STYLE rule 7).
 TEST_F(Recorder_, RecordingAllocatesNothingPerChangeOrTick) {

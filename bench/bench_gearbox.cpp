@@ -62,6 +62,8 @@ void runGearbox(benchmark::State& state, int64_t cycleNs, bool skipRepeatedScans
     simulatedS = static_cast<double>(simulation.trace().cycleEndNs) * 1e-9;
     state.ResumeTiming();
   }
+  for (const char* suffix : {"", "-wal", "-shm"})
+    if (!historyPath.empty()) std::filesystem::remove(historyPath + suffix);
   state.counters["simulated_s"] = simulatedS;
   state.counters["realtime_factor"] =
       benchmark::Counter(simulatedS * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);

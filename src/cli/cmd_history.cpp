@@ -72,7 +72,11 @@ std::optional<history::TimeRange> timeRange(const HistoryOptions& o) {
 }
 
 bool exportRun(const HistoryOptions& o, history::HistoryReader& reader, const history::RunSummary& run, history::TimeRange range) {
-  const Trace trace = reader.trace(run.id, range);
+  size_t skipped = 0;
+  const Trace trace = reader.trace(run.id, range, &skipped);
+  if (skipped > 0)
+    std::cerr << "warning: " << o.file << ": " << skipped << " row(s) of run " << run.id
+              << " name a signal, device or label the run does not have; left out\n";
   bool ok = true;
   if (!o.csv.empty()) ok = writeFile(o.csv, report::csvChanges(trace)) && ok;
   if (!o.vcd.empty()) ok = writeFile(o.vcd, report::vcdReport(trace)) && ok;

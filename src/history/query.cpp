@@ -81,6 +81,19 @@ void readCycles(Connection& db, int64_t run, int64_t from, int64_t to, Trace& tr
   trace.cycleEndNs = last.columnInt(1) - from;
 }
 
+// Leaves out the rows that refer to a signal, device or label the trace does not have; their
+// number.
+size_t dropDanglingRows(Trace& t) {
+  const size_t before = t.changes.size() + t.activities.size() + t.collisions.size();
+  const size_t signals = t.signals.size(), devices = t.devices.size(), labels = t.labels.size();
+  std::erase_if(t.changes, [&](const SignalChange& c) { return c.tag >= signals; });
+  std::erase_if(t.activities, [&](const ActivityRecord& a) { return a.device >= devices || a.label >= labels; });
+  std::erase_if(t.collisions, [&](const CollisionRecord& c) {
+    return c.zone >= labels || c.deviceA >= devices || c.deviceB >= devices || c.activityA >= labels || c.activityB >= labels;
+  });
+  return before - (t.changes.size() + t.activities.size() + t.collisions.size());
+}
+
 }  // namespace
 
 std::expected<HistoryReader, std::string> HistoryReader::open(const std::string& path) {
@@ -170,7 +183,7 @@ std::vector<ActivityRecord> HistoryReader::activities(int64_t run, TimeRange ran
   return result;
 }
 
-Trace HistoryReader::trace(int64_t runId, TimeRange range) {
+Trace HistoryReader::trace(int64_t runId, TimeRange range, size_t* skipped) {
   Trace trace;
   auto summary = run(runId);
   if (!summary) return trace;
@@ -213,6 +226,8 @@ Trace HistoryReader::trace(int64_t runId, TimeRange range) {
     readCycles(db_, runId, from, to, trace);
   }
   if (!range.whole()) totalsFromActivities(trace);
+  const size_t dangling = dropDanglingRows(trace);
+  if (skipped) *skipped = dangling;
   return trace;
 }
 

@@ -69,7 +69,10 @@ class HistoryReader {
   // at 0 (times relative to range.fromNs): initial values are those just before fromNs, changes,
   // activities (clipped to the range), collisions, faults and cycles those inside it, device
   // totals summed from the clipped activities. Empty trace (no signals) if the run is unknown.
-  Trace trace(int64_t run, TimeRange range = {});
+  // Rows naming a signal, device or label the run does not have (a file edited or damaged in
+  // a way the integrity check cannot see) are left out, so every report writer can take the
+  // trace; `skipped` (if given) receives their number.
+  Trace trace(int64_t run, TimeRange range = {}, size_t* skipped = nullptr);
 
  private:
   Connection db_;

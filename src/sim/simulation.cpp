@@ -2,7 +2,15 @@
 
 #include <algorithm>
 
+#include "core/value_codec.hpp"
+
 namespace virtcom::sim {
+
+namespace {
+
+Simulation::WireSlot slotOf(const cell::Wire& w) { return {w.address, w.tag, w.bit, w.varType}; }
+
+}  // namespace
 
 Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), options_(options) {
   if (options_.speed > 0) clock_ = std::make_unique<PacedClock>(options_.speed);
@@ -16,11 +24,12 @@ Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), opti
   timeLimitNs_ = options_.timeLimitNs >= 0 ? options_.timeLimitNs : cell_.run.timeLimitNs;
   Trace& trace = cell_.trace;
   for (auto& d : cell_.devices) d->prepare(cell_.world, trace);
+  for (const cell::Wire& w : cell_.wires) (w.dir == plant::PortDir::Out ? toPlc_ : fromPlc_).push_back(slotOf(w));
   // Extra PLC variables to record get their own tags.
   for (const auto& name : cell_.run.recordVars) {
     auto ref = bc::resolveVariable(*cell_.module, name);
     const bc::TypeDesc& t = cell_.module->types[ref->type];
-    recordWires_.push_back(cell::makeWire(cell_.bus.add(name, t.elem), plant::PortDir::In, *ref, t.elem, name));
+    fromPlc_.push_back(slotOf(cell::makeWire(cell_.bus.add(name, t.elem), plant::PortDir::In, *ref, t.elem, name)));
   }
   if (!cell_.run.cycleDoneVar.empty()) {
     auto ref = bc::resolveVariable(*cell_.module, cell_.run.cycleDoneVar);
@@ -46,9 +55,7 @@ void Simulation::start() {
     runtime_->coldStart();
     uint8_t* mem = runtime_->machine().memory();
     if (options_.preset) options_.preset(*runtime_);
-    for (const auto& w : cell_.wires)
-      if (w.dir == plant::PortDir::In) cell::readVariable(w, mem, cell_.bus);
-    for (const auto& w : recordWires_) cell::readVariable(w, mem, cell_.bus);
+    readFromPlc(mem);
   }
   for (TagId id = 0; id < cell_.bus.size(); ++id) cell_.trace.signals[id].initial = cell_.bus.raw(id);
   cell_.bus.clearChanges();
@@ -150,15 +157,16 @@ bool Simulation::checkStop() {
 void Simulation::scanPlc() {
   uint8_t* mem = runtime_->machine().memory();
   bool touched = false;
-  for (const auto& w : cell_.wires)
-    if (w.dir == plant::PortDir::Out) touched |= cell::writeVariable(w, cell_.bus, mem);
+  for (const WireSlot& w : toPlc_) touched |= storeVariable(mem + w.address, w.bit, w.varType, cell_.bus, w.tag);
   if (touched) runtime_->inputsTouched();
   if (options_.beforeScan) options_.beforeScan(*runtime_);
   runtime_->tick();
   if (options_.afterScan) options_.afterScan(*runtime_);
-  for (const auto& w : cell_.wires)
-    if (w.dir == plant::PortDir::In) cell::readVariable(w, mem, cell_.bus);
-  for (const auto& w : recordWires_) cell::readVariable(w, mem, cell_.bus);
+  readFromPlc(mem);
+}
+
+void Simulation::readFromPlc(const uint8_t* mem) {
+  for (const WireSlot& w : fromPlc_) loadVariable(mem + w.address, w.bit, w.varType, cell_.bus, w.tag);
 }
 
 // False if a bridge failed; the run then ends as a fault of the (external) PLC.

@@ -53,6 +53,8 @@ void Recorder::push(size_t n, bool wait, Fill&& fill) {
       drops_.fetch_add(1, std::memory_order_relaxed);
       return;
     }
+    // Only a run that may wait gets here: wake the writer now rather than at its next poll.
+    if (!hurry_.exchange(true, std::memory_order_relaxed)) wake_.notify_one();
     std::this_thread::yield();
   }
 }
@@ -162,7 +164,8 @@ void Recorder::writerLoop() {
   while (!stopping) {
     {
       std::unique_lock lock(mutex_);
-      wake_.wait_for(lock, std::chrono::nanoseconds(kPollNs), [this] { return stopping_; });
+      wake_.wait_for(lock, std::chrono::nanoseconds(kPollNs), [this] { return stopping_ || hurry_.load(std::memory_order_relaxed); });
+      hurry_.store(false, std::memory_order_relaxed);
       stopping = stopping_;  // seen before draining: after it, nothing more is pushed
     }
     const int64_t nowNs = monotonicNowNs();

@@ -84,6 +84,7 @@ class Recorder final : public TraceSink {
   std::atomic<uint64_t> drops_{0};
   std::atomic<int64_t> progressNs_{0};  // virtual time of the last tick handed over
   std::atomic<int64_t> pruned_{0};
+  std::atomic<bool> hurry_{false};  // the simulation waits for room: drain now
   std::mutex mutex_;
   std::condition_variable wake_;
   bool stopping_ = false;  // guarded by mutex_

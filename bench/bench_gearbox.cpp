@@ -3,10 +3,12 @@
 // requires. Reports the simulated seconds per wall second (the real-time factor).
 #include <benchmark/benchmark.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "cell/cell.hpp"
+#include "history/recorder.hpp"
 #include "sim/simulation.hpp"
 
 namespace virtcom::bench {
@@ -21,7 +23,8 @@ std::unique_ptr<cell::Cell> loadGearbox(int64_t cycleNs, SourceManager& sources,
   return cell;
 }
 
-void runGearbox(benchmark::State& state, int64_t cycleNs, bool skipRepeatedScans) {
+// `historyPath`: also record the run there (--history), from a new file each iteration.
+void runGearbox(benchmark::State& state, int64_t cycleNs, bool skipRepeatedScans, const std::string& historyPath = {}) {
   double simulatedS = 0;
   for (auto _ : state) {
     state.PauseTiming();
@@ -38,14 +41,29 @@ void runGearbox(benchmark::State& state, int64_t cycleNs, bool skipRepeatedScans
       auto ref = bc::resolveVariable(plc.module(), "MAIN.sequence");
       bc::writeValueFromText(plc.module(), *ref, "1", plc.machine().memory());
     };
+    std::unique_ptr<history::Recorder> recorder;
+    if (!historyPath.empty()) {
+      for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(historyPath + suffix);
+      history::RecorderOptions recording;
+      recording.waitWhenFull = true;  // as `virtcom run` in virtual time: everything recorded
+      auto opened = history::Recorder::open(historyPath, recording);
+      if (!opened) {
+        state.SkipWithError(opened.error().c_str());
+        return;
+      }
+      recorder = std::move(*opened);
+      options.traceSinks.push_back(recorder.get());
+    }
     sim::Simulation simulation(*cell, options);
     state.ResumeTiming();
-    RunEnd end = simulation.run();
+    RunEnd end = simulation.run();  // with a recorder, its end() waits for the last commit
     state.PauseTiming();
     if (end != RunEnd::Completed) state.SkipWithError("the gearbox cycle did not complete");
     simulatedS = static_cast<double>(simulation.trace().cycleEndNs) * 1e-9;
     state.ResumeTiming();
   }
+  for (const char* suffix : {"", "-wal", "-shm"})
+    if (!historyPath.empty()) std::filesystem::remove(historyPath + suffix);
   state.counters["simulated_s"] = simulatedS;
   state.counters["realtime_factor"] =
       benchmark::Counter(simulatedS * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
@@ -54,10 +72,14 @@ void runGearbox(benchmark::State& state, int64_t cycleNs, bool skipRepeatedScans
 void BM_GearboxCycle1ms(benchmark::State& state) { runGearbox(state, 1'000'000, true); }
 void BM_GearboxCycle1msNoSkip(benchmark::State& state) { runGearbox(state, 1'000'000, false); }
 void BM_GearboxCycle10ms(benchmark::State& state) { runGearbox(state, 10'000'000, true); }
+void BM_GearboxCycle1msHistory(benchmark::State& state) {
+  runGearbox(state, 1'000'000, true, (std::filesystem::temp_directory_path() / "virtcom_bench_gearbox.sqlite").string());
+}
 
 BENCHMARK(BM_GearboxCycle1ms)->Name("gearbox/cycle_1ms")->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK(BM_GearboxCycle1msNoSkip)->Name("gearbox/cycle_1ms_no_skip")->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK(BM_GearboxCycle10ms)->Name("gearbox/cycle_10ms")->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK(BM_GearboxCycle1msHistory)->Name("gearbox/cycle_1ms_history")->Unit(benchmark::kMillisecond)->MinTime(1.0);
 
 }  // namespace
 }  // namespace virtcom::bench

@@ -13,6 +13,7 @@
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "cli/hmi_options.hpp"
+#include "cli/history_options.hpp"
 #include "core/cell_diagnostic_codes.hpp"
 #include "proto/ads/client_bridge.hpp"
 #include "proto/modbus/client_bridge.hpp"
@@ -42,6 +43,7 @@ struct RunOptions {
   bool step = false;
   std::string backend = "interp";
   HmiServeOptions hmi;  // --hmi: watch and steer the run in a browser
+  HistoryRecordOptions history;
 };
 
 // Prints every signal change as it happens (single-step mode).
@@ -113,16 +115,6 @@ bool closeStreamedFiles(std::vector<std::unique_ptr<StreamedFile>>& files) {
     }
   }
   return ok;
-}
-
-bool writeFile(const std::string& path, const std::string& content) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) {
-    std::cerr << "error: cannot write " << path << "\n";
-    return false;
-  }
-  out << content;
-  return true;
 }
 
 ExitCode exitCodeFor(RunEnd end) {
@@ -286,6 +278,12 @@ ExitCode runCell(const RunOptions& o) {
   std::vector<std::unique_ptr<StreamedFile>> files;
   if (!openStreamedFile<report::VcdWriter>(o.vcd, files) || !openStreamedFile<report::CsvWriter>(o.csv, files)) return ExitCode::Usage;
   for (auto& f : files) options.traceSinks.push_back(f->writer.get());
+  auto recorder = openRecorder(o.history, *cell, o.cellFile, timeline, options.speed > 0 || hmiBinding.has_value());
+  if (!recorder) {
+    std::cerr << "error: " << recorder.error() << "\n";
+    return ExitCode::HistoryError;
+  }
+  if (*recorder) options.traceSinks.push_back(recorder->get());
   ChangePrinter printer;
   if (o.step) options.traceSinks.push_back(&printer);
   std::optional<LiveHmi> hmi;
@@ -315,6 +313,7 @@ ExitCode runCell(const RunOptions& o) {
     hmi->stop();
   }
   if (!ok) return ExitCode::Usage;
+  if (*recorder && !reportRecording(o.history, **recorder)) return ExitCode::HistoryError;
   return exitCodeFor(end);
 }
 
@@ -335,6 +334,7 @@ void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible (1 with 'plc: modbus', 'plc: ads' or --hmi)")
       ->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);
+  addHistoryOptions(cmd, o->history);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table");
   cmd->add_flag("--step", o->step, "single step: advance one PLC tick per line read from stdin, printing changed signals");
   addHmiOptions(cmd, o->hmi, "--hmi");

@@ -21,6 +21,7 @@
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "cli/hmi_options.hpp"
+#include "cli/history_options.hpp"
 #include "cli/modbus_options.hpp"
 #include "proto/modbus/signal_server.hpp"
 #include "report/kpis.hpp"
@@ -43,6 +44,7 @@ struct ServeOptions {
   AdsServeOptions ads;      // the soft PLC over ADS
   HmiServeOptions hmi;      // the web HMI (--http)
   std::string backend = "interp";
+  HistoryRecordOptions history;
 };
 
 using Bridges = std::vector<std::unique_ptr<BusBridge>>;
@@ -117,6 +119,12 @@ ExitCode serveCell(const ServeOptions& o) {
   // Serving lasts until interrupted; a device error or collision is for the PLC to handle.
   cell->run.stopOnDeviceError = false;
   cell->run.stopOnCollision = false;
+  // Before the servers announce themselves: a history file that cannot be used stops serve first.
+  auto recorder = openRecorder(o.history, *cell, o.cellFile, cell->run.recordVars, true);
+  if (!recorder) {
+    std::cerr << "error: " << recorder.error() << "\n";
+    return ExitCode::HistoryError;
+  }
   // Handlers first: a client may send SIGTERM as soon as a server announces itself.
   std::signal(SIGINT, onServeSignal);
   std::signal(SIGTERM, onServeSignal);
@@ -153,6 +161,7 @@ ExitCode serveCell(const ServeOptions& o) {
   }
   std::optional<LiveHmi> hmi;
   if (hmiBinding) hmi.emplace(*cell, &gServeStop, o.hmi.paused, options);
+  if (*recorder) options.traceSinks.push_back(recorder->get());
   sim::Simulation simulation(*cell, options);
   if (hmi) {
     if (auto served = hmi->serve(*hmiBinding, simulation); !served) {
@@ -166,6 +175,7 @@ ExitCode serveCell(const ServeOptions& o) {
   if (hmi) hmi->stop();
   const Trace& trace = simulation.trace();
   if (!o.quiet) std::cout << report::summaryTable(trace, report::computeKpis(trace));
+  if (*recorder && !reportRecording(o.history, **recorder)) return ExitCode::HistoryError;
   if (end == RunEnd::PlcFault) {
     std::cerr << "runtime fault: " << trace.endMessage << "\n";
     return ExitCode::PlcFault;
@@ -189,6 +199,7 @@ void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   addHmiOptions(cmd, o->hmi, "--http");
   cmd->add_option("--speed", o->speed, "pace factor against the wall clock (default 1 = real time)")->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);
+  addHistoryOptions(cmd, o->history);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table when stopped");
   cmd->callback([o, setExit] { setExit(serveCell(*o)); });
 }

@@ -18,4 +18,5 @@ void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addModbusMapCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addExportCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addAdCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
+void addHistoryCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 }  // namespace virtcom::cli

@@ -18,13 +18,14 @@ int main(int argc, char** argv) {
   virtcom::cli::addModbusMapCommand(app, setExit);
   virtcom::cli::addExportCommand(app, setExit);
   virtcom::cli::addAdCommand(app, setExit);
+  virtcom::cli::addHistoryCommand(app, setExit);
   if (argc > 1) {
     std::string first = argv[1];
     bool known = first == "-h" || first == "--help" || first == "--version";
     for (const auto* sub : app.get_subcommands({})) known = known || first == sub->get_name();
     if (!known) {
       std::cerr << "virtcom: unknown " << (first.rfind('-', 0) == 0 ? "option '" : "command '") << first
-                << "' (commands: check, exec, run, serve, modbus-map, export, ad; see virtcom --help)\n";
+                << "' (commands: check, exec, run, serve, modbus-map, export, ad, history; see virtcom --help)\n";
       return static_cast<int>(ExitCode::Usage);
     }
   }

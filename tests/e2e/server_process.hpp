@@ -57,8 +57,10 @@ class ServerProcess {
   const std::string& errorOutput() const { return err_; }
 
   // SIGTERM, then the exit status: 128 + signal if killed by one, -1 (after SIGKILL) if it hangs.
-  int stop() {
-    ::kill(pid_, SIGTERM);
+  int stop() { return signal(SIGTERM); }
+  // Sends `sig` (SIGKILL: a crash the process cannot clean up after), then the exit status as stop().
+  int signal(int sig) {
+    ::kill(pid_, sig);
     return waitExit();
   }
   int waitExit() {

@@ -1,0 +1,81 @@
+#pragma once
+// Reading a history database (docs/history.md): its runs, and a run's signal changes and
+// activities in a virtual-time range, streamed or as a core::Trace that every report writer of
+// src/report takes. `virtcom history` and the HMI read history through this.
+#include <cstdint>
+#include <expected>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/trace.hpp"
+#include "history/sqlite.hpp"
+
+namespace virtcom::history {
+
+struct RunSummary {
+  int64_t id = 0;
+  std::string cellName;
+  std::string cellFile;
+  std::vector<std::string> timeline;  // the report's timeline signals when recorded
+  int64_t wallStartNs = 0;   // UTC ns since 1970
+  int64_t endNs = 0;         // virtual time recorded up to (the end, once the run ended)
+  bool ended = false;        // false: the process stopped without ending the run (killed)
+  std::string endReason;     // runEndName() text when ended
+  std::string endMessage;
+  int64_t cyclesCompleted = 0;   // and the measured (last) cycle, as Trace has them
+  int64_t cycleStartNs = 0;
+  int64_t cycleEndNs = 0;
+  int64_t changes = 0;
+  int64_t activities = 0;
+  int64_t drops = 0;         // events the recorder's full queue refused
+  std::string writerError;   // the database error that stopped recording, if any
+};
+
+// A closed virtual-time interval [fromNs, toNs]; the default is the whole run.
+struct TimeRange {
+  int64_t fromNs = 0;
+  int64_t toNs = INT64_MAX;
+  bool whole() const { return fromNs == 0 && toNs == INT64_MAX; }
+};
+
+class HistoryReader {
+ public:
+  // Opens an existing history for reading (see openDatabase: the error says what is wrong).
+  static std::expected<HistoryReader, std::string> open(const std::string& path);
+  explicit HistoryReader(Connection db) : db_(std::move(db)) {}
+
+  // Every run, oldest first.
+  std::vector<RunSummary> runs();
+  // One run; nullopt if there is none with that id.
+  std::optional<RunSummary> run(int64_t id);
+  // The newest run's id, 0 if there is none.
+  int64_t lastRunId();
+
+  std::vector<SignalInfo> signals(int64_t run);
+  // The changes with range.fromNs <= time <= range.toNs in trace order (time, then signal),
+  // each passed to `fn`; stops early when fn returns false. Uses the (run, t_ns) key.
+  void forEachChange(int64_t run, TimeRange range, const std::function<bool(const SignalChange&)>& fn);
+  std::vector<SignalChange> changes(int64_t run, TimeRange range);
+  // Each signal's value just before range.fromNs (its initial value if it did not change before).
+  std::vector<uint64_t> valuesBefore(int64_t run, int64_t fromNs);
+  // The activities overlapping the range (start <= toNs, end >= fromNs or still running), in
+  // start order, with endNs -1 for one that had not ended. Uses the (run, start_ns) index.
+  std::vector<ActivityRecord> activities(int64_t run, TimeRange range);
+
+  // The run as a Trace, as `virtcom run` had it at its end, for the report writers: the whole
+  // run gives the same VCD, CSV and JSON as the run wrote. A part of a run is shifted to start
+  // at 0 (times relative to range.fromNs): initial values are those just before fromNs, changes,
+  // activities (clipped to the range), collisions, faults and cycles those inside it, device
+  // totals summed from the clipped activities. Empty trace (no signals) if the run is unknown.
+  // Rows naming a signal, device or label the run does not have (a file edited or damaged in
+  // a way the integrity check cannot see) are left out, so every report writer can take the
+  // trace; `skipped` (if given) receives their number.
+  Trace trace(int64_t run, TimeRange range = {}, size_t* skipped = nullptr);
+
+ private:
+  Connection db_;
+};
+
+}  // namespace virtcom::history

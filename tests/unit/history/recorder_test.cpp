@@ -1,0 +1,182 @@
+// The recorder: a run recorded tick by tick reads back as the same trace, through the bounded
+// queue and the writer thread; a full queue drops events and counts every one.
+#include <gtest/gtest.h>
+
+#include "history/query.hpp"
+#include "support/allocation_counter.hpp"
+#include "history/recorder.hpp"
+#include "history_fixture.hpp"
+
+namespace virtcom::history {
+namespace {
+
+using test::HistoryTest;
+
+class Recorder_ : public HistoryTest {
+ protected:
+  std::unique_ptr<Recorder> open(const std::string& name, RecorderOptions options = {}) {
+    options.cellName = "sample";
+    options.cellFile = "/cells/sample.yaml";
+    options.timeline = {"Press.busy", "MAIN.count"};
+    auto recorder = Recorder::open(path(name), std::move(options));
+    EXPECT_TRUE(recorder.has_value()) << recorder.error();
+    return recorder ? std::move(*recorder) : nullptr;
+  }
+  HistoryReader read(const std::string& name) {
+    auto reader = HistoryReader::open(path(name));
+    EXPECT_TRUE(reader.has_value()) << reader.error();
+    return std::move(*reader);
+  }
+};
+
+void expectSameActivities(const std::vector<ActivityRecord>& a, const std::vector<ActivityRecord>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].device, b[i].device) << i;
+    EXPECT_EQ(a[i].label, b[i].label) << i;
+    EXPECT_EQ(a[i].startNs, b[i].startNs) << i;
+    EXPECT_EQ(a[i].endNs, b[i].endNs) << i;
+    EXPECT_EQ(a[i].energyJ, b[i].energyJ) << i;
+    EXPECT_EQ(a[i].errorCode, b[i].errorCode) << i;
+  }
+}
+
+TEST_F(Recorder_, RoundTripGivesTheTraceBack) {
+  auto recorder = open("h.sqlite");
+  const Trace recorded = recordSample(*recorder);
+  EXPECT_EQ(recorder->drops(), 0u);
+  EXPECT_EQ(recorder->error(), "");
+  EXPECT_EQ(recorder->runId(), 1);
+  recorder.reset();
+
+  HistoryReader reader = read("h.sqlite");
+  const Trace t = reader.trace(1);
+  ASSERT_EQ(t.signals.size(), recorded.signals.size());
+  for (size_t i = 0; i < t.signals.size(); ++i) {
+    EXPECT_EQ(t.signals[i].name, recorded.signals[i].name);
+    EXPECT_EQ(t.signals[i].type, recorded.signals[i].type);
+    EXPECT_EQ(t.signals[i].initial, recorded.signals[i].initial);
+  }
+  ASSERT_EQ(t.changes.size(), recorded.changes.size());
+  for (size_t i = 0; i < t.changes.size(); ++i) {
+    EXPECT_EQ(t.changes[i].timeNs, recorded.changes[i].timeNs);
+    EXPECT_EQ(t.changes[i].tag, recorded.changes[i].tag);
+    EXPECT_EQ(t.changes[i].raw, recorded.changes[i].raw);
+  }
+  expectSameActivities(t.activities, recorded.activities);
+  EXPECT_EQ(t.labels, recorded.labels);
+  ASSERT_EQ(t.devices.size(), 2u);
+  EXPECT_EQ(t.devices[1].name, "Axis");
+  EXPECT_EQ(t.devices[1].type, "axis");
+  EXPECT_EQ(t.devices[1].group, "Axes");
+  ASSERT_EQ(t.totals.size(), 2u);
+  EXPECT_EQ(t.totals[1].busyNs, 8'000'000);
+  EXPECT_EQ(t.totals[1].energyJ, 12.25);
+  ASSERT_EQ(t.collisions.size(), 1u);
+  EXPECT_EQ(t.collisions[0].timeNs, 4'000'000);
+  EXPECT_EQ(t.collisions[0].zone, 2u);
+  EXPECT_EQ(t.collisions[0].deviceB, 1u);
+  EXPECT_EQ(t.collisions[0].activityB, 1u);
+  ASSERT_EQ(t.faults.size(), 1u);
+  EXPECT_EQ(t.faults[0].timeNs, 7'000'000);
+  EXPECT_EQ(t.faults[0].source, "Press");
+  EXPECT_EQ(t.faults[0].message, recorded.faults[0].message);  // longer than one text event
+  EXPECT_EQ(t.endNs, 10'000'000);
+  EXPECT_EQ(t.end, RunEnd::TimeLimit);
+  EXPECT_EQ(t.endMessage, "time limit reached");
+  EXPECT_EQ(t.cyclesCompleted, 2u);
+  EXPECT_EQ(t.cycleStartNs, 5'000'000);
+  EXPECT_EQ(t.cycleEndNs, 9'000'000);
+
+  auto run = reader.run(1);
+  ASSERT_TRUE(run.has_value());
+  EXPECT_EQ(run->cellName, "sample");
+  EXPECT_EQ(run->cellFile, "/cells/sample.yaml");
+  EXPECT_EQ(run->timeline, (std::vector<std::string>{"Press.busy", "MAIN.count"}));
+  EXPECT_TRUE(run->ended);
+  EXPECT_EQ(run->endReason, "time limit reached");
+  EXPECT_EQ(run->changes, 20);
+  EXPECT_EQ(run->activities, 5);
+  EXPECT_EQ(run->drops, 0);
+  EXPECT_GT(run->wallStartNs, 0);
+}
+
+TEST_F(Recorder_, RunsAccumulateInOneFile) {
+  for (int i = 0; i < 3; ++i) recordSample(*open("h.sqlite"));
+  HistoryReader reader = read("h.sqlite");
+  auto runs = reader.runs();
+  ASSERT_EQ(runs.size(), 3u);
+  EXPECT_EQ(runs[2].id, 3);
+  EXPECT_EQ(reader.lastRunId(), 3);
+  EXPECT_EQ(reader.changes(2, {}).size(), 20u);
+}
+
+// A queue of one event and a burst of changes within one tick: the writer cannot keep up, and
+// every change is either in the database or counted as dropped.
+TEST_F(Recorder_, FullQueueDropsAndCountsEveryLostEvent) {
+  RecorderOptions options;
+  options.queueEvents = 1;
+  auto recorder = open("h.sqlite", options);
+  Trace t = sampleTrace();
+  recorder->begin(t);
+  constexpr int kChanges = 5000;
+  for (int i = 0; i < kChanges; ++i) recorder->change({1'000'000 + i, 1, static_cast<uint64_t>(i)});
+  recorder->tick(t, 1'000'000 + kChanges);
+  t.faults.push_back({t.endNs, "PLC", std::string(200, 'f')});  // never fits: dropped at the end too, not waited for
+  t.endNs = 1'000'000 + kChanges;
+  t.end = RunEnd::Interrupted;
+  recorder->end(t);
+  EXPECT_GT(recorder->drops(), 0u);
+  const uint64_t drops = recorder->drops();
+  recorder.reset();
+  HistoryReader reader = read("h.sqlite");
+  auto run = reader.run(1);
+  ASSERT_TRUE(run.has_value());
+  EXPECT_EQ(static_cast<uint64_t>(run->drops), drops);
+  EXPECT_EQ(static_cast<uint64_t>(run->changes) + drops, static_cast<uint64_t>(kChanges) + 1);  // + the fault
+}
+
+TEST_F(Recorder_, WaitWhenFullRecordsEveryEvent) {
+  RecorderOptions options;
+  options.queueEvents = 1;
+  options.waitWhenFull = true;
+  auto recorder = open("h.sqlite", options);
+  Trace t = sampleTrace();
+  recorder->begin(t);
+  for (int i = 0; i < 2000; ++i) recorder->change({1'000'000 + i, 1, static_cast<uint64_t>(i)});
+  t.faults.push_back({0, "PLC", "short"});  // two events: larger than the queue, so dropped
+  t.endNs = 1'000'000 + 2000;
+  recorder->end(t);
+  EXPECT_EQ(recorder->drops(), 1u);
+  recorder.reset();
+  EXPECT_EQ(read("h.sqlite").changes(1, {}).size(), 2000u);
+}
+
+// The scan thread's side: no allocation per change or per tick, activities beginning and ending
+// included (STYLE rule 7).
+TEST_F(Recorder_, RecordingAllocatesNothingPerChangeOrTick) {
+  auto recorder = open("h.sqlite");
+  Trace t = sampleTrace();
+  t.activities.reserve(4096);
+  recorder->begin(t);
+  size_t allocations = 0;
+  {
+    virtcom::test::AllocationCounter counter;
+    for (int64_t tick = 1; tick <= 2000; ++tick) {
+      const int64_t now = tick * 1'000'000;
+      recorder->change({now, 0, static_cast<uint64_t>(tick & 1)});
+      recorder->change({now, 1, static_cast<uint64_t>(tick)});
+      if (tick % 2 == 1) t.beginActivity(0, 0, now);
+      else t.endActivity(static_cast<uint32_t>(t.activities.size() - 1), now, 1.0);
+      recorder->tick(t, now);
+    }
+    allocations = counter.count();
+  }
+  EXPECT_EQ(allocations, 0u);
+  t.endNs = 2'000'000'000;
+  recorder->end(t);
+  EXPECT_EQ(recorder->drops(), 0u);
+}
+
+}  // namespace
+}  // namespace virtcom::history

@@ -66,6 +66,12 @@ std::optional<ArcKind> arcKindFromArrow(std::string_view arrow) {
   return std::nullopt;
 }
 
+std::optional<ArcKind> arcKindFromTableName(std::string_view name) {
+  for (size_t i = 0; i < std::size(kArcs); ++i)
+    if (sameName(kArcs[i].tableName, name)) return static_cast<ArcKind>(i);
+  return std::nullopt;
+}
+
 std::optional<BlockType> blockTypeFromName(std::string_view name) {
   for (size_t i = 0; i < std::size(kBlocks); ++i)
     if (sameName(kBlocks[i].name, name)) return static_cast<BlockType>(i);

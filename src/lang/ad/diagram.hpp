@@ -81,6 +81,7 @@ bool isTimerBlock(BlockType type);
 std::string_view blockInput(BlockType type, bool on);
 std::optional<NodeKind> nodeKindFromKeyword(std::string_view keyword);
 std::optional<ArcKind> arcKindFromArrow(std::string_view arrow);
+std::optional<ArcKind> arcKindFromTableName(std::string_view name);  // "normal", "NOT-IN", "NOT-OUT", any case
 std::optional<BlockType> blockTypeFromName(std::string_view name);  // any case
 
 // The port kind of an activity: its port's, or the area of its address (%I, %Q, %M);

@@ -148,7 +148,8 @@ void ProgramBuilder::node(NodeKind kind, const std::vector<Word>& w) {
   diagram_->nodes.push_back(std::move(node));
 }
 
-// What follows the id: an activity's variable, a timer's or counter's type and preset.
+// What follows the id: an activity's variable, a timer's or counter's type and preset, a
+// function block's type and pins.
 bool ProgramBuilder::readNodeTail(Node& node, const std::vector<Word>& w) {
   switch (node.kind) {
     case NodeKind::Activity:
@@ -161,6 +162,8 @@ bool ProgramBuilder::readNodeTail(Node& node, const std::vector<Word>& w) {
       return expectCount(w, 4, 4, "timer ID TON|TOF|TP T#PRESET") && readBlock(node, w, true);
     case NodeKind::Counter:
       return expectCount(w, 4, 4, "counter ID CTU|CTD PRESET") && readBlock(node, w, false);
+    case NodeKind::Block:
+      return readFunctionBlock(node, w);
     default:
       return expectCount(w, 2, 2, std::string(nodeKeyword(node.kind)) + " ID");
   }
@@ -178,6 +181,22 @@ bool ProgramBuilder::readBlock(Node& node, const std::vector<Word>& w, bool time
   }
   node.block = *type;
   return timer ? readTimePreset(node, w[3]) : readCountPreset(node, w[3]);
+}
+
+// `block ID TYPE [INPUT OUTPUT]`: whether TYPE exists and has those BOOLs is the ST checker's.
+bool ProgramBuilder::readFunctionBlock(Node& node, const std::vector<Word>& w) {
+  if (w.size() != 3 && w.size() != 5) {
+    diags_.error(diag::A001, w[0].loc, "expected `block ID TYPE` or `block ID TYPE INPUT OUTPUT`");
+    return false;
+  }
+  for (size_t k = 2; k < w.size(); ++k)
+    if (!expectIdentifier(w[k], k == 2 ? "function block type" : "function block pin")) return false;
+  node.blockType = w[2].text;
+  if (w.size() == 5) {
+    node.blockIn = w[3].text;
+    node.blockOut = w[4].text;
+  }
+  return true;
 }
 
 bool ProgramBuilder::readTimePreset(Node& node, const Word& word) {

@@ -52,6 +52,7 @@ class ProgramBuilder {
   bool declare(const Word& name, std::string_view what);
   bool readNodeTail(Node& node, const std::vector<Word>& w);
   bool readBlock(Node& node, const std::vector<Word>& w, bool timer);
+  bool readFunctionBlock(Node& node, const std::vector<Word>& w);
   bool readTimePreset(Node& node, const Word& word);
   bool readCountPreset(Node& node, const Word& word);
   void closeDiagram();

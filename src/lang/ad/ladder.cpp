@@ -10,7 +10,9 @@ namespace virtcom::ad {
 namespace {
 
 // The BOOL a contact on this activity reads: a timer or counter is on while its Q is.
-std::string stateVariable(const Node& n) { return isBlock(n.kind) ? n.id + ".Q" : n.variable; }
+std::string stateVariable(const Node& n) {
+  return isBlock(n.kind) ? n.id + "." + std::string(blockOutputOf(n)) : n.variable;
+}
 
 st::LadderCondition contacts(const Diagram& d, const Condition& c) {
   using Kind = st::LadderCondition::Kind;
@@ -39,16 +41,21 @@ st::LadderOutput output(const Node& target, bool on) {
     return out;
   }
   if (!on) {  // a counter's RESET / LOAD follows the rule every scan
-    out.variable = target.id + "." + std::string(blockInput(target.block, false));
+    out.variable = target.id + "." + std::string(blockInputOf(target, false));
     return out;
   }
   out.kind = Kind::Block;
   out.variable = target.id;
-  out.blockType = blockTypeName(target.block);
-  out.powerInput = blockInput(target.block, true);
-  bool timer = isTimerBlock(target.block);
-  out.constantInput = timer ? "PT" : "PV";
-  out.constantValue = timer ? formatTimeMs(target.presetNs / 1'000'000) : std::to_string(target.presetCount);
+  out.blockType = blockTypeOf(target);
+  out.powerInput = blockInputOf(target, true);
+  out.stateOutput = blockOutputOf(target);
+  if (target.kind == NodeKind::Timer) {
+    out.constantInput = "PT";
+    out.constantValue = formatTimeMs(target.presetNs / 1'000'000);
+  } else if (target.kind == NodeKind::Counter) {
+    out.constantInput = "PV";
+    out.constantValue = std::to_string(target.presetCount);
+  }
   return out;
 }
 

@@ -61,7 +61,7 @@ class Lowering {
 
   void declareNode(const Diagram& d, const Node& n, const DiagramTables& tables) {
     b_.at(n.loc);
-    if (isBlock(n.kind)) vars_.push_back(b_.varDecl(n.id, blockTypeName(n.block), false));
+    if (isBlock(n.kind)) vars_.push_back(b_.varDecl(n.id, blockTypeOf(n), false));
     if (!isJoin(n.kind)) return;
     for (const Rule& rule : tables.rules)
       for (const GroupDefinition& g : rule.groups)
@@ -69,7 +69,7 @@ class Lowering {
   }
 
   st::ExprPtr activityState(const Node& n) {
-    if (isBlock(n.kind)) return b_.member(n.id, "Q");
+    if (isBlock(n.kind)) return b_.member(n.id, blockOutputOf(n));
     if (!n.variable.empty() && n.variable[0] == '%') {
       st::ExprPtr e = b_.name(n.variable);
       e->kind = st::ExprKind::DirectAddr;
@@ -131,12 +131,12 @@ class Lowering {
   // calls the block with its preset.
   st::StmtPtr driveBlock(const Node& block, bool on, uint64_t flag) {
     b_.at(block.loc);
-    std::string_view input = blockInput(block.block, on);
+    std::string_view input = blockInputOf(block, on);
     if (!on) return b_.assign(b_.member(block.id, input), b_.index(kFiredVariable, flag));
     std::vector<std::pair<std::string, st::ExprPtr>> args;
     args.emplace_back(std::string(input), b_.index(kFiredVariable, flag));
-    if (isTimerBlock(block.block)) args.emplace_back("PT", b_.timeLit(block.presetNs));
-    else args.emplace_back("PV", b_.intLit(block.presetCount));
+    if (block.kind == NodeKind::Timer) args.emplace_back("PT", b_.timeLit(block.presetNs));
+    if (block.kind == NodeKind::Counter) args.emplace_back("PV", b_.intLit(block.presetCount));
     return b_.callNamed(block.id, std::move(args));
   }
 

@@ -14,7 +14,7 @@ std::string thenText(const Diagram& d, const Rule& rule) {
   for (const RuleAction& a : rule.actions) {
     const Node& n = d.nodes[a.node];
     if (!out.empty()) out += ", ";
-    if (isBlock(n.kind)) out += n.id + "." + std::string(blockInput(n.block, a.on)) + " := TRUE";
+    if (isBlock(n.kind)) out += n.id + "." + std::string(blockInputOf(n, a.on)) + " := TRUE";
     else out += n.variable + (a.on ? " := TRUE" : " := FALSE");
   }
   return out;

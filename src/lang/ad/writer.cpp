@@ -32,6 +32,9 @@ std::vector<std::pair<const char*, std::string>> nodeAttributes(const Node& n) {
       return {{"variable", n.variable}};
     case NodeKind::Timer: case NodeKind::Counter:
       return {{"type", std::string(blockTypeName(n.block))}, {"preset", preset(n)}};
+    case NodeKind::Block:
+      if (n.blockIn == "IN" && n.blockOut == "Q") return {{"type", n.blockType}};
+      return {{"type", n.blockType}, {"input", n.blockIn}, {"output", n.blockOut}};
     default: return {};
   }
 }

@@ -77,6 +77,7 @@ class XmlReader {
     switch (kind) {
       case NodeKind::Activity: return {{"id"}, {"variable", true}};
       case NodeKind::Timer: case NodeKind::Counter: return {{"id"}, {"type"}, {"preset"}};
+      case NodeKind::Block: return {{"id"}, {"type"}, {"input", true}, {"output", true}};
       default: return {{"id"}};
     }
   }

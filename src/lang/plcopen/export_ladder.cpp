@@ -135,11 +135,8 @@ class LadderWriter {
   }
 
   // The block with the rung's power on one input and a constant (an inVariable to its left) on
-  // another; its Q goes on to the right rail, as a timer or counter sits in a rung.
+  // another, if it has one; its state output goes on to the right rail, as a timer sits in a rung.
   Source block(const st::LadderOutput& out, const std::vector<Source>& power, int x, int y) {
-    Placed constant = element("inVariable", x - kColumn, y + kRow, 40, kContactHeight);
-    constant.node.append_child("connectionPointOut");
-    constant.node.append_child("expression").text().set(out.constantValue.c_str());
     Placed b = element("block", x, y, 60, 2 * kRow);
     b.node.append_attribute("typeName") = out.blockType.c_str();
     b.node.append_attribute("instanceName") = out.variable.c_str();
@@ -150,12 +147,17 @@ class LadderWriter {
       connect(v.append_child("connectionPointIn"), sources);
     };
     input(out.powerInput, power);
-    input(out.constantInput, {{constant.localId, ""}});
+    if (!out.constantInput.empty()) {
+      Placed constant = element("inVariable", x - kColumn, y + kRow, 40, kContactHeight);
+      constant.node.append_child("connectionPointOut");
+      constant.node.append_child("expression").text().set(out.constantValue.c_str());
+      input(out.constantInput, {{constant.localId, ""}});
+    }
     b.node.append_child("inOutVariables");
     pugi::xml_node q = b.node.append_child("outputVariables").append_child("variable");
-    q.append_attribute("formalParameter") = "Q";
+    q.append_attribute("formalParameter") = out.stateOutput.c_str();
     q.append_child("connectionPointOut");
-    return {b.localId, "Q"};
+    return {b.localId, out.stateOutput.c_str()};
   }
 
   pugi::xml_node ld_;

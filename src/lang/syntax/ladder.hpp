@@ -20,14 +20,15 @@ struct LadderCondition {
 
 // What the rung's power drives, in order: coils (normal: the power; negated: its inverse;
 // set / reset: latch on / off while powered) and function blocks called with the power on one
-// input (a timer's IN, a counter's CU) and a constant on another (PT, PV).
+// input (a timer's IN, a counter's CU) and, optionally, a constant on another (PT, PV).
 struct LadderOutput {
   enum class Kind : uint8_t { Coil, NegatedCoil, SetCoil, ResetCoil, Block };
   Kind kind = Kind::Coil;
   std::string variable;    // coils: the BOOL written; Block: the instance
   std::string blockType;   // Block: TON, CTU, ...
   std::string powerInput;  // Block: the input the rung drives (IN, CU, CD)
-  std::string constantInput, constantValue;  // Block: PT := T#5s, PV := 3
+  std::string stateOutput = "Q";             // Block: the output drawn on to the right rail
+  std::string constantInput, constantValue;  // Block: PT := T#5s, PV := 3; empty: none
 };
 
 struct LadderRung {

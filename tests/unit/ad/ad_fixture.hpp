@@ -6,6 +6,8 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "aot/compile.hpp"
 #include "bytecode/module.hpp"
@@ -18,10 +20,20 @@
 
 namespace virtcom::ad::test {
 
-// Compiles one file with the front end its extension selects (.ad, .adxml, .xml; others ST).
-inline std::unique_ptr<bc::Module> compileText(std::string path, std::string text, Diagnostics& diags) {
+// One source file: its path (whose extension selects the front end: .ad, .adxml, .xml, else
+// ST) and its text.
+using SourceFile = std::pair<std::string, std::string>;
+
+// Compiles the files together as one program.
+inline std::unique_ptr<bc::Module> compileFiles(const std::vector<SourceFile>& files, Diagnostics& diags) {
   SourceManager sources;
-  return st::compileProgram({plcopen::sourceInput(std::move(path), std::move(text))}, sources, diags);
+  std::vector<st::SourceInput> inputs;
+  for (const auto& [path, text] : files) inputs.push_back(plcopen::sourceInput(path, text));
+  return st::compileProgram(inputs, sources, diags);
+}
+
+inline std::unique_ptr<bc::Module> compileText(std::string path, std::string text, Diagnostics& diags) {
+  return compileFiles({{std::move(path), std::move(text)}}, diags);
 }
 
 // "CODE line:col" of every diagnostic, one per line, for compact expectations.
@@ -57,10 +69,11 @@ struct Side {
   }
 };
 
-// `native`: the program runs as machine code from the AOT backend instead of the interpreter.
-inline void start(Side& side, std::string path, std::string text, bool native = false) {
+// Compiles the files and cold-starts them on the side's runtime; `native`: the program runs as
+// machine code from the AOT backend instead of the interpreter.
+inline void start(Side& side, const std::vector<SourceFile>& files, bool native = false) {
   Diagnostics diags;
-  side.module = compileText(std::move(path), std::move(text), diags);
+  side.module = compileFiles(files, diags);
   ASSERT_NE(side.module, nullptr) << codesAndPlaces(diags) << (diags.all().empty() ? "" : diags.all()[0].message);
   side.runtime = std::make_unique<plc::Runtime>(*side.module, side.clock);
   if (native) {
@@ -71,6 +84,10 @@ inline void start(Side& side, std::string path, std::string text, bool native = 
     side.runtime->machine().useCompiled(compiled.code);
   }
   ASSERT_TRUE(side.runtime->coldStart());
+}
+
+inline void start(Side& side, std::string path, std::string text, bool native = false) {
+  start(side, {{std::move(path), std::move(text)}}, native);
 }
 
 }  // namespace virtcom::ad::test

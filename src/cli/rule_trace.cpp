@@ -1,9 +1,8 @@
 #include "cli/rule_trace.hpp"
 
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
+#include "cli/common.hpp"
 #include "core/diagnostics.hpp"
 #include "lang/ad/lower.hpp"
 #include "lang/ad/reader.hpp"
@@ -17,11 +16,10 @@ std::optional<RuleTracer> RuleTracer::load(const std::vector<std::string>& files
   for (const std::string& path : files) {
     if (!ad::isDiagramPath(path) && !ad::isXmlDiagramPath(path)) continue;
     anyDiagram = true;
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
+    auto text = readSources({path});
+    if (!text) return std::nullopt;
     Diagnostics diags;  // the file compiled, so it reads cleanly
-    ad::Program program = ad::readProgramFile(0, path, text.str(), diags);
+    ad::Program program = ad::readProgramFile(0, path, text->front().text, diags);
     std::vector<ad::TracedRule> rules = ad::tracedRules(program);
     for (size_t k = 0; k < rules.size(); ++k) {
       std::string flag = program.name + "." + std::string(ad::kFiredVariable) + "[" + std::to_string(k + 1) + "]";

@@ -29,7 +29,7 @@ std::optional<RuleTracer> RuleTracer::load(const std::vector<std::string>& files
     }
   }
   if (anyDiagram) return tracer;
-  std::cerr << "error: --trace-rules: no activity-diagram file (.ad, .adxml) among the inputs\n";
+  std::cerr << "error: --trace-rules: no activity-diagram file (.ad, .adxml) among the PLC sources\n";
   return std::nullopt;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// `virtcom exec --trace-rules`: after every scan, one line per activity-diagram rule whose IF
+// `virtcom exec --trace-rules` and `run --trace-rules`: after every scan, one line per activity-diagram rule whose IF
 // held, read from the fired flags the lowering keeps in the program (lang/ad/lower.hpp), so no
 // second runtime watches the rules.
 #include <cstdint>

@@ -94,11 +94,30 @@ TEST(AdTraceRules, PrintsTheRulesThatFiredEveryScan) {
   EXPECT_EQ(out.find("Drain"), std::string::npos) << "Drain's rules do not fire before the reaction ends";
 }
 
+// The same tank in a cell (with an idle clamp, as a cell needs a device): `run --trace-rules`
+// prints the rules after every PLC tick as exec does.
+TEST(AdTraceRules, RunPrintsTheRulesOfTheCellsDiagrams) {
+  std::ofstream(temp("idle.st")) << "PROGRAM Idle\nVAR cmd : INT; exec, done : BOOL; END_VAR\nEND_PROGRAM\n";
+  std::ofstream(temp("cell.yaml")) << "name: tank\nplc:\n  sources: [" << kExampleDir << "/tank.ad, " << kExampleDir
+                                   << "/plant.st, " << temp("idle.st") << "]\n  cycle_time: 10 ms\nrun:\n  time_limit: 0.52 s\n"
+                                   << "devices:\n  - name: Clamp\n    type: timed\n    commands:\n"
+                                   << "      1: { name: Close, duration: 1 s }\n"
+                                   << "    wiring: { programNumber: Idle.cmd, execute: Idle.exec, done: Idle.done }\n";
+  std::string out;
+  ASSERT_EQ(shell(kExe + " run " + temp("cell.yaml") + " --quiet --set TankControl.StartButton=TRUE --trace-rules", out), 3)
+      << out;  // 3: the time limit ended the run
+  EXPECT_EQ(out.substr(0, out.find('\n') + 1), "scan 0  Supply rule 1 fired: SupplyValve := TRUE\n");
+  EXPECT_NE(out.find("scan 50  Supply rule 2 fired: SupplyValve := FALSE, Filled := TRUE\n"
+                     "scan 50  Reaction rule 1 fired: Heater := TRUE, React.IN := TRUE\n"),
+            std::string::npos)
+      << out;
+}
+
 TEST(AdTraceRules, NeedsADiagram) {
   std::ofstream(temp("main.st")) << "PROGRAM MAIN\nVAR x : INT; END_VAR\nx := x + 1;\nEND_PROGRAM\n";
   std::string out;
   EXPECT_EQ(shell(kExe + " exec " + temp("main.st") + " --cycles 1 --trace-rules", out), 64) << out;
-  EXPECT_NE(out.find("--trace-rules: no activity-diagram file (.ad, .adxml) among the inputs"), std::string::npos) << out;
+  EXPECT_NE(out.find("--trace-rules: no activity-diagram file (.ad, .adxml) among the PLC sources"), std::string::npos) << out;
 }
 
 }  // namespace

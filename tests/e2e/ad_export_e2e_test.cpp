@@ -72,6 +72,15 @@ TEST(AdExport, StAndPlcopenLadderRunAsTheDiagram) {
   }
 }
 
+TEST(AdExport, OptionsHaveHelp) {
+  for (const char* command : {" ad export --help", " exec --help", " run --help"}) {
+    std::string out;
+    ASSERT_EQ(shell(kExe + command, out), 0) << out;
+    const char* option = std::string(command) == " ad export --help" ? "--plcopen" : "--trace-rules";
+    EXPECT_NE(out.find(option), std::string::npos) << command << "\n" << out;
+  }
+}
+
 TEST(AdExport, NeedsAnOutput) {
   std::string out;
   EXPECT_EQ(shell(inExample("ad export tank.ad"), out), 64) << out;

@@ -23,7 +23,7 @@ ExitCode printTables(const std::string& path, const std::string& formatName) {
   SourceManager sources;
   Diagnostics diags;
   uint32_t fileId = sources.addFile(path, inputs->front().text);
-  ad::Program program = ad::readProgram(fileId, sources.text(fileId), diags);
+  ad::Program program = ad::readProgramFile(fileId, path, sources.text(fileId), diags);
   std::cerr << diags.render(sources);
   if (diags.hasErrors()) return ExitCode::InputError;
   std::vector<ad::DiagramTables> tables;
@@ -40,9 +40,10 @@ void addAdCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   auto file = std::make_shared<std::string>();
   auto format = std::make_shared<std::string>("text");
   CLI::App* tables = cmd->add_subcommand("tables", "Print the LU table and the rule table of every diagram of FILE");
-  tables->add_option("file", *file, "an activity-diagram file (.ad)")->required()->check(CLI::ExistingFile);
+  tables->add_option("file", *file, "an activity-diagram file (.ad or .adxml)")->required()->check(CLI::ExistingFile);
   tables->add_option("--format", *format, "text (aligned columns), markdown or csv")->capture_default_str();
   tables->callback([file, format, setExit] { setExit(printTables(*file, *format)); });
+  addAdFileCommands(*cmd, setExit);
 }
 
 }  // namespace virtcom::cli

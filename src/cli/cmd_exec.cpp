@@ -10,6 +10,7 @@
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "cli/modbus_options.hpp"
+#include "cli/rule_trace.hpp"
 #include "lang/sfc/step_monitor.hpp"
 #include "plc/retain_file.hpp"
 #include "plc/runtime.hpp"
@@ -31,6 +32,7 @@ struct ExecOptions {
   std::vector<std::string> traces;
   std::string traceFile;
   bool traceSteps = false;  // print the active SFC steps after every scan
+  bool traceRules = false;  // print the activity-diagram rules that fired after every scan
   double speed = 0;
   uint64_t budget = 50'000'000;
   bool stats = false;
@@ -131,6 +133,9 @@ ExitCode runExec(const ExecOptions& o) {
     }
   }
 
+  std::optional<RuleTracer> ruleTracer;
+  if (o.traceRules && !(ruleTracer = RuleTracer::load(o.files, *module))) return ExitCode::Usage;
+
   std::unique_ptr<Clock> clock;
   // A Modbus server talks to the real world, so it runs in real time unless told otherwise.
   double speed = o.speed > 0 ? o.speed : o.modbus.empty() && !o.ads.enabled() ? 0 : 1;
@@ -223,6 +228,7 @@ ExitCode runExec(const ExecOptions& o) {
       sfc::formatActiveSteps(steps, runtime.machine().memory(), activeSteps);
       std::cout << "scan " << k << " (" << now / 1'000'000 << " ms): " << (activeSteps.empty() ? "(none)" : activeSteps) << '\n';
     }
+    if (ruleTracer) ruleTracer->print(static_cast<uint64_t>(k), runtime.machine().memory(), std::cout);
   }
   if (modbus) modbus->stop();
   if (ads) ads->stop();
@@ -259,6 +265,8 @@ void addExecCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_option("--trace", o->traces, "comma-separated variables written as CSV after every tick");
   cmd->add_option("--trace-file", o->traceFile, "write the --trace CSV to this file instead of stdout");
   cmd->add_flag("--trace-steps", o->traceSteps, "print the active SFC steps after every tick: scan N (T ms): MAIN.Step1 ...");
+  cmd->add_flag("--trace-rules", o->traceRules,
+                "print the activity-diagram rules whose IF held, after every tick: scan N  Supply rule 3 fired: Valve := FALSE");
   cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); without --cycles runs until SIGINT/SIGTERM")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--budget", o->budget, "watchdog: max backward jumps + calls per task scan (default 50000000)");

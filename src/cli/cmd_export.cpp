@@ -29,6 +29,8 @@ std::string newestModificationTime(const std::vector<std::string>& paths) {
   return text;
 }
 
+}  // namespace
+
 ExitCode exportPlcopen(const std::string& out, const std::string& name, const std::vector<std::string>& files) {
   {
     SourceManager sources;
@@ -58,8 +60,6 @@ ExitCode exportPlcopen(const std::string& out, const std::string& name, const st
   }
   return ExitCode::Ok;
 }
-
-}  // namespace
 
 void addExportCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   auto files = std::make_shared<std::vector<std::string>>();

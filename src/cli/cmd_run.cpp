@@ -14,6 +14,7 @@
 #include "cli/common.hpp"
 #include "cli/hmi_options.hpp"
 #include "cli/history_options.hpp"
+#include "cli/rule_trace.hpp"
 #include "core/cell_diagnostic_codes.hpp"
 #include "proto/ads/client_bridge.hpp"
 #include "proto/modbus/client_bridge.hpp"
@@ -41,6 +42,7 @@ struct RunOptions {
   double speed = 0;
   bool quiet = false;
   bool step = false;
+  bool traceRules = false;  // print the activity-diagram rules that fired after every PLC tick
   std::string backend = "interp";
   HmiServeOptions hmi;  // --hmi: watch and steer the run in a browser
   HistoryRecordOptions history;
@@ -219,8 +221,9 @@ ExitCode runCell(const RunOptions& o) {
                  "'plc: ads' (an external PLC), or serve it to a PLC with virtcom serve\n";
     return ExitCode::Usage;
   }
-  if (!cell->module && (!o.until.empty() || !o.sets.empty())) {
-    std::cerr << "error: --until and --set name soft PLC variables, but the controller of " << o.cellFile << " is an external PLC\n";
+  if (!cell->module && (!o.until.empty() || !o.sets.empty() || o.traceRules)) {
+    std::cerr << "error: --until, --set and --trace-rules need the soft PLC, but the controller of " << o.cellFile
+              << " is an external PLC\n";
     return ExitCode::Usage;
   }
   if (!o.until.empty()) {
@@ -232,6 +235,15 @@ ExitCode runCell(const RunOptions& o) {
     }
   }
   sim::SimOptions options;
+  std::optional<RuleTracer> ruleTracer;
+  uint64_t scans = 0;
+  if (o.traceRules) {
+    std::vector<std::string> plcSources;
+    for (uint32_t file = 0; file < sources.fileCount(); ++file) plcSources.push_back(sources.path(file));
+    if (!(ruleTracer = RuleTracer::load(plcSources, *cell->module))) return ExitCode::Usage;
+    // Debug output the user asked for: printing may allocate, unlike the rest of the scan path.
+    options.afterScan = [&](plc::Runtime& plc) { ruleTracer->print(scans++, plc.machine().memory(), std::cout); };
+  }
   options.speed = o.speed;
   options.interrupt = &gStop;
   if (cell->module) options.compiled = compiledBackend(o.backend, *cell->module);
@@ -338,6 +350,8 @@ void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table");
   cmd->add_flag("--step", o->step, "single step: advance one PLC tick per line read from stdin, printing changed signals");
   addHmiOptions(cmd, o->hmi, "--hmi");
+  cmd->add_flag("--trace-rules", o->traceRules,
+                "print the activity-diagram rules whose IF held, after every PLC tick: scan N  Supply rule 3 fired: Valve := FALSE");
   cmd->callback([o, setExit] { setExit(runCell(*o)); });
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -19,4 +20,10 @@ void addModbusMapCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addExportCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addAdCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addHistoryCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
+// `ad convert` and `ad export` (cmd_ad_files.cpp), registered under `ad` by addAdCommand.
+void addAdFileCommands(CLI::App& ad, std::function<void(ExitCode)> setExit);
+
+// Compiles the files (printing diagnostics) and writes them as one PLCopen TC6 project to `out`;
+// `name` is the project name (empty: the stem of `out`). `virtcom export` and `ad export`.
+ExitCode exportPlcopen(const std::string& out, const std::string& name, const std::vector<std::string>& files);
 }  // namespace virtcom::cli

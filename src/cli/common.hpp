@@ -20,7 +20,7 @@ std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, 
 
 // The help text of every command's FILES argument.
 inline constexpr const char* kSourceFilesHelp =
-    "ST (.st), activity diagrams (.ad), PLCopen XML (.xml) and TwinCAT 3 (.TcPOU, .TcGVL, .TcDUT, .TcIO) files compiled together as one program";
+    "ST (.st), activity diagrams (.ad, .adxml), PLCopen XML (.xml) and TwinCAT 3 (.TcPOU, .TcGVL, .TcDUT, .TcIO) files compiled together as one program";
 
 // Reads the files as compiler inputs, each with its front end (plcopen::sourceInput).
 // Prints an error and returns nullopt if a file cannot be read.

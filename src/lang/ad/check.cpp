@@ -58,7 +58,7 @@ class DiagramCheck {
     }
     if (arc.kind == ArcKind::NotIn && isBar(from.kind))
       return invalid("a NOT-IN arc (|->) leaves an activity (it is a normally closed contact), not '" + from.id + "'");
-    if (arc.kind == ArcKind::NotOut && (isBar(to.kind) || to.kind == NodeKind::Timer))
+    if (arc.kind == ArcKind::NotOut && (isBar(to.kind) || (isBlock(to.kind) && blockInputOf(to, false).empty())))
       return invalid("a NOT-OUT arc (->|) enters an activity or a counter (reset), not '" + to.id + "'");
     if (to.kind == NodeKind::Activity && activityPortKind(program_, to) == PortKind::Input)
       diags_.error(diag::A009, arc.loc, "activity '" + to.id + "' is bound to the input '" + to.variable +

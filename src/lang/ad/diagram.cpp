@@ -54,6 +54,19 @@ std::string_view blockInput(BlockType type, bool on) {
   return on ? info.drivenInput : info.resetInput;
 }
 
+std::string_view blockTypeOf(const Node& block) {
+  return block.kind == NodeKind::Block ? std::string_view(block.blockType) : blockTypeName(block.block);
+}
+
+std::string_view blockInputOf(const Node& block, bool on) {
+  if (block.kind != NodeKind::Block) return blockInput(block.block, on);
+  return on ? std::string_view(block.blockIn) : std::string_view();
+}
+
+std::string_view blockOutputOf(const Node& block) {
+  return block.kind == NodeKind::Block ? std::string_view(block.blockOut) : std::string_view("Q");
+}
+
 std::optional<NodeKind> nodeKindFromKeyword(std::string_view keyword) {
   for (size_t i = 0; i < std::size(kNodes); ++i)
     if (sameName(kNodes[i].keyword, keyword)) return static_cast<NodeKind>(i);
@@ -63,6 +76,12 @@ std::optional<NodeKind> nodeKindFromKeyword(std::string_view keyword) {
 std::optional<ArcKind> arcKindFromArrow(std::string_view arrow) {
   for (size_t i = 0; i < std::size(kArcs); ++i)
     if (kArcs[i].arrow == arrow) return static_cast<ArcKind>(i);
+  return std::nullopt;
+}
+
+std::optional<ArcKind> arcKindFromTableName(std::string_view name) {
+  for (size_t i = 0; i < std::size(kArcs); ++i)
+    if (sameName(kArcs[i].tableName, name)) return static_cast<ArcKind>(i);
   return std::nullopt;
 }
 

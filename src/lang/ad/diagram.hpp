@@ -42,6 +42,8 @@ struct Node {
   std::string id;
   std::string variable;        // Activity: a port, a located address (%IX0.0) or an outside variable
   BlockType block = BlockType::TON;  // Timer, Counter
+  std::string blockType;       // Block: the function block type (an ST FUNCTION_BLOCK, a library FB)
+  std::string blockIn = "IN", blockOut = "Q";  // Block: the BOOL input a rule drives, the output it reads
   int64_t presetNs = 0;        // Timer: PT
   uint64_t presetCount = 0;    // Counter: PV
   SourceLocation loc;
@@ -72,7 +74,10 @@ bool isBar(NodeKind kind);  // OR-join, AND-join, AND-split
 bool isJoin(NodeKind kind);
 // Start and stop only mark where a diagram begins and ends; they take part in no logic unit.
 inline bool isTerminal(NodeKind kind) { return kind == NodeKind::Start || kind == NodeKind::Stop; }
-inline bool isBlock(NodeKind kind) { return kind == NodeKind::Timer || kind == NodeKind::Counter; }
+// Timers, counters and other function blocks: elements that are FB instances (LU type 3).
+inline bool isBlock(NodeKind kind) {
+  return kind == NodeKind::Timer || kind == NodeKind::Counter || kind == NodeKind::Block;
+}
 std::string_view arcArrow(ArcKind kind);
 std::string_view arcTableName(ArcKind kind);
 std::string_view blockTypeName(BlockType type);
@@ -80,7 +85,15 @@ bool isTimerBlock(BlockType type);
 // The block input a rule drives: `on` (normal arc) IN, CU or CD; else (NOT-OUT) RESET or LOAD.
 std::string_view blockInput(BlockType type, bool on);
 std::optional<NodeKind> nodeKindFromKeyword(std::string_view keyword);
+
+// The same for a block element (isBlock): its FB type, the input a rule drives (`on`) or
+// resets (NOT-OUT; empty if it has none, as timers and other FBs), and the BOOL output that is
+// its state (Q).
+std::string_view blockTypeOf(const Node& block);
+std::string_view blockInputOf(const Node& block, bool on);
+std::string_view blockOutputOf(const Node& block);
 std::optional<ArcKind> arcKindFromArrow(std::string_view arrow);
+std::optional<ArcKind> arcKindFromTableName(std::string_view name);  // "normal", "NOT-IN", "NOT-OUT", any case
 std::optional<BlockType> blockTypeFromName(std::string_view name);  // any case
 
 // The port kind of an activity: its port's, or the area of its address (%I, %Q, %M);

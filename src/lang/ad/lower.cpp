@@ -4,16 +4,13 @@
 #include <memory>
 
 #include "lang/ad/decompose.hpp"
+#include "lang/ad/ladder.hpp"
 #include "lang/ad/reader.hpp"
 #include "lang/syntax/ast_builder.hpp"
 
 namespace virtcom::ad {
 
 namespace {
-
-// Holds a rule's IF while it drives timers or counters as well as activities, so it is
-// evaluated once, before the rule's own writes.
-constexpr std::string_view kRuleVariable = "__ad_rule";
 
 class Lowering {
  public:
@@ -33,7 +30,11 @@ class Lowering {
     }
     b_.at(program_.loc);
     pou->varBlocks.push_back(b_.varBlock(st::VarSection::Var, std::move(vars_)));
-    if (!hidden_.empty()) pou->varBlocks.push_back(b_.varBlock(st::VarSection::Var, std::move(hidden_)));
+    if (rulesLowered_ > 0) {
+      std::vector<st::VarDecl> hidden;
+      hidden.push_back(b_.arrayDecl(kFiredVariable, "BOOL", rulesLowered_, true));
+      pou->varBlocks.push_back(b_.varBlock(st::VarSection::Var, std::move(hidden)));
+    }
     return pou;
   }
 
@@ -54,12 +55,13 @@ class Lowering {
     action->hasBody = true;
     for (const Node& n : d.nodes) declareNode(d, n, tables);
     for (const Rule& rule : tables.rules) lowerRule(d, rule, action->body);
+    action->ladder = ladderOf(d, tables);
     return action;
   }
 
   void declareNode(const Diagram& d, const Node& n, const DiagramTables& tables) {
     b_.at(n.loc);
-    if (isBlock(n.kind)) vars_.push_back(b_.varDecl(n.id, blockTypeName(n.block), false));
+    if (isBlock(n.kind)) vars_.push_back(b_.varDecl(n.id, blockTypeOf(n), false));
     if (!isJoin(n.kind)) return;
     for (const Rule& rule : tables.rules)
       for (const GroupDefinition& g : rule.groups)
@@ -67,7 +69,7 @@ class Lowering {
   }
 
   st::ExprPtr activityState(const Node& n) {
-    if (isBlock(n.kind)) return b_.member(n.id, "Q");
+    if (isBlock(n.kind)) return b_.member(n.id, blockOutputOf(n));
     if (!n.variable.empty() && n.variable[0] == '%') {
       st::ExprPtr e = b_.name(n.variable);
       e->kind = st::ExprKind::DirectAddr;
@@ -102,19 +104,17 @@ class Lowering {
     return out;
   }
 
+  // The rule's IF goes into its fired flag first (evaluated once, before the rule's own writes,
+  // and readable by --trace-rules); the writes and the blocks' inputs then read the flag.
   void lowerRule(const Diagram& d, const Rule& rule, st::StmtList& body) {
     for (const GroupDefinition& g : rule.groups) {
       st::ExprPtr value = condition(d, g.value);
       b_.at(d.nodes[g.bar].loc);
       body.push_back(b_.assign(b_.name(d.nodes[g.bar].id), std::move(value)));
     }
-    bool drivesBlock = false;
-    for (const RuleAction& a : rule.actions) drivesBlock = drivesBlock || isBlock(d.nodes[a.node].kind);
+    uint64_t flag = ++rulesLowered_;
     st::ExprPtr cond = condition(d, rule.condition);
-    if (drivesBlock) {
-      if (hidden_.empty()) hidden_.push_back(b_.varDecl(kRuleVariable, "BOOL", true));
-      body.push_back(b_.assign(b_.name(kRuleVariable), std::move(cond)));
-    }
+    body.push_back(b_.assign(b_.index(kFiredVariable, flag), std::move(cond)));
     st::StmtList writes;
     for (const RuleAction& a : rule.actions) {
       const Node& target = d.nodes[a.node];
@@ -122,27 +122,28 @@ class Lowering {
       if (isBlock(target.kind)) continue;
       writes.push_back(b_.assign(activityState(target), b_.boolLit(a.on)));
     }
-    if (!writes.empty()) body.push_back(b_.ifThen(drivesBlock ? b_.name(kRuleVariable) : std::move(cond), std::move(writes)));
+    if (!writes.empty()) body.push_back(b_.ifThen(b_.index(kFiredVariable, flag), std::move(writes)));
     for (const RuleAction& a : rule.actions)
-      if (isBlock(d.nodes[a.node].kind)) body.push_back(driveBlock(d.nodes[a.node], a.on));
+      if (isBlock(d.nodes[a.node].kind)) body.push_back(driveBlock(d.nodes[a.node], a.on, flag));
   }
 
   // A counter's reset is assigned (the block runs at its counting rule); the driven input
   // calls the block with its preset.
-  st::StmtPtr driveBlock(const Node& block, bool on) {
+  st::StmtPtr driveBlock(const Node& block, bool on, uint64_t flag) {
     b_.at(block.loc);
-    std::string_view input = blockInput(block.block, on);
-    if (!on) return b_.assign(b_.member(block.id, input), b_.name(kRuleVariable));
+    std::string_view input = blockInputOf(block, on);
+    if (!on) return b_.assign(b_.member(block.id, input), b_.index(kFiredVariable, flag));
     std::vector<std::pair<std::string, st::ExprPtr>> args;
-    args.emplace_back(std::string(input), b_.name(kRuleVariable));
-    if (isTimerBlock(block.block)) args.emplace_back("PT", b_.timeLit(block.presetNs));
-    else args.emplace_back("PV", b_.intLit(block.presetCount));
+    args.emplace_back(std::string(input), b_.index(kFiredVariable, flag));
+    if (block.kind == NodeKind::Timer) args.emplace_back("PT", b_.timeLit(block.presetNs));
+    if (block.kind == NodeKind::Counter) args.emplace_back("PV", b_.intLit(block.presetCount));
     return b_.callNamed(block.id, std::move(args));
   }
 
   const Program& program_;
   st::AstBuilder b_;
-  std::vector<st::VarDecl> vars_, hidden_;
+  std::vector<st::VarDecl> vars_;
+  uint64_t rulesLowered_ = 0;  // rules of the diagrams lowered so far: the last fired flag used
 };
 
 }  // namespace
@@ -154,15 +155,30 @@ st::CompilationUnit lowerProgram(const Program& program, uint32_t fileId, st::No
   return unit;
 }
 
-st::CompilationUnit importDiagrams(uint32_t fileId, std::string_view text, Diagnostics& diags, st::NodeId& nextNodeId) {
+namespace {
+
+// Lowers what `read` made of the file, or gives an empty unit if it reported an error.
+template <class Read>
+st::CompilationUnit importWith(Read read, uint32_t fileId, std::string_view text, Diagnostics& diags,
+                               st::NodeId& nextNodeId) {
   size_t errorsBefore = diags.errorCount();
-  Program program = readProgram(fileId, text, diags);
+  Program program = read(fileId, text, diags);
   if (diags.errorCount() != errorsBefore) {
     st::CompilationUnit empty;
     empty.fileId = fileId;
     return empty;
   }
   return lowerProgram(program, fileId, nextNodeId);
+}
+
+}  // namespace
+
+st::CompilationUnit importDiagrams(uint32_t fileId, std::string_view text, Diagnostics& diags, st::NodeId& nextNodeId) {
+  return importWith(readProgram, fileId, text, diags, nextNodeId);
+}
+
+st::CompilationUnit importXmlDiagrams(uint32_t fileId, std::string_view text, Diagnostics& diags, st::NodeId& nextNodeId) {
+  return importWith(readXmlProgram, fileId, text, diags, nextNodeId);
 }
 
 }  // namespace virtcom::ad

@@ -12,12 +12,19 @@
 
 namespace virtcom::ad {
 
+// The hidden `ARRAY [1..rules] OF BOOL` of the PROGRAM: element k is TRUE while the IF of the
+// k-th rule of the file (diagrams in file order, rules in rule order) holds, set every scan as
+// the rule is checked. `virtcom exec --trace-rules` reads it (rule_trace.hpp).
+inline constexpr std::string_view kFiredVariable = "__ad_fired";
+
 // The PROGRAM of a checked program (reader.hpp):
 // - VAR: every port as a BOOL (`AT %IX0.0` when located), every timer and counter as an
 //   instance of its block, every grouped join as a BOOL, so all are readable as PROGRAM.name;
-// - per rule: its groups assigned (`K := C1 OR L;`), then for normal activities
-//   `IF <IF> THEN Y := TRUE (FALSE for NOT-OUT); END_IF`, for timers `T(IN := <IF>, PT := preset)`
-//   and counters `C(CU|CD := <IF>, PV := preset)` / `C.RESET|LOAD := <IF>` every scan.
+// - per rule: its groups assigned (`K := C1 OR L;`), its fired flag `__ad_fired[k] := <IF>;`,
+//   then for normal activities `IF __ad_fired[k] THEN Y := TRUE (FALSE for NOT-OUT); END_IF`,
+//   for timers `T(IN := __ad_fired[k], PT := preset)` and counters `C(CU|CD := ..., PV := preset)`
+//   / `C.RESET|LOAD := __ad_fired[k]` every scan;
+// - per diagram ACTION, its rules as ladder rungs (st::Pou::ladder, ladder.hpp) for the LD export.
 // The scan is the seed's: inputs are read before the rules (the PLC's input image), every rule
 // is checked in order and sees what earlier rules wrote, outputs go out after the last rule.
 // Nodes carry the location of the element or arc they come from. Allocates; never throws.
@@ -26,5 +33,8 @@ st::CompilationUnit lowerProgram(const Program& program, uint32_t fileId, st::No
 // A compiler front end (st::FrontEnd) for .ad files: readProgram, then lowerProgram if the file
 // had no error (an empty unit otherwise).
 st::CompilationUnit importDiagrams(uint32_t fileId, std::string_view text, Diagnostics& diags, st::NodeId& nextNodeId);
+
+// The same for AD-XML files (.adxml): readXmlProgram, then lowerProgram.
+st::CompilationUnit importXmlDiagrams(uint32_t fileId, std::string_view text, Diagnostics& diags, st::NodeId& nextNodeId);
 
 }  // namespace virtcom::ad

@@ -1,6 +1,7 @@
 #pragma once
-// The hand-written text form of activity diagrams (.ad files, docs/activity-diagrams.md): one
-// element or arc per line, so a change to a diagram is a change to the lines it touches.
+// The two forms of an activity-diagram file (docs/activity-diagrams.md): the hand-written text
+// (.ad: one element or arc per line, so a change to a diagram is a change to the lines it
+// touches) and AD-XML (.adxml: the same model as XML elements, for tools).
 #include <cstdint>
 #include <string_view>
 
@@ -21,5 +22,17 @@ void checkProgram(const Program& program, Diagnostics& diags);
 
 // True for the files readProgram() reads: the extension is .ad (any case).
 bool isDiagramPath(std::string_view path);
+
+// Reads and checks an AD-XML file (docs/activity-diagrams.md, "AD-XML"): the same model as
+// the text form, element for element, with the same checks and A0xx codes at the XML element's
+// (or attribute's) line:col; a document that is not well-formed XML or not a <program> is A014.
+// Never throws on bad input; allocates the model.
+Program readXmlProgram(uint32_t fileId, std::string_view text, Diagnostics& diags);
+
+// True for the files readXmlProgram() reads: the extension is .adxml (any case).
+bool isXmlDiagramPath(std::string_view path);
+
+// readXmlProgram for .adxml paths, readProgram for any other.
+Program readProgramFile(uint32_t fileId, std::string_view path, std::string_view text, Diagnostics& diags);
 
 }  // namespace virtcom::ad

@@ -151,7 +151,7 @@ std::string formatThen(const Diagram& d, const Rule& rule) {
   for (const RuleAction& action : rule.actions) {
     const Node& target = d.nodes[action.node];
     out += out.empty() ? "" : ", ";
-    if (isBlock(target.kind)) out += target.id + "." + std::string(blockInput(target.block, action.on)) + "=on";
+    if (isBlock(target.kind)) out += target.id + "." + std::string(blockInputOf(target, action.on)) + "=on";
     else out += target.id + (action.on ? "=on" : "=off");
   }
   return out;

@@ -1,10 +1,11 @@
 #pragma once
-// Internal to the TC6 writer: pieces shared by exporter.cpp and export_sfc.cpp.
+// Internal to the TC6 writer: pieces shared by exporter.cpp, export_sfc.cpp and export_ladder.cpp.
 #include <pugixml.hpp>
 
 #include <string>
 
 #include "lang/sfc/sfc_model.hpp"
+#include "lang/syntax/ladder.hpp"
 
 namespace virtcom::plcopen::detail {
 
@@ -20,5 +21,12 @@ void writeChartTransitions(pugi::xml_node pou, const sfc::Chart& chart);
 // inline), selection and simultaneous divergences and convergences, and a jumpStep for every
 // transition into a step declared before (or at) its source, connected by localId/refLocalId.
 void writeChartBody(pugi::xml_node pou, const sfc::Chart& chart);
+
+// The rungs as a graphical <LD> body of `parent` (a pou or an action), one after the other:
+// per rung an optional comment, a left power rail, the contacts (series = AND, parallel
+// branches = OR), the outputs one below the other (coils normal / negated / set / reset, and
+// function blocks with the power on one input and a constant inVariable on another) and a right
+// power rail, connected by localId/refLocalId (export_ladder.cpp).
+void writeLadderBody(pugi::xml_node parent, const st::Ladder& ladder);
 
 }  // namespace virtcom::plcopen::detail

@@ -232,7 +232,7 @@ void Exporter::pou(pugi::xml_node pous, const st::Pou& p) {
     if (!actions) actions = node.append_child("actions");
     pugi::xml_node action = actions.append_child("action");
     action.append_attribute("name") = p.actions[k]->name.c_str();
-    stBody(action, p.actions[k]->body);
+    body(action, *p.actions[k]);
   }
   body(node, p);
   writeAttributes(node, p.attributes);
@@ -249,9 +249,10 @@ void Exporter::pou(pugi::xml_node pous, const st::Pou& p) {
   }
 }
 
-// The body; with a chart, the POU's statements before and after the lowered ones become ST
+// The body (of a POU or an action); rungs as an LD body; with a chart, the POU's statements before and after the lowered ones become ST
 // bodies around the SFC body (bodies run in document order).
 void Exporter::body(pugi::xml_node node, const st::Pou& p) {
+  if (p.ladder) return detail::writeLadderBody(node, *p.ladder);  // drawn as rungs, written as rungs
   if (!p.chart) return stBody(node, p.body);
   const st::ChartSource& chart = *p.chart;
   detail::writeChartTransitions(node, *chart.chart);

@@ -7,8 +7,19 @@
 
 #include "core/diagnostics.hpp"
 #include "lang/plcopen/ast_builder.hpp"
-#include "lang/plcopen/xml_file.hpp"
 #include "lang/syntax/ast.hpp"
+#include "lang/xml/xml_file.hpp"
+
+namespace virtcom::plcopen {
+// The XML helpers every part of the importer walks the document with (lang/xml).
+using xml::child;
+using xml::children;
+using xml::describe;
+using xml::firstElement;
+using xml::firstText;
+using xml::localName;
+using xml::XmlFile;
+}  // namespace virtcom::plcopen
 
 namespace virtcom::plcopen::detail {
 

@@ -320,7 +320,7 @@ st::ProgramConfig Importer::importPouInstance(pugi::xml_node node, std::string t
 st::CompilationUnit importProject(uint32_t fileId, std::string_view text, Diagnostics& diags, st::NodeId& nextNodeId) {
   st::CompilationUnit unit;
   unit.fileId = fileId;
-  XmlFile xml(fileId, text, diags);
+  XmlFile xml(fileId, text, diags, diag::X001);
   if (!xml.ok()) return unit;
   detail::Importer importer(xml, diags, nextNodeId, unit);
   importer.importProject(xml.root());
@@ -336,6 +336,7 @@ st::SourceInput sourceInput(std::string path, std::string text) {
   if (isPlcopenPath(path)) frontEnd = importProject;
   else if (isTwinCatPath(path)) frontEnd = importTwinCatFile;
   else if (ad::isDiagramPath(path)) frontEnd = ad::importDiagrams;
+  else if (ad::isXmlDiagramPath(path)) frontEnd = ad::importXmlDiagrams;
   return {std::move(path), std::move(text), std::move(frontEnd)};
 }
 

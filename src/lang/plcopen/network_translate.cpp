@@ -22,7 +22,9 @@ class Translator {
       : imp_(imp), b_(imp.build()), net_(net), owner_(owner), prefix_(prefix),
         state_(net.elements.size(), State::Unvisited), cached_(net.elements.size()), parsed_(net.elements.size()) {
     memories_.section = st::VarSection::Var;
-    temps_.section = st::VarSection::Temp;
+    // An action's body runs in its own frame, without the VAR_TEMPs of the POU that holds its
+    // hidden variables (an action declares none): its intermediate values are plain VARs.
+    temps_.section = prefix.empty() ? st::VarSection::Temp : st::VarSection::Var;
   }
 
   st::StmtList run();

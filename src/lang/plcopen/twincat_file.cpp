@@ -5,11 +5,19 @@
 
 #include "core/ascii.hpp"
 #include "lang/plcopen/diagnostic_codes.hpp"
-#include "lang/plcopen/xml_file.hpp"
 #include "lang/st/parse/lexer.hpp"
 #include "lang/st/parse/parser.hpp"
+#include "lang/xml/xml_file.hpp"
 
 namespace virtcom::plcopen {
+
+// The XML helpers the reader walks the file with (lang/xml).
+using xml::child;
+using xml::children;
+using xml::firstElement;
+using xml::firstText;
+using xml::localName;
+using xml::XmlFile;
 
 namespace {
 
@@ -233,7 +241,7 @@ class TwinCatReader {
 
 st::CompilationUnit importTwinCatFile(uint32_t fileId, std::string_view text, Diagnostics& diags,
                                       st::NodeId& nextNodeId) {
-  XmlFile file(fileId, text, diags);
+  XmlFile file(fileId, text, diags, diag::X001);
   if (!file.ok()) return st::CompilationUnit{fileId, {}, {}, {}, {}, {}};
   std::string st = TwinCatReader(text, file, diags).read();
   return st::parseFile(fileId, st, diags, nextNodeId);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/source.hpp"
+#include "lang/syntax/ladder.hpp"
 
 namespace virtcom::sfc {
 struct Chart;  // lang/sfc/sfc_model.hpp
@@ -251,6 +252,7 @@ struct Pou {
   std::vector<Property> properties;
   std::vector<Attribute> attributes;
   std::optional<ChartSource> chart;  // set when the body is a lowered chart
+  std::optional<Ladder> ladder;      // set when the body was lowered from ladder rungs (ladder.hpp)
 };
 
 struct Interface {

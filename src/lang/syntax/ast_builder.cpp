@@ -31,6 +31,13 @@ ExprPtr AstBuilder::member(std::string_view base, std::string_view field) {
   return e;
 }
 
+ExprPtr AstBuilder::index(std::string_view array, uint64_t subscript) {
+  ExprPtr e = expr(ExprKind::Index);
+  e->lhs = name(array);
+  e->items.push_back(intLit(subscript));
+  return e;
+}
+
 ExprPtr AstBuilder::boolLit(bool value) {
   ExprPtr e = expr(ExprKind::BoolLit);
   e->intValue = value ? 1 : 0;
@@ -144,6 +151,17 @@ VarDecl AstBuilder::varDecl(std::string_view name, std::string_view typeName, bo
   decl.type.name = typeName;
   decl.loc = loc_;
   if (hidden) decl.attributes.push_back({"hide", ""});
+  return decl;
+}
+
+VarDecl AstBuilder::arrayDecl(std::string_view name, std::string_view elementType, uint64_t count, bool hidden) {
+  VarDecl decl = varDecl(name, "", hidden);
+  decl.type.kind = TypeSpecKind::Array;
+  decl.type.name.clear();
+  decl.type.dims.push_back({intLit(1), intLit(count)});
+  decl.type.element = std::make_unique<TypeSpec>();
+  decl.type.element->loc = loc_;
+  decl.type.element->name = elementType;
   return decl;
 }
 

@@ -17,6 +17,7 @@ class AstBuilder {
 
   ExprPtr name(std::string_view text);
   ExprPtr member(std::string_view base, std::string_view field);  // base.field
+  ExprPtr index(std::string_view array, uint64_t subscript);       // array[subscript]
   ExprPtr boolLit(bool value);
   ExprPtr timeLit(int64_t ns);
   ExprPtr intLit(uint64_t value);
@@ -38,6 +39,8 @@ class AstBuilder {
 
   // A variable declaration `name : typeName` with optional {attribute 'hide'}.
   VarDecl varDecl(std::string_view name, std::string_view typeName, bool hidden);
+  // `name : ARRAY [1..count] OF elementType` with optional {attribute 'hide'}.
+  VarDecl arrayDecl(std::string_view name, std::string_view elementType, uint64_t count, bool hidden);
   // A VAR_... block of the given section holding `vars`.
   VarBlock varBlock(VarSection section, std::vector<VarDecl> vars);
 

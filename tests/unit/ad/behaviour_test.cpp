@@ -7,9 +7,6 @@
 #include <random>
 #include <vector>
 
-#include "core/clock.hpp"
-#include "aot/compile.hpp"
-#include "plc/runtime.hpp"
 #include "ad_fixture.hpp"
 
 namespace virtcom::ad {
@@ -83,38 +80,8 @@ void PrintTo(const Equivalence& c, std::ostream* os) { *os << c.name; }
 
 class Behaviour : public ::testing::TestWithParam<Equivalence> {};
 
-struct Side {
-  std::unique_ptr<bc::Module> module;
-  VirtualClock clock;
-  std::unique_ptr<plc::Runtime> runtime;
-
-  void write(const std::string& name, bool value) {
-    auto ref = bc::resolveVariable(*module, "P." + name);
-    ASSERT_TRUE(ref) << name;
-    bc::writeValueFromText(*module, *ref, value ? "TRUE" : "FALSE", runtime->machine().memory());
-    runtime->inputsTouched();
-  }
-  std::string read(const std::string& name) {
-    auto ref = bc::resolveVariable(*module, "P." + name);
-    return ref ? bc::formatValue(*module, *ref, runtime->machine().memory()) : "<no " + name + ">";
-  }
-};
-
-// `native`: the program runs as machine code from the AOT backend instead of the interpreter.
-void start(Side& side, std::string path, std::string text, bool native = false) {
-  Diagnostics diags;
-  side.module = test::compileText(std::move(path), std::move(text), diags);
-  ASSERT_NE(side.module, nullptr) << test::codesAndPlaces(diags) << (diags.all().empty() ? "" : diags.all()[0].message);
-  side.runtime = std::make_unique<plc::Runtime>(*side.module, side.clock);
-  if (native) {
-    aot::CompileOptions options;
-    options.cacheDir = VIRTCOM_AOT_TEST_CACHE;
-    const aot::CompileResult compiled = aot::compileModule(*side.module, options);
-    ASSERT_TRUE(compiled.code) << compiled.error;
-    side.runtime->machine().useCompiled(compiled.code);
-  }
-  ASSERT_TRUE(side.runtime->coldStart());
-}
+using test::Side;
+using test::start;
 
 TEST_P(Behaviour, DiagramMatchesHandWrittenSt) {
   const Equivalence& c = GetParam();

@@ -1,5 +1,6 @@
 #pragma once
-// A PLCopen XML file parsed with pugixml, and the way back from its nodes to line:col locations.
+// An XML file parsed with pugixml, and the way back from its nodes to line:col locations, shared
+// by the XML front ends (PLCopen TC6 and TwinCAT files in lang/plcopen, AD-XML in lang/ad).
 // PLCopen files come with and without namespace prefixes (`<project xmlns="...tc6_0201">`,
 // `<xhtml:p>`), so elements are matched by their local name.
 #include <pugixml.hpp>
@@ -12,13 +13,14 @@
 #include "core/diagnostics.hpp"
 #include "core/source.hpp"
 
-namespace virtcom::plcopen {
+namespace virtcom::xml {
 
 class XmlFile {
  public:
-  // Parses `text` (which must outlive this object). A malformed document is reported as X001 at
-  // the offending byte; ok() then returns false. Never throws.
-  XmlFile(uint32_t fileId, std::string_view text, Diagnostics& diags);
+  // Parses `text` (which must outlive this object). A malformed document is reported with
+  // `malformedCode` (the front end's own code, e.g. X001) at the offending byte; ok() then
+  // returns false. Never throws.
+  XmlFile(uint32_t fileId, std::string_view text, Diagnostics& diags, std::string_view malformedCode);
   bool ok() const { return ok_; }
   pugi::xml_node root() const { return doc_.document_element(); }
   uint32_t fileId() const { return fileId_; }
@@ -51,4 +53,4 @@ pugi::xml_node firstText(pugi::xml_node node);
 // How diagnostics name an element: `contact (localId 5)`, `pou 'MAIN'`, or just `variable`.
 std::string describe(pugi::xml_node node);
 
-}  // namespace virtcom::plcopen
+}  // namespace virtcom::xml

@@ -1,18 +1,16 @@
-#include "lang/plcopen/xml_file.hpp"
+#include "lang/xml/xml_file.hpp"
 
 #include <algorithm>
 
-#include "lang/plcopen/diagnostic_codes.hpp"
+namespace virtcom::xml {
 
-namespace virtcom::plcopen {
-
-XmlFile::XmlFile(uint32_t fileId, std::string_view text, Diagnostics& diags) : fileId_(fileId), text_(text) {
+XmlFile::XmlFile(uint32_t fileId, std::string_view text, Diagnostics& diags, std::string_view malformedCode) : fileId_(fileId), text_(text) {
   lineStarts_.push_back(0);
   for (size_t i = 0; i < text.size(); ++i)
     if (text[i] == '\n') lineStarts_.push_back(i + 1);
   pugi::xml_parse_result result = doc_.load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
   if (!result) {
-    diags.error(diag::X001, atOffset(static_cast<size_t>(std::max<ptrdiff_t>(result.offset, 0))),
+    diags.error(malformedCode, atOffset(static_cast<size_t>(std::max<ptrdiff_t>(result.offset, 0))),
                 std::string("malformed XML: ") + result.description());
     return;
   }
@@ -102,4 +100,4 @@ std::string describe(pugi::xml_node node) {
   return out;
 }
 
-}  // namespace virtcom::plcopen
+}  // namespace virtcom::xml

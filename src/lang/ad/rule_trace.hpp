@@ -1,0 +1,21 @@
+#pragma once
+// What `--trace-rules` prints about a rule that fired: the rules of a program in the order of
+// their fired flags (lower.hpp, kFiredVariable), each with its diagram, index and THEN.
+#include <string>
+#include <vector>
+
+#include "lang/ad/diagram.hpp"
+
+namespace virtcom::ad {
+
+struct TracedRule {
+  std::string diagram;  // "Supply"
+  std::string index;    // "3", "2.1"
+  std::string then;     // "SupplyValve := FALSE, Filled := TRUE"; blocks: "React.IN := TRUE"
+};
+
+// Element k-1 describes the rule whose fired flag is __ad_fired[k]. Decomposes every diagram of
+// a checked program; allocates.
+std::vector<TracedRule> tracedRules(const Program& program);
+
+}  // namespace virtcom::ad

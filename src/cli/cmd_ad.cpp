@@ -43,6 +43,7 @@ void addAdCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   tables->add_option("file", *file, "an activity-diagram file (.ad)")->required()->check(CLI::ExistingFile);
   tables->add_option("--format", *format, "text (aligned columns), markdown or csv")->capture_default_str();
   tables->callback([file, format, setExit] { setExit(printTables(*file, *format)); });
+  addAdRenderCommand(*cmd, setExit);
 }
 
 }  // namespace virtcom::cli

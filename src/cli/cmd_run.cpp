@@ -110,16 +110,6 @@ bool closeStreamedFiles(std::vector<std::unique_ptr<StreamedFile>>& files) {
   return ok;
 }
 
-bool writeFile(const std::string& path, const std::string& content) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) {
-    std::cerr << "error: cannot write " << path << "\n";
-    return false;
-  }
-  out << content;
-  return true;
-}
-
 ExitCode exitCodeFor(RunEnd end) {
   switch (end) {
     case RunEnd::Completed: return ExitCode::Ok;

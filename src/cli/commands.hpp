@@ -18,4 +18,6 @@ void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addModbusMapCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addExportCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addAdCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
+// `virtcom ad render`, a subcommand of `ad` (cmd_ad_render.cpp).
+void addAdRenderCommand(CLI::App& ad, std::function<void(ExitCode)> setExit);
 }  // namespace virtcom::cli

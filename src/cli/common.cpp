@@ -64,6 +64,16 @@ std::string presetVariable(const bc::Module& m, const std::string& assignment, u
   return {};
 }
 
+bool writeFile(const std::string& path, const std::string& content) {
+  std::ofstream out(path, std::ios::binary);
+  out << content;
+  if (!out.flush()) {
+    std::cerr << "error: cannot write " << path << "\n";
+    return false;
+  }
+  return true;
+}
+
 std::optional<int64_t> parseDurationNs(const std::string& raw) {
   std::string text = asciiLower(raw);
   if (text.rfind("t#", 0) == 0) text = text.substr(2);

@@ -39,6 +39,10 @@ std::string presetVariable(const bc::Module& m, const std::string& assignment, u
 // compiler, compile error), so that the interpreter runs instead.
 std::shared_ptr<const vm::CompiledCode> compiledBackend(const std::string& backend, const bc::Module& m);
 
+// Writes `content` to `path` (binary); prints "error: cannot write PATH" and returns false if
+// the file cannot be written.
+bool writeFile(const std::string& path, const std::string& content);
+
 // Parses a duration such as "10ms", "1.5s", "250us", "T#1s500ms", "100" (ms). Nullopt if invalid.
 std::optional<int64_t> parseDurationNs(const std::string& text);
 

@@ -1,8 +1,13 @@
 // End-to-end tests of activity diagrams through the `virtcom` command: the example of
-// examples/activity checks clean, prints its tables and runs; a faulty diagram gives located
-// diagnostics and exit code 1.
+// examples/activity checks clean, prints its tables, is drawn as SVG and runs; a faulty diagram
+// gives located diagnostics and exit code 1.
 #include <gtest/gtest.h>
 
+#include <pugixml.hpp>
+
+#include <fstream>
+#include <set>
+#include <sstream>
 #include <string>
 
 #include "shell_command.hpp"
@@ -76,6 +81,74 @@ TEST(AdCli, FaultyDiagramIsReportedWithItsLocation) {
   out.clear();
   EXPECT_EQ(shell("cd " + kDataDir + " && " + kExe + " ad tables mistakes.ad", out), 1) << out;
   EXPECT_NE(out.find("error[A004]"), std::string::npos) << out;
+}
+
+// The element ids of an .ad file as the drawing names them (`Diagram.Id`), read from its
+// element lines (keyword, id).
+std::set<std::string> elementIds(const std::string& adFile) {
+  static const std::set<std::string> kKeywords = {"start",   "stop",     "activity",  "timer",
+                                                  "counter", "or-join", "and-join", "and-split"};
+  std::set<std::string> ids;
+  std::istringstream in(virtcom::test::readFile(adFile));
+  std::string line, diagram;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string keyword, id;
+    words >> keyword >> id;
+    if (keyword == "diagram") diagram = id;
+    if (kKeywords.count(keyword)) ids.insert(diagram + "." + id);
+  }
+  return ids;
+}
+
+// The ids of the SVG's <g> elements; fails the test if the file is not well-formed XML.
+std::set<std::string> svgGroupIds(const std::string& svgFile) {
+  pugi::xml_document doc;
+  pugi::xml_parse_result parsed = doc.load_file(svgFile.c_str());
+  EXPECT_TRUE(parsed) << svgFile << ": " << parsed.description() << " at offset " << parsed.offset;
+  EXPECT_STREQ(doc.document_element().name(), "svg");
+  std::set<std::string> ids;
+  for (pugi::xpath_node g : doc.select_nodes("//*[local-name()='g'][@id]")) ids.insert(g.node().attribute("id").value());
+  return ids;
+}
+
+TEST(AdRender, SvgOfTheExampleHoldsEveryElement) {
+  const std::string svg = ::testing::TempDir() + "tank.svg";
+  std::string out;
+  ASSERT_EQ(shell(inExample("ad render tank.ad --svg " + svg), out), 0) << out;
+  std::set<std::string> ids = svgGroupIds(svg);
+  std::set<std::string> expected = elementIds(kExampleDir + "/tank.ad");
+  ASSERT_EQ(expected.size(), 28u);  // 9 + 9 + 10 elements in Supply, Reaction, Drain
+  for (const std::string& id : expected) EXPECT_TRUE(ids.count(id)) << id << " is not in the SVG";
+  for (const char* cluster : {"Supply", "Reaction", "Drain"}) EXPECT_TRUE(ids.count(cluster)) << cluster;
+  EXPECT_TRUE(ids.count("Drain.arc12")) << "the last arc of Drain";
+}
+
+TEST(AdRender, OneDiagramAndItsDotText) {
+  const std::string svg = ::testing::TempDir() + "reaction.svg";
+  const std::string dot = ::testing::TempDir() + "reaction.dot";
+  std::string out;
+  ASSERT_EQ(shell(inExample("ad render tank.ad --diagram Reaction --svg " + svg + " --dot " + dot), out), 0) << out;
+  std::set<std::string> ids = svgGroupIds(svg);
+  EXPECT_TRUE(ids.count("Reaction.React"));
+  EXPECT_FALSE(ids.count("Supply.Valve"));
+  EXPECT_NE(virtcom::test::readFile(dot).find("\"Reaction.End\" -> \"Reaction.Heat\" [id=\"Reaction.arc6\", arrowhead=teenormal]"),
+            std::string::npos);
+}
+
+TEST(AdRender, MistakesOnTheCommandLine) {
+  std::string out;
+  EXPECT_EQ(shell(inExample("ad render tank.ad --diagram Mixing --svg /dev/null"), out), 64) << out;
+  EXPECT_NE(out.find("no diagram 'Mixing' (the file has: Supply, Reaction, Drain)"), std::string::npos) << out;
+  out.clear();
+  EXPECT_EQ(shell(inExample("ad render tank.ad"), out), 64) << out;
+  EXPECT_NE(out.find("give --svg and/or --dot"), std::string::npos) << out;
+  out.clear();
+  EXPECT_EQ(shell("cd " + kDataDir + " && " + kExe + " ad render mistakes.ad --svg /dev/null", out), 1) << out;
+  EXPECT_NE(out.find("error[A004]"), std::string::npos) << out;
+  out.clear();
+  EXPECT_EQ(shell(kExe + " ad render --help", out), 0) << out;
+  EXPECT_NE(out.find("--diagram"), std::string::npos) << out;
 }
 
 }  // namespace

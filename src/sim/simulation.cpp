@@ -4,6 +4,12 @@
 
 namespace virtcom::sim {
 
+namespace {
+bool isInputArea(const cell::Wire& w, const bc::ProcessArea& in) {
+  return w.address >= in.address && w.address < in.address + in.size;
+}
+}  // namespace
+
 Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), options_(options) {
   if (options_.speed > 0) clock_ = std::make_unique<PacedClock>(options_.speed);
   else clock_ = std::make_unique<VirtualClock>();
@@ -12,6 +18,12 @@ Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), opti
     ropts.skipRepeatedScans = options_.skipRepeatedScans;
     runtime_ = std::make_unique<plc::Runtime>(*cell_.module, *clock_, ropts);
     runtime_->machine().useCompiled(options_.compiled);
+    const bc::ProcessArea& in = cell_.module->inputs;
+    for (const auto& w : cell_.wires)
+      if (w.dir == plant::PortDir::Out && isInputArea(w, in)) {
+        inputImageWires_.push_back(w);
+        inputImageWires_.back().address -= in.address;
+      }
   }
   timeLimitNs_ = options_.timeLimitNs >= 0 ? options_.timeLimitNs : cell_.run.timeLimitNs;
   Trace& trace = cell_.trace;
@@ -150,8 +162,10 @@ bool Simulation::checkStop() {
 void Simulation::scanPlc() {
   uint8_t* mem = runtime_->machine().memory();
   bool touched = false;
+  const bc::ProcessArea& in = cell_.module->inputs;
   for (const auto& w : cell_.wires)
-    if (w.dir == plant::PortDir::Out) touched |= cell::writeVariable(w, cell_.bus, mem);
+    if (w.dir == plant::PortDir::Out && !isInputArea(w, in)) touched |= cell::writeVariable(w, cell_.bus, mem);
+  for (const auto& w : inputImageWires_) touched |= cell::writeVariable(w, cell_.bus, runtime_->inputImage());
   if (touched) runtime_->inputsTouched();
   if (options_.beforeScan) options_.beforeScan(*runtime_);
   runtime_->tick();

@@ -84,6 +84,9 @@ class Simulation {
   std::vector<TagId> recordTags_;
   std::vector<uint8_t> keepChange_;      // per tag: 1 = its changes stay in Trace::changes
   std::vector<cell::Wire> recordWires_;  // extra PLC variables recorded as signals
+  // Device outputs wired to located inputs (AT %I...), addressed in the PLC's input image: the
+  // scan copies that image into the %I area, so a write into the area itself would be lost.
+  std::vector<cell::Wire> inputImageWires_;
   cell::Wire cycleWire_;
   bool hasCycleWire_ = false;
   bool lastCycleDone_ = false;

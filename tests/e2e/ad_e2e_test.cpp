@@ -5,11 +5,13 @@
 
 #include <pugixml.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <sstream>
 #include <string>
 
+#include "csv_trace.hpp"
 #include "shell_command.hpp"
 #include "support/read_file.hpp"
 
@@ -149,6 +151,65 @@ TEST(AdRender, MistakesOnTheCommandLine) {
   out.clear();
   EXPECT_EQ(shell(kExe + " ad render --help", out), 0) << out;
   EXPECT_NE(out.find("--diagram"), std::string::npos) << out;
+}
+
+// The value `signal` has at time t (its last change at or before t).
+double valueAt(const std::vector<Change>& changes, double t) {
+  double v = 0;
+  for (const Change& c : changes)
+    if (c.timeS <= t + 1e-9) v = c.value;
+  return v;
+}
+
+// The periods a BOOL signal is on, as [start, end] times.
+std::vector<std::pair<double, double>> onPeriods(const std::vector<Change>& changes) {
+  std::vector<std::pair<double, double>> out;
+  for (const Change& c : changes) {
+    if (c.value != 0 && (out.empty() || out.back().second >= 0)) out.push_back({c.timeS, -1});
+    else if (c.value == 0 && !out.empty() && out.back().second < 0) out.back().second = c.timeS;
+  }
+  return out;
+}
+
+// tank.ad as the PLC of a cell of process devices (tank-cell.yaml): three batches, each filled to
+// the high level switch, reacted for the timer's 3 s with the heater on, and drained empty.
+TEST(AdCells, FluidTankRunsThreeBatches) {
+  const std::string csvFile = ::testing::TempDir() + "tank.csv";
+  std::string out;
+  ASSERT_EQ(shell(inExample("run tank-cell.yaml --csv " + csvFile), out), 0) << out;
+  EXPECT_NE(out.find("completed: 'TankControl.Batches.CV >= 3' became true"), std::string::npos) << out;
+  EXPECT_NE(out.find("ReactorHeater       heater          9.000"), std::string::npos) << out;
+  EXPECT_NE(out.find("360000.0"), std::string::npos) << out;  // 3 x 3 s x 40 kW
+  const std::string csv = virtcom::test::readFile(csvFile);
+  const std::vector<Change> level = changes(csv, "Reactor.level");
+  const auto supply = onPeriods(changes(csv, "SupplyValve.open"));
+  const auto heating = onPeriods(changes(csv, "ReactorHeater.on"));
+  const auto drain = onPeriods(changes(csv, "DrainValve.open"));
+  ASSERT_EQ(supply.size(), 3u);
+  ASSERT_EQ(heating.size(), 3u);
+  ASSERT_EQ(drain.size(), 3u);
+  for (size_t i = 0; i < 3; ++i) {
+    // filled to the high level switch (95 %): the valve closes the scan after it switches
+    EXPECT_GE(valueAt(level, supply[i].second), 95.0) << "batch " << i;
+    EXPECT_LT(valueAt(level, supply[i].second), 97.0) << "batch " << i;
+    // the reaction: heater on from the end of the supply for exactly the 3 s timer
+    EXPECT_NEAR(heating[i].first, supply[i].second, 1e-9) << "batch " << i;
+    EXPECT_NEAR(heating[i].second - heating[i].first, 3.0, 1e-9) << "batch " << i;
+    // drained when the reaction is over, down to the low level switch (1 %)
+    EXPECT_NEAR(drain[i].first, heating[i].second, 1e-9) << "batch " << i;
+    EXPECT_LT(valueAt(level, drain[i].second), 1.0) << "batch " << i;
+    // the next batch is supplied only after the drain (NOT-IN Draining)
+    if (i + 1 < 3) EXPECT_GT(supply[i + 1].first, drain[i].second) << "batch " << i;
+  }
+  for (double overflow : values(csv, "Reactor.overflow")) EXPECT_EQ(overflow, 0.0);
+  // each batch: 40 kW for 3 s into about 95 kg of water, +0.30 K (P·t / (m·c)); the sensor
+  // (1 s lag) reads a little less at the peak
+  const std::vector<double> tank = values(csv, "Reactor.temperature");
+  const std::vector<double> sensor = values(csv, "ReactorTemperature.value");
+  const double peak = *std::max_element(tank.begin(), tank.end());
+  EXPECT_NEAR(peak, 18.0 + 40e3 * 3 / (95.5 * 4186), 0.01);
+  EXPECT_LT(*std::max_element(sensor.begin(), sensor.end()), peak);
+  EXPECT_EQ(values(csv, "TankControl.Batches.CV").back(), 3.0);
 }
 
 }  // namespace

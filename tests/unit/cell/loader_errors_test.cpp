@@ -160,7 +160,8 @@ TEST_F(LoaderErrors, UnknownDeviceTypeAtTheTypeValue) {
                     "  - name: Gizmo\n"
                     "    type: teleporter\n"),
               ElementsAre("cell.yaml:6:11: error[C010]: unknown device type 'teleporter' (expected one of: robot, "
-                          "axis, press, timed, conveyor, sensor, tank, valve, pump, heater, level_switch, temperature_sensor, g120, powerflex525, powerflex750, s120_epos)"));
+                          "axis, press, timed, conveyor, sensor, tank, valve, pump, heater, level_switch, "
+                          "temperature_sensor, g120, powerflex525, powerflex750, s120_epos)"));
 }
 
 TEST_F(LoaderErrors, DuplicateDeviceNameAtTheSecondEntry) {
@@ -357,7 +358,8 @@ TEST_F(LoaderErrors, AllMistakesOfOneFileInOnePass) {
                           "cell.yaml:15:14: error[C032]: the PLC has no variable 'MAIN.missing' to wire to Clamp.error",
                           "cell.yaml:16:5: error[C010]: a device named 'Clamp' already exists",
                           "cell.yaml:21:11: error[C010]: unknown device type 'teleporter' (expected one of: robot, axis, "
-                          "press, timed, conveyor, sensor, tank, valve, pump, heater, level_switch, temperature_sensor, g120, powerflex525, powerflex750, s120_epos)",
+                          "press, timed, conveyor, sensor, tank, valve, pump, heater, level_switch, temperature_sensor, g120, "
+                          "powerflex525, powerflex750, s120_epos)",
                           "cell.yaml:24:5: error[C011]: unknown key 'idle_powr' in device (expected one of: name, type, "
                           "wiring, faults, model, description, command_port, idle_power, busy_power, commands, group)",
                           "cell.yaml:26:35: error[C010]: 'duration': '1' needs a unit: expected a duration (e.g. 2 s, "
@@ -373,7 +375,8 @@ TEST_F(LoaderErrors, DeviceMistakesAreReportedEvenWhenThePlcPartFails) {
   write("broken.st", "PROGRAM MAIN\nx := 1;\nEND_PROGRAM\n");
   const std::string devices = "devices:\n  - name: Gizmo\n    type: teleporter\n";
   const std::string unknownType =
-      "error[C010]: unknown device type 'teleporter' (expected one of: robot, axis, press, timed, conveyor, sensor, g120, "
+      "error[C010]: unknown device type 'teleporter' (expected one of: robot, axis, press, timed, conveyor, sensor, "
+      "tank, valve, pump, heater, level_switch, temperature_sensor, g120, "
       "powerflex525, powerflex750, s120_epos)";
   {
     SCOPED_TRACE("no plc section");

@@ -212,4 +212,35 @@ TEST(AdCells, FluidTankRunsThreeBatches) {
   EXPECT_EQ(values(csv, "TankControl.Batches.CV").back(), 3.0);
 }
 
+// conveyor.ad as the PLC of the belt of conveyor-cell.yaml: of the lot of 12 parts, every
+// defective one ends in the reject bin, every good one in the bin of its material, and the bins
+// hold exactly what the belt produced; the belt stops after the lot (run-out).
+TEST(AdCells, ConveyorSortsEveryPartIntoItsBin) {
+  const std::string csvFile = ::testing::TempDir() + "conveyor.csv";
+  std::string out;
+  ASSERT_EQ(shell(inExample("run conveyor-cell.yaml --csv " + csvFile), out), 0) << out;
+  EXPECT_NE(out.find("completed: 'ConveyorControl.RunOut.Q' became true"), std::string::npos) << out;
+  const std::string csv = virtcom::test::readFile(csvFile);
+  auto last = [&](const std::string& signal) { return values(csv, "Belt." + signal).back(); };
+  const char* kinds[] = {"steel", "plastic", "bad_steel", "bad_plastic"};
+  // where each kind must end: reject bin (defective), steel gate (steel), belt end (plastic)
+  const char* expectedBin[] = {"steelGate", "end", "reject", "reject"};
+  double produced = 0;
+  for (size_t k = 0; k < 4; ++k) {
+    produced += last(std::string("produced_") + kinds[k]);
+    for (const char* bin : {"reject", "steelGate", "end"}) {
+      const double count = last(std::string(bin) + "_" + kinds[k]);
+      if (std::string(bin) == expectedBin[k])
+        EXPECT_EQ(count, last(std::string("produced_") + kinds[k])) << bin << " " << kinds[k];
+      else EXPECT_EQ(count, 0.0) << bin << " " << kinds[k];
+    }
+  }
+  EXPECT_EQ(produced, 12.0);
+  EXPECT_EQ(last("produced_steel"), 4.0);
+  EXPECT_EQ(last("produced_plastic"), 5.0);
+  EXPECT_EQ(last("produced_bad_steel") + last("produced_bad_plastic"), 3.0);
+  EXPECT_EQ(values(csv, "ConveyorControl.Lot.CV").back(), 12.0);  // the PLC counted every part
+  EXPECT_EQ(values(csv, "Belt.moving").back(), 0.0);               // and stopped the belt
+}
+
 }  // namespace

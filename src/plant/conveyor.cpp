@@ -79,8 +79,7 @@ void Conveyor::spawn(int64_t dtNs) {
   if (p_.spawnIntervalNs <= 0 || reverse_) return;
   spawnTimerNs_ += dtNs;
   const bool startFree = parts_.empty() || parts_.front() >= p_.partLengthNm;
-  const bool lotLeft = p_.spawnCount <= 0 || spawned_ < static_cast<size_t>(p_.spawnCount);
-  if (spawnTimerNs_ >= p_.spawnIntervalNs && startFree && lotLeft && parts_.size() < parts_.capacity()) {
+  if (spawnTimerNs_ >= p_.spawnIntervalNs && startFree && lotLeft() && parts_.size() < parts_.capacity()) {
     const uint8_t kind = p_.pattern.empty() ? 0 : p_.pattern[spawned_ % p_.pattern.size()];
     parts_.insert(parts_.begin(), 0);  // within the reserved capacity: no allocation
     partKinds_.insert(partKinds_.begin(), kind);
@@ -175,12 +174,14 @@ int64_t Conveyor::nextEventNs() const {
         consider(p + len - x + 1);
       }
     }
-    if (!reverse_) consider((i + 1 < parts_.size() ? parts_[i + 1] - len : p_.lengthNm - len) - p);
+    const int64_t endNm = p_.discharge ? p_.lengthNm : p_.lengthNm - len;  // falls off, or stops
+    if (!reverse_) consider((i + 1 < parts_.size() ? parts_[i + 1] - len : endNm) - p);
     else consider(p - (i > 0 ? parts_[i - 1] + len : 0));
   }
   int64_t next = INT64_MAX;
   if (best != INT64_MAX) next = lastNs_ + static_cast<int64_t>(std::ceil(static_cast<double>(best) / p_.speed));
-  if (p_.spawnIntervalNs > 0 && !reverse_) next = std::min(next, lastNs_ + std::max<int64_t>(p_.spawnIntervalNs - spawnTimerNs_, 1));
+  if (p_.spawnIntervalNs > 0 && !reverse_ && lotLeft())
+    next = std::min(next, lastNs_ + std::max<int64_t>(p_.spawnIntervalNs - spawnTimerNs_, 1));
   return next;
 }
 

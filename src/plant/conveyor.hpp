@@ -71,6 +71,8 @@ class Conveyor final : public Device {
   void spawn(int64_t dtNs);
   bool atEnd() const;
   bool covers(int64_t part, int64_t positionNm) const { return part <= positionNm && positionNm <= part + p_.partLengthNm; }
+  // Parts still to spawn (spawn_count not reached).
+  bool lotLeft() const { return p_.spawnCount <= 0 || spawned_ < static_cast<size_t>(p_.spawnCount); }
   size_t kindCount() const { return p_.kinds.empty() ? 1 : p_.kinds.size(); }
   void drop(size_t part, size_t bin);
   void push(const TagBus& bus);

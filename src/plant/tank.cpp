@@ -32,8 +32,9 @@ void Tank::integrate(Vessel& v, int64_t nowNs, double dtS) {
     v.temperatureC = (v.volumeM3 * v.temperatureC + inHeatM3C) / (v.volumeM3 + inM3);
     v.volumeM3 += inM3;
   }
+  v.volumeM3 = std::max(v.volumeM3 - outM3, 0.0);
   overflow_ = v.volumeM3 > p_.capacityM3;
-  v.volumeM3 = std::clamp(v.volumeM3 - outM3, 0.0, p_.capacityM3);
+  v.volumeM3 = std::min(v.volumeM3, p_.capacityM3);
   if (v.volumeM3 > 0) {
     // the loss as exact exponential decay towards the ambient: stable for any tick and volume
     const double heatCapacityJPerK = p_.densityKgM3 * v.volumeM3 * p_.specificHeatJPerKgK;

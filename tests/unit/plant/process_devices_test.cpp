@@ -48,6 +48,21 @@ TEST(Tank, StepOrderDoesNotMatter) {
   EXPECT_NEAR(levels[0], 0.1 * 1.0, 1e-3);  // 0.1 l/s for the 1 s after the open tick
 }
 
+// A full tank with as much flowing out as in does not spill.
+TEST(Tank, FullTankWithBalancedFlowsDoesNotOverflow) {
+  PlantRig rig;
+  ASSERT_NE(rig.add("tank", "T", "capacity: 100 l\ninitial_level: 100 %\n"), nullptr);
+  ASSERT_NE(rig.add("valve", "In", "to: T\nflow: 10 l/s\n"), nullptr);
+  ASSERT_NE(rig.add("valve", "Out", "from: T\nflow: 10 l/s\n"), nullptr);
+  rig.setBool("In.open", true);
+  rig.setBool("Out.open", true);
+  for (int i = 0; i < 100; ++i) {
+    rig.tick();
+    EXPECT_FALSE(rig.getBool("T.overflow"));
+  }
+  EXPECT_NEAR(rig.getNumber("T.level"), 100.0, 1e-9);
+}
+
 TEST(Tank, DrainStopsAtEmpty) {
   PlantRig rig;
   ASSERT_NE(rig.add("tank", "T", "capacity: 100 l\ninitial_level: 50 %\n"), nullptr);

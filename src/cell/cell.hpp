@@ -128,10 +128,7 @@ std::unique_ptr<Cell> loadCell(const std::string& path, SourceManager& sources, 
 Condition parseCondition(const bc::Module& m, const std::string& text, SourceLocation loc, Diagnostics& diags);
 bool evaluate(const Condition& c, const uint8_t* memory);
 
-// Typed transfers between the PLC memory image and the tag bus (no allocation).
-void readVariable(const Wire& w, const uint8_t* memory, TagBus& bus);
+// A wire from a resolved variable (the transfers themselves: core/value_codec.hpp).
 Wire makeWire(TagId tag, plant::PortDir dir, const bc::VarRef& ref, ElemType varType, std::string varName);
-// Returns true if the PLC variable's bytes changed.
-bool writeVariable(const Wire& w, const TagBus& bus, uint8_t* memory);
 
 }  // namespace virtcom::cell

@@ -1,4 +1,4 @@
-// Typed value transfers between the PLC memory image and the tag bus, and stop conditions.
+// Wires and stop conditions on the PLC memory image.
 #include <cstring>
 
 #include "cell/cell.hpp"
@@ -6,14 +6,6 @@
 #include "core/value_codec.hpp"
 
 namespace virtcom::cell {
-
-void readVariable(const Wire& w, const uint8_t* memory, TagBus& bus) {
-  loadVariable(memory + w.address, w.bit, w.varType, bus, w.tag);
-}
-
-bool writeVariable(const Wire& w, const TagBus& bus, uint8_t* memory) {
-  return storeVariable(memory + w.address, w.bit, w.varType, bus, w.tag);
-}
 
 Wire makeWire(TagId tag, plant::PortDir dir, const bc::VarRef& ref, ElemType varType, std::string varName) {
   Wire w;

@@ -8,19 +8,11 @@
 
 namespace virtcom {
 
-static const ElemTypeInfo kElemInfo[] = {
-#define X(e, name, size, kind) {name, size, ElemKind::kind},
-#include "core/elementary_types.def"
-#undef X
-};
-
-const ElemTypeInfo& elemTypeInfo(ElemType t) { return kElemInfo[static_cast<size_t>(t)]; }
-
 bool elemTypeByName(std::string_view name, ElemType& out) {
   if (iequalsAscii(name, "TOD")) { out = ElemType::Tod; return true; }
   if (iequalsAscii(name, "DT")) { out = ElemType::Dt; return true; }
-  for (size_t i = 0; i < std::size(kElemInfo); ++i) {
-    if (iequalsAscii(name, kElemInfo[i].name)) {
+  for (size_t i = 0; i < std::size(kElemTypeInfo); ++i) {
+    if (iequalsAscii(name, kElemTypeInfo[i].name)) {
       out = static_cast<ElemType>(i);
       return true;
     }

@@ -21,7 +21,13 @@ struct ElemTypeInfo {
   ElemKind kind;
 };
 
-const ElemTypeInfo& elemTypeInfo(ElemType t);
+// Inline: the wiring and the VM ask per value, on hot paths.
+inline constexpr ElemTypeInfo kElemTypeInfo[] = {
+#define X(e, name, size, kind) {name, size, ElemKind::kind},
+#include "core/elementary_types.def"
+#undef X
+};
+inline const ElemTypeInfo& elemTypeInfo(ElemType t) { return kElemTypeInfo[static_cast<size_t>(t)]; }
 // Looks up a type keyword (case-insensitive), accepting the aliases TOD and DT. False if unknown.
 bool elemTypeByName(std::string_view name, ElemType& out);
 

@@ -1,5 +1,6 @@
 #include "core/value_codec.hpp"
 
+#include <bit>
 #include <cstring>
 
 namespace virtcom {
@@ -25,14 +26,29 @@ double loadReal(const uint8_t* p, ElemType t) {
 
 namespace {
 
-void storeInteger(uint8_t* p, ElemType t, int64_t v) {
-  if (t == ElemType::Bool) v = v != 0;
-  std::memcpy(p, &v, elemTypeInfo(t).sizeBytes);  // little endian: the low bytes
+// Fixed-width stores that say whether the bytes changed: no library memcpy/memcmp calls, as
+// every wire into the PLC takes this path every tick. Bit patterns are compared (as the bytes
+// would be), so a NaN written over itself is no change.
+template <typename U>
+bool storeChanged(uint8_t* p, U v) {
+  U before;
+  std::memcpy(&before, p, sizeof(U));
+  std::memcpy(p, &v, sizeof(U));
+  return before != v;
 }
 
-void storeReal(uint8_t* p, ElemType t, double v) {
-  if (t == ElemType::Real) { float f = static_cast<float>(v); std::memcpy(p, &f, 4); return; }
-  std::memcpy(p, &v, 8);
+bool storeInteger(uint8_t* p, ElemType t, int64_t v) {
+  switch (elemTypeInfo(t).sizeBytes) {  // little endian: the low bytes
+    case 1: return storeChanged(p, static_cast<uint8_t>(t == ElemType::Bool ? v != 0 : v));
+    case 2: return storeChanged(p, static_cast<uint16_t>(v));
+    case 4: return storeChanged(p, static_cast<uint32_t>(v));
+    default: return storeChanged(p, static_cast<uint64_t>(v));
+  }
+}
+
+bool storeReal(uint8_t* p, ElemType t, double v) {
+  if (t == ElemType::Real) return storeChanged(p, std::bit_cast<uint32_t>(static_cast<float>(v)));
+  return storeChanged(p, std::bit_cast<uint64_t>(v));
 }
 
 }  // namespace
@@ -62,19 +78,13 @@ bool storeVariable(uint8_t* p, int8_t bit, ElemType varType, const TagBus& bus, 
     else *p = static_cast<uint8_t>(*p & ~(1u << bit));
     return *p != before;
   }
-  const uint32_t size = elemTypeInfo(varType).sizeBytes;
-  uint64_t before = 0;
-  std::memcpy(&before, p, size);
   ElemType tagType = bus.type(tag);
-  if (isRealType(varType)) {
-    storeReal(p, varType, isFloat(tagType) ? bus.getReal(tag) : bus.getNumber(tag));
-  } else if (isFloat(tagType)) {
+  if (isRealType(varType)) return storeReal(p, varType, isFloat(tagType) ? bus.getReal(tag) : bus.getNumber(tag));
+  if (isFloat(tagType)) {
     double r = bus.getReal(tag);
-    storeInteger(p, varType, static_cast<int64_t>(r >= 0 ? r + 0.5 : r - 0.5));
-  } else {
-    storeInteger(p, varType, bus.getInt(tag));
+    return storeInteger(p, varType, static_cast<int64_t>(r >= 0 ? r + 0.5 : r - 0.5));
   }
-  return std::memcmp(&before, p, size) != 0;
+  return storeInteger(p, varType, bus.getInt(tag));
 }
 
 bool wireCompatible(ElemType port, ElemType var, bool isEnum) {

@@ -2,12 +2,18 @@
 
 #include <algorithm>
 
+#include "core/value_codec.hpp"
+
 namespace virtcom::sim {
 
 namespace {
+
+Simulation::WireSlot slotOf(const cell::Wire& w) { return {w.address, w.tag, w.bit, w.varType}; }
+
 bool isInputArea(const cell::Wire& w, const bc::ProcessArea& in) {
   return w.address >= in.address && w.address < in.address + in.size;
 }
+
 }  // namespace
 
 Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), options_(options) {
@@ -18,21 +24,20 @@ Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), opti
     ropts.skipRepeatedScans = options_.skipRepeatedScans;
     runtime_ = std::make_unique<plc::Runtime>(*cell_.module, *clock_, ropts);
     runtime_->machine().useCompiled(options_.compiled);
-    const bc::ProcessArea& in = cell_.module->inputs;
-    for (const auto& w : cell_.wires)
-      if (w.dir == plant::PortDir::Out && isInputArea(w, in)) {
-        inputImageWires_.push_back(w);
-        inputImageWires_.back().address -= in.address;
-      }
   }
   timeLimitNs_ = options_.timeLimitNs >= 0 ? options_.timeLimitNs : cell_.run.timeLimitNs;
   Trace& trace = cell_.trace;
   for (auto& d : cell_.devices) d->prepare(cell_.world, trace);
+  for (const cell::Wire& w : cell_.wires) {
+    if (w.dir == plant::PortDir::In) fromPlc_.push_back(slotOf(w));
+    else if (!runtime_ || !isInputArea(w, cell_.module->inputs)) toPlc_.push_back(slotOf(w));
+    else toInputImage_.push_back({w.address - cell_.module->inputs.address, w.tag, w.bit, w.varType});
+  }
   // Extra PLC variables to record get their own tags.
   for (const auto& name : cell_.run.recordVars) {
     auto ref = bc::resolveVariable(*cell_.module, name);
     const bc::TypeDesc& t = cell_.module->types[ref->type];
-    recordWires_.push_back(cell::makeWire(cell_.bus.add(name, t.elem), plant::PortDir::In, *ref, t.elem, name));
+    fromPlc_.push_back(slotOf(cell::makeWire(cell_.bus.add(name, t.elem), plant::PortDir::In, *ref, t.elem, name)));
   }
   if (!cell_.run.cycleDoneVar.empty()) {
     auto ref = bc::resolveVariable(*cell_.module, cell_.run.cycleDoneVar);
@@ -58,9 +63,7 @@ void Simulation::start() {
     runtime_->coldStart();
     uint8_t* mem = runtime_->machine().memory();
     if (options_.preset) options_.preset(*runtime_);
-    for (const auto& w : cell_.wires)
-      if (w.dir == plant::PortDir::In) cell::readVariable(w, mem, cell_.bus);
-    for (const auto& w : recordWires_) cell::readVariable(w, mem, cell_.bus);
+    readFromPlc(mem);
   }
   for (TagId id = 0; id < cell_.bus.size(); ++id) cell_.trace.signals[id].initial = cell_.bus.raw(id);
   cell_.bus.clearChanges();
@@ -162,17 +165,18 @@ bool Simulation::checkStop() {
 void Simulation::scanPlc() {
   uint8_t* mem = runtime_->machine().memory();
   bool touched = false;
-  const bc::ProcessArea& in = cell_.module->inputs;
-  for (const auto& w : cell_.wires)
-    if (w.dir == plant::PortDir::Out && !isInputArea(w, in)) touched |= cell::writeVariable(w, cell_.bus, mem);
-  for (const auto& w : inputImageWires_) touched |= cell::writeVariable(w, cell_.bus, runtime_->inputImage());
+  for (const WireSlot& w : toPlc_) touched |= storeVariable(mem + w.address, w.bit, w.varType, cell_.bus, w.tag);
+  uint8_t* image = runtime_->inputImage();
+  for (const WireSlot& w : toInputImage_) touched |= storeVariable(image + w.address, w.bit, w.varType, cell_.bus, w.tag);
   if (touched) runtime_->inputsTouched();
   if (options_.beforeScan) options_.beforeScan(*runtime_);
   runtime_->tick();
   if (options_.afterScan) options_.afterScan(*runtime_);
-  for (const auto& w : cell_.wires)
-    if (w.dir == plant::PortDir::In) cell::readVariable(w, mem, cell_.bus);
-  for (const auto& w : recordWires_) cell::readVariable(w, mem, cell_.bus);
+  readFromPlc(mem);
+}
+
+void Simulation::readFromPlc(const uint8_t* mem) {
+  for (const WireSlot& w : fromPlc_) loadVariable(mem + w.address, w.bit, w.varType, cell_.bus, w.tag);
 }
 
 // False if a bridge failed; the run then ends as a fault of the (external) PLC.

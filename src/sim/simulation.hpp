@@ -63,6 +63,14 @@ class Simulation {
 
   // Precondition: the cell has a soft PLC.
   plc::Runtime& plc() { return *runtime_; }
+
+  // A wire as the per-tick transfer needs it: cell::Wire's hot fields in 12 bytes, no name.
+  struct WireSlot {
+    uint32_t address = 0;
+    TagId tag = kNoTag;
+    int8_t bit = -1;
+    ElemType varType = ElemType::Bool;
+  };
   Trace& trace() { return cell_.trace; }
   int64_t nowNs() const { return nowNs_; }
   uint64_t ticks() const { return ticks_; }
@@ -73,6 +81,7 @@ class Simulation {
   bool checkPlcStop();
   bool countCycle(bool done);
   void scanPlc();
+  void readFromPlc(const uint8_t* mem);
   bool pullBridges();
   void recordChanges();
   void finish(RunEnd end, std::string message);
@@ -83,10 +92,11 @@ class Simulation {
   std::unique_ptr<plc::Runtime> runtime_;
   std::vector<TagId> recordTags_;
   std::vector<uint8_t> keepChange_;      // per tag: 1 = its changes stay in Trace::changes
-  std::vector<cell::Wire> recordWires_;  // extra PLC variables recorded as signals
+  std::vector<WireSlot> toPlc_;    // device outputs -> PLC variables
   // Device outputs wired to located inputs (AT %I...), addressed in the PLC's input image: the
   // scan copies that image into the %I area, so a write into the area itself would be lost.
-  std::vector<cell::Wire> inputImageWires_;
+  std::vector<WireSlot> toInputImage_;
+  std::vector<WireSlot> fromPlc_;  // PLC variables -> device inputs, then variables recorded as signals
   cell::Wire cycleWire_;
   bool hasCycleWire_ = false;
   bool lastCycleDone_ = false;

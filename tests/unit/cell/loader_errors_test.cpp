@@ -37,10 +37,10 @@ TEST_F(LoaderErrors, YamlSyntaxErrorAtItsPosition) {
                     "  sources: [main.st]\n"
                     "  cycle_time: 10 ms: 5\n"
                     "devices: []\n"),
-              ElementsAre("cell.yaml:4:20: error[C001]: YAML syntax error: illegal map value"));
+              ElementsAre("cell.yaml:4:20: error[C001]: YAML syntax error: mapping values are not allowed in this context"));
   // rendered like a compiler error: the line quoted, a caret under the column
   EXPECT_EQ(rendered(),
-            "cell.yaml:4:20: error[C001]: YAML syntax error: illegal map value\n"
+            "cell.yaml:4:20: error[C001]: YAML syntax error: mapping values are not allowed in this context\n"
             "    cycle_time: 10 ms: 5\n"
             "                     ^\n"
             "1 error(s), 0 warning(s)\n");

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "cell_files.hpp"
+#include "core/value_codec.hpp"
 
 namespace virtcom::cell::test {
 namespace {
@@ -122,14 +123,14 @@ TEST_F(Loader, WiresMoveValuesBetweenMemoryAndBus) {
   ASSERT_NE(cmd, nullptr);
   int16_t seven = 7;
   std::memcpy(memory.data() + cmd->address, &seven, 2);
-  readVariable(*cmd, memory.data(), cell->bus);
+  loadVariable(memory.data() + cmd->address, cmd->bit, cmd->varType, cell->bus, cmd->tag);
   EXPECT_EQ(cell->bus.getInt(cell->bus.find("Clamp.programNumber")), 7);
   // output port: tag -> PLC variable, reporting whether the bytes changed
   const Wire* err = wireTo(*cell, "MAIN.err");
   ASSERT_NE(err, nullptr);
   cell->bus.setInt(cell->bus.find("Clamp.error"), 10);
-  EXPECT_TRUE(writeVariable(*err, cell->bus, memory.data()));
-  EXPECT_FALSE(writeVariable(*err, cell->bus, memory.data()));
+  EXPECT_TRUE(storeVariable(memory.data() + err->address, err->bit, err->varType, cell->bus, err->tag));
+  EXPECT_FALSE(storeVariable(memory.data() + err->address, err->bit, err->varType, cell->bus, err->tag));
   int16_t code = 0;
   std::memcpy(&code, memory.data() + err->address, 2);
   EXPECT_EQ(code, 10);

@@ -328,6 +328,22 @@ class Loader {
       bindPorts(cell, *device, wiring, node);
       cell.devices.push_back(std::move(device));
     }
+    reportUndefinedVessels(cell);
+  }
+
+  // A valve, pump, heater or tank sensor names a tank no device entry defines.
+  void reportUndefinedVessels(Cell& cell) {
+    std::vector<uint32_t> undefined = cell.world.undefinedVessels();
+    if (undefined.empty()) return;
+    std::string tanks;
+    for (const auto& d : cell.devices)
+      if (d->type() == "tank") tanks += (tanks.empty() ? "" : ", ") + d->name();
+    for (uint32_t id : undefined) {
+      const plant::Vessel& v = cell.world.vesselAt(id);
+      diags_.error(celldiag::C010, v.firstUse,
+                   "no tank named '" + v.name + "' (expected the name of a device of type tank; the cell has " +
+                       (tanks.empty() ? "none" : tanks) + ")");
+    }
   }
 
   void readFaults(plant::Device& d, const ConfigNode& node) {

@@ -44,6 +44,7 @@ void addAdCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   tables->add_option("--format", *format, "text (aligned columns), markdown or csv")->capture_default_str();
   tables->callback([file, format, setExit] { setExit(printTables(*file, *format)); });
   addAdFileCommands(*cmd, setExit);
+  addAdRenderCommand(*cmd, setExit);
 }
 
 }  // namespace virtcom::cli

@@ -26,4 +26,6 @@ void addAdFileCommands(CLI::App& ad, std::function<void(ExitCode)> setExit);
 // Compiles the files (printing diagnostics) and writes them as one PLCopen TC6 project to `out`;
 // `name` is the project name (empty: the stem of `out`). `virtcom export` and `ad export`.
 ExitCode exportPlcopen(const std::string& out, const std::string& name, const std::vector<std::string>& files);
+// `virtcom ad render`, a subcommand of `ad` (cmd_ad_render.cpp).
+void addAdRenderCommand(CLI::App& ad, std::function<void(ExitCode)> setExit);
 }  // namespace virtcom::cli

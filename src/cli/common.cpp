@@ -62,8 +62,8 @@ std::string presetVariable(const bc::Module& m, const std::string& assignment, u
 
 bool writeFile(const std::string& path, const std::string& content) {
   std::ofstream out(path, std::ios::binary);
-  if (out) out << content;
-  if (!out) {
+  out << content;
+  if (!out.flush()) {
     std::cerr << "error: cannot write " << path << "\n";
     return false;
   }

@@ -39,7 +39,8 @@ std::string presetVariable(const bc::Module& m, const std::string& assignment, u
 // compiler, compile error), so that the interpreter runs instead.
 std::shared_ptr<const vm::CompiledCode> compiledBackend(const std::string& backend, const bc::Module& m);
 
-// Writes `content` to `path`; false after "error: cannot write PATH" on stderr.
+// Writes `content` to `path` (binary); prints "error: cannot write PATH" and returns false if
+// the file cannot be written.
 bool writeFile(const std::string& path, const std::string& content);
 
 // Parses a duration such as "10ms", "1.5s", "250us", "T#1s500ms", "100" (ms). Nullopt if invalid.

@@ -23,6 +23,13 @@ const char* dimensionName(Dimension d) {
     case Dimension::Mass: return "a mass (e.g. 2.5 kg)";
     case Dimension::Angle: return "an angle (e.g. 90 deg)";
     case Dimension::Frequency: return "a frequency (e.g. 50 Hz)";
+    case Dimension::Volume: return "a volume (e.g. 500 l)";
+    case Dimension::VolumeFlow: return "a volume flow (e.g. 20 l/min)";
+    case Dimension::Temperature: return "a temperature (e.g. 80 degC)";
+    case Dimension::ThermalConductance: return "a heat loss per kelvin (e.g. 15 W/K)";
+    case Dimension::Density: return "a density (e.g. 1000 kg/m3)";
+    case Dimension::SpecificHeat: return "a specific heat (e.g. 4186 J/(kg*K))";
+    case Dimension::Ratio: return "a percentage (e.g. 95 %)";
     case Dimension::Dimensionless: return "a number";
   }
   return "a value";
@@ -48,6 +55,14 @@ constexpr Unit kUnits[] = {
     {"N*m", Dimension::Torque, 1.0},         {"kg", Dimension::Mass, 1.0},
     {"g", Dimension::Mass, 1e-3},            {"deg", Dimension::Angle, 3.14159265358979323846 / 180},
     {"rad", Dimension::Angle, 1.0},          {"Hz", Dimension::Frequency, 1.0},
+    {"l", Dimension::Volume, 1e-3},          {"ml", Dimension::Volume, 1e-6},
+    {"m3", Dimension::Volume, 1.0},          {"l/s", Dimension::VolumeFlow, 1e-3},
+    {"l/min", Dimension::VolumeFlow, 1e-3 / 60}, {"m3/h", Dimension::VolumeFlow, 1.0 / 3600},
+    {"m3/s", Dimension::VolumeFlow, 1.0},    {"degC", Dimension::Temperature, 1.0},
+    {"°C", Dimension::Temperature, 1.0},     {"W/K", Dimension::ThermalConductance, 1.0},
+    {"kg/m3", Dimension::Density, 1.0},      {"kg/l", Dimension::Density, 1e3},
+    {"J/(kg*K)", Dimension::SpecificHeat, 1.0}, {"kJ/(kg*K)", Dimension::SpecificHeat, 1e3},
+    {"%", Dimension::Ratio, 1e-2},
 };
 // The unit spelled exactly `name`, of any dimension; nullopt if none. Durations convert as
 // ns / 1e9, which rounds to the same double as the decimal factors (1e-3 for ms).

@@ -15,7 +15,12 @@ namespace virtcom {
 
 // Physical dimensions a parameter may have; values are converted to SI base units
 // (m, s, W, J, N, N*m, kg, m/s, m/s^2, rad, Hz, rpm stays rpm).
-enum class Dimension { Length, Time, Speed, Acceleration, Power, Energy, Force, Torque, Mass, Angle, Frequency, Dimensionless };
+// Temperatures are kept in degrees Celsius (not kelvin): an offset scale, so only its own units
+// (`degC`, `°C`) convert to it. A ratio is a fraction (`95 %` is 0.95).
+enum class Dimension {
+  Length, Time, Speed, Acceleration, Power, Energy, Force, Torque, Mass, Angle, Frequency,
+  Volume, VolumeFlow, Temperature, ThermalConductance, Density, SpecificHeat, Ratio, Dimensionless
+};
 const char* dimensionName(Dimension d);
 // Parses "500 mm/s" (number, optional spaces, unit) into SI. Error text if the unit is missing,
 // unknown or of another dimension; empty on success.

@@ -40,6 +40,31 @@ std::vector<uint32_t> optFactList(ConfigReader& cfg, const std::string& key, Wor
   return out;
 }
 
+int32_t vesselRef(ConfigReader& cfg, const std::string& key, World& world, bool required) {
+  const ConfigNode* n = cfg.child(key);
+  if (!n) {
+    if (required) cfg.error(cfg.node().loc(), "missing '" + key + "' (the name of a tank device)");
+    return -1;
+  }
+  if (n->kind() != ConfigNode::Kind::Scalar || n->scalar().empty()) {
+    cfg.error(n->loc(), "'" + key + "' must name a tank device");
+    return -1;
+  }
+  return static_cast<int32_t>(world.vessel(n->scalar(), n->loc()));
+}
+
+double requirePositive(ConfigReader& cfg, const std::string& key, Dimension dim) {
+  const double v = cfg.requireQuantity(key, dim);
+  const ConfigNode* n = cfg.node().find(key);
+  if (n && n->kind() == ConfigNode::Kind::Scalar && !(v > 0)) cfg.error(n->loc(), "'" + key + "' must be greater than 0");
+  return v;
+}
+
+double optPositive(ConfigReader& cfg, const std::string& key, Dimension dim, double fallbackSi) {
+  if (!cfg.has(key)) return cfg.optQuantity(key, dim, fallbackSi);
+  return requirePositive(cfg, key, dim);
+}
+
 bool parseCommandNumber(ConfigReader& cfg, const std::string& key, SourceLocation loc, int32_t& out) {
   char* end = nullptr;
   long v = std::strtol(key.c_str(), &end, 10);

@@ -25,6 +25,15 @@ bool parseCommandNumber(ConfigReader& cfg, const std::string& key, SourceLocatio
 // key is present but not a map. Absent and not required: null without a diagnostic.
 const ConfigNode* mapChild(ConfigReader& cfg, const std::string& key, bool required);
 
+// The vessel (tank) named by `key`, interned in `world` with the key's location so that the cell
+// loader can report a name no tank defines; -1 if the key is absent (or, if `required`, after a
+// diagnostic).
+int32_t vesselRef(ConfigReader& cfg, const std::string& key, World& world, bool required);
+
+// A quantity parameter that must be greater than 0 (reported at its value otherwise).
+double requirePositive(ConfigReader& cfg, const std::string& key, Dimension dim);
+double optPositive(ConfigReader& cfg, const std::string& key, Dimension dim, double fallbackSi);
+
 // "a, b, c" joined for "expected one of" messages.
 std::string joinNames(const std::vector<std::string>& names);
 

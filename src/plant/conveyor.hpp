@@ -7,6 +7,13 @@
 // entry is a BOOL output true while a part covers its position (p <= x <= p + part_length).
 // `end_fact` (optional) is set while a part rests at the downstream end; when another device
 // clears it (a robot's `grip`), that part is removed from the belt.
+// Parts may be of kinds (`part_kinds`: the kinds of the spawned parts, in a repeating order, e.g.
+// a lot with defective parts of two materials); a sensor may `detect` only some kinds (a defect
+// camera, an inductive sensor seeing metal). `pushers` push the part covering their position off
+// the belt into their bin while their command is true; with `discharge` parts run off the belt
+// end into the end bin instead of stopping there. Every bin counts its parts by kind (INT ports
+// `<bin>_<kind>`), and `produced_<kind>` counts the spawned ones, so a run shows where each part
+// went.
 // Trace: one "Running" activity per period of motion; energy = power x running time.
 // Deterministic: positions are integer nanometres advanced by round(speed x dt) per tick, in a
 // fixed part order; spawn times inside a long tick are honoured exactly.
@@ -24,6 +31,12 @@ class Conveyor final : public Device {
     std::string name;
     int64_t positionNm = 0;
     size_t port = 0;
+    uint32_t kindMask = 0;  // bit k: detects kind k; 0: any part
+  };
+  struct PusherSpec {
+    std::string name;
+    int64_t positionNm = 0;
+    size_t port = 0;
   };
   struct Params {
     double speed = 0;                                // m/s (= nm/ns)
@@ -33,7 +46,13 @@ class Conveyor final : public Device {
     int32_t endFact = -1;
     std::vector<int64_t> initialPartsNm;             // p of each part
     std::vector<SensorSpec> sensors;
+    std::vector<std::string> kinds;                  // part kinds (at most kMaxKinds); empty: one, "parts"
+    std::vector<uint8_t> pattern;                    // kinds of the spawned parts, repeated
+    int64_t spawnCount = 0;                          // 0 = no limit
+    bool discharge = false;                          // parts leave the belt end into the end bin
+    std::vector<PusherSpec> pushers;
   };
+  static constexpr size_t kMaxKinds = 32;
 
   Conveyor(std::string name, Params params);
   const Params& params() const { return p_; }
@@ -43,6 +62,8 @@ class Conveyor final : public Device {
   void finish(int64_t endNs, Trace& trace) override;
 
   size_t partCount() const { return parts_.size(); }
+  // Parts in bin `bin` (pushers in order, then the end bin) of kind `kind`.
+  int64_t binCount(size_t bin, size_t kind) const { return binCounts_[bin * kindCount() + kind]; }
   double partPositionM(size_t i) const { return static_cast<double>(parts_[i]) * 1e-9; }
 
  private:
@@ -50,9 +71,22 @@ class Conveyor final : public Device {
   void move(int64_t dsNm);
   void spawn(int64_t dtNs);
   bool atEnd() const;
+  bool covers(int64_t part, int64_t positionNm) const { return part <= positionNm && positionNm <= part + p_.partLengthNm; }
+  // Parts still to spawn (spawn_count not reached).
+  bool lotLeft() const { return p_.spawnCount <= 0 || spawned_ < static_cast<size_t>(p_.spawnCount); }
+  size_t kindCount() const { return p_.kinds.empty() ? 1 : p_.kinds.size(); }
+  void drop(size_t part, size_t bin);
+  void push(const TagBus& bus);
+  void publishCounts(TagBus& bus) const;
   Params p_;
   size_t runPort_ = 0, reversePort_ = 0, movingPort_ = 0;
   std::vector<int64_t> parts_;  // p of each part in nm, ascending; capacity reserved at load
+  std::vector<uint8_t> partKinds_;  // the kind of each part, parallel to parts_
+  size_t spawned_ = 0;
+  std::vector<int64_t> binCounts_;  // [bin][kind]; the bins: pushers, then the end (discharge)
+  std::vector<int64_t> produced_;   // per kind
+  size_t firstCountPort_ = 0, firstProducedPort_ = 0;
+  bool hasProducedPorts_ = false;
   bool started_ = false;
   bool moving_ = false;
   bool reverse_ = false;

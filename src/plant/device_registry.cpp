@@ -7,10 +7,16 @@
 #include "plant/config_helpers.hpp"
 #include "plant/conveyor.hpp"
 #include "plant/device.hpp"
+#include "plant/heater.hpp"
+#include "plant/level_switch.hpp"
 #include "plant/press.hpp"
+#include "plant/pump.hpp"
 #include "plant/robot.hpp"
 #include "plant/sensor.hpp"
+#include "plant/tank.hpp"
+#include "plant/temperature_sensor.hpp"
 #include "plant/timed_device.hpp"
+#include "plant/valve.hpp"
 
 namespace virtcom::plant {
 namespace {
@@ -24,6 +30,13 @@ constexpr DeviceType kDeviceTypes[] = {
     {"timed", "generic device whose numbered commands take a fixed time and set/clear world facts", makeTimed},
     {"conveyor", "belt conveyor moving parts at a constant speed, with position sensors", makeConveyor},
     {"sensor", "digital sensor mirroring a world fact, with an optional delay", makeSensor},
+    {"tank", "well-mixed liquid tank: volume, level and temperature from its valves, pumps and heaters", makeTank},
+    {"valve", "on/off process valve filling or draining a tank, with travel time and end-position feedback", makeValve},
+    {"pump", "pump moving liquid into, out of or between tanks while it runs", makePump},
+    {"heater", "immersion heater putting its power into a tank's liquid while on", makeHeater},
+    {"level_switch", "BOOL switch on a tank's level above or below a threshold, with hysteresis", makeLevelSwitch},
+    {"temperature_sensor", "a tank's liquid temperature as REAL (degC) or INT (0.1 degC), with an optional lag",
+     makeTemperatureSensor},
 };
 
 }  // namespace

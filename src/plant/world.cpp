@@ -10,6 +10,27 @@ uint32_t World::fact(const std::string& name) {
   return static_cast<uint32_t>(facts_.size() - 1);
 }
 
+uint32_t World::vessel(const std::string& name, SourceLocation use) {
+  for (size_t i = 0; i < vessels_.size(); ++i)
+    if (vessels_[i].name == name) return static_cast<uint32_t>(i);
+  vessels_.push_back({});
+  vessels_.back().name = name;
+  vessels_.back().firstUse = use;
+  return static_cast<uint32_t>(vessels_.size() - 1);
+}
+
+size_t World::addFeed(uint32_t id) {
+  vessels_[id].feeds.emplace_back();
+  return vessels_[id].feeds.size() - 1;
+}
+
+std::vector<uint32_t> World::undefinedVessels() const {
+  std::vector<uint32_t> out;
+  for (size_t i = 0; i < vessels_.size(); ++i)
+    if (!vessels_[i].defined) out.push_back(static_cast<uint32_t>(i));
+  return out;
+}
+
 uint32_t World::zone(const std::string& name) {
   for (size_t i = 0; i < zoneNames_.size(); ++i)
     if (zoneNames_[i] == name) return static_cast<uint32_t>(i);

@@ -1,12 +1,14 @@
 #pragma once
 // The shared physical state of a simulated cell that devices act on: named facts about the
-// workpiece and the cell (pinPlaced, insertLocked, ...) and shared-workspace zones with their
-// occupants. Names are interned at load time; the per-tick path uses ids only.
+// workpiece and the cell (pinPlaced, insertLocked, ...), shared-workspace zones with their
+// occupants and the vessels of tanks (vessel.hpp). Names are interned at load time; the per-tick
+// path uses ids only.
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "core/trace.hpp"
+#include "plant/vessel.hpp"
 
 namespace virtcom::plant {
 
@@ -36,6 +38,16 @@ class World {
   // True once any collision happened (the simulation may stop on it).
   bool collided() const { return collided_; }
 
+  // ---- vessels (tanks and the devices acting on or sensing them) ----
+  // The vessel named `name`, created (undefined) if new; `use` is where a device names it.
+  uint32_t vessel(const std::string& name, SourceLocation use);
+  Vessel& vesselAt(uint32_t id) { return vessels_[id]; }
+  const Vessel& vesselAt(uint32_t id) const { return vessels_[id]; }
+  // A new feed slot of vessel `id` for one device (load time); its index in Vessel::feeds.
+  size_t addFeed(uint32_t id);
+  // The vessels some device names but no tank defines, for the loader to report.
+  std::vector<uint32_t> undefinedVessels() const;
+
   Trace& trace() { return trace_; }
 
  private:
@@ -49,6 +61,7 @@ class World {
   std::vector<std::string> zoneNames_;
   std::vector<uint32_t> zoneLabels_;              // trace label of each zone name, interned at load
   std::vector<std::vector<Occupant>> occupants_;  // per zone; reserved at load, at most #devices
+  std::vector<Vessel> vessels_;
   bool collided_ = false;
 };
 

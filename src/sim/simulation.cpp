@@ -10,6 +10,10 @@ namespace {
 
 Simulation::WireSlot slotOf(const cell::Wire& w) { return {w.address, w.tag, w.bit, w.varType}; }
 
+bool isInputArea(const cell::Wire& w, const bc::ProcessArea& in) {
+  return w.address >= in.address && w.address < in.address + in.size;
+}
+
 }  // namespace
 
 Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), options_(options) {
@@ -29,7 +33,11 @@ Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), opti
   timeLimitNs_ = options_.timeLimitNs >= 0 ? options_.timeLimitNs : cell_.run.timeLimitNs;
   Trace& trace = cell_.trace;
   for (auto& d : cell_.devices) d->prepare(cell_.world, trace);
-  for (const cell::Wire& w : cell_.wires) (w.dir == plant::PortDir::Out ? toPlc_ : fromPlc_).push_back(slotOf(w));
+  for (const cell::Wire& w : cell_.wires) {
+    if (w.dir == plant::PortDir::In) fromPlc_.push_back(slotOf(w));
+    else if (!runtime_ || !isInputArea(w, cell_.module->inputs)) toPlc_.push_back(slotOf(w));
+    else toInputImage_.push_back({w.address - cell_.module->inputs.address, w.tag, w.bit, w.varType});
+  }
   // Extra PLC variables to record get their own tags.
   for (const auto& name : cell_.run.recordVars) {
     auto ref = bc::resolveVariable(*cell_.module, name);
@@ -163,6 +171,8 @@ void Simulation::scanPlc() {
   uint8_t* mem = runtime_->machine().memory();
   bool touched = false;
   for (const WireSlot& w : toPlc_) touched |= storeVariable(mem + w.address, w.bit, w.varType, cell_.bus, w.tag);
+  uint8_t* image = runtime_->inputImage();
+  for (const WireSlot& w : toInputImage_) touched |= storeVariable(image + w.address, w.bit, w.varType, cell_.bus, w.tag);
   if (touched) runtime_->inputsTouched();
   if (options_.beforeScan) options_.beforeScan(*runtime_);
   runtime_->tick();

@@ -109,6 +109,9 @@ class Simulation {
   std::vector<TagId> recordTags_;
   std::vector<uint8_t> keepChange_;      // per tag: 1 = its changes stay in Trace::changes
   std::vector<WireSlot> toPlc_;    // device outputs -> PLC variables
+  // Device outputs wired to located inputs (AT %I...), addressed in the PLC's input image: the
+  // scan copies that image into the %I area, so a write into the area itself would be lost.
+  std::vector<WireSlot> toInputImage_;
   std::vector<WireSlot> fromPlc_;  // PLC variables -> device inputs, then variables recorded as signals
   cell::Wire cycleWire_;
   bool hasCycleWire_ = false;

@@ -56,6 +56,23 @@ TEST_F(LoaderErrors, UnknownTopLevelKeyListsTheKnownOnes) {
                           "(expected one of: name, plc, run, zones, world, devices, modbus, extends, replace_devices)"));
 }
 
+// A valve, pump, heater or tank sensor naming a tank no entry defines, at the name.
+TEST_F(LoaderErrors, DeviceNamesATankNoEntryDefines) {
+  EXPECT_THAT(fails("name: x\n"
+                    "plc:\n"
+                    "  sources: [main.st]\n"
+                    "devices:\n"
+                    "  - name: Reactor\n"
+                    "    type: tank\n"
+                    "    capacity: 100 l\n"
+                    "  - name: Fill\n"
+                    "    type: valve\n"
+                    "    to: Reactr\n"
+                    "    flow: 1 l/s\n"),
+              ElementsAre("cell.yaml:10:9: error[C010]: no tank named 'Reactr' (expected the name of a device of type "
+                          "tank; the cell has Reactor)"));
+}
+
 TEST_F(LoaderErrors, ExtendsNamesAMissingFile) {
   EXPECT_THAT(fails("extends: nowhere.yaml\ndevices: []\n"),
               ElementsAre("cell.yaml:1:10: error[C002]: cannot read cell file 'nowhere.yaml' named by 'extends'"));
@@ -143,7 +160,8 @@ TEST_F(LoaderErrors, UnknownDeviceTypeAtTheTypeValue) {
                     "  - name: Gizmo\n"
                     "    type: teleporter\n"),
               ElementsAre("cell.yaml:6:11: error[C010]: unknown device type 'teleporter' (expected one of: robot, "
-                          "axis, press, timed, conveyor, sensor, g120, powerflex525, powerflex750, s120_epos)"));
+                          "axis, press, timed, conveyor, sensor, tank, valve, pump, heater, level_switch, "
+                          "temperature_sensor, g120, powerflex525, powerflex750, s120_epos)"));
 }
 
 TEST_F(LoaderErrors, DuplicateDeviceNameAtTheSecondEntry) {
@@ -340,7 +358,8 @@ TEST_F(LoaderErrors, AllMistakesOfOneFileInOnePass) {
                           "cell.yaml:15:14: error[C032]: the PLC has no variable 'MAIN.missing' to wire to Clamp.error",
                           "cell.yaml:16:5: error[C010]: a device named 'Clamp' already exists",
                           "cell.yaml:21:11: error[C010]: unknown device type 'teleporter' (expected one of: robot, axis, "
-                          "press, timed, conveyor, sensor, g120, powerflex525, powerflex750, s120_epos)",
+                          "press, timed, conveyor, sensor, tank, valve, pump, heater, level_switch, temperature_sensor, g120, "
+                          "powerflex525, powerflex750, s120_epos)",
                           "cell.yaml:24:5: error[C011]: unknown key 'idle_powr' in device (expected one of: name, type, "
                           "wiring, faults, model, description, command_port, idle_power, busy_power, commands, group)",
                           "cell.yaml:26:35: error[C010]: 'duration': '1' needs a unit: expected a duration (e.g. 2 s, "
@@ -356,7 +375,8 @@ TEST_F(LoaderErrors, DeviceMistakesAreReportedEvenWhenThePlcPartFails) {
   write("broken.st", "PROGRAM MAIN\nx := 1;\nEND_PROGRAM\n");
   const std::string devices = "devices:\n  - name: Gizmo\n    type: teleporter\n";
   const std::string unknownType =
-      "error[C010]: unknown device type 'teleporter' (expected one of: robot, axis, press, timed, conveyor, sensor, g120, "
+      "error[C010]: unknown device type 'teleporter' (expected one of: robot, axis, press, timed, conveyor, sensor, "
+      "tank, valve, pump, heater, level_switch, temperature_sensor, g120, "
       "powerflex525, powerflex750, s120_epos)";
   {
     SCOPED_TRACE("no plc section");

@@ -1,5 +1,6 @@
 // The conveyor: parts moving at belt speed, end stoppers, queueing, sensors, spawning, picking
-// at the end through end_fact, and next-event times.
+// at the end through end_fact, next-event times, and part kinds with kind-detecting sensors,
+// pushers, bins and discharge.
 #include <gtest/gtest.h>
 
 #include "plant/conveyor.hpp"
@@ -130,6 +131,99 @@ TEST(Conveyor, ConfigErrors) {
   EXPECT_NE(out.find("C.yaml:3:30: error[C010]: 'initial_parts': part does not fit"), std::string::npos) << out;
   EXPECT_NE(out.find("'initial_parts': parts overlap"), std::string::npos) << out;
   EXPECT_NE(out.find("C.yaml:5:3: error[C010]: sensor name 'run' clashes"), std::string::npos) << out;
+}
+
+const char* kSortingBelt = R"(speed: 100 mm/s
+length: 1000 mm
+part_length: 100 mm
+spawn_interval: 2 s
+spawn_count: 4
+part_kinds: [steel, plastic, steel, bad]
+discharge: true
+sensors:
+  metal: {at: 250 mm, detects: [steel]}
+  any: 250 mm
+  atGate: 300 mm
+pushers:
+  gate: 300 mm
+)";
+
+// Spawned parts take their kinds from the pattern; a kind-detecting sensor sees only its kinds;
+// a pusher pushes the part at it into its bin; the rest run off the end into the end bin. (The
+// gate is 50 mm after the metal sensor: the part the sensor marks is the next at the gate, the
+// one before it, 200 mm ahead, has passed it.)
+TEST(Conveyor, KindsPushersAndDischargeSortEveryPartIntoOneBin) {
+  PlantRig rig;
+  auto* c = static_cast<Conveyor*>(rig.add("conveyor", "Belt", kSortingBelt));
+  ASSERT_NE(c, nullptr) << rig.renderedDiags();
+  rig.setBool("Belt.run", true);
+  int metalSeen = 0, anySeen = 0;
+  bool lastMetal = false, lastAny = false, steelDue = false;
+  for (int i = 0; i < 20000; ++i) {  // 20 s: all four parts spawned (0, 2, 4, 6 s) and gone
+    rig.tick();
+    const bool metal = rig.getBool("Belt.metal"), any = rig.getBool("Belt.any");
+    metalSeen += metal && !lastMetal;
+    anySeen += any && !lastAny;
+    lastMetal = metal;
+    lastAny = any;
+    // the controller: a steel part seen by the metal sensor is pushed off when it is at the gate
+    if (metal) steelDue = true;
+    const bool push = steelDue && rig.getBool("Belt.atGate");
+    if (rig.getBool("Belt.gate") && !rig.getBool("Belt.atGate")) steelDue = false;
+    rig.setBool("Belt.gate", push || (rig.getBool("Belt.gate") && rig.getBool("Belt.atGate")));
+  }
+  EXPECT_EQ(anySeen, 4);
+  EXPECT_EQ(metalSeen, 2);
+  EXPECT_EQ(c->partCount(), 0u);
+  EXPECT_EQ(rig.getNumber("Belt.produced_steel"), 2);
+  EXPECT_EQ(rig.getNumber("Belt.produced_plastic"), 1);
+  EXPECT_EQ(rig.getNumber("Belt.produced_bad"), 1);
+  EXPECT_EQ(rig.getNumber("Belt.gate_steel"), 2);
+  EXPECT_EQ(rig.getNumber("Belt.end_plastic"), 1);
+  EXPECT_EQ(rig.getNumber("Belt.end_bad"), 1);
+  EXPECT_EQ(rig.getNumber("Belt.end_steel"), 0);
+  EXPECT_EQ(c->binCount(0, 0), 2);  // bin 0 (gate), kind 0 (steel)
+}
+
+// A pusher takes exactly the part covering its position, at the tick its command is on.
+TEST(Conveyor, PusherTakesThePartInFrontOfIt) {
+  PlantRig rig;
+  auto* c = static_cast<Conveyor*>(rig.add("conveyor", "Belt", R"(speed: 100 mm/s
+length: 1000 mm
+part_length: 100 mm
+initial_parts: [0 mm, 400 mm]
+pushers:
+  off: 450 mm
+)"));
+  ASSERT_NE(c, nullptr) << rig.renderedDiags();
+  rig.setBool("Belt.off", true);
+  rig.tick();
+  EXPECT_EQ(c->partCount(), 1u);
+  EXPECT_EQ(rig.getNumber("Belt.off_parts"), 1);  // without part_kinds the one kind is "parts"
+  EXPECT_NEAR(c->partPositionM(0), 0.0, 1e-12);
+}
+
+TEST(Conveyor, KindAndPusherMistakes) {
+  PlantRig rig;
+  EXPECT_EQ(rig.add("conveyor", "C", R"(speed: 100 mm/s
+length: 1 m
+part_kinds: steel
+sensors:
+  cam: {at: 100 mm, detects: [glass]}
+  run: 200 mm
+pushers:
+  cam: 300 mm
+  far: 2 m
+)"),
+            nullptr);
+  const std::string out = rig.renderedDiags();
+  EXPECT_NE(out.find("C.yaml:3:13: error[C010]: 'part_kinds' must be a list of kind names"), std::string::npos) << out;
+  EXPECT_NE(out.find("C.yaml:5:31: error[C010]: 'detects': 'glass' is not one of the conveyor's part_kinds (none declared)"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("C.yaml:6:3: error[C010]: sensor name 'run' clashes with a conveyor port"), std::string::npos) << out;
+  EXPECT_NE(out.find("C.yaml:8:3: error[C010]: pusher name 'cam' clashes with a conveyor port"), std::string::npos) << out;
+  EXPECT_NE(out.find("C.yaml:9:8: error[C010]: pusher 'far' is not on the belt"), std::string::npos) << out;
 }
 
 }  // namespace

@@ -23,13 +23,13 @@ TEST(DeviceConfig, UnknownDeviceTypeListsTheKnownOnes) {
   EXPECT_EQ(rig.add("robto", "R", "type: robto\n"), nullptr);
   EXPECT_TRUE(contains(rig.renderedDiags(),
                        "R.yaml:1:7: error[C010]: unknown device type 'robto' (expected one of: robot, axis, press, "
-                       "timed, conveyor, sensor)"))
+                       "timed, conveyor, sensor, tank, valve, pump, heater, level_switch, temperature_sensor)"))
       << rig.renderedDiags();
 }
 
 TEST(DeviceConfig, EveryTypeIsListedWithADescription) {
   auto types = deviceTypes();
-  ASSERT_EQ(types.size(), 6u);
+  ASSERT_EQ(types.size(), 12u);
   for (const auto& [name, doc] : types) EXPECT_FALSE(doc.empty()) << name;
 }
 

@@ -14,6 +14,15 @@ const char* kCellYaml[][3] = {
     {"timed", "Clamp", "commands:\n  1: { name: LockInsert, duration: 0.3 s, sets: [insertLocked] }\n"},
     {"conveyor", "Belt", "speed: 100 mm/s\nlength: 1 m\nspawn_interval: 1 s\nend_fact: atEnd\nsensors:\n  s1: 500 mm\n"},
     {"sensor", "S", "fact: insertLocked\ndelay: 10 ms\n"},
+    {"conveyor", "Sorter",
+     "speed: 200 mm/s\nlength: 1 m\nspawn_interval: 1 s\npart_kinds: [a, b]\ndischarge: true\n"
+     "sensors:\n  s: {at: 500 mm, detects: [a]}\npushers:\n  p: 600 mm\n"},
+    {"tank", "Tank", "capacity: 100 l\nheat_loss: 5 W/K\n"},
+    {"valve", "Fill", "to: Tank\nflow: 50 l/min\ntravel_time: 2 s\n"},
+    {"pump", "Drain", "from: Tank\nflow: 20 l/min\npower: 300 W\n"},
+    {"heater", "Heat", "tank: Tank\npower: 2 kW\n"},
+    {"level_switch", "High", "tank: Tank\nabove: 90 %\nhysteresis: 5 %\n"},
+    {"temperature_sensor", "TT", "tank: Tank\nlag: 5 s\n"},
 };
 
 TEST(NoAllocation, SteppingDevicesThroughCommandsDoesNotAllocate) {
@@ -25,7 +34,10 @@ TEST(NoAllocation, SteppingDevicesThroughCommandsDoesNotAllocate) {
   rig.setFact("bearing1", true);
   rig.setFact("stud1", true);
   rig.setBool("Belt.run", true);
+  rig.setBool("Sorter.run", true);
   rig.tick();
+  const TagId processCommands[] = {rig.tagOf("Fill.open"), rig.tagOf("Drain.run"), rig.tagOf("Heat.on"),
+                                   rig.tagOf("Sorter.p")};
 
   const TagId robotCmd = rig.tagOf("R1.procedureNumber"), axisCmd = rig.tagOf("AxisX.targetPosition");
   const TagId pressCmd = rig.tagOf("Press.programNumber"), clampCmd = rig.tagOf("Clamp.programNumber");
@@ -38,6 +50,7 @@ TEST(NoAllocation, SteppingDevicesThroughCommandsDoesNotAllocate) {
     rig.bus.setNumber(pressCmd, 1);
     rig.bus.setNumber(clampCmd, 1);
     for (TagId e : executes) rig.bus.setBool(e, true);
+    for (TagId c : processCommands) rig.bus.setBool(c, n % 2 == 1);  // on and off: activities open and close
     for (int i = 0; i < 4000; ++i) rig.tick();
     for (TagId e : executes) rig.bus.setBool(e, false);
     rig.tick();

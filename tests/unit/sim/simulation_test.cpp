@@ -361,5 +361,33 @@ TEST_F(TinyCell, CollisionIsRecordedWithoutStoppingWhenSwitchedOff) {
   EXPECT_EQ(r->trace().endNs, 3000 * kMs);
 }
 
+// A device output wired to a located input (AT %IX) reaches the program: it goes into the input
+// image, which the scan copies into the %I area (written into the area, it would be overwritten).
+class LocatedInputCell : public SimFiles {};
+
+TEST_F(LocatedInputCell, SensorWiredToAnAtIxVariableReachesTheProgram) {
+  auto r = loadCell(R"(name: located
+plc:
+  sources: [main.st]
+  cycle_time: 10 ms
+run:
+  until: "MAIN.seen"
+  time_limit: 1 s
+world:
+  facts:
+    pressed: true
+devices:
+  - name: Button
+    type: sensor
+    fact: pressed
+    wiring: {value: MAIN.button}
+)",
+                    {{"main.st", "PROGRAM MAIN\nVAR\n  button AT %IX0.3 : BOOL;\n  seen : BOOL;\nEND_VAR\n"
+                                 "seen := button;\nEND_PROGRAM\n"}});
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->run(), RunEnd::Completed);
+  EXPECT_EQ(r->trace().endNs, 10 * kMs);  // written after the first scan, read by the second
+}
+
 }  // namespace
 }  // namespace virtcom::sim::test

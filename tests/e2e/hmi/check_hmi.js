@@ -53,6 +53,22 @@ async function everyDeviceIsDrawn(page) {
   assert.deepEqual(names, kGearboxDevices);
 }
 
+// The cell file's `hmi:` section: its static shapes are drawn, and the press stands where it
+// places it, under its label; the table's axes are framed as one group.
+async function theCellFilesPlanIsDrawn(page) {
+  const kinds = await page.$$eval('#layout g.shape', (gs) => gs.map((g) => g.dataset.kind));
+  assert.deepEqual(kinds, ['rect', 'rect', 'rect', 'circle', 'circle', 'line', 'text']);
+  assert.equal(await page.textContent('#layout g.shape[data-kind="text"] text'), 'operator side');
+  const fence = await page.$eval('#layout g.shape rect', (r) => [r.getAttribute('x'), r.getAttribute('width')]);
+  assert.deepEqual(fence, ['-1000', '4800']);
+  const press = await page.$eval('g.device[data-name="Press"]', (g) => {
+    const body = g.querySelector('rect.body');
+    return { x: body.getAttribute('x'), y: body.getAttribute('y'), label: g.querySelector('text').textContent };
+  });
+  assert.deepEqual(press, { x: '500', y: '-1450', label: 'Servo press' });  // y up: -(950 + 500)
+  assert.deepEqual(await page.$$eval('#layout g.group', (gs) => gs.map((g) => g.dataset.group)), ['Positioning table']);
+}
+
 async function robotMovesAndGanttGrows(page) {
   const marker = () => page.$eval('circle.tcp[data-device="Robot1"]', (c) => `${c.getAttribute('cx')},${c.getAttribute('cy')}`);
   const bars = () => page.$$eval('#gantt rect.bar', (r) => r.length);
@@ -107,6 +123,7 @@ async function served() {
     const other = await openHmi(second);  // two viewers at once
     await everyDeviceIsDrawn(page);
     await everyDeviceIsDrawn(other);
+    await theCellFilesPlanIsDrawn(page);
     await robotMovesAndGanttGrows(page);
     await shot(page, 'running');
     await shot(other, 'second-viewer');

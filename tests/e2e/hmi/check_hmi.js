@@ -69,6 +69,23 @@ async function theCellFilesPlanIsDrawn(page) {
   assert.deepEqual(await page.$$eval('#layout g.group', (gs) => gs.map((g) => g.dataset.group)), ['Positioning table']);
 }
 
+// A trend of Robot1.actualX fills with points as the run goes, and zooms in to a shorter window.
+async function trendPlotsASignal(page) {
+  await page.fill('#trend-name', 'Robot1.actualX');
+  await page.click('#trend-form button:not([type])');
+  await eventually(() => page.$$eval('#trend-legend li', (l) => l.map((e) => e.dataset.name)), (n) => n.includes('Robot1.actualX'),
+                   'the trend lists the signal');
+  const points = () => page.$eval('#trend', (c) => Number(c.dataset.points));
+  await eventually(points, (n) => n > 3, 'the trend shows points after the run progresses');
+  await page.hover('#trend');
+  await page.mouse.wheel(0, -200);
+  const span = await page.$eval('#trend', (c) => Number(c.dataset.spanNs));
+  assert.ok(span > 0, `the mouse wheel zooms in (span ${span} ns)`);
+  await page.click('#trend-all');
+  assert.equal(await page.$eval('#trend', (c) => Number(c.dataset.spanNs)), 0, '"all" shows the whole run');
+  await shot(page, 'trend');
+}
+
 async function robotMovesAndGanttGrows(page) {
   const marker = () => page.$eval('circle.tcp[data-device="Robot1"]', (c) => `${c.getAttribute('cx')},${c.getAttribute('cy')}`);
   const bars = () => page.$$eval('#gantt rect.bar', (r) => r.length);
@@ -125,6 +142,7 @@ async function served() {
     await everyDeviceIsDrawn(other);
     await theCellFilesPlanIsDrawn(page);
     await robotMovesAndGanttGrows(page);
+    await trendPlotsASignal(page);
     await shot(page, 'running');
     await shot(other, 'second-viewer');
     // A browser killed mid-run: the run and the other viewer go on.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bytecode/module.hpp"
+#include "cell/hmi_settings.hpp"
 #include "core/ams_net_id.hpp"
 #include "core/diagnostics.hpp"
 #include "core/endpoint.hpp"
@@ -107,6 +108,7 @@ struct Cell {
   modbus_map::SignalMap modbus;        // what `virtcom serve --modbus` serves: `modbus:` or automatic
   std::optional<ModbusClientSettings> plcModbus;
   std::optional<AdsClientSettings> plcAds;
+  HmiSettings hmi;                     // `hmi:`: the HMI layout's placements and static shapes
 };
 
 // Every device port as a signal a protocol map can name ("Press.execute"), in device and port

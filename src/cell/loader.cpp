@@ -9,6 +9,7 @@
 
 #include "cell/ads_settings.hpp"
 #include "cell/cell.hpp"
+#include "cell/hmi_section.hpp"
 #include "cell/mapping_file.hpp"
 #include "cell/modbus_settings.hpp"
 #include "cell/yaml_config.hpp"
@@ -64,6 +65,7 @@ class Loader {
     // Maps name device signals, so they are read once the devices exist.
     readModbusSection(*cell, top.child("modbus"), diags_);
     if (plcModbus_) readModbusClient(*cell, *plcModbus_, diags_);
+    readHmiSection(*cell, top.child("hmi"), diags_);  // names devices
     top.child("extends");          // applied by takeBaseSections()
     top.child("replace_devices");  // applied by takeBaseSections()
     if (plcAds_) {

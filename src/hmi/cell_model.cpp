@@ -1,5 +1,7 @@
 #include "hmi/cell_model.hpp"
 
+#include <cmath>
+
 #include "hmi/layout.hpp"
 #include "plant/axis.hpp"
 #include "plant/conveyor.hpp"
@@ -40,7 +42,28 @@ Json geometry(const plant::Device& d, const cell::Cell& cell) {
   return Json::object();
 }
 
-Json deviceJson(const plant::Device& d, const Place& place, const cell::Cell& cell) {
+// What `hmi: devices:` says about device `index` beyond its place.
+const cell::DevicePlacement* placement(const cell::Cell& cell, size_t index) {
+  for (const cell::DevicePlacement& p : cell.hmi.devices)
+    if (p.device == index) return &p;
+  return nullptr;
+}
+
+// Metres as millimetres rounded to the micrometre: "3800 mm" is sent as 3800, not 3800.0000000000005.
+double mm(double metres) { return std::round(metres * 1e6) / 1000; }
+
+Json shapeJson(const cell::HmiShape& s) {
+  Json j = {{"kind", cell::shapeKindName(s.kind)}, {"x", mm(s.x)}, {"y", mm(s.y)}, {"label", s.label}, {"colour", s.colour}};
+  switch (s.kind) {
+    case cell::HmiShape::Kind::Rect: j["w"] = mm(s.w); j["h"] = mm(s.h); break;
+    case cell::HmiShape::Kind::Circle: j["r"] = mm(s.r); break;
+    case cell::HmiShape::Kind::Line: j["x2"] = mm(s.x2); j["y2"] = mm(s.y2); break;
+    case cell::HmiShape::Kind::Text: break;
+  }
+  return j;
+}
+
+Json deviceJson(const plant::Device& d, const Place& place, const cell::DevicePlacement* given, const cell::Cell& cell) {
   Json ports = Json::array();
   for (size_t i = 0; i < d.ports().size(); ++i) {
     const plant::PortSpec& p = d.ports()[i];
@@ -51,6 +74,8 @@ Json deviceJson(const plant::Device& d, const Place& place, const cell::Cell& ce
   }
   const DeviceInfo& info = cell.trace.devices[d.traceIndex()];
   return {{"name", d.name()},
+          {"label", given && !given->label.empty() ? given->label : d.name()},
+          {"layoutGroup", given ? given->group : std::string()},
           {"type", d.type()},
           {"group", info.group},
           {"trace", d.traceIndex()},
@@ -64,7 +89,9 @@ Json deviceJson(const plant::Device& d, const Place& place, const cell::Cell& ce
 Json cellModel(const cell::Cell& cell, int64_t baseTickNs) {
   std::vector<Place> places = placeDevices(cell);
   Json devices = Json::array();
-  for (size_t i = 0; i < cell.devices.size(); ++i) devices.push_back(deviceJson(*cell.devices[i], places[i], cell));
+  for (size_t i = 0; i < cell.devices.size(); ++i) devices.push_back(deviceJson(*cell.devices[i], places[i], placement(cell, i), cell));
+  Json shapes = Json::array();
+  for (const cell::HmiShape& s : cell.hmi.shapes) shapes.push_back(shapeJson(s));
   Json zones = Json::array();
   for (uint32_t z = 0; z < cell.world.zoneCount(); ++z) zones.push_back(cell.world.zoneName(z));
   Json signals = Json::array();
@@ -75,7 +102,8 @@ Json cellModel(const cell::Cell& cell, int64_t baseTickNs) {
           {"devices", devices},
           {"zones", zones},
           {"labels", cell.trace.labels},
-          {"signals", signals}};
+          {"signals", signals},
+          {"shapes", shapes}};
 }
 
 }  // namespace virtcom::hmi

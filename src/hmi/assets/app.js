@@ -2,6 +2,7 @@
 // changes at a time; schema in docs/hmi.md) and sends controls, writes and faults as POSTs.
 import { Layout } from './layout.js';
 import { Gantt } from './gantt.js';
+import { Trend } from './trend.js';
 
 const $ = (id) => document.getElementById(id);
 const seconds = (ns) => `${(ns / 1e9).toFixed(3)} s`;
@@ -18,7 +19,7 @@ const state = {
   nowNs: 0,
   dirty: true,
 };
-let layout, gantt, stream;
+let layout, gantt, trend, stream;
 
 async function post(path, body) {
   const headers = { 'Content-Type': 'application/json' };
@@ -47,7 +48,10 @@ function applyFrame(f) {
   badge.className = `badge ${f.ended !== undefined ? 'ended' : f.paused ? 'paused' : ''}`;
   if (f.ended !== undefined) $('message').textContent = f.ended;
   if (document.activeElement !== $('speed')) $('speed').value = f.speed;
-  for (const [tag, value] of f.signals ?? []) state.values[tag] = value;
+  for (const [tag, value] of f.signals ?? []) {
+    state.values[tag] = value;
+    trend.push(state.model.signals[tag].name, f.t, value);
+  }
   for (const a of f.activities ?? []) {
     state.activities.set(a[0], a);
     if (a[4] < 0) state.current.set(a[1], a);
@@ -68,7 +72,10 @@ function applyFrame(f) {
   }
   if (f.injected) state.injected = f.injected;
   if (f.forced) state.forced = f.forced;
-  for (const v of f.vars ?? []) state.vars.set(v.name, v);
+  for (const v of f.vars ?? []) {
+    state.vars.set(v.name, v);
+    trend.push(v.name, f.t, v.value);
+  }
   state.dirty = true;
 }
 
@@ -86,6 +93,7 @@ function render() {
     $('vtime').dataset.ns = state.nowNs;
     layout.update(state.values, deviceState);
     gantt.render(state.activities, state.nowNs);
+    trend.render(state.nowNs);
     renderWatch();
   }
   requestAnimationFrame(render);
@@ -124,6 +132,28 @@ function addWatchRow(name) {
   };
 }
 
+// A trended name: a bus signal, or a PLC variable (then watched, so the stream sends its values).
+function addTrend(name) {
+  const tag = state.model.signals.findIndex(s => s.name === name);
+  if (tag < 0 && !state.watch.includes(name)) watch(name);
+  trend.add(name);
+  const value = tag >= 0 ? state.values[tag] : state.vars.get(name)?.value;  // from here on, changes come with frames
+  if (value !== undefined) trend.push(name, state.nowNs, value);
+}
+
+function setUpTrends() {
+  trend = new Trend($('trend'), $('trend-legend'), (names) => localStorage.setItem('virtcom.trends', JSON.stringify(names)));
+  for (const s of state.model.signals) $('trend-choices').appendChild(new Option(s.name));
+  $('trend-form').onsubmit = (e) => {
+    e.preventDefault();
+    if ($('trend-name').value) addTrend($('trend-name').value.trim());
+  };
+  $('trend-zoom-in').onclick = () => trend.zoom(0.5);
+  $('trend-zoom-out').onclick = () => trend.zoom(2);
+  $('trend-all').onclick = () => trend.zoom(Infinity);
+  for (const name of JSON.parse(localStorage.getItem('virtcom.trends') || '[]')) trend.add(name);
+}
+
 function saveWatch() {
   localStorage.setItem('virtcom.watch', JSON.stringify(state.watch));
   openStream();
@@ -156,9 +186,10 @@ async function start() {
   document.title = `${m.name} — virtcom HMI`;
   $('cell-name').textContent = m.name;
   $('token').hidden = !m.tokenRequired;
-  if (m.readOnly) for (const b of document.querySelectorAll('button, #speed')) b.disabled = true;
+  if (m.readOnly) for (const b of document.querySelectorAll('button:not(#trend-form button), #speed')) b.disabled = true;  // trends only watch
   layout = new Layout($('layout'), m);
   gantt = new Gantt($('gantt'), m);
+  setUpTrends();
   for (const d of m.devices) $('fault-device').add(new Option(d.name, d.name));
   for (const button of document.querySelectorAll('[data-action]'))
     button.onclick = () => post('/api/control', { action: button.dataset.action });

@@ -1,6 +1,8 @@
 // The layout view: a top view of the cell drawn from /api/model (places in cell millimetres,
 // y up, so the SVG's y is negated) and updated from the live state. Every device is a
-// <g class="device" data-name=... data-state=idle|busy|error|fault>.
+// <g class="device" data-name=... data-state=idle|busy|error|fault>; the cell file's static
+// shapes (`hmi: shapes:`) are <g class="shape" data-kind=...> under them, and each `group` a
+// <g class="group" data-group=...> frame around its devices.
 const SVG = 'http://www.w3.org/2000/svg';
 
 function el(parent, name, attrs = {}, text) {
@@ -13,26 +15,66 @@ function el(parent, name, attrs = {}, text) {
 
 const portTag = (device, port) => device.ports.find(p => p.name === port)?.tag;
 
+// The smallest box {x, y, w, h} (mm, y up) holding every box of `boxes`.
+function bounds(boxes) {
+  let minX = Infinity, minY = Infinity, maxX = -Infinity, maxY = -Infinity;
+  for (const b of boxes) {
+    minX = Math.min(minX, b.x); maxX = Math.max(maxX, b.x + b.w);
+    minY = Math.min(minY, b.y); maxY = Math.max(maxY, b.y + b.h);
+  }
+  return { x: minX, y: minY, w: maxX - minX, h: maxY - minY };
+}
+
+function shapeBox(s) {
+  if (s.kind === 'rect') return { x: s.x, y: s.y, w: s.w, h: s.h };
+  if (s.kind === 'circle') return { x: s.x - s.r, y: s.y - s.r, w: 2 * s.r, h: 2 * s.r };
+  if (s.kind === 'line') return { x: Math.min(s.x, s.x2), y: Math.min(s.y, s.y2), w: Math.abs(s.x2 - s.x), h: Math.abs(s.y2 - s.y) };
+  return { x: s.x, y: s.y, w: 0, h: 0 };
+}
+
+// A static shape of the cell file; its colour (checked by the loader) strokes it, fills text.
+function drawShape(svg, s) {
+  const g = el(svg, 'g', { class: 'shape', 'data-kind': s.kind });
+  if (s.colour) g.style.setProperty('--shape-colour', s.colour);
+  if (s.kind === 'rect') el(g, 'rect', { x: s.x, y: -(s.y + s.h), width: s.w, height: s.h });
+  else if (s.kind === 'circle') el(g, 'circle', { cx: s.x, cy: -s.y, r: s.r });
+  else if (s.kind === 'line') el(g, 'line', { x1: s.x, y1: -s.y, x2: s.x2, y2: -s.y2 });
+  if (s.label) {
+    const at = s.kind === 'rect' ? { x: s.x + 20, y: -s.y - 20 } : s.kind === 'circle' ? { x: s.x + s.r + 20, y: -s.y } : { x: s.x, y: -s.y };
+    el(g, 'text', { class: s.kind === 'text' ? 'caption' : 'shape-label', ...at }, s.label);
+  }
+}
+
 export class Layout {
   constructor(svg, model) {
     this.views = [];
     this.zoneShapes = new Map();  // zone index -> [SVG elements]
-    let minX = Infinity, minY = Infinity, maxX = -Infinity, maxY = -Infinity;
-    for (const d of model.devices) {
-      const p = d.place;
-      minX = Math.min(minX, p.x); maxX = Math.max(maxX, p.x + p.w);
-      minY = Math.min(minY, p.y); maxY = Math.max(maxY, p.y + p.h);
-    }
+    const shapes = model.shapes ?? [];
+    const box = bounds([...model.devices.map(d => d.place), ...shapes.map(shapeBox)]);
     const pad = 100;
-    svg.setAttribute('viewBox', `${minX - pad} ${-maxY - pad} ${maxX - minX + 2 * pad} ${maxY - minY + 2 * pad}`);
+    svg.setAttribute('viewBox', `${box.x - pad} ${-(box.y + box.h) - pad} ${box.w + 2 * pad} ${box.h + 2 * pad}`);
+    for (const s of shapes) drawShape(svg, s);
+    this.drawGroups(svg, model.devices);
     for (const d of model.devices) this.views.push(this.drawDevice(svg, d, model));
+  }
+
+  drawGroups(svg, devices) {
+    const groups = new Map();
+    for (const d of devices) if (d.layoutGroup) groups.set(d.layoutGroup, [...(groups.get(d.layoutGroup) ?? []), d.place]);
+    const margin = 60;
+    for (const [name, places] of groups) {
+      const b = bounds(places);
+      const g = el(svg, 'g', { class: 'group', 'data-group': name });
+      el(g, 'rect', { x: b.x - margin, y: -(b.y + b.h) - margin, width: b.w + 2 * margin, height: b.h + 2 * margin, rx: 30 });
+      el(g, 'text', { x: b.x - margin + 20, y: -(b.y + b.h) - margin - 20 }, name);
+    }
   }
 
   drawDevice(svg, d, model) {
     const p = d.place;
     const g = el(svg, 'g', { class: `device ${d.type}`, 'data-name': d.name, 'data-state': 'idle' });
     el(g, 'rect', { class: 'body', x: p.x, y: -(p.y + p.h), width: p.w, height: p.h, rx: 20 });
-    el(g, 'text', { x: p.x + 20, y: -(p.y + p.h) + 70 }, d.name);
+    el(g, 'text', { x: p.x + 20, y: -(p.y + p.h) + 70 }, d.label ?? d.name);
     const view = { device: d, g, op: el(g, 'text', { class: 'op', x: p.x + 20, y: -(p.y + p.h) + 130 }, ''), update: () => {} };
     const draw = { robot: this.drawRobot, axis: this.drawAxis, press: this.drawPress, conveyor: this.drawConveyor, sensor: this.drawSensor }[d.type];
     if (draw) draw.call(this, g, d, view, model);

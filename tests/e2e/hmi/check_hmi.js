@@ -53,6 +53,39 @@ async function everyDeviceIsDrawn(page) {
   assert.deepEqual(names, kGearboxDevices);
 }
 
+// The cell file's `hmi:` section: its static shapes are drawn, and the press stands where it
+// places it, under its label; the table's axes are framed as one group.
+async function theCellFilesPlanIsDrawn(page) {
+  const kinds = await page.$$eval('#layout g.shape', (gs) => gs.map((g) => g.dataset.kind));
+  assert.deepEqual(kinds, ['rect', 'rect', 'rect', 'circle', 'circle', 'line', 'text']);
+  assert.equal(await page.textContent('#layout g.shape[data-kind="text"] text'), 'operator side');
+  const fence = await page.$eval('#layout g.shape rect', (r) => [r.getAttribute('x'), r.getAttribute('width')]);
+  assert.deepEqual(fence, ['-1000', '4800']);
+  const press = await page.$eval('g.device[data-name="Press"]', (g) => {
+    const body = g.querySelector('rect.body');
+    return { x: body.getAttribute('x'), y: body.getAttribute('y'), label: g.querySelector('text').textContent };
+  });
+  assert.deepEqual(press, { x: '500', y: '-1450', label: 'Servo press' });  // y up: -(950 + 500)
+  assert.deepEqual(await page.$$eval('#layout g.group', (gs) => gs.map((g) => g.dataset.group)), ['Positioning table']);
+}
+
+// A trend of Robot1.actualX fills with points as the run goes, and zooms in to a shorter window.
+async function trendPlotsASignal(page) {
+  await page.fill('#trend-name', 'Robot1.actualX');
+  await page.click('#trend-form button:not([type])');
+  await eventually(() => page.$$eval('#trend-legend li', (l) => l.map((e) => e.dataset.name)), (n) => n.includes('Robot1.actualX'),
+                   'the trend lists the signal');
+  const points = () => page.$eval('#trend', (c) => Number(c.dataset.points));
+  await eventually(points, (n) => n > 3, 'the trend shows points after the run progresses');
+  await page.hover('#trend');
+  await page.mouse.wheel(0, -200);
+  const span = await page.$eval('#trend', (c) => Number(c.dataset.spanNs));
+  assert.ok(span > 0, `the mouse wheel zooms in (span ${span} ns)`);
+  await page.click('#trend-all');
+  assert.equal(await page.$eval('#trend', (c) => Number(c.dataset.spanNs)), 0, '"all" shows the whole run');
+  await shot(page, 'trend');
+}
+
 async function robotMovesAndGanttGrows(page) {
   const marker = () => page.$eval('circle.tcp[data-device="Robot1"]', (c) => `${c.getAttribute('cx')},${c.getAttribute('cy')}`);
   const bars = () => page.$$eval('#gantt rect.bar', (r) => r.length);
@@ -107,7 +140,9 @@ async function served() {
     const other = await openHmi(second);  // two viewers at once
     await everyDeviceIsDrawn(page);
     await everyDeviceIsDrawn(other);
+    await theCellFilesPlanIsDrawn(page);
     await robotMovesAndGanttGrows(page);
+    await trendPlotsASignal(page);
     await shot(page, 'running');
     await shot(other, 'second-viewer');
     // A browser killed mid-run: the run and the other viewer go on.

@@ -62,6 +62,29 @@ TEST_F(GearboxHmi, TheModelListsEveryDeviceWithItsPortsAndPlace) {
   EXPECT_EQ(model["zones"], Json::array({"SharedTable", "PressArea"}));
 }
 
+TEST_F(GearboxHmi, TheModelCarriesTheCellFilesPlacementsAndShapes) {
+  Json model = Json::parse(call({"GET", "/api/model", {}, "", ""}).body);
+  const Json& robot2 = model["devices"][1];
+  EXPECT_EQ(robot2["label"], "Robot2 (IRB 2600)");
+  EXPECT_DOUBLE_EQ(robot2["place"]["originX"].get<double>(), 2600) << "hmi: Robot2: base";
+  EXPECT_DOUBLE_EQ(robot2["place"]["originY"].get<double>(), 0);
+  EXPECT_LT(robot2["place"]["x"].get<double>(), 2600 - 400) << "the box holds the locations around the base";
+  const Json& press = model["devices"][2];
+  EXPECT_EQ(press["label"], "Servo press");
+  EXPECT_EQ(press["place"]["x"], 500);
+  EXPECT_EQ(press["place"]["y"], 950);
+  EXPECT_EQ(press["place"]["w"], 600);
+  EXPECT_EQ(press["place"]["h"], 500);
+  EXPECT_EQ(model["devices"][3]["layoutGroup"], "Positioning table");
+  EXPECT_EQ(model["devices"][0]["layoutGroup"], "");
+  ASSERT_EQ(model["shapes"].size(), 7u);
+  EXPECT_EQ(model["shapes"][0], Json({{"kind", "rect"}, {"x", -1000}, {"y", -1100}, {"w", 4800}, {"h", 2700},
+                                      {"label", "safety fence"}, {"colour", "#bbbbbb"}}));
+  EXPECT_EQ(model["shapes"][3]["r"], 90);
+  EXPECT_EQ(model["shapes"][5]["x2"], 3800);
+  EXPECT_EQ(model["shapes"][6]["kind"], "text");
+}
+
 TEST_F(GearboxHmi, TheFirstFrameHasEverythingThenOnlyChanges) {
   steps(1);
   auto stream = api->openStream(parseRequest({"GET", "/api/stream", {{"watch", "MAIN.jobsFinished,MAIN.nothing"}}, "", ""}, {}));

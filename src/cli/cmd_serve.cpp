@@ -23,6 +23,7 @@
 #include "cli/hmi_options.hpp"
 #include "cli/modbus_options.hpp"
 #include "proto/modbus/signal_server.hpp"
+#include "report/json_report.hpp"
 #include "report/kpis.hpp"
 #include "report/summary.hpp"
 #include "sim/simulation.hpp"
@@ -38,6 +39,7 @@ struct ServeOptions {
   std::string cellFile;
   double speed = 1;
   bool quiet = false;
+  std::string json;         // the JSON report, written when stopped; empty: none
   std::string modbus;       // HOST:PORT; empty: no Modbus server
   std::string modbusAllow;  // comma-separated peer addresses; empty: any
   AdsServeOptions ads;      // the soft PLC over ADS
@@ -165,7 +167,9 @@ ExitCode serveCell(const ServeOptions& o) {
   if (ads) ads->stop();
   if (hmi) hmi->stop();
   const Trace& trace = simulation.trace();
-  if (!o.quiet) std::cout << report::summaryTable(trace, report::computeKpis(trace));
+  const report::Kpis kpis = report::computeKpis(trace);
+  if (!o.quiet) std::cout << report::summaryTable(trace, kpis);
+  if (!o.json.empty() && !writeFile(o.json, report::jsonReport(trace, kpis))) return ExitCode::Usage;
   if (end == RunEnd::PlcFault) {
     std::cerr << "runtime fault: " << trace.endMessage << "\n";
     return ExitCode::PlcFault;
@@ -190,6 +194,7 @@ void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_option("--speed", o->speed, "pace factor against the wall clock (default 1 = real time)")->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table when stopped");
+  cmd->add_option("--json", o->json, "write the JSON report (docs/report.md) of the served run to this file when stopped");
   cmd->callback([o, setExit] { setExit(serveCell(*o)); });
 }
 

@@ -43,6 +43,10 @@ class Conveyor final : public Device {
   void finish(int64_t endNs, Trace& trace) override;
 
   size_t partCount() const { return parts_.size(); }
+  // The `run` port and the label of its activities, for recording them from outside
+  // (sim/operation_recogniser.hpp). The label after prepare().
+  size_t runPort() const { return runPort_; }
+  uint32_t runningLabel() const { return runLabel_; }
   double partPositionM(size_t i) const { return static_cast<double>(parts_[i]) * 1e-9; }
 
  private:

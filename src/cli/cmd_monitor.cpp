@@ -112,13 +112,15 @@ class AlertPrinter final : public TraceSink {
   uint32_t cycles_ = 0;
 };
 
+// Per (device, operation): runs, mean actual duration, the model's range, the worst deviation.
 void printShadow(const Trace& trace, const sim::OperationRecogniser& recogniser) {
-  std::printf("\n%-12s %-16s %5s %10s %10s %9s %6s\n", "Device", "Operation", "Runs", "Actual s", "Model s", "Worst", "Alerts");
+  std::printf("\n%-12s %-16s %5s %10s %15s %9s %6s\n", "Device", "Operation", "Runs", "Actual s", "Model s", "Worst", "Alerts");
   for (const sim::OperationStats& s : recogniser.stats()) {
-    std::printf("%-12s %-16s %5u %10.3f ", trace.devices[s.device].name.c_str(), trace.labels[s.label].c_str(), s.count,
-                s.totalNs / 1e9 / s.count);
-    if (s.expectedNs < 0) std::printf("%10s %9s %6u\n", "-", "-", s.alerts);
-    else std::printf("%10.3f %+8.1f%% %6u\n", s.expectedNs / 1e9, s.worstDeviation * 100, s.alerts);
+    char model[32] = "-";
+    if (s.expected.known() && s.expected.minNs == s.expected.maxNs) std::snprintf(model, sizeof model, "%.3f", s.expected.maxNs / 1e9);
+    else if (s.expected.known()) std::snprintf(model, sizeof model, "%.3f-%.3f", s.expected.minNs / 1e9, s.expected.maxNs / 1e9);
+    std::printf("%-12s %-16s %5u %10.3f %15s %+8.1f%% %6u\n", trace.devices[s.device].name.c_str(), trace.labels[s.label].c_str(), s.count,
+                s.totalNs / 1e9 / s.count, model, s.worstDeviation * 100, s.alerts);
   }
 }
 

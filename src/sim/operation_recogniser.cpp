@@ -1,5 +1,6 @@
 #include "sim/operation_recogniser.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -27,27 +28,31 @@ std::vector<std::string> deviceNames(const Trace& t) {
 }  // namespace
 
 DurationModel::DurationModel(const Trace& simulated, const Trace& watched) : labels_(watched.labels.size()) {
-  std::vector<int64_t> sum(watched.devices.size() * labels_, 0);
-  std::vector<uint32_t> count(sum.size(), 0);
+  expected_.assign(watched.devices.size() * labels_, Range{});
   const std::vector<std::string> watchedDevices = deviceNames(watched);
   for (const ActivityRecord& a : simulated.activities) {
     if (a.endNs < 0 || a.errorCode != 0) continue;
     int64_t device = indexOf(watchedDevices, simulated.devices[a.device].name);
     int64_t label = indexOf(watched.labels, simulated.labels[a.label]);
     if (device < 0 || label < 0) continue;
-    size_t at = static_cast<size_t>(device) * labels_ + static_cast<size_t>(label);
-    sum[at] += a.endNs - a.startNs;
-    ++count[at];
+    Range& r = expected_[static_cast<size_t>(device) * labels_ + static_cast<size_t>(label)];
+    const int64_t ns = a.endNs - a.startNs;
+    r.minNs = r.known() ? std::min(r.minNs, ns) : ns;
+    r.maxNs = std::max(r.maxNs, ns);
   }
-  expectedNs_.assign(sum.size(), -1);
-  for (size_t i = 0; i < sum.size(); ++i)
-    if (count[i] > 0) expectedNs_[i] = sum[i] / count[i];
   if (simulated.cyclesCompleted > 0) cycleNs_ = simulated.cycleEndNs - simulated.cycleStartNs;
 }
 
-int64_t DurationModel::expectedNs(uint32_t device, uint32_t label) const {
+DurationModel::Range DurationModel::expected(uint32_t device, uint32_t label) const {
   size_t at = static_cast<size_t>(device) * labels_ + label;
-  return label < labels_ && at < expectedNs_.size() ? expectedNs_[at] : -1;
+  return label < labels_ && at < expected_.size() ? expected_[at] : Range{};
+}
+
+double DurationModel::Range::deviation(int64_t actualNs) const {
+  if (!known()) return 0;
+  if (actualNs > maxNs) return maxNs == 0 ? INFINITY : static_cast<double>(actualNs - maxNs) / static_cast<double>(maxNs);
+  if (actualNs < minNs) return static_cast<double>(actualNs - minNs) / static_cast<double>(minNs);
+  return 0;
 }
 
 OperationRecogniser::OperationRecogniser(const std::vector<std::unique_ptr<plant::Device>>& devices, Trace& trace,
@@ -86,14 +91,15 @@ void OperationRecogniser::observe(const TagBus& bus, int64_t nowNs) {
 void OperationRecogniser::observeHandshake(Watched& w, const TagBus& bus, int64_t nowNs) {
   const bool execute = bus.getBool(w.execute), done = bus.getBool(w.done), busy = bus.getBool(w.busy);
   const int32_t error = static_cast<int32_t>(bus.getInt(w.error));
-  if (w.phase == Phase::Unseen) {
+  const bool joining = w.phase == Phase::Unseen;
+  if (joining) {
     // Joining a running plant: a command already finished is its past, one running is recorded
-    // from now on.
+    // from now on (and not compared: its start is not known).
     w.phase = execute && (done || error != 0) ? Phase::WaitDrop : Phase::Idle;
   }
   if (w.phase == Phase::Idle && execute) {
     const auto* device = static_cast<const plant::SequencedDevice*>(w.device);
-    begin(w, device->operationLabel(bus.getNumber(w.command)), nowNs);
+    begin(w, device->operationLabel(bus.getNumber(w.command)), nowNs, joining);
   }
   if (w.phase == Phase::Running) {
     w.sawBusy |= busy;
@@ -104,42 +110,47 @@ void OperationRecogniser::observeHandshake(Watched& w, const TagBus& bus, int64_
 
 void OperationRecogniser::observeConveyor(Watched& w, const TagBus& bus, int64_t nowNs) {
   const bool run = bus.getBool(w.execute);
-  if (w.phase == Phase::Unseen || w.phase == Phase::WaitDrop) w.phase = Phase::Idle;
+  const bool joining = w.phase == Phase::Unseen;
+  if (joining || w.phase == Phase::WaitDrop) w.phase = Phase::Idle;
   const auto* conveyor = static_cast<const plant::Conveyor*>(w.device);
-  if (w.phase == Phase::Idle && run) begin(w, conveyor->runningLabel(), nowNs);
+  if (w.phase == Phase::Idle && run) {
+    begin(w, conveyor->runningLabel(), nowNs, joining);
+  }
   else if (w.phase == Phase::Running && !run) end(w, nowNs, 0);
 }
 
-void OperationRecogniser::begin(Watched& w, uint32_t label, int64_t nowNs) {
+void OperationRecogniser::begin(Watched& w, uint32_t label, int64_t nowNs, bool joined) {
   w.activity = trace_.beginActivity(w.traceDevice, label, nowNs);
   w.phase = Phase::Running;
   w.sawBusy = false;
+  w.joined = joined;
 }
 
 void OperationRecogniser::end(Watched& w, int64_t nowNs, int32_t error) {
   trace_.endActivity(w.activity, nowNs, 0, error);
   w.phase = Phase::WaitDrop;
-  if (error == 0) compare(w, trace_.activities[w.activity]);
+  if (error == 0 && !w.joined) compare(w, trace_.activities[w.activity]);
 }
 
 void OperationRecogniser::compare(const Watched& w, const ActivityRecord& a) {
   size_t at = static_cast<size_t>(a.device) * trace_.labels.size() + a.label;
   if (statIndex_[at] < 0) {
     statIndex_[at] = static_cast<int32_t>(stats_.size());
-    stats_.push_back({a.device, a.label, 0, 0, model_.expectedNs(a.device, a.label), 0, 0});
+    stats_.push_back({a.device, a.label, 0, 0, model_.expected(a.device, a.label), 0, 0});
   }
   OperationStats& s = stats_[static_cast<size_t>(statIndex_[at])];
   const int64_t actualNs = a.endNs - a.startNs;
   ++s.count;
   s.totalNs += actualNs;
-  if (s.expectedNs <= 0) return;
-  const double deviation = static_cast<double>(actualNs - s.expectedNs) / static_cast<double>(s.expectedNs);
+  const double deviation = s.expected.deviation(actualNs);
   if (std::abs(deviation) > std::abs(s.worstDeviation)) s.worstDeviation = deviation;
   if (std::abs(deviation) <= threshold_) return;
   ++s.alerts;
-  char text[160];
-  std::snprintf(text, sizeof text, "%s took %.3f s, the model %.3f s (%+.0f %%)", trace_.labels[a.label].c_str(), actualNs / 1e9,
-                s.expectedNs / 1e9, deviation * 100);
+  char model[64], text[192];
+  if (s.expected.minNs == s.expected.maxNs) std::snprintf(model, sizeof model, "%.3f s", s.expected.maxNs / 1e9);
+  else std::snprintf(model, sizeof model, "%.3f to %.3f s", s.expected.minNs / 1e9, s.expected.maxNs / 1e9);
+  std::snprintf(text, sizeof text, "%s took %.3f s, the model %s (%+.0f %%)", trace_.labels[a.label].c_str(), actualNs / 1e9, model,
+                deviation * 100);
   trace_.faults.push_back({a.endNs, w.device->name(), text});
 }
 

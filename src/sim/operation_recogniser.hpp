@@ -24,23 +24,28 @@
 
 namespace virtcom::sim {
 
-// The duration the cell model predicts for each (device, operation): the mean of the completed
-// activities of a simulated run, by device and label name, re-indexed to another trace of the
-// same cell.
+// The durations the cell model predicts for each (device, operation): the range of the completed
+// activities of a simulated run (one operation name may be several commands, or take longer at
+// one place than another), by device and label name, re-indexed to another trace of the same cell.
 class DurationModel {
  public:
   DurationModel() = default;
   // `simulated`: a finished run of the model; `watched`: the trace the monitor records into
   // (its devices and labels interned). Load time.
   DurationModel(const Trace& simulated, const Trace& watched);
-  // -1 when the model never completed that operation.
-  int64_t expectedNs(uint32_t device, uint32_t label) const;
+  struct Range {
+    int64_t minNs = -1, maxNs = -1;  // -1: the model never completed that operation
+    bool known() const { return minNs >= 0; }
+    // (actual - max) / max above the range, (actual - min) / min below it, 0 within (or unknown).
+    double deviation(int64_t actualNs) const;
+  };
+  Range expected(uint32_t device, uint32_t label) const;
   // The model's cycle time (its last measured cycle), 0 without one.
   int64_t cycleNs() const { return cycleNs_; }
 
  private:
   size_t labels_ = 0;
-  std::vector<int64_t> expectedNs_;  // device * labels_ + label
+  std::vector<Range> expected_;  // device * labels_ + label
   int64_t cycleNs_ = 0;
 };
 
@@ -49,8 +54,8 @@ struct OperationStats {
   uint32_t device = 0, label = 0;
   uint32_t count = 0;           // completed without error
   int64_t totalNs = 0;          // their summed durations
-  int64_t expectedNs = -1;      // the model's, -1 if unknown
-  double worstDeviation = 0;    // (actual - expected) / expected of the farthest one
+  DurationModel::Range expected;  // the model's
+  double worstDeviation = 0;    // DurationModel::Range::deviation of the farthest one
   uint32_t alerts = 0;          // completions beyond the threshold
 };
 
@@ -78,12 +83,13 @@ class OperationRecogniser {
     TagId command = kNoTag, execute = kNoTag, done = kNoTag, error = kNoTag, busy = kNoTag;  // conveyor: execute = run
     Phase phase = Phase::Unseen;
     bool sawBusy = false;
+    bool joined = false;  // the running operation began before the first poll: its start is unknown
     uint32_t activity = 0;
   };
 
   void observeHandshake(Watched& w, const TagBus& bus, int64_t nowNs);
   void observeConveyor(Watched& w, const TagBus& bus, int64_t nowNs);
-  void begin(Watched& w, uint32_t label, int64_t nowNs);
+  void begin(Watched& w, uint32_t label, int64_t nowNs, bool joined);
   void end(Watched& w, int64_t nowNs, int32_t error);
   void compare(const Watched& w, const ActivityRecord& a);
 

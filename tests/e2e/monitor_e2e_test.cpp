@@ -105,4 +105,10 @@ TEST_F(Monitor, AWiredVariableThePlcLacksIsAnErrorAtStartUp) {
   EXPECT_EQ(plant.stop(), 0) << plant.errorOutput();
 }
 
+TEST_F(Monitor, ABadPollPeriodIsAUsageError) {
+  std::string out;
+  EXPECT_EQ(shell(kExe + " monitor " + kExample + "/cell.yaml --ads 127.0.0.1:1 --poll fast", out), 64) << out;
+  EXPECT_NE(out.find("--poll: 'fast' is not a positive duration"), std::string::npos) << out;
+}
+
 }  // namespace

@@ -132,7 +132,11 @@ ExitCode monitorCell(const MonitorOptions& o) {
   }
   std::optional<HmiBinding> hmiBinding;
   if (o.hmi.enabled()) {
-    auto binding = checkHmiOptions(o.hmi, "--http");
+    // The HMI only watches: there is no soft PLC to write to, no simulated device to fault, and
+    // pausing would only stop the polls.
+    HmiServeOptions watchOnly = o.hmi;
+    watchOnly.readOnly = true;
+    auto binding = checkHmiOptions(watchOnly, "--http");
     if (!binding) {
       std::cerr << "error: " << binding.error() << "\n";
       return ExitCode::Usage;
@@ -209,7 +213,7 @@ void addMonitorCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--json", o->json, "write the JSON report (docs/report.md) of what was watched to this file when stopped");
   cmd->add_flag("--quiet", o->quiet, "do not print the summary and the model comparison when stopped");
-  addHmiOptions(cmd, o->hmi, "--http");
+  addHmiOptions(cmd, o->hmi, "--http");  // always read-only here (--hmi-readonly is implied)
   cmd->callback([o, setExit] { setExit(monitorCell(*o)); });
 }
 

@@ -17,12 +17,14 @@
 
 #include "server_process.hpp"
 #include "shell_command.hpp"
+#include "support/loopback_client.hpp"
 #include "support/read_file.hpp"
 
 namespace {
 
 using virtcom::e2e::ServerProcess;
 using virtcom::e2e::shell;
+using virtcom::test::LoopbackClient;
 using virtcom::test::readFile;
 
 const std::string kExe = VIRTCOM_EXE;
@@ -86,6 +88,31 @@ TEST_F(Monitor, SeesTheServedPlantsOperationsInTheirOrder) {
     EXPECT_GE(ops.size(), 2u) << device;  // two whole cycles at least: Press once, Clamp twice a cycle
     EXPECT_TRUE(contiguous(ops, served[device])) << device << ": the monitor's operations are not a stretch of the plant's";
   }
+}
+
+// One HTTP/1.0 GET on a fresh connection: the whole response, headers included.
+std::string httpGet(int port, const std::string& target) {
+  LoopbackClient c(port);
+  const std::string request = "GET " + target + " HTTP/1.0\r\nHost: 127.0.0.1\r\n\r\n";
+  if (!c.connected() || !c.send(std::vector<uint8_t>(request.begin(), request.end()))) return {};
+  std::vector<uint8_t> response = c.receive(1 << 20);  // until the server closes
+  return std::string(response.begin(), response.end());
+}
+
+TEST_F(Monitor, ServesTheHmiReadOnlyOverTheWatchedCell) {
+  ServerProcess plant(kExe, {"serve", kExample + "/cell.yaml", "--ads", "127.0.0.1:0", "--quiet"}, kExample, "ads: serving on ");
+  ASSERT_GT(plant.port(), 0) << plant.errorOutput();
+  ServerProcess monitor(kExe,
+                        {"monitor", kExample + "/cell.yaml", "--ads", "127.0.0.1:" + std::to_string(plant.port()), "--http",
+                         "127.0.0.1:0", "--quiet"},
+                        kExample, "hmi: serving http://");
+  ASSERT_GT(monitor.port(), 0) << monitor.errorOutput();
+  std::string model = httpGet(monitor.port(), "/api/model");
+  EXPECT_NE(model.find("\"name\":\"Clamp\""), std::string::npos) << model;
+  EXPECT_NE(model.find("\"readOnly\":true"), std::string::npos) << model;
+  EXPECT_TRUE(monitor.waitFor("(read-only)")) << monitor.errorOutput();
+  EXPECT_EQ(monitor.stop(), 0) << monitor.errorOutput();
+  EXPECT_EQ(plant.stop(), 0) << plant.errorOutput();
 }
 
 TEST_F(Monitor, AWiredVariableThePlcLacksIsAnErrorAtStartUp) {

@@ -132,6 +132,17 @@ TEST_F(Monitor, AWiredVariableThePlcLacksIsAnErrorAtStartUp) {
   EXPECT_EQ(plant.stop(), 0) << plant.errorOutput();
 }
 
+TEST_F(Monitor, ACellWhoseSoftPlcIsNotTheServedOneIsAnErrorAtStartUp) {
+  const std::string gearbox = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell";
+  ServerProcess plant(kExe, {"serve", gearbox + "/cell.yaml", "--ads", "127.0.0.1:0", "--quiet"}, gearbox, "ads: serving on ");
+  ASSERT_GT(plant.port(), 0) << plant.errorOutput();
+  std::string out;
+  EXPECT_EQ(shell(kExe + " monitor " + kExample + "/cell.yaml --ads 127.0.0.1:" + std::to_string(plant.port()), out), 1) << out;
+  EXPECT_NE(out.find("error[C032]: ads: the PLC has no variable 'MAIN.Clamp.execute' to wire to Clamp.execute"), std::string::npos)
+      << out;
+  EXPECT_EQ(plant.stop(), 0) << plant.errorOutput();
+}
+
 TEST_F(Monitor, ABadPollPeriodIsAUsageError) {
   std::string out;
   EXPECT_EQ(shell(kExe + " monitor " + kExample + "/cell.yaml --ads 127.0.0.1:1 --poll fast", out), 64) << out;

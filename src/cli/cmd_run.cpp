@@ -11,6 +11,7 @@
 
 #include "cell/cell.hpp"
 #include "cli/commands.hpp"
+#include "cli/ads_client.hpp"
 #include "cli/common.hpp"
 #include "cli/hmi_options.hpp"
 #include "cli/history_options.hpp"
@@ -141,57 +142,6 @@ std::unique_ptr<proto::modbus::ClientBridge> startClientBridge(const cell::Modbu
   return std::make_unique<proto::modbus::ClientBridge>(std::move(config));
 }
 
-// `plc: ads:`: the external PLC reached over ADS as the cell's controller. Its variables are
-// checked when it connects; problems are reported like the loader's, at the cell file's
-// entries (null then).
-std::unique_ptr<proto::ads::ClientBridge> startAdsBridge(cell::Cell& cell, const SourceManager& sources) {
-  namespace ads = proto::ads;
-  const cell::AdsClientSettings& s = *cell.plcAds;
-  ads::BridgeConfig config;
-  config.client.router = s.router;
-  config.client.target = {s.netId, s.port};
-  config.client.localNetId = s.localNetId;
-  config.client.timeoutNs = s.timeoutNs;
-  config.faultOnLoss = s.faultOnLoss;
-  config.disconnectWhenStopped = s.disconnectWhenStopped;
-  config.report = [](const std::string& line) { std::cerr << line << "\n"; };
-  for (const cell::ExternalWire& w : s.wires)
-    config.signals.push_back({w.variable, w.port, w.tag, w.dir == plant::PortDir::Out, w.optional});
-  ads::ClientBridge::StartReport report;
-  auto bridge = ads::ClientBridge::start(config, cell.bus, report);
-  Diagnostics diags;
-  bool linked = true;
-  for (const auto& p : report.problems) {
-    if (p.signal == ads::ClientBridge::kNoSignal) {
-      diags.error(celldiag::C034, s.addressLoc, p.text);
-      linked = false;
-      continue;
-    }
-    const bool unknown = p.kind == ads::ClientBridge::Problem::Kind::Unknown;
-    diags.error(unknown ? celldiag::C032 : celldiag::C033, s.wires[p.signal].loc, p.text);
-  }
-  // Wiring by prefix: each such device needs at least one port whose variable the PLC has.
-  for (size_t i = 0; linked && i < s.wires.size(); ++i) {
-    const cell::ExternalWire& w = s.wires[i];
-    if (w.prefixGroup < 0 || (i > 0 && s.wires[i - 1].prefixGroup == w.prefixGroup)) continue;  // a group's first port
-    bool any = false;
-    for (size_t j = i; j < s.wires.size() && s.wires[j].prefixGroup == w.prefixGroup; ++j) any |= report.found[j];
-    if (any) continue;
-    std::string device = w.port.substr(0, w.port.find('.'));
-    std::string prefix = w.variable.substr(0, w.variable.size() - (w.port.size() - device.size()));
-    diags.error(celldiag::C030, w.loc, "ads: no port of '" + device + "' matches a variable under '" + prefix + "' on the PLC at " + s.address +
-                                   " (expected e.g. " + w.variable + ")");
-  }
-  if (diags.hasErrors()) {
-    diags.sortByLocation();
-    std::cerr << diags.render(sources);
-    return nullptr;
-  }
-  size_t wired = 0;
-  for (size_t i = 0; i < s.wires.size(); ++i) wired += report.found[i] && !s.wires[i].port.empty();
-  std::cerr << "ads: " << bridge->peerText() << " is the controller (" << wired << " signals by handle, every step)\n";
-  return bridge;
-}
 
 // After a run watched in the HMI: the page keeps showing its end until the user stops the command.
 void lingerForViewers() {
@@ -278,7 +228,7 @@ ExitCode runCell(const RunOptions& o) {
   }
   std::unique_ptr<proto::ads::ClientBridge> adsBridge;
   if (cell->plcAds) {
-    adsBridge = startAdsBridge(*cell, sources);
+    adsBridge = startAdsBridge(*cell, sources, "is the controller");
     if (!adsBridge) return ExitCode::InputError;
     options.bridges.push_back(adsBridge.get());
     if (options.speed == 0) options.speed = 1;  // the external PLC runs in real time

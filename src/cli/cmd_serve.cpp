@@ -24,6 +24,7 @@
 #include "cli/history_options.hpp"
 #include "cli/modbus_options.hpp"
 #include "proto/modbus/signal_server.hpp"
+#include "report/json_report.hpp"
 #include "report/kpis.hpp"
 #include "report/summary.hpp"
 #include "sim/simulation.hpp"
@@ -39,6 +40,7 @@ struct ServeOptions {
   std::string cellFile;
   double speed = 1;
   bool quiet = false;
+  std::string json;         // the JSON report, written when stopped; empty: none
   std::string modbus;       // HOST:PORT; empty: no Modbus server
   std::string modbusAllow;  // comma-separated peer addresses; empty: any
   AdsServeOptions ads;      // the soft PLC over ADS
@@ -174,7 +176,9 @@ ExitCode serveCell(const ServeOptions& o) {
   if (ads) ads->stop();
   if (hmi) hmi->stop();
   const Trace& trace = simulation.trace();
-  if (!o.quiet) std::cout << report::summaryTable(trace, report::computeKpis(trace));
+  const report::Kpis kpis = report::computeKpis(trace);
+  if (!o.quiet) std::cout << report::summaryTable(trace, kpis);
+  if (!o.json.empty() && !writeFile(o.json, report::jsonReport(trace, kpis))) return ExitCode::Usage;
   if (*recorder && !reportRecording(o.history, **recorder)) return ExitCode::HistoryError;
   if (end == RunEnd::PlcFault) {
     std::cerr << "runtime fault: " << trace.endMessage << "\n";
@@ -201,6 +205,7 @@ void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   addBackendOption(*cmd, o->backend);
   addHistoryOptions(cmd, o->history);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table when stopped");
+  cmd->add_option("--json", o->json, "write the JSON report (docs/report.md) of the served run to this file when stopped");
   cmd->callback([o, setExit] { setExit(serveCell(*o)); });
 }
 

@@ -16,6 +16,7 @@ void addCheckCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addExecCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
+void addMonitorCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addModbusMapCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addExportCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addAdCommand(CLI::App& app, std::function<void(ExitCode)> setExit);

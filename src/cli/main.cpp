@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   virtcom::cli::addExecCommand(app, setExit);
   virtcom::cli::addRunCommand(app, setExit);
   virtcom::cli::addServeCommand(app, setExit);
+  virtcom::cli::addMonitorCommand(app, setExit);
   virtcom::cli::addModbusMapCommand(app, setExit);
   virtcom::cli::addExportCommand(app, setExit);
   virtcom::cli::addAdCommand(app, setExit);

@@ -64,6 +64,10 @@ class Conveyor final : public Device {
   size_t partCount() const { return parts_.size(); }
   // Parts in bin `bin` (pushers in order, then the end bin) of kind `kind`.
   int64_t binCount(size_t bin, size_t kind) const { return binCounts_[bin * kindCount() + kind]; }
+  // The `run` port and the label of its activities, for recording them from outside
+  // (sim/operation_recogniser.hpp). The label after prepare().
+  size_t runPort() const { return runPort_; }
+  uint32_t runningLabel() const { return runLabel_; }
   double partPositionM(size_t i) const { return static_cast<double>(parts_[i]) * 1e-9; }
 
  private:

@@ -49,6 +49,12 @@ class SequencedDevice : public Device {
   bool done() const { return done_; }
   bool busy() const { return phase_ == Phase::Running || phase_ == Phase::Delaying; }
   uint32_t commandsRead() const { return commandCount_; }
+  // The label an activity of `command` gets (its name, or "UnknownCommand"), for whoever
+  // records this device's operations from outside (sim/operation_recogniser.hpp). After prepare().
+  uint32_t operationLabel(double command) const {
+    const uint32_t label = commandLabel(command);
+    return label == kNoLabel ? unknownLabel_ : label;
+  }
 
  protected:
   SequencedDevice(std::string name, std::string type, std::string commandPort, ElemType commandType,

@@ -33,6 +33,8 @@ Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), opti
   timeLimitNs_ = options_.timeLimitNs >= 0 ? options_.timeLimitNs : cell_.run.timeLimitNs;
   Trace& trace = cell_.trace;
   for (auto& d : cell_.devices) d->prepare(cell_.world, trace);
+  if (options_.watch.enabled)
+    recogniser_ = std::make_unique<OperationRecogniser>(cell_.devices, trace, options_.watch.model, options_.watch.threshold);
   for (const cell::Wire& w : cell_.wires) {
     if (w.dir == plant::PortDir::In) fromPlc_.push_back(slotOf(w));
     else if (!runtime_ || !isInputArea(w, cell_.module->inputs)) toPlc_.push_back(slotOf(w));
@@ -213,7 +215,9 @@ bool Simulation::step() {
   }
   if (!pullBridges()) return false;
   plant::StepContext ctx{nowNs_, baseTickNs, cell_.bus, cell_.world, cell_.trace};
-  for (auto& d : cell_.devices) d->step(ctx);
+  if (recogniser_) recogniser_->observe(cell_.bus, nowNs_);
+  else
+    for (auto& d : cell_.devices) d->step(ctx);
   for (BusBridge* b : options_.bridges) b->push(cell_.bus, nowNs_);
   recordChanges();
   ++ticks_;

@@ -8,6 +8,9 @@
 // A cell without a soft PLC (no module: its controller is external) skips 1-3 and ticks at the
 // cell's plc cycle time; its cycles are counted on the tag of run.cycleDoneTag (a variable of
 // the external PLC that a bridge reads), if any.
+// Watching a real plant (SimOptions::watch, `virtcom monitor`), step 5 is replaced: the devices do
+// not step, the bridges bring their ports' values and an OperationRecogniser records their
+// operations.
 // The same cell and options give the same trace, byte for byte.
 #include <atomic>
 #include <functional>
@@ -19,6 +22,7 @@
 #include "core/bus_bridge.hpp"
 #include "core/clock.hpp"
 #include "plc/runtime.hpp"
+#include "sim/operation_recogniser.hpp"
 #include "sim/run_control.hpp"
 
 namespace virtcom::sim {
@@ -51,6 +55,14 @@ struct SimOptions {
   // Steers the run before every tick (pause, step, speed; must outlive the run). A controlled
   // run is always paced (speed 0 means 1), so that its speed can change while it runs.
   RunControl* control = nullptr;
+  // The plant is real: its devices' ports come from bridges, their operations are recognised
+  // from the handshake and compared with `model`, a finished simulated run of the same cell
+  // (null: not compared; read in the constructor).
+  struct Watch {
+    bool enabled = false;
+    const Trace* model = nullptr;
+    double threshold = 0.2;  // relative deviation that raises an alert
+  } watch;
 };
 
 class Simulation {
@@ -89,6 +101,8 @@ class Simulation {
   Trace& trace() { return cell_.trace; }
   int64_t nowNs() const { return nowNs_; }
   uint64_t ticks() const { return ticks_; }
+  // Watching a real plant (SimOptions::watch): its operations so far; null otherwise.
+  const OperationRecogniser* recogniser() const { return recogniser_.get(); }
 
  private:
   void start();
@@ -106,6 +120,7 @@ class Simulation {
   std::unique_ptr<Clock> clock_;
   PacedClock* paced_ = nullptr;  // clock_ when paced
   std::unique_ptr<plc::Runtime> runtime_;
+  std::unique_ptr<OperationRecogniser> recogniser_;  // watching a real plant
   std::vector<TagId> recordTags_;
   std::vector<uint8_t> keepChange_;      // per tag: 1 = its changes stay in Trace::changes
   std::vector<WireSlot> toPlc_;    // device outputs -> PLC variables

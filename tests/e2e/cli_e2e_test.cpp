@@ -113,7 +113,15 @@ TEST_F(CliHelp, ServeListsEveryOption) {
   RunResult r = run({"serve", "--help"});
   EXPECT_EQ(r.exitCode, 0) << show(r);
   for (const char* option : {"cell", "--modbus", "--modbus-allow", "--ads", "--ads-netid", "--ads-allow",
-                             "--ads-readonly", "--speed", "--backend", "--quiet"})
+                             "--ads-readonly", "--speed", "--backend", "--quiet", "--json"})
+    EXPECT_TRUE(contains(r.out, option)) << option << "\n" << show(r);
+}
+
+TEST_F(CliHelp, MonitorListsEveryOption) {
+  RunResult r = run({"monitor", "--help"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  for (const char* option : {"cell", "--ads", "--netid", "--poll", "--deviation", "--json", "--quiet", "--http", "--http-allow",
+                             "--hmi-token", "--hmi-readonly"})
     EXPECT_TRUE(contains(r.out, option)) << option << "\n" << show(r);
 }
 

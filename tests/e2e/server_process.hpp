@@ -55,6 +55,14 @@ class ServerProcess {
   int port() const { return port_; }
   // What the process wrote to stderr so far.
   const std::string& errorOutput() const { return err_; }
+  // Reads stderr until `text` has appeared; false if the deadline passed or the process ended.
+  bool waitFor(const std::string& text) {
+    auto until = std::chrono::steady_clock::now() + kDeadline;
+    while (err_.find(text) == std::string::npos) {
+      if (std::chrono::steady_clock::now() >= until || !drainStderr(100)) return false;
+    }
+    return true;
+  }
 
   // SIGTERM, then the exit status: 128 + signal if killed by one, -1 (after SIGKILL) if it hangs.
   int stop() { return signal(SIGTERM); }

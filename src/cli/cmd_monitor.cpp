@@ -1,0 +1,220 @@
+// `virtcom monitor`: the cell model and its HMI watching the real plant (docs/monitor.md). No
+// device is simulated: every wired PLC variable of the cell (commands and feedback alike) is
+// read from the real controller over ADS each poll onto the cell's tag bus, the devices'
+// operations are recognised from their handshake (sim/operation_recogniser.hpp) and recorded
+// as a simulated run's would be, so the HMI, the reports and the summary work unchanged. The
+// digital shadow: the cell model, run once in virtual time at start-up, predicts each
+// operation's duration; a completed operation beyond the deviation threshold is an alert.
+#include <atomic>
+#include <climits>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "cli/ads_client.hpp"
+#include "cli/commands.hpp"
+#include "cli/common.hpp"
+#include "cli/hmi_options.hpp"
+#include "report/json_report.hpp"
+#include "report/kpis.hpp"
+#include "report/summary.hpp"
+#include "sim/simulation.hpp"
+
+namespace virtcom::cli {
+
+namespace {
+
+std::atomic<bool> gMonitorStop{false};
+extern "C" void onMonitorSignal(int) { gMonitorStop = true; }
+
+struct MonitorOptions {
+  std::string cellFile;
+  std::string ads;          // HOST:PORT of the PLC's AMS router
+  std::string netId;        // the PLC's AmsNetId; empty: the cell's, or 127.0.0.1.1.1
+  std::string poll = "10ms";
+  double deviationPercent = 20;
+  std::string json;
+  bool quiet = false;
+  HmiServeOptions hmi;
+};
+
+// The cell's wiring as variables to read from the real PLC: the soft PLC's wires by their
+// variable names (or a `plc: ads:` cell's own), every one read, none written; `cycle_done` and
+// `record` variables observed too. Replaces the cell's controller by that read-only link.
+std::expected<void, std::string> watchOverAds(cell::Cell& cell, const MonitorOptions& o) {
+  auto router = parseEndpoint(o.ads);
+  if (!router) return std::unexpected("--ads: " + router.error());
+  cell::AdsClientSettings watch = cell.plcAds.value_or(cell::AdsClientSettings{});
+  watch.address = o.ads;
+  watch.router = *router;
+  if (!o.netId.empty()) {
+    auto id = parseNetId(o.netId);
+    if (!id) return std::unexpected("--netid: " + id.error());
+    watch.netId = *id;
+  }
+  TagId cycleTag = cell.run.cycleDoneTag;  // `plc: ads:`: the loader's
+  if (!cell.plcAds) {
+    for (const cell::Wire& w : cell.wires) watch.wires.push_back({w.tag, w.dir, w.varName, cell.bus.name(w.tag), {}, false, -1});
+    if (!cell.run.cycleDoneVar.empty()) {
+      cycleTag = cell.bus.add(cell.run.cycleDoneVar, ElemType::Bool);
+      watch.wires.push_back({cycleTag, plant::PortDir::In, cell.run.cycleDoneVar, {}, {}, false, -1});
+    }
+    for (const auto& name : cell.run.recordVars) watch.wires.push_back({kNoTag, plant::PortDir::In, name, {}, {}, false, -1});
+  }
+  for (cell::ExternalWire& w : watch.wires) w.dir = plant::PortDir::In;  // the monitor never writes to the PLC
+  watch.faultOnLoss = true;
+  cell::detachSoftPlc(cell);
+  cell.plcAds = std::move(watch);
+  cell.run.cycleDoneTag = cycleTag;
+  return {};
+}
+
+// The model's prediction: the cell run once in virtual time with its own soft PLC. Null (and a
+// note) when the cell has none.
+std::unique_ptr<cell::Cell> runModel(const std::string& cellFile, SourceManager& sources) {
+  auto model = loadCellFile(cellFile, sources);
+  if (!model) return nullptr;
+  if (!model->module) {
+    std::cerr << "monitor: " << cellFile << " has no soft PLC ('plc: sources'): operations are not compared with a model\n";
+    return nullptr;
+  }
+  sim::Simulation simulation(*model, {});
+  RunEnd end = simulation.run();
+  std::fprintf(stderr, "monitor: the model ran %.3f s (%s), %zu operations, cycle %.3f s\n", model->trace.endNs / 1e9, runEndName(end),
+               model->trace.activities.size(), (model->trace.cycleEndNs - model->trace.cycleStartNs) / 1e9);
+  return model;
+}
+
+// Prints the alerts and completed cycles as they come (on the monitor's thread; only when
+// something new happened, which is rare next to the polls).
+class AlertPrinter final : public TraceSink {
+ public:
+  explicit AlertPrinter(int64_t modelCycleNs) : modelCycleNs_(modelCycleNs) {}
+  void begin(const Trace&) override {}
+  void change(const SignalChange&) override {}
+  void tick(const Trace& trace, int64_t nowNs) override {
+    for (; faults_ < trace.faults.size(); ++faults_) {
+      const FaultRecord& f = trace.faults[faults_];
+      std::fprintf(stderr, "monitor: alert at %.3f s: %s: %s\n", f.timeNs / 1e9, f.source.c_str(), f.message.c_str());
+    }
+    if (trace.cyclesCompleted == cycles_) return;
+    cycles_ = trace.cyclesCompleted;
+    std::fprintf(stderr, "monitor: cycle %u completed at %.3f s (%.3f s; the model %.3f s)\n", cycles_, nowNs / 1e9,
+                 (trace.cycleEndNs - trace.cycleStartNs) / 1e9, modelCycleNs_ / 1e9);
+  }
+  void end(const Trace&) override {}
+
+ private:
+  int64_t modelCycleNs_;
+  size_t faults_ = 0;
+  uint32_t cycles_ = 0;
+};
+
+// Per (device, operation): runs, mean actual duration, the model's range, the worst deviation.
+void printShadow(const Trace& trace, const sim::OperationRecogniser& recogniser) {
+  std::printf("\n%-12s %-16s %5s %10s %15s %9s %6s\n", "Device", "Operation", "Runs", "Actual s", "Model s", "Worst", "Alerts");
+  for (const sim::OperationStats& s : recogniser.stats()) {
+    char model[32] = "-";
+    if (s.expected.known() && s.expected.minNs == s.expected.maxNs) std::snprintf(model, sizeof model, "%.3f", s.expected.maxNs / 1e9);
+    else if (s.expected.known()) std::snprintf(model, sizeof model, "%.3f-%.3f", s.expected.minNs / 1e9, s.expected.maxNs / 1e9);
+    std::printf("%-12s %-16s %5u %10.3f %15s %+8.1f%% %6u\n", trace.devices[s.device].name.c_str(), trace.labels[s.label].c_str(), s.count,
+                s.totalNs / 1e9 / s.count, model, s.worstDeviation * 100, s.alerts);
+  }
+}
+
+ExitCode monitorCell(const MonitorOptions& o) {
+  auto pollNs = parseDurationNs(o.poll);
+  if (!pollNs || *pollNs <= 0) {
+    std::cerr << "error: --poll: '" << o.poll << "' is not a positive duration (e.g. 10ms)\n";
+    return ExitCode::Usage;
+  }
+  std::optional<HmiBinding> hmiBinding;
+  if (o.hmi.enabled()) {
+    // The HMI only watches: there is no soft PLC to write to, no simulated device to fault, and
+    // pausing would only stop the polls.
+    HmiServeOptions watchOnly = o.hmi;
+    watchOnly.readOnly = true;
+    auto binding = checkHmiOptions(watchOnly, "--http");
+    if (!binding) {
+      std::cerr << "error: " << binding.error() << "\n";
+      return ExitCode::Usage;
+    }
+    hmiBinding = *binding;
+  }
+  SourceManager sources;
+  auto cell = loadCellFile(o.cellFile, sources);
+  if (!cell) return ExitCode::InputError;
+  if (auto watched = watchOverAds(*cell, o); !watched) {
+    std::cerr << "error: " << watched.error() << "\n";
+    return ExitCode::Usage;
+  }
+  // Watching lasts until interrupted; what the plant does is reported, never stops the watch.
+  cell->run.until = {};
+  cell->run.cycles = UINT32_MAX;
+  cell->run.stopOnDeviceError = false;
+  cell->run.stopOnCollision = false;
+  cell->run.plcCycleNs = *pollNs;
+  std::signal(SIGINT, onMonitorSignal);
+  std::signal(SIGTERM, onMonitorSignal);
+  auto bridge = startAdsBridge(*cell, sources, "is watched (read only)");
+  if (!bridge) return ExitCode::InputError;
+  auto model = runModel(o.cellFile, sources);
+  sim::SimOptions options;
+  options.speed = 1;  // the plant's own time
+  options.interrupt = &gMonitorStop;
+  options.timeLimitNs = INT64_MAX;
+  options.keepAllChanges = false;  // watches for days: no signal history in memory
+  options.bridges.push_back(bridge.get());
+  options.watch.enabled = true;
+  options.watch.threshold = o.deviationPercent / 100;
+  AlertPrinter alerts(model && model->trace.cyclesCompleted > 0 ? model->trace.cycleEndNs - model->trace.cycleStartNs : 0);
+  options.traceSinks.push_back(&alerts);
+  std::optional<LiveHmi> hmi;
+  if (hmiBinding) hmi.emplace(*cell, &gMonitorStop, o.hmi.paused, options);
+  if (model) options.watch.model = &model->trace;
+  sim::Simulation simulation(*cell, options);
+  if (hmi) {
+    if (auto served = hmi->serve(*hmiBinding, simulation); !served) {
+      std::cerr << "error: --http: " << served.error() << "\n";
+      return ExitCode::Usage;
+    }
+  }
+  RunEnd end = simulation.run();
+  if (hmi) hmi->stop();
+  const Trace& trace = cell->trace;
+  report::Kpis kpis = report::computeKpis(trace);
+  if (!o.quiet) {
+    std::cout << report::summaryTable(trace, kpis);
+    printShadow(trace, *simulation.recogniser());
+  }
+  if (!o.json.empty() && !writeFile(o.json, report::jsonReport(trace, kpis))) return ExitCode::Usage;
+  if (end == RunEnd::PlcFault) {
+    std::cerr << "monitor: " << trace.endMessage << "\n";
+    return ExitCode::PlcFault;
+  }
+  return ExitCode::Ok;
+}
+
+}  // namespace
+
+void addMonitorCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
+  auto o = std::make_shared<MonitorOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "monitor", "Watch the real plant through the cell's wiring until SIGINT/SIGTERM: its PLC's variables read over ADS, the "
+                 "devices' operations recognised and compared with the cell model (digital shadow), optionally in the web HMI");
+  cmd->add_option("cell", o->cellFile, "the cell file (YAML) whose wiring names the PLC's variables")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--ads", o->ads, "the PLC's AMS router, HOST:PORT (TwinCAT: 48898; or a virtcom serve --ads)")->required();
+  cmd->add_option("--netid", o->netId, "the PLC's AmsNetId (default: the cell's plc: ads: netid, else 127.0.0.1.1.1)");
+  cmd->add_option("--poll", o->poll, "read every wired variable this often (default 10ms; shorter than the shortest handshake pulse)");
+  cmd->add_option("--deviation", o->deviationPercent, "alert when an operation's duration deviates from the model's by more than this "
+                                                      "many percent (default 20)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--json", o->json, "write the JSON report (docs/report.md) of what was watched to this file when stopped");
+  cmd->add_flag("--quiet", o->quiet, "do not print the summary and the model comparison when stopped");
+  addHmiOptions(cmd, o->hmi, "--http");  // always read-only here (--hmi-readonly is implied)
+  cmd->callback([o, setExit] { setExit(monitorCell(*o)); });
+}
+
+}  // namespace virtcom::cli

@@ -115,14 +115,4 @@ std::shared_ptr<const vm::CompiledCode> compiledBackend(const std::string& backe
   return r.code;
 }
 
-bool writeFile(const std::string& path, const std::string& content) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) {
-    std::cerr << "error: cannot write " << path << "\n";
-    return false;
-  }
-  out << content;
-  return true;
-}
-
 }  // namespace virtcom::cli

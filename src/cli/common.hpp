@@ -46,7 +46,4 @@ bool writeFile(const std::string& path, const std::string& content);
 // Parses a duration such as "10ms", "1.5s", "250us", "T#1s500ms", "100" (ms). Nullopt if invalid.
 std::optional<int64_t> parseDurationNs(const std::string& text);
 
-// Writes `content` to `path`; false (with "error: cannot write PATH" on stderr) if it cannot.
-bool writeFile(const std::string& path, const std::string& content);
-
 }  // namespace virtcom::cli

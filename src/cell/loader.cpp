@@ -58,6 +58,7 @@ class Loader {
     // Every part is checked even when an earlier one failed, so one run reports all mistakes;
     // without a compiled PLC program the run settings and wiring cannot be checked.
     bool plcOk = compilePlc(*cell, top);
+    plcBroken_ = !plcOk;
     if (plcOk || cell->plcAds) readRun(*cell, top);
     else top.child("run");  // known key; its conditions need the compiled program
     readWorld(*cell, top);
@@ -76,6 +77,9 @@ class Loader {
     if (diags_.hasErrors()) return nullptr;
     return cell;
   }
+
+  // The file ids [first, second) of the soft PLC's sources (empty without one).
+  std::pair<uint32_t, uint32_t> plcFiles() const { return plcFiles_; }
 
  private:
   // `extends: other.yaml` (relative to this file): every top-level section of that cell file
@@ -188,7 +192,9 @@ class Loader {
     plc.rejectUnknownKeys();
     if (diags_.hasErrors()) return false;
     if (inputs.empty()) return true;
+    plcFiles_.first = static_cast<uint32_t>(sources_.fileCount());
     cell.module = st::compileProgram(inputs, sources_, diags_);
+    plcFiles_.second = static_cast<uint32_t>(sources_.fileCount());
     if (!cell.module) return false;
     for (auto& t : cell.module->tasks)
       if (t.isDefault) t.intervalNs = cell.run.plcCycleNs;
@@ -369,6 +375,9 @@ class Loader {
       return;
     }
     if (!cell.module) {
+      // A soft PLC that failed to compile has been reported; one "no soft PLC" per wired device
+      // would only bury its errors.
+      if (plcBroken_) return;
       diags_.error(celldiag::C030, wiring->loc(), "'wiring' connects ports to PLC variables, but the cell has no soft PLC ('plc: sources') "
                                           "and no ADS PLC ('plc: ads'); a Modbus PLC reaches the signals through its map");
       return;
@@ -461,8 +470,10 @@ class Loader {
 
   SourceManager& sources_;
   Diagnostics& diags_;
+  bool plcBroken_ = false;                  // the `plc:` section or its program has errors
   const ConfigNode* plcModbus_ = nullptr;  // `plc: modbus:` inside the file's tree, read after the devices
   const ConfigNode* plcAds_ = nullptr;     // `plc: ads:` likewise
+  std::pair<uint32_t, uint32_t> plcFiles_{0, 0};
   struct ExternalRunVariable {
     std::string name;
     SourceLocation loc;
@@ -477,6 +488,8 @@ std::unique_ptr<Cell> loadCell(const std::string& path, SourceManager& sources, 
   Loader loader(sources, diags);
   auto cell = loader.load(path);
   diags.sortByLocation();
+  // The PLC program's compile errors first: they are the cause the user must read first.
+  diags.moveFilesFirst(loader.plcFiles().first, loader.plcFiles().second);
   return cell;
 }
 

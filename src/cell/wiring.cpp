@@ -1,7 +1,9 @@
 // Wires and stop conditions on the PLC memory image.
-#include <cstring>
+#include <algorithm>
+#include <string_view>
 
 #include "cell/cell.hpp"
+#include "core/ascii.hpp"
 #include "core/cell_diagnostic_codes.hpp"
 #include "core/value_codec.hpp"
 
@@ -33,30 +35,64 @@ bool evaluate(const Condition& c, const uint8_t* memory) {
   return false;
 }
 
+namespace {
+
+std::string_view trimSpaces(std::string_view s) {
+  while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
+  while (!s.empty() && s.back() == ' ') s.remove_suffix(1);
+  return s;
+}
+
+// The characters of a variable path (MAIN.Robot1.busy, MAIN.parts[2], %MW4); inside brackets
+// anything goes, so an index expression is left to the variable resolver.
+size_t variableLength(std::string_view text) {
+  size_t i = 0;
+  for (int depth = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (ch == '[') ++depth;
+    else if (ch == ']') --depth;
+    else if (depth == 0 && !isAsciiLetter(ch) && !isAsciiDigit(ch) && ch != '_' && ch != '.' && ch != '%') break;
+  }
+  return i;
+}
+
+struct ComparisonOperator {
+  std::string_view symbol;
+  Condition::Op op;
+};
+constexpr ComparisonOperator kOperators[] = {{"=", Condition::Op::Eq},  {"<>", Condition::Op::Ne}, {"<", Condition::Op::Lt},
+                                             {"<=", Condition::Op::Le}, {">", Condition::Op::Gt},  {">=", Condition::Op::Ge},
+                                             {"==", Condition::Op::Eq}, {"!=", Condition::Op::Ne}};
+
+}  // namespace
+
+// `VARIABLE OP VALUE`, or a BOOL `VARIABLE` alone (= TRUE). The text is split at the end of the
+// variable's path, so a mistyped operator is named as such instead of becoming part of the name.
 Condition parseCondition(const bc::Module& m, const std::string& text, SourceLocation loc, Diagnostics& diags) {
   Condition c;
   c.text = text;
-  static const std::pair<const char*, Condition::Op> kOps[] = {{">=", Condition::Op::Ge}, {"<=", Condition::Op::Le},
-                                                               {"<>", Condition::Op::Ne}, {"!=", Condition::Op::Ne},
-                                                               {"==", Condition::Op::Eq}, {"=", Condition::Op::Eq},
-                                                               {">", Condition::Op::Gt},  {"<", Condition::Op::Lt}};
-  size_t pos = std::string::npos, len = 0;
-  for (const auto& [sym, op] : kOps) {
-    size_t p = text.find(sym);
-    if (p != std::string::npos) {
-      pos = p;
-      len = std::strlen(sym);
-      c.op = op;
-      break;
+  const std::string_view whole = trimSpaces(text);
+  const size_t nameLength = variableLength(whole);
+  const std::string name(whole.substr(0, nameLength));
+  const std::string_view rest = trimSpaces(whole.substr(nameLength));
+  std::string value = "TRUE";
+  if (!rest.empty()) {
+    // The operator: a run of comparison characters and spaces (so `> =` is caught whole), else
+    // the next word (`gt`, `≥`).
+    size_t opLength = std::min(rest.find_first_not_of("<>=! "), rest.size());
+    if (opLength == 0) opLength = std::min(rest.find(' '), rest.size());
+    const std::string_view symbol = trimSpaces(rest.substr(0, opLength));
+    const auto* found = std::find_if(std::begin(kOperators), std::end(kOperators),
+                                     [&](const ComparisonOperator& o) { return o.symbol == symbol; });
+    if (found == std::end(kOperators)) {
+      diags.error(celldiag::C020, loc, "condition '" + text + "': '" + std::string(symbol) +
+                                           "' is not a comparison operator (expected one of: =, <>, <, <=, >, >=; "
+                                           "== and != are accepted too)");
+      return c;
     }
+    c.op = found->op;
+    value = trimSpaces(rest.substr(opLength));
   }
-  auto trim = [](std::string s) {
-    while (!s.empty() && s.back() == ' ') s.pop_back();
-    while (!s.empty() && s.front() == ' ') s.erase(s.begin());
-    return s;
-  };
-  std::string name = trim(pos == std::string::npos ? text : text.substr(0, pos));
-  std::string value = pos == std::string::npos ? "TRUE" : trim(text.substr(pos + len));
   auto ref = bc::resolveVariable(m, name);
   if (!ref) {
     diags.error(celldiag::C020, loc, "condition '" + text + "': the PLC has no variable '" + name + "'");

@@ -26,10 +26,13 @@ bool isPlainNull(const yaml_event_t& e) {
 }
 
 // Builds the tree from the event stream: one node per call, recursively. The first syntax error
-// stops it (libyaml cannot go on after one).
+// stops it (libyaml cannot go on after one). A duplicate key is reported (C003) and the build goes
+// on, so every duplicate of the file comes out of one load; YAML 1.2 requires unique keys and
+// silently keeping the first would hide the second value from the user.
 class TreeBuilder {
  public:
-  TreeBuilder(yaml_parser_t& parser, uint32_t fileId) : parser_(parser), fileId_(fileId) {}
+  TreeBuilder(yaml_parser_t& parser, uint32_t fileId, Diagnostics& diags)
+      : parser_(parser), fileId_(fileId), diags_(diags) {}
 
   // The first document's root; false on a syntax error (then error()/errorAt() tell).
   bool document(ConfigNode& out) {
@@ -102,10 +105,19 @@ class TreeBuilder {
       if (event_.type == YAML_MAPPING_END_EVENT) break;
       ConfigNode key, value;
       if (!node(key) || !next() || !node(value)) return false;
+      if (key.kind() == ConfigNode::Kind::Scalar) rejectDuplicate(out, key);
       out.add(key.kind() == ConfigNode::Kind::Scalar ? key.scalar() : std::string(), key.loc(), std::move(value));
     }
     if (!anchor.empty()) anchors_[anchor] = out;
     return true;
+  }
+
+  void rejectDuplicate(const ConfigNode& map, const ConfigNode& key) {
+    if (!map.has(key.scalar())) return;
+    SourceLocation first = map.keyLoc(key.scalar());
+    diags_.error(celldiag::C003, key.loc(),
+                 "duplicate key '" + key.scalar() + "' (first at line " + std::to_string(first.line) + ", column " +
+                     std::to_string(first.column) + "; a key may appear once per mapping)");
   }
 
   static std::string anchorOf(const yaml_char_t* anchor) { return anchor ? reinterpret_cast<const char*>(anchor) : ""; }
@@ -115,6 +127,7 @@ class TreeBuilder {
 
   yaml_parser_t& parser_;
   uint32_t fileId_;
+  Diagnostics& diags_;
   yaml_event_t event_{};
   std::map<std::string, ConfigNode> anchors_;
 };
@@ -128,8 +141,9 @@ bool parseYaml(const std::string& path, const std::string& text, SourceManager& 
   yaml_parser_initialize(&parser);
   std::unique_ptr<yaml_parser_t, void (*)(yaml_parser_t*)> owner(&parser, yaml_parser_delete);
   yaml_parser_set_input_string(&parser, reinterpret_cast<const unsigned char*>(text.data()), text.size());
-  TreeBuilder builder(parser, fileId);
-  if (builder.document(out)) return true;
+  TreeBuilder builder(parser, fileId, diags);
+  size_t errorsBefore = diags.errorCount();
+  if (builder.document(out)) return diags.errorCount() == errorsBefore;
   diags.error(celldiag::C001, builder.errorAt(), "YAML syntax error: " + builder.error());
   return false;
 }

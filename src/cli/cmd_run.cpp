@@ -262,7 +262,9 @@ ExitCode runCell(const RunOptions& o) {
   RunEnd end = o.step ? stepInteractively(simulation, simulation.trace()) : simulation.run();
   const Trace& trace = simulation.trace();
   report::Kpis kpis = report::computeKpis(trace);
-  if (!o.quiet) std::cout << report::summaryTable(trace, kpis);
+  // --quiet drops the table, never the reason a run failed.
+  if (o.quiet) std::cerr << report::runOutcome(trace, kpis);
+  else std::cout << report::summaryTable(trace, kpis);
   report::HtmlOptions html;
   html.title = cell->name;
   // Without --signal the timeline shows what the cell file asked to record.
@@ -297,7 +299,7 @@ void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
       ->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);
   addHistoryOptions(cmd, o->history);
-  cmd->add_flag("--quiet", o->quiet, "do not print the summary table");
+  cmd->add_flag("--quiet", o->quiet, "do not print the summary table (the faults and how the run ended still go to stderr)");
   cmd->add_flag("--step", o->step, "single step: advance one PLC tick per line read from stdin, printing changed signals");
   addHmiOptions(cmd, o->hmi, "--hmi");
   cmd->add_flag("--trace-rules", o->traceRules,

@@ -177,7 +177,9 @@ ExitCode serveCell(const ServeOptions& o) {
   if (hmi) hmi->stop();
   const Trace& trace = simulation.trace();
   const report::Kpis kpis = report::computeKpis(trace);
-  if (!o.quiet) std::cout << report::summaryTable(trace, kpis);
+  // --quiet drops the table, never the reason a run failed.
+  if (o.quiet) std::cerr << report::runOutcome(trace, kpis);
+  else std::cout << report::summaryTable(trace, kpis);
   if (!o.json.empty() && !writeFile(o.json, report::jsonReport(trace, kpis))) return ExitCode::Usage;
   if (*recorder && !reportRecording(o.history, **recorder)) return ExitCode::HistoryError;
   if (end == RunEnd::PlcFault) {
@@ -204,7 +206,7 @@ void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_option("--speed", o->speed, "pace factor against the wall clock (default 1 = real time)")->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);
   addHistoryOptions(cmd, o->history);
-  cmd->add_flag("--quiet", o->quiet, "do not print the summary table when stopped");
+  cmd->add_flag("--quiet", o->quiet, "do not print the summary table when stopped (the faults and how the run ended still go to stderr)");
   cmd->add_option("--json", o->json, "write the JSON report (docs/report.md) of the served run to this file when stopped");
   cmd->callback([o, setExit] { setExit(serveCell(*o)); });
 }

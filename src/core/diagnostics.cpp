@@ -18,6 +18,12 @@ void Diagnostics::sortByLocation() {
   });
 }
 
+void Diagnostics::moveFilesFirst(uint32_t firstFileId, uint32_t endFileId) {
+  std::stable_partition(list_.begin(), list_.end(), [&](const Diagnostic& d) {
+    return d.loc.fileId >= firstFileId && d.loc.fileId < endFileId;
+  });
+}
+
 static const char* severityName(Severity s) {
   switch (s) {
     case Severity::Error: return "error";

@@ -33,6 +33,9 @@ class Diagnostics {
   const std::vector<Diagnostic>& all() const { return list_; }
   // Sorts by file, line, column (stable), so output order does not depend on pass order.
   void sortByLocation();
+  // Moves the diagnostics of files [firstFileId, endFileId) before the others, each group keeping
+  // its order: a root cause in those files (a PLC program that does not compile) is read first.
+  void moveFilesFirst(uint32_t firstFileId, uint32_t endFileId);
   // Renders every diagnostic with its quoted source line and caret; ends with a summary line
   // when there is at least one diagnostic.
   std::string render(const SourceManager& sources) const;

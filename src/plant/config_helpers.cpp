@@ -7,7 +7,10 @@
 namespace virtcom::plant {
 
 int64_t requireDurationNs(ConfigReader& cfg, const std::string& key) {
-  return secondsToNs(cfg.requireQuantity(key, Dimension::Time));
+  const int64_t ns = secondsToNs(cfg.requireQuantity(key, Dimension::Time));
+  // No device parameter is a negative time; it is reported at the value, with the key's name.
+  if (ns < 0) cfg.error(cfg.node().find(key)->loc(), "'" + key + "' must not be negative (got '" + cfg.node().find(key)->scalar() + "')");
+  return ns;
 }
 
 int64_t optDurationNs(ConfigReader& cfg, const std::string& key, int64_t fallbackNs) {

@@ -10,7 +10,8 @@
 
 namespace virtcom::plant {
 
-// A duration parameter as integer nanoseconds (required / optional with a fallback in ns).
+// A duration parameter as integer nanoseconds (required / optional with a fallback in ns). A
+// negative value is an error at the value, naming the key.
 int64_t requireDurationNs(ConfigReader& cfg, const std::string& key);
 int64_t optDurationNs(ConfigReader& cfg, const std::string& key, int64_t fallbackNs);
 

@@ -103,8 +103,6 @@ std::unique_ptr<Device> makePress(const std::string& name, ConfigReader& cfg, Wo
       prog.requires_ = optFactList(r, "requires", world);
       prog.sets = optFactList(r, "sets", world);
       prog.clears = optFactList(r, "clears", world);
-      for (int64_t ns : {prog.approachNs, prog.pressNs, prog.holdNs, prog.returnNs})
-        if (ns < 0) r.error(node.loc(), "program times must not be negative");
       r.rejectUnknownKeys();
       p.programs.push_back(std::move(prog));
     }

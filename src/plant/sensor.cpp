@@ -36,7 +36,6 @@ std::unique_ptr<Device> makeSensor(const std::string& name, ConfigReader& cfg, W
   const std::string fact = cfg.requireString("fact");
   const int64_t delayNs = optDurationNs(cfg, "delay", 0);
   const bool invert = cfg.optBool("invert", false);
-  if (delayNs < 0) cfg.error(cfg.node().find("delay")->loc(), "'delay' must not be negative");
   if (cfg.has("fact") && fact.empty()) cfg.error(cfg.node().find("fact")->loc(), "'fact' needs a fact name");
   return std::make_unique<Sensor>(name, world.fact(fact), delayNs, invert);
 }

@@ -32,7 +32,6 @@ std::unique_ptr<Device> makeTemperatureSensor(const std::string& name, ConfigRea
   if (output != "real" && output != "int")
     cfg.error(cfg.node().find("output")->loc(), "'output' must be real (°C) or int (0.1 °C), found '" + output + "'");
   const int64_t lagNs = optDurationNs(cfg, "lag", 0);
-  if (lagNs < 0) cfg.error(cfg.node().find("lag")->loc(), "'lag' must not be negative");
   return std::make_unique<TemperatureSensor>(name, static_cast<uint32_t>(vessel < 0 ? 0 : vessel), output == "int", lagNs);
 }
 

@@ -64,7 +64,6 @@ std::unique_ptr<Device> makeTimed(const std::string& name, ConfigReader& cfg, Wo
       ConfigReader r(node, cfg.diags(), "command " + key + " of '" + name + "'");
       c.name = r.requireString("name");
       c.durationNs = requireDurationNs(r, "duration");
-      if (c.durationNs < 0) r.error(node.find("duration")->loc(), "'duration' must not be negative");
       c.requires_ = optFactList(r, "requires", world);
       c.sets = optFactList(r, "sets", world);
       c.clears = optFactList(r, "clears", world);

@@ -38,7 +38,6 @@ void Valve::finish(int64_t endNs, Trace& trace) { periods_.finish(trace, traceIn
 std::unique_ptr<Device> makeValve(const std::string& name, ConfigReader& cfg, World& world) {
   Transfer transfer = readTransfer(cfg, world);
   const int64_t travelNs = optDurationNs(cfg, "travel_time", 0);
-  if (travelNs < 0) cfg.error(cfg.node().find("travel_time")->loc(), "'travel_time' must not be negative");
   return std::make_unique<Valve>(name, transfer, travelNs);
 }
 

@@ -81,7 +81,11 @@ std::string summaryTable(const Trace& trace, const Kpis& kpis) {
            fitWidth(deviceName(trace, c.deviceB), kMaxNameWidth) + " (" +
            fitWidth(labelName(trace, c.activityB), kMaxNameWidth) + ")\n";
   }
-  out += "Faults        " + std::to_string(trace.faults.size()) + "\n";
+  return out + runOutcome(trace, kpis);
+}
+
+std::string runOutcome(const Trace& trace, const Kpis& kpis) {
+  std::string out = "Faults        " + std::to_string(trace.faults.size()) + "\n";
   for (const FaultRecord& f : trace.faults)
     out += "  " + padLeft(formatSeconds(f.timeNs, 3), 9) + " s  " +
            fitWidth(f.source, kMaxNameWidth) + ": " + sanitizeUtf8(f.message) + "\n";

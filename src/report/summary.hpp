@@ -14,4 +14,8 @@ namespace virtcom::report {
 // computeKpis(trace).
 std::string summaryTable(const Trace& trace, const Kpis& kpis);
 
+// The last lines of summaryTable(): the faults (time, source, message) and how the run ended.
+// What `--quiet` still prints, so a failed run never ends without saying why.
+std::string runOutcome(const Trace& trace, const Kpis& kpis);
+
 }  // namespace virtcom::report

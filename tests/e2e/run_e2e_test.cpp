@@ -284,11 +284,19 @@ TEST_F(RunExit, CellWithAPlcopenLadderProgramRuns) {
   EXPECT_TRUE(contains(csv, ",Clamp.done,1\n")) << csv;
 }
 
-TEST_F(RunExit, QuietPrintsNothing) {
+// --quiet leaves out the table, never why the run ended: the faults and the end reason go to
+// stderr, stdout stays empty (issue 16: a division by zero used to exit 2 without a word).
+TEST_F(RunExit, QuietStillSaysHowTheRunEnded) {
   RunResult r = run({"run", kGearbox, "--set", "MAIN.sequence=4", "--quiet"});
   EXPECT_EQ(r.exitCode, 3) << show(r);
   EXPECT_EQ(r.out, "");
-  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(r.err, "Faults        0\nRun ended     collision: robots collided in a shared zone\n") << show(r);
+  r = run({"run", "cells/divzero.yaml", "--quiet"});
+  EXPECT_EQ(r.exitCode, 2) << show(r);
+  EXPECT_EQ(r.out, "");
+  EXPECT_TRUE(contains(r.err, "Faults        1\n")) << show(r);
+  EXPECT_TRUE(contains(r.err, "division by zero")) << show(r);
+  EXPECT_TRUE(contains(r.err, "Run ended     PLC fault")) << show(r);
 }
 
 // PNG (ISO/IEC 15948 §5.2, §11.2.2): 8-byte signature, then the IHDR chunk: 4-byte big-endian

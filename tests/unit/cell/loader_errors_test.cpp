@@ -46,6 +46,66 @@ TEST_F(LoaderErrors, YamlSyntaxErrorAtItsPosition) {
             "1 error(s), 0 warning(s)\n");
 }
 
+// A key written twice in one mapping is an error at the second, naming the first (issue 16: the
+// first used to win silently); every duplicate of the file is reported, at any depth.
+TEST_F(LoaderErrors, DuplicateKeysAreErrorsNamingTheFirst) {
+  EXPECT_THAT(fails("name: x\n"
+                    "plc:\n"
+                    "  sources: [main.st]\n"
+                    "  cycle_time: 10 ms\n"
+                    "  cycle_time: 20 ms\n"
+                    "devices:\n"
+                    "  - name: Press\n"
+                    "    type: press\n"
+                    "    press_time: 1 s\n"
+                    "    press_time: 2 s\n"
+                    "name: y\n"),
+              ElementsAre("cell.yaml:5:3: error[C003]: duplicate key 'cycle_time' (first at line 4, column 3; a key "
+                          "may appear once per mapping)",
+                          "cell.yaml:10:5: error[C003]: duplicate key 'press_time' (first at line 9, column 5; a key "
+                          "may appear once per mapping)",
+                          "cell.yaml:11:1: error[C003]: duplicate key 'name' (first at line 1, column 1; a key may "
+                          "appear once per mapping)"));
+}
+
+// The same key in two different mappings is no duplicate.
+TEST_F(LoaderErrors, SameKeyInTwoMappingsIsNoDuplicate) {
+  loads("name: x\n"
+        "plc:\n"
+        "  sources: [main.st]\n"
+        "  cycle_time: 10 ms\n"
+        "devices:\n"
+        "  - name: Clamp\n"
+        "    type: timed\n"
+        "    commands:\n"
+        "      1: { name: Close, duration: 1 s }\n"
+        "      2: { name: Open, duration: 1 s }\n");
+}
+
+// A PLC program that does not compile is the one cause to read: its errors come first (before an
+// unrelated mistake of the cell file, which is still reported) and the wired devices do not each
+// add a consequential "the cell has no soft PLC" (issue 16).
+TEST_F(LoaderErrors, CompileErrorsComeFirstWithoutConsequentialWiringErrors) {
+  write("broken.st", "PROGRAM MAIN\nVAR\n  count : INT;\nEND_VAR\ncount := nothing + 1;\nEND_PROGRAM\n");
+  std::vector<std::string> found = fails("name: x\n"
+                                         "plc:\n"
+                                         "  sources: [broken.st]\n"
+                                         "devices:\n"
+                                         "  - name: Clamp\n"
+                                         "    type: timed\n"
+                                         "    comands: {}\n" +
+                                         std::string(kClampParams) +
+                                         "    wiring: MAIN.Clamp\n"
+                                         "  - name: Lock\n"
+                                         "    type: timed\n" +
+                                         std::string(kClampParams) +
+                                         "    wiring: { execute: MAIN.exec }\n");
+  ASSERT_EQ(found.size(), 2u) << rendered();
+  EXPECT_THAT(found[0], ::testing::StartsWith("broken.st:5:10: error[E"));
+  EXPECT_THAT(found[0], ::testing::HasSubstr("'nothing'"));
+  EXPECT_THAT(found[1], ::testing::StartsWith("cell.yaml:7:5: error[C011]: unknown key 'comands'"));
+}
+
 TEST_F(LoaderErrors, UnknownTopLevelKeyListsTheKnownOnes) {
   EXPECT_THAT(fails("name: x\n"
                     "plc:\n"
@@ -306,6 +366,23 @@ TEST_F(LoaderErrors, BadUntilConditions) {
   EXPECT_THAT(fails(head + "\"MAIN.Clamp = 1\"" + tail),
               ElementsAre("cell.yaml:5:10: error[C020]: condition 'MAIN.Clamp = 1': 'MAIN.Clamp' is not an elementary "
                           "variable"));
+}
+
+// A mistyped operator is named as the operator, with the valid ones (issue 16: `> =` used to be
+// read as part of the variable's name, "no variable 'MAIN.count >'").
+TEST_F(LoaderErrors, BadUntilOperatorListsTheValidOnes) {
+  const std::string head = "name: x\nplc:\n  sources: [main.st]\nrun:\n  until: ";
+  const std::string tail = "\ndevices: []\n";
+  const std::string expected = "' is not a comparison operator (expected one of: =, <>, <, <=, >, >=; == and != are accepted too)";
+  EXPECT_THAT(fails(head + "\"MAIN.count > = 3\"" + tail),
+              ElementsAre("cell.yaml:5:10: error[C020]: condition 'MAIN.count > = 3': '> =" + expected));
+  EXPECT_THAT(fails(head + "\"MAIN.count => 3\"" + tail),
+              ElementsAre("cell.yaml:5:10: error[C020]: condition 'MAIN.count => 3': '=>" + expected));
+  EXPECT_THAT(fails(head + "\"MAIN.count gt 3\"" + tail),
+              ElementsAre("cell.yaml:5:10: error[C020]: condition 'MAIN.count gt 3': 'gt" + expected));
+  // the valid forms, with and without spaces, and a BOOL alone
+  for (const char* ok : {"MAIN.count>=3", "MAIN.count <> 3", "MAIN.count == 3", "MAIN.count != 3", "MAIN.finished"})
+    loads(head + "\"" + ok + "\"" + tail);
 }
 
 TEST_F(LoaderErrors, CycleDoneMustBeBool) {

@@ -130,5 +130,18 @@ TEST(PressConfig, ProgramErrorsPointAtTheirLines) {
   EXPECT_NE(out.find("P.yaml:3:62: error[C011]: unknown key 'foo'"), std::string::npos) << out;
 }
 
+// A negative phase time is reported at its value with the key's name (issue 16: it used to be
+// reported at the `{` of the program, as "program times", whichever key it was).
+TEST(PressConfig, NegativeTimeIsReportedAtItsKey) {
+  PlantRig rig;
+  EXPECT_EQ(rig.add("press", "P", "programs:\n  1: { name: X, press_time: -1 s, return_time: -0.5 s, force: 1 kN }\n"),
+            nullptr);
+  const std::string out = rig.renderedDiags();
+  EXPECT_NE(out.find("P.yaml:2:29: error[C010]: 'press_time' must not be negative (got '-1 s')"), std::string::npos) << out;
+  EXPECT_NE(out.find("P.yaml:2:48: error[C010]: 'return_time' must not be negative (got '-0.5 s')"), std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("program times"), std::string::npos) << out;
+}
+
 }  // namespace
 }  // namespace virtcom::plant::test

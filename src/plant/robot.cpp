@@ -14,6 +14,7 @@ Robot::Robot(std::string name, Params params) : SequencedDevice(std::move(name),
   zPort_ = addPort("actualZ", ElemType::Lreal, PortDir::Out, "TCP z position in mm");
   toolPort_ = addPort("toolAttached", ElemType::Int, PortDir::Out, "attached tool: index+1 in `tools:`, 0 = none");
   location_ = static_cast<int32_t>(p_.home);
+  tool_ = p_.initialTool;
   if (!p_.locations.empty()) std::copy_n(p_.locations[p_.home].pos, 3, pos_);
 }
 

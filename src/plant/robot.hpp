@@ -65,6 +65,7 @@ class Robot final : public SequencedDevice {
     double idlePowerW = 0, movingPowerW = 0, accelPowerW = 0;
     int64_t toolChangeNs = 0;
     uint32_t home = 0;
+    int32_t initialTool = -1;                 // index into tools attached at the start, -1 = none
     std::vector<Location> locations;
     std::vector<Tool> tools;
     std::vector<Part> parts;                   // fact -> mass/tool, for parts listed in `parts:`

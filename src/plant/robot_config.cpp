@@ -72,6 +72,15 @@ class RobotLoader {
     loadTools(p);
     if (!p.tools.empty() && !cfg_.has("tool_change_time"))
       cfg_.error(cfg_.node().keyLoc("tools"), "robot '" + name_ + "' has tools but no 'tool_change_time'");
+    // A cell often starts with the tool already on the flange; without this the first procedure
+    // would have to fetch it.
+    const std::string initialTool = cfg_.optString("initial_tool", "");
+    if (!initialTool.empty()) {
+      p.initialTool = indexByName(p.tools, initialTool);
+      if (p.initialTool < 0)
+        error(cfg_.node().find("initial_tool")->loc(),
+              "unknown tool '" + initialTool + "' (expected one of: " + namesOf(p.tools) + ")");
+    }
     loadParts(p);
     const std::string home = cfg_.optString("home", p.locations.empty() ? "" : p.locations.front().name);
     if (!p.locations.empty()) {

@@ -153,5 +153,28 @@ TEST_F(RobotTools, FailureMidProcedureKeepsTheEffectsOfTheStepsBefore) {
   EXPECT_GT(a.energyJ, 0.0);
 }
 
+// `initial_tool:` puts a tool on the flange before the first procedure (issue 16: robots
+// started without a tool, so every cell needed an attach procedure first).
+TEST(RobotInitialTool, StartsWithTheToolAttached) {
+  PlantRig rig;
+  auto* robot = static_cast<Robot*>(rig.add("robot", "R1", std::string(kRobotYaml) + "initial_tool: Gripper1\n"));
+  ASSERT_NE(robot, nullptr) << rig.renderedDiags();
+  rig.prepare();
+  EXPECT_EQ(robot->toolIndex(), 0);
+  EXPECT_DOUBLE_EQ(robot->payloadKg(), 1.0);  // the gripper's mass counts from the start
+  rig.tick();
+  EXPECT_EQ(rig.getNumber("R1.toolAttached"), 1);
+  EXPECT_EQ(runProcedure(rig, "R1", 5), 21);  // attaching again: a tool is already on
+}
+
+TEST(RobotInitialTool, UnknownToolListsTheTools) {
+  PlantRig rig;
+  EXPECT_EQ(rig.add("robot", "R1", std::string(kRobotYaml) + "initial_tool: Gripper9\n"), nullptr);
+  const std::string out = rig.renderedDiags();
+  EXPECT_NE(out.find("R1.yaml:35:15: error[C010]: unknown tool 'Gripper9' (expected one of: Gripper1, Screwer)"),
+            std::string::npos)
+      << out;
+}
+
 }  // namespace
 }  // namespace virtcom::plant::test

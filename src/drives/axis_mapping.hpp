@@ -92,6 +92,14 @@ struct MappingSpec {
   std::optional<WordBits> masterSignOfLife;                // generated 1..15, 0 skipped
   std::array<bool, kAxisSignalCount> bound{};              // has a rule, a constant or is `unavailable`
   std::array<bool, kAxisSignalCount> unavailable{};        // listed under `unavailable:`
+  // The drive reference speeds (p2000, rpm) the mapping assumes, where it states one: `params:
+  // ref_speed` (the named scales) and `block_inputs: Cfg_RefSpeed` (the block's feedback).
+  struct ReferenceSpeed {
+    const char* key;
+    double rpm;
+    SourceLocation loc;
+  };
+  std::vector<ReferenceSpeed> referenceSpeeds;
 };
 
 // Validates a parsed mapping file. Every problem is reported through `diags` with the file

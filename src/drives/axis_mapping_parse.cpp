@@ -105,6 +105,8 @@ class Parser {
     if (!n) return;
     ConfigReader pr(*n, diags_, "params");
     refSpeed_ = pr.optNumber("ref_speed", 0);
+    if (const ConfigNode* ref = n->find("ref_speed"); ref && refSpeed_ > 0)
+      spec_.referenceSpeeds.push_back({"params: ref_speed", refSpeed_, ref->loc()});
     polePairs_ = pr.optNumber("pole_pairs", 1);
     pr.rejectUnknownKeys();
     if (!pr.ok()) ok_ = false;
@@ -123,6 +125,7 @@ class Parser {
       if (s->type == ElemType::Bool && (text == "true" || text == "false")) v = text == "true";
       else if (!number(value, v)) continue;
       spec_.blockInputs.emplace_back(s->id, v);
+      if (s->id == AxisSignal::Cfg_RefSpeed && v > 0) spec_.referenceSpeeds.push_back({"Cfg_RefSpeed", v, value.loc()});
       bind(*s, node.keyLoc(name));
     }
   }

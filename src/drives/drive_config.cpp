@@ -1,5 +1,9 @@
 #include "drives/drive_config.hpp"
 
+#include <cmath>
+#include <cstdio>
+
+#include "core/cell_diagnostic_codes.hpp"
 #include "plant/config_helpers.hpp"
 
 namespace virtcom::drives {
@@ -49,6 +53,25 @@ void readMapping(ConfigReader& cfg, DriveCommon& c) {
 }
 
 }  // namespace
+
+namespace {
+std::string rpmText(double rpm) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", rpm);
+  return text;
+}
+}  // namespace
+
+void warnOnReferenceSpeed(ConfigReader& cfg, const DriveCommon& common, double p2000) {
+  if (!common.mapping) return;
+  for (const auto& ref : common.mapping->referenceSpeeds) {
+    if (std::abs(ref.rpm - p2000) <= 1e-9 * p2000) continue;
+    cfg.diags().warning(celldiag::C012, ref.loc,
+                        "the mapping's " + std::string(ref.key) + " is " + rpmText(ref.rpm) + " rpm but the drive's p2000 is " +
+                            rpmText(p2000) + " rpm: the PLC reads every speed scaled by " + rpmText(p2000) + "/" +
+                            rpmText(ref.rpm) + " (set both to the drive's reference speed)");
+  }
+}
 
 DriveCommon readDriveCommon(ConfigReader& cfg, TelegramId telegram) {
   DriveCommon c;

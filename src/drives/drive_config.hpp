@@ -7,6 +7,9 @@
 namespace virtcom::drives {
 
 DriveCommon readDriveCommon(ConfigReader& cfg, TelegramId telegram);
+// Warns (C012) at every reference speed of the drive's mapping that differs from its p2000: the
+// PLC would read every speed scaled by the ratio of the two.
+void warnOnReferenceSpeed(ConfigReader& cfg, const DriveCommon& common, double p2000);
 // A time parameter in seconds that must be > 0 (ramp times, time constants).
 double positiveSeconds(ConfigReader& cfg, const std::string& key, double fallbackS);
 // A time parameter in seconds that may be 0 (delays where 0 means "at once").

@@ -103,6 +103,7 @@ std::unique_ptr<plant::Device> makeEposAxis(const std::string& name, ConfigReade
   for (const NumberKey& k : kNumbers)
     p.*k.member = k.positive ? positiveNumber(cfg, k.key, p.*k.member) : cfg.optNumber(k.key, p.*k.member);
   for (const TimeKey& k : kTimes) p.*k.member = positiveSeconds(cfg, k.key, p.*k.member);
+  warnOnReferenceSpeed(cfg, common, p.p2000);
   p.hasRefCam = cfg.optBool("ref_cam", p.hasRefCam);
   p.probePos[0] = cfg.optNumber("probe1_pos", p.probePos[0]);
   p.probePos[1] = cfg.optNumber("probe2_pos", p.probePos[1]);

@@ -16,6 +16,7 @@ std::unique_ptr<plant::Device> makeSpeedAxis(const std::string& name, ConfigRead
   DriveCommon common = readDriveCommon(cfg, telegram);
   SpeedAxisParams p;
   p.p2000 = positiveNumber(cfg, "p2000", p.p2000);
+  warnOnReferenceSpeed(cfg, common, p.p2000);
   p.p1082 = positiveNumber(cfg, "p1082", p.p2000);
   p.p1120S = positiveSeconds(cfg, "p1120", p.p1120S);
   p.p1121S = positiveSeconds(cfg, "p1121", p.p1121S);

@@ -57,6 +57,13 @@ std::string renderTelegramDoc() {
       << "word names wires to all of them at once. Bit 0 is the least significant bit of the logical word (the S7\n"
       << "alias `byte.bit` of a big-endian word is byte 1 - n div 8, bit n mod 8). 32-bit values on PROFINET are\n"
       << "sent high word first, i.e. plain big endian; EtherNet/IP assemblies are little endian.\n\n"
+      << "**The reference speed.** N2 and N4 words are fractions of the drive's reference speed p2000, which\n"
+      << "both ends must agree on: the drive takes it from its `p2000:` key in the cell file (default 1350 rpm,\n"
+      << "docs/drive-simulators.md); the PLC side from the mapping file, `block_inputs: Cfg_RefSpeed` (how\n"
+      << "UNIVERSAL_AXIS turns NIST into rpm) and `params: ref_speed` (the named scales `rpm_to_n2`, ...;\n"
+      << "docs/universal-axis.md). The bundled mappings in lib/mappings/ say 1350 rpm. When a mapping's value\n"
+      << "differs from the drive's p2000 the cell loads with warning C012 at the mapping's value, since the PLC\n"
+      << "would read every speed scaled by p2000 / reference.\n\n"
       << "## Units\n\n| unit | definition |\n| --- | --- |\n";
   for (const UnitDef& u : units()) out << "| " << u.name << " | " << cell(u.doc) << " |\n";
   for (const TelegramDef& t : telegrams()) renderTelegram(out, t);

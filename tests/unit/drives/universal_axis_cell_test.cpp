@@ -88,6 +88,25 @@ TEST(UniversalAxisCell, MappingForAnotherTelegramIsRejected) {
       << diags.render(sources);
 }
 
+// A mapping whose reference speed is not the drive's p2000 loads, with a warning at the mapping's
+// value (issue 16: 1350 vs 1500 rpm made the PLC read every speed 10 % off without a word). The
+// matching bundled cell has no warning.
+TEST(UniversalAxisCell, ReferenceSpeedOtherThanP2000Warns) {
+  SourceManager sources;
+  Diagnostics diags;
+  auto c = cell::loadCell((kDir / "p2000_mismatch.yaml").string(), sources, diags);
+  ASSERT_NE(c, nullptr) << diags.render(sources);
+  ASSERT_EQ(diags.warningCount(), 1u) << diags.render(sources);
+  EXPECT_NE(diags.render(sources).find("telegram1.yaml:6:30: warning[C012]: the mapping's Cfg_RefSpeed is 1350 rpm but the "
+                                       "drive's p2000 is 1500 rpm: the PLC reads every speed scaled by 1500/1350 (set both to "
+                                       "the drive's reference speed)"),
+            std::string::npos)
+      << diags.render(sources);
+  CellRun matching;
+  run(matching, "g120.yaml");
+  EXPECT_EQ(matching.diags.warningCount(), 0u) << matching.diags.render(matching.sources);
+}
+
 // examples/drives/epos: reference point, absolute moves to 70000 and 10000 LU, a jog, all
 // through UNIVERSAL_AXIS and the telegram 111 mapping.
 TEST(UniversalAxisCell, EposExampleRunsItsSequence) {

@@ -50,6 +50,13 @@ struct CollisionRecord {
   uint32_t activityA = 0, activityB = 0;  // labels of what each was doing
 };
 
+// One completed cycle: from the end of the one before (the start of the run for the first, so it
+// includes the start-up) to the rising edge of the cycle marker.
+struct CycleRecord {
+  int64_t startNs = 0;
+  int64_t endNs = 0;
+};
+
 struct FaultRecord {
   int64_t timeNs = 0;
   std::string source;     // device or "PLC"
@@ -98,6 +105,7 @@ struct Trace {
   int64_t cycleStartNs = 0;               // the measured cycle (whole run if no markers)
   int64_t cycleEndNs = 0;
   uint32_t cyclesCompleted = 0;
+  std::vector<CycleRecord> cycles;        // every completed cycle in order; the last is the measured one
   RunEnd end = RunEnd::Completed;
   std::string endMessage;
 

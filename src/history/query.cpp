@@ -74,11 +74,12 @@ void readCycles(Connection& db, int64_t run, int64_t from, int64_t to, Trace& tr
   Statement count(db, "SELECT COUNT(*) FROM cycles WHERE run = ?1 AND end_ns BETWEEN ?2 AND ?3");
   count.bind(1, run).bind(2, from).bind(3, to);
   if (count.step()) trace.cyclesCompleted = static_cast<uint32_t>(count.columnInt(0));
-  Statement last(db, "SELECT start_ns, end_ns FROM cycles WHERE run = ?1 AND start_ns >= ?2 AND end_ns <= ?3 ORDER BY number DESC LIMIT 1");
-  last.bind(1, run).bind(2, from).bind(3, to);
-  if (!last.step()) return;
-  trace.cycleStartNs = last.columnInt(0) - from;
-  trace.cycleEndNs = last.columnInt(1) - from;
+  Statement inside(db, "SELECT start_ns, end_ns FROM cycles WHERE run = ?1 AND start_ns >= ?2 AND end_ns <= ?3 ORDER BY number");
+  inside.bind(1, run).bind(2, from).bind(3, to);
+  while (inside.step()) trace.cycles.push_back({inside.columnInt(0) - from, inside.columnInt(1) - from});
+  if (trace.cycles.empty()) return;
+  trace.cycleStartNs = trace.cycles.back().startNs;
+  trace.cycleEndNs = trace.cycles.back().endNs;
 }
 
 // Leaves out the rows that refer to a signal, device or label the trace does not have; their

@@ -263,7 +263,10 @@ std::string laneBars(const Trace& trace, const LanePlan& plan, double laneTop, c
 std::string cycleBracket(const Kpis& kpis, const TimeScale& s, double y) {
   double x0 = s.x(kpis.windowStartNs), x1 = s.x(kpis.windowEndNs);
   std::string text = "Cycle time " + formatSeconds(kpis.cycleTimeNs, 3) + " s";
-  double w = static_cast<double>(text.size()) * kCharPx + 12;
+  // The label is bold: wider than kCharPx per character (issue 16: its end was clipped).
+  constexpr double kBoldCharPx = 7.2;
+  const double textW = static_cast<double>(text.size()) * kBoldCharPx;
+  const double w = textW + 12;
   double line = y + 17;
   std::string out = "<g class=\"cycle-bracket\"><line x1=\"" + px(x0) + "\" x2=\"" + px(x1) + "\" y1=\"" +
                     px(line) + "\" y2=\"" + px(line) + "\"/><line x1=\"" + px(x0) + "\" x2=\"" + px(x0) +
@@ -273,8 +276,11 @@ std::string cycleBracket(const Kpis& kpis, const TimeScale& s, double y) {
     out += "<rect x=\"" + px((x0 + x1 - w) / 2) + "\" y=\"" + px(line - 8) + "\" width=\"" + px(w) +
            "\" height=\"16\" rx=\"3\"/><text x=\"" + px((x0 + x1) / 2) + "\" y=\"" + px(line + 4) +
            "\" text-anchor=\"middle\">" + text + "</text>";
-  else
+  else if (x1 + 6 + textW <= s.widthPx)  // beside the bracket, right
     out += "<text x=\"" + px(x1 + 6) + "\" y=\"" + px(line + 4) + "\">" + text + "</text>";
+  else  // a short last cycle at the right edge: left of the bracket, inside the chart
+    out += "<text x=\"" + px(std::max(x0 - 6, textW)) + "\" y=\"" + px(line + 4) + "\" text-anchor=\"end\">" + text +
+           "</text>";
   return out + "</g>\n";
 }
 

@@ -93,11 +93,9 @@ table.events td:nth-child(2),table.events td:nth-child(3){width:1%}
 .util{display:flex;align-items:center;gap:8px;justify-content:flex-end}
 .track{width:96px;height:8px;background:var(--soft);border-radius:4px;overflow:hidden}
 .fill{height:100%;background:var(--accent);border-radius:4px}
-.two{display:grid;grid-template-columns:minmax(0,3fr) minmax(0,2fr);gap:16px}
-.two .panel{margin-bottom:16px}
 .note{color:var(--muted);font-size:12.5px;margin:8px 0 0}
+.scroll{max-height:320px;overflow-y:auto}
 footer{color:var(--muted);font-size:12px;margin-top:6px}
-@media (max-width:1000px){.two{grid-template-columns:1fr}}
 @media print{body{background:#fff}.panel,.card{break-inside:avoid}}
 )css";
 
@@ -117,6 +115,12 @@ std::string grouped(const std::string& number) {
 }
 
 std::string energy(double j) { return grouped(formatFixed(j, 1)); }
+
+// A device that recorded no energy has no energy model in the cell (no power parameters: an
+// ideal axis, robot, ...): "n/a" says so, where "0.0" would claim it moved for free.
+std::string deviceEnergy(double j) {
+  return j == 0 ? "<span title=\"no energy model: the device entry gives no power parameters\">n/a</span>" : energy(j);
+}
 
 // "1 min 41 s" for times of a minute or more, as seed Figure 11 labels cycle times.
 std::string minutesText(int64_t ns) {
@@ -151,6 +155,7 @@ std::string cards(const Kpis& k) {
   std::string minutes = minutesText(k.cycleTimeNs);
   if (!minutes.empty()) cycleDetail = minutes + " \u00b7 " + cycleDetail;
   std::string out = "<section class=\"cards\">\n";
+  if (k.cyclesCompleted > 1) cycleDetail = "last of " + std::to_string(k.cyclesCompleted) + " \u00b7 " + cycleDetail;
   out += card("Cycle time", formatSeconds(k.cycleTimeNs, 2), "s", cycleDetail);
   // Large totals in kJ/MJ so the card stays one line; the device table keeps joules.
   double j = k.totalEnergyJ;
@@ -194,7 +199,7 @@ std::string deviceTable(const Trace& trace, const Kpis& k) {
            "</td><td>" + formatSeconds(d.busyNs, 3) + "</td><td>" + formatSeconds(d.idleNs, 3) +
            "</td><td><div class=\"util\"><div class=\"track\"><div class=\"fill\" style=\"width:" +
            formatFixed(pct, 1) + "%\"></div></div>" + formatFixed(d.utilisationPct, 1) + " %</div></td><td>" +
-           energy(d.energyJ) + "</td><td>" + std::to_string(d.operations) + "</td><td" +
+           deviceEnergy(d.energyJ) + "</td><td>" + std::to_string(d.operations) + "</td><td" +
            (d.errors ? " class=\"bad\"" : "") + ">" + std::to_string(d.errors) + "</td></tr>\n";
   }
   out += "<tr class=\"total\"><td class=\"l\">Total</td><td></td><td></td><td></td><td></td><td>" +
@@ -231,10 +236,37 @@ std::string energyChart(const Trace& trace, const Kpis& k, std::string& heading)
            "<title>" + escapeHtml(name) + "</title></text><rect class=\"track-bg\" x=\"" + px(kName) + "\" y=\"" +
            px(y + 4) + "\" width=\"" + px(barMax) + "\" height=\"18\" rx=\"3\" fill=\"#eef1f4\"/><rect class=\"ebar\" x=\"" +
            px(kName) + "\" y=\"" + px(y + 4) + "\" width=\"" + px(w) + "\" height=\"18\" rx=\"3\"/><text class=\"evalue\" x=\"" +
-           px(kWidth) + "\" y=\"" + px(y + 17) + "\" text-anchor=\"end\">" + energy(d->energyJ) + " J</text>\n";
+           px(kWidth) + "\" y=\"" + px(y + 17) + "\" text-anchor=\"end\">" + (d->energyJ == 0 ? "n/a" : energy(d->energyJ) + " J") +
+           "</text>\n";
     y += kRow;
   }
   return out + "</svg>\n";
+}
+
+// Every cycle of a run of several, so the "Cycle time" card (the last one) is not read as the
+// mean; the table scrolls inside its panel. A long run shows its first and last kEdgeRows cycles
+// (the page stays bounded by the chart width, not the run length; the JSON report lists all).
+std::string cycleTable(const Trace& trace, const Kpis& k) {
+  constexpr size_t kEdgeRows = 100;
+  if (trace.cycles.size() < 2) return {};
+  std::string out = "<section class=\"panel\" id=\"cycles\"><h2>Cycles<span class=\"hint\">" +
+                    std::to_string(trace.cycles.size()) + " cycles \u00b7 min " + formatSeconds(k.cycleMinNs, 3) +
+                    " s \u00b7 mean " + formatSeconds(static_cast<int64_t>(k.cycleMeanNs + 0.5), 3) + " s \u00b7 max " +
+                    formatSeconds(k.cycleMaxNs, 3) + " s \u00b7 the Cycle time card is the last cycle; cycle 1 "
+                    "includes the start-up</span></h2>\n<div class=\"scroll\"><table><thead><tr><th>Cycle</th>"
+                    "<th>Start s</th><th>End s</th><th>Time s</th></tr></thead><tbody>\n";
+  const size_t n = trace.cycles.size();
+  for (size_t i = 0; i < n; ++i) {
+    if (n > 2 * kEdgeRows && i == kEdgeRows) {
+      out += "<tr><td class=\"l\" colspan=\"4\">\u2026 " + std::to_string(n - 2 * kEdgeRows) +
+             " more cycles (all of them in the JSON report)</td></tr>\n";
+      i = n - kEdgeRows;
+    }
+    const CycleRecord& c = trace.cycles[i];
+    out += "<tr><td>" + std::to_string(i + 1) + "</td><td>" + formatSeconds(c.startNs, 3) + "</td><td>" +
+           formatSeconds(c.endNs, 3) + "</td><td>" + formatSeconds(c.endNs - c.startNs, 3) + "</td></tr>\n";
+  }
+  return out + "</tbody></table></div></section>\n";
 }
 
 // Collisions and faults in one table, in time order.
@@ -292,10 +324,13 @@ std::string htmlReport(const Trace& trace, const Kpis& kpis, const HtmlOptions& 
 
   std::string energyHeading;
   std::string energySvg = energyChart(trace, kpis, energyHeading);
-  out += "<div class=\"two\"><section class=\"panel\"><h2>Devices<span class=\"hint\">busy and idle time "
+  // One panel per row: beside the energy chart the device table needed a scroll bar even at
+  // 1400 px (issue 16).
+  out += "<section class=\"panel\"><h2>Devices<span class=\"hint\">busy and idle time "
          "within the measured window</span></h2>\n" + deviceTable(trace, kpis) +
-         "</section><section class=\"panel\"><h2>" + energyHeading +
-         "<span class=\"hint\">whole run, idle included</span></h2>\n" + energySvg + "</section></div>\n";
+         "</section>\n<section class=\"panel\"><h2>" + energyHeading +
+         "<span class=\"hint\">whole run, idle included</span></h2>\n" + energySvg + "</section>\n";
+  out += cycleTable(trace, kpis);
 
   if (!options.signals.empty())
     out += "<section class=\"panel\"><h2>Signals</h2>\n" + html::signalsSvg(trace, kpis, scale, options) +

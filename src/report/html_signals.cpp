@@ -122,7 +122,10 @@ std::string signalsSvg(const Trace& trace, const Kpis& kpis, const TimeScale& s,
     if (!std::isfinite(lo) || !std::isfinite(hi)) lo = hi = 0;
     if (hi == lo) {
       hi += 1;
-      lo -= lane.isBool ? 0 : 1;
+      // A flat WORD or UINT at 0 keeps 0 as its floor: there is no 16#FFFF below it.
+      const ElemKind kind = elemTypeInfo(info.type).kind;
+      const bool unsignedZero = (kind == ElemKind::Bits || kind == ElemKind::Unsigned) && lo == 0;
+      lo -= lane.isBool || unsignedZero ? 0 : 1;
     }
     double top = y + kLanePadPx, bottom = y + laneH - kLanePadPx;
     auto yOf = [&](double v) {
@@ -148,8 +151,9 @@ std::string signalsSvg(const Trace& trace, const Kpis& kpis, const TimeScale& s,
       body += "<text class=\"sub\" x=\"16\" y=\"" + px(mid + 12) + "\">" + std::string(typeName) + "</text>";
     if (!lane.isBool)
       body += "<text class=\"range\" x=\"" + px(s.leftPx - 6) + "\" y=\"" + px(top + 4) +
-            "\" text-anchor=\"end\">" + formatShortest(hi) + "</text><text class=\"range\" x=\"" + px(s.leftPx - 6) +
-            "\" y=\"" + px(bottom + 3) + "\" text-anchor=\"end\">" + formatShortest(lo) + "</text>";
+            "\" text-anchor=\"end\">" + chartValueText(info.type, hi) + "</text><text class=\"range\" x=\"" +
+            px(s.leftPx - 6) + "\" y=\"" + px(bottom + 3) + "\" text-anchor=\"end\">" + chartValueText(info.type, lo) +
+            "</text>";
     body += "\n";
     y += laneH;
   }

@@ -21,11 +21,18 @@ Json runJson(const Kpis& k) {
               {"cycles_completed", k.cyclesCompleted}};
 }
 
-Json cycleJson(const Kpis& k) {
+Json cycleJson(const Trace& trace, const Kpis& k) {
+  Json all = Json::array();
+  for (const CycleRecord& c : trace.cycles)
+    all.push_back(Json{{"start_s", seconds(c.startNs)}, {"end_s", seconds(c.endNs)}, {"time_s", seconds(c.endNs - c.startNs)}});
   return Json{{"measured", k.cycleMeasured},
               {"start_s", seconds(k.windowStartNs)},
               {"end_s", seconds(k.windowEndNs)},
-              {"time_s", seconds(k.cycleTimeNs)}};
+              {"time_s", seconds(k.cycleTimeNs)},
+              {"min_s", seconds(k.cycleMinNs)},
+              {"mean_s", k.cycleMeanNs * 1e-9},
+              {"max_s", seconds(k.cycleMaxNs)},
+              {"cycles", all}};
 }
 
 Json devicesJson(const Trace& trace, const Kpis& k) {
@@ -89,7 +96,7 @@ std::string jsonReport(const Trace& trace, const Kpis& kpis) {
   Json doc{{"schema", "virtcom.report"},
            {"schema_version", kJsonSchemaVersion},
            {"run", runJson(kpis)},
-           {"cycle", cycleJson(kpis)},
+           {"cycle", cycleJson(trace, kpis)},
            {"totals", Json{{"energy_j", kpis.totalEnergyJ},
                            {"operations", kpis.operations},
                            {"errors", kpis.errors},

@@ -41,6 +41,17 @@ Kpis computeKpis(const Trace& trace) {
   k.windowStartNs = k.cycleMeasured ? trace.cycleStartNs : 0;
   k.windowEndNs = k.cycleMeasured ? trace.cycleEndNs : std::max<int64_t>(trace.endNs, 0);
   k.cycleTimeNs = k.windowEndNs - k.windowStartNs;
+  if (!trace.cycles.empty()) {
+    k.cycleMinNs = INT64_MAX;
+    double sum = 0;
+    for (const CycleRecord& c : trace.cycles) {
+      const int64_t ns = c.endNs - c.startNs;
+      k.cycleMinNs = std::min(k.cycleMinNs, ns);
+      k.cycleMaxNs = std::max(k.cycleMaxNs, ns);
+      sum += static_cast<double>(ns);
+    }
+    k.cycleMeanNs = sum / static_cast<double>(trace.cycles.size());
+  }
   k.collisions = static_cast<uint32_t>(trace.collisions.size());
   k.faults = static_cast<uint32_t>(trace.faults.size());
   k.end = trace.end;

@@ -30,6 +30,9 @@ struct Kpis {
   int64_t windowEndNs = 0;
   int64_t cycleTimeNs = 0;      // windowEndNs - windowStartNs
   uint32_t cyclesCompleted = 0;
+  // The lengths of every cycle of Trace::cycles (0 without any); the cycle time above is the last.
+  int64_t cycleMinNs = 0, cycleMaxNs = 0;
+  double cycleMeanNs = 0;
   int64_t runNs = 0;            // Trace::endNs
 
   std::vector<DeviceKpis> devices;  // one per Trace::devices, same order

@@ -57,6 +57,27 @@ std::string deviceTable(const Trace& trace, const Kpis& kpis) {
   return out;
 }
 
+// Every cycle when there are several: which one "Cycle time" is must not be guessed. The
+// terminal gets the first kMaxCycleRows; the JSON and HTML reports list them all.
+constexpr size_t kMaxCycleRows = 20;
+
+std::string cycleTable(const Trace& trace, const Kpis& kpis) {
+  std::string out = "Cycles        min " + formatSeconds(kpis.cycleMinNs, 3) + " s, mean " +
+                    formatSeconds(static_cast<int64_t>(kpis.cycleMeanNs + 0.5), 3) + " s, max " +
+                    formatSeconds(kpis.cycleMaxNs, 3) + " s over " + std::to_string(trace.cycles.size()) +
+                    " cycles (cycle 1 includes the start-up)\n";
+  const std::vector<Column> cols = {{"Cycle", 7, false}, {"Start s", 11, false}, {"End s", 11, false}, {"Time s", 11, false}};
+  out += "  " + row(cols, {"Cycle", "Start s", "End s", "Time s"});
+  for (size_t i = 0; i < trace.cycles.size() && i < kMaxCycleRows; ++i) {
+    const CycleRecord& c = trace.cycles[i];
+    out += "  " + row(cols, {std::to_string(i + 1), formatSeconds(c.startNs, 3), formatSeconds(c.endNs, 3),
+                             formatSeconds(c.endNs - c.startNs, 3)});
+  }
+  if (trace.cycles.size() > kMaxCycleRows)
+    out += "  ... " + std::to_string(trace.cycles.size() - kMaxCycleRows) + " more (all of them in --json and --report)\n";
+  return out;
+}
+
 }  // namespace
 
 std::string summaryTable(const Trace& trace, const Kpis& kpis) {
@@ -69,6 +90,7 @@ std::string summaryTable(const Trace& trace, const Kpis& kpis) {
            (kpis.cyclesCompleted == 1 ? " cycle" : " cycles") + " completed)\n";
   else
     out += " (whole run, no cycle markers)\n";
+  if (trace.cycles.size() > 1) out += cycleTable(trace, kpis);
   out += "Total energy  " + energyText(kpis.totalEnergyJ) + " J\n";
   out += "Run time      " + formatSeconds(kpis.runNs, 3) + " s\n";
 

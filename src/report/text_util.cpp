@@ -4,6 +4,9 @@
 #include <bit>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+
+#include "core/iec_value.hpp"
 
 namespace virtcom::report {
 
@@ -192,5 +195,29 @@ std::string signalText(ElemType type, uint64_t raw) {
 }
 
 bool isPlottable(ElemType type) { return elemTypeInfo(type).kind != ElemKind::Text; }
+
+std::string chartValueText(ElemType type, double value) {
+  if (!std::isfinite(value)) return formatShortest(value);
+  const ElemTypeInfo& info = elemTypeInfo(type);
+  if (info.kind == ElemKind::Bits) {
+    char text[32];
+    std::snprintf(text, sizeof text, "16#%0*llX", static_cast<int>(info.sizeBytes * 2),
+                  static_cast<unsigned long long>(std::max(value, 0.0)));
+    return text;
+  }
+  if (type == ElemType::Time) return formatTimeMs(static_cast<int64_t>(std::llround(value)));
+  if (type == ElemType::Ltime) return formatLtimeNs(static_cast<int64_t>(std::llround(value)));
+  if (info.kind != ElemKind::Float) return formatShortest(value);
+  const double magnitude = std::abs(value);
+  if (magnitude != 0 && (magnitude < 1e-3 || magnitude >= 1e12)) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", value);
+    return text;
+  }
+  std::string text = formatFixed(value, 3);
+  while (text.ends_with('0')) text.pop_back();
+  if (text.ends_with('.')) text.pop_back();
+  return text == "-0" ? "0" : text;
+}
 
 }  // namespace virtcom::report

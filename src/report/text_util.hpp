@@ -48,5 +48,10 @@ double signalNumber(ElemType type, uint64_t raw);
 std::string signalText(ElemType type, uint64_t raw);
 // STRING/WSTRING values do not fit a raw slot: such signals are not plotted or dumped.
 bool isPlottable(ElemType type);
+// A value of a signal of `type` (from signalNumber) as a chart label, written as an engineer
+// reads that type: bit strings in hex with the type's width (WORD 16#00FF), TIME as IEC text
+// (T#1s500ms; LTIME from ns), REAL/LREAL rounded to at most 3 decimals (1125, not
+// 1124.9999999999977; very small or large values in 4 significant digits), others in decimal.
+std::string chartValueText(ElemType type, double value);
 
 }  // namespace virtcom::report

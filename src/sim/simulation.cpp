@@ -105,6 +105,7 @@ bool Simulation::countCycle(bool done) {
     Trace& trace = cell_.trace;
     trace.cycleStartNs = lastCycleEdgeNs_;
     trace.cycleEndNs = nowNs_;
+    trace.cycles.push_back({lastCycleEdgeNs_, nowNs_});  // once per cycle, amortised like the activities
     lastCycleEdgeNs_ = nowNs_;
     ++trace.cyclesCompleted;
     if (trace.cyclesCompleted >= cell_.run.cycles && !cell_.run.until.valid) {

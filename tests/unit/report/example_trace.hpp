@@ -112,6 +112,17 @@ inline Trace exampleCellTrace() {
   return t;
 }
 
+// The example trace as a run of three cycles, 0..30 s, 30..52 s and 52..73 s (30, 22 and 21 s):
+// the measured cycle is the last one.
+inline Trace threeCycleTrace() {
+  Trace t = exampleCellTrace();
+  t.cycles = {{0, 30 * kS}, {30 * kS, 52 * kS}, {52 * kS, 73 * kS}};
+  t.cycleStartNs = 52 * kS;
+  t.cycleEndNs = 73 * kS;
+  t.cyclesCompleted = 3;
+  return t;
+}
+
 }  // namespace virtcom::report::testing
 
 namespace virtcom::report::testing {

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cctype>
 #include <set>
 #include <sstream>
@@ -273,6 +274,73 @@ TEST(HtmlReport, ManyLabelsStillGetDistinctColours) {
 TEST(HtmlReport, Deterministic) {
   Trace t = testing::exampleCellTrace();
   EXPECT_EQ(render(t), render(t));
+}
+
+// Issue 16, the first hour with the HTML report.
+TEST(HtmlReport, SeveralCyclesGetATableAndTheCardSaysWhichCycle) {
+  const std::string html = render(testing::threeCycleTrace());
+  EXPECT_NE(html.find("last of 3 \u00b7 measured 52.0\u201373.0 s"), std::string::npos);
+  EXPECT_NE(html.find("3 cycles \u00b7 min 21.000 s \u00b7 mean 24.333 s \u00b7 max 30.000 s"), std::string::npos);
+  EXPECT_NE(html.find("<tr><td>2</td><td>30.000</td><td>52.000</td><td>22.000</td></tr>"), std::string::npos);
+  EXPECT_EQ(checkBalanced(html), "");
+  EXPECT_EQ(render(testing::exampleCellTrace()).find("id=\"cycles\""), std::string::npos) << "one cycle: no table";
+}
+
+TEST(HtmlReport, LongRunsListTheFirstAndLastCycles) {
+  Trace t = testing::exampleCellTrace();
+  for (int64_t i = 0; i < 1000; ++i) t.cycles.push_back({i * kS, (i + 1) * kS});
+  const std::string html = render(t);
+  EXPECT_NE(html.find("<tr><td>100</td>"), std::string::npos);
+  EXPECT_EQ(html.find("<tr><td>101</td>"), std::string::npos);
+  EXPECT_NE(html.find("\u2026 800 more cycles (all of them in the JSON report)"), std::string::npos);
+  EXPECT_NE(html.find("<tr><td>901</td>"), std::string::npos);
+  EXPECT_NE(html.find("<tr><td>1000</td>"), std::string::npos);
+  EXPECT_EQ(checkBalanced(html), "");
+}
+
+TEST(HtmlReport, ChartLabelsSpeakTheSignalsType) {
+  Trace t = testing::exampleCellTrace();
+  const TagId status = static_cast<TagId>(t.signals.size());
+  t.signals.push_back({"Drive.ZSW1", ElemType::Word, 0x0231});
+  const TagId delay = static_cast<TagId>(t.signals.size());
+  t.signals.push_back({"MAIN.delay", ElemType::Time, 0});
+  const TagId speed = static_cast<TagId>(t.signals.size());
+  t.signals.push_back({"Drive.speed", ElemType::Lreal, std::bit_cast<uint64_t>(0.0)});
+  t.changes.push_back({10 * kS, status, 0xB637});
+  t.changes.push_back({10 * kS, delay, 1500});
+  t.changes.push_back({10 * kS, speed, std::bit_cast<uint64_t>(1124.9999999999977)});
+  std::sort(t.changes.begin(), t.changes.end(), [](const SignalChange& a, const SignalChange& b) { return a.timeNs < b.timeNs; });
+  HtmlOptions o;
+  o.signals = {"Drive.ZSW1", "MAIN.delay", "Drive.speed"};
+  const std::string html = render(t, o);
+  EXPECT_NE(html.find(">16#B637</text>"), std::string::npos) << "WORD in hex";
+  EXPECT_NE(html.find(">16#0231</text>"), std::string::npos);
+  EXPECT_NE(html.find(">T#1s500ms</text>"), std::string::npos) << "TIME as IEC text";
+  EXPECT_NE(html.find(">T#0ms</text>"), std::string::npos);
+  EXPECT_NE(html.find(">1125</text>"), std::string::npos) << "rounded";
+  EXPECT_EQ(html.find("1124.99"), std::string::npos);
+}
+
+TEST(HtmlReport, DevicesWithoutEnergyShowNotApplicable) {
+  Trace t = testing::exampleCellTrace();
+  t.totals[3].energyJ = 0;  // an ideal device: no power parameters
+  const std::string html = render(t);
+  EXPECT_NE(html.find("no energy model: the device entry gives no power parameters\">n/a</span>"), std::string::npos);
+  EXPECT_EQ(render(testing::exampleCellTrace()).find(">n/a<"), std::string::npos);
+}
+
+// A short last cycle at the right edge of the chart: its bracket label is drawn left of the
+// bracket, inside the chart, not cut off at the edge.
+TEST(HtmlReport, CycleLabelOfAShortCycleAtTheEdgeStaysInside) {
+  Trace t = testing::exampleCellTrace();
+  t.cycleStartNs = 73 * kS;
+  t.cycleEndNs = 75 * kS;
+  const std::string html = render(t);
+  const size_t label = html.find("Cycle time 2.000 s</text>");
+  ASSERT_NE(label, std::string::npos);
+  const size_t anchor = html.rfind("text-anchor=\"end\">", label);
+  ASSERT_NE(anchor, std::string::npos);
+  EXPECT_EQ(label - anchor, std::string("text-anchor=\"end\">").size()) << html.substr(anchor, 80);
 }
 
 }  // namespace

@@ -81,6 +81,22 @@ TEST(JsonReport, ActivitiesCollisionsFaults) {
   EXPECT_EQ(j["faults"][0]["message"], "gripper lost the bearing (error 17)");
 }
 
+// Every cycle with its start, end and length, and their min, mean and max (issue 16).
+TEST(JsonReport, EveryCycleAndTheirSpread) {
+  json j = render(testing::threeCycleTrace());
+  EXPECT_DOUBLE_EQ(j["cycle"]["time_s"].get<double>(), 21.0) << "the measured cycle is the last";
+  EXPECT_DOUBLE_EQ(j["cycle"]["min_s"].get<double>(), 21.0);
+  EXPECT_NEAR(j["cycle"]["mean_s"].get<double>(), 73.0 / 3, 1e-9);
+  EXPECT_DOUBLE_EQ(j["cycle"]["max_s"].get<double>(), 30.0);
+  ASSERT_EQ(j["cycle"]["cycles"].size(), 3u);
+  EXPECT_DOUBLE_EQ(j["cycle"]["cycles"][1]["start_s"].get<double>(), 30.0);
+  EXPECT_DOUBLE_EQ(j["cycle"]["cycles"][1]["end_s"].get<double>(), 52.0);
+  EXPECT_DOUBLE_EQ(j["cycle"]["cycles"][1]["time_s"].get<double>(), 22.0);
+  json none = render(Trace{});
+  EXPECT_EQ(none["cycle"]["cycles"].size(), 0u);
+  EXPECT_DOUBLE_EQ(none["cycle"]["min_s"].get<double>(), 0.0);
+}
+
 TEST(JsonReport, KeyOrderIsFixedAndOutputDeterministic) {
   Trace t = testing::exampleCellTrace();
   std::string a = jsonReport(t, computeKpis(t));

@@ -65,5 +65,32 @@ TEST(SummaryTable, RunWithoutCycleMarkersOrDevices) {
   EXPECT_NE(s.find("Run ended     completed\n"), std::string::npos);
 }
 
+// Several cycles: min, mean and max and every cycle, so "Cycle time" (the last cycle) is not
+// mistaken for the mean (issue 16). One cycle: no table.
+TEST(SummaryTable, SeveralCyclesAreListed) {
+  Trace t = testing::threeCycleTrace();
+  const std::string out = summaryTable(t, computeKpis(t));
+  EXPECT_NE(out.find("Cycle time    21.000 s (measured cycle 52.000 s .. 73.000 s, 3 cycles completed)\n"
+                     "Cycles        min 21.000 s, mean 24.333 s, max 30.000 s over 3 cycles (cycle 1 includes the start-up)\n"
+                     "    Cycle      Start s        End s       Time s\n"
+                     "        1        0.000       30.000       30.000\n"
+                     "        2       30.000       52.000       22.000\n"
+                     "        3       52.000       73.000       21.000\n"),
+            std::string::npos)
+      << out;
+  Trace one = testing::exampleCellTrace();
+  EXPECT_EQ(summaryTable(one, computeKpis(one)).find("Cycles "), std::string::npos);
+}
+
+// What --quiet prints: the faults and the end, the last lines of the table.
+TEST(SummaryTable, RunOutcomeIsTheTableEnd) {
+  Trace t = testing::exampleCellTrace();
+  const Kpis k = computeKpis(t);
+  const std::string outcome = runOutcome(t, k);
+  EXPECT_EQ(outcome, "Faults        1\n     38.000 s  Robot2: gripper lost the bearing (error 17)\n"
+                     "Run ended     time limit reached: time limit of 75 s reached\n");
+  EXPECT_TRUE(summaryTable(t, k).ends_with(outcome));
+}
+
 }  // namespace
 }  // namespace virtcom::report

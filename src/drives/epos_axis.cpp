@@ -17,7 +17,6 @@ namespace {
 constexpr uint16_t kAlarmNotControlled = 1920;  // A01920: cyclic connection interrupted
 constexpr uint16_t kSignOfLifeFault = 1912;
 constexpr uint16_t kStandstillFault = 7450, kPositioningFault = 7451, kFollowingFault = 7452;
-constexpr double kRadPerRpm = 2.0 * std::numbers::pi / 60.0;
 }  // namespace
 
 EposAxis::EposAxis(std::string name, DriveCommon common, EposParams params)

@@ -75,7 +75,6 @@ constexpr BitDef EnableOn = bitDef(Layout::Pf750Status, "EnableOn");
 
 constexpr uint32_t kForward = 0b01, kReverse = 0b10;
 constexpr double kAtReferenceHz = 0.01;  // one count of 0.01 Hz [S]
-constexpr double kRadPerRpm = 2.0 * std::numbers::pi / 60.0;
 
 double approach(double from, double to, double maxStep) {
   return from < to ? std::min(to, from + maxStep) : std::max(to, from - maxStep);
@@ -183,7 +182,7 @@ void PowerFlex::integrate(double dtS) {
   if (jogging_) rampS = p_.jogRampS;
   const double beforeRpm = speedRpm_;
   if (faulted() || coasting_) {
-    coastMotor();
+    coastMotor(dtS);
     if (p_.positionMode) profile_.reset(profile_.x() + speedRpm_ / 60.0 * p_.polePairs * degPerSPerHz_ * dtS);
   } else if (p_.positionMode) {
     stepPosition(dtS);
@@ -197,10 +196,9 @@ void PowerFlex::integrate(double dtS) {
   torqueNm_ = outHz_ != 0 ? loadTorqueNm(speedRpm_, accel) : 0.0;
 }
 
-void PowerFlex::coastMotor() {
+void PowerFlex::coastMotor(double dtS) {
   outHz_ = 0;  // output off, the motor coasts
-  speedRpm_ *= coastFactor_;
-  if (std::abs(speedRpm_) < 1e-3) speedRpm_ = 0;
+  speedRpm_ = coastRpm(speedRpm_, coastFactor_, dtS);
   if (speedRpm_ == 0) coasting_ = false;
 }
 

@@ -72,7 +72,7 @@ class PowerFlex final : public TelegramDevice {
   Command decodeCommand(std::span<const uint32_t> rx) const;
   double targetHz() const;
   void stepPosition(double dtS);
-  void coastMotor();
+  void coastMotor(double dtS);
   void clearFaults();
   void applyMopPreloadAndReset();
 

@@ -55,7 +55,6 @@ constexpr BitDef RotatesForward = bitDef(Layout::Zsw1Speed, "RotatesForward");
 constexpr BitDef NoThermalOverload = bitDef(Layout::Zsw1Speed, "NoThermalOverload");
 }  // namespace zsw
 
-constexpr double kRadPerRpm = 2.0 * std::numbers::pi / 60.0;
 constexpr uint16_t kAlarmNotControlled = 1920;  // A01920: cyclic connection interrupted
 
 double approach(double from, double to, double maxStep) {
@@ -117,8 +116,7 @@ void SpeedAxis::integrate(double dtS) {
   if (pulsesEnabled(state_)) {
     speedRpm_ += (rfgOut_ - speedRpm_) * alphaSpeed_;
   } else {
-    speedRpm_ *= coastFactor_;
-    if (std::abs(speedRpm_) < 1e-3) speedRpm_ = 0;
+    speedRpm_ = coastRpm(speedRpm_, coastFactor_, dtS);
   }
   const double accel = (speedRpm_ - before) * radPerS2PerRpmStep_;
   torqueNm_ = pulsesEnabled(state_) ? loadTorqueNm(speedRpm_, accel) : 0.0;

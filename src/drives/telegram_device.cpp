@@ -9,7 +9,6 @@
 namespace virtcom::drives {
 namespace {
 
-constexpr double kRadPerRpm = 2.0 * std::numbers::pi / 60.0;
 
 uint32_t rawFromTag(const TagBus& bus, TagId tag, WireType type) {
   if (type == WireType::F32) return rawFromReal(bus.getReal(tag));

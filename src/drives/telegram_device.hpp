@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <span>
 #include <string>
@@ -40,6 +41,8 @@ struct Injection {
 struct CommLossWindow {
   int64_t fromNs = 0, toNs = 0;  // no frames are delivered in [fromNs, toNs)
 };
+
+inline constexpr double kRadPerRpm = 2.0 * std::numbers::pi / 60.0;  // rad/s per rpm
 
 // The shaft's mechanical load: the motor turns a gearbox and a lead screw / belt pulley.
 struct ShaftLoad {
@@ -98,6 +101,16 @@ class TelegramDevice : public plant::Device {
   double loadTorqueNm(double speedRpm, double accelRadS2) const {
     const double friction = std::abs(speedRpm) > 0.5 ? std::copysign(common_.load.loadTorqueNm, speedRpm) : 0.0;
     return friction + common_.load.inertiaKgm2 * accelRadS2;
+  }
+  // One integration step of the shaft coasting with the power off: the drive's run-down time
+  // constant (`coastFactor` = exp(-dt / tau_coast), the losses the model does not name) and the
+  // load's friction torque, which brakes it at torque / inertia and never turns it back. Without
+  // the torque a loaded shaft coasted as long as an idle one (issue 16). Inline: per step.
+  double coastRpm(double speedRpm, double coastFactor, double dtS) const {
+    const double v = speedRpm * coastFactor;
+    const double brakeRpm = common_.load.inertiaKgm2 > 0 ? common_.load.loadTorqueNm / common_.load.inertiaKgm2 * dtS / kRadPerRpm : 0.0;
+    if (std::abs(v) <= brakeRpm || std::abs(v) < 1e-3) return 0.0;
+    return v - std::copysign(brakeRpm, v);
   }
   // Records a fault for the report (rare event, allocates).
   void noteFault(int64_t nowNs, const std::string& message);

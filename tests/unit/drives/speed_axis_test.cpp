@@ -2,6 +2,8 @@
 // from the drive, with raw words (p2000 = 1350 rpm).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "drive_rig.hpp"
 
 namespace virtcom::drives {
@@ -114,6 +116,32 @@ TEST(SpeedAxis, E30StateMachineFromRawWords) {
   rig.stw(0x047D, 0x2000, 50);
   EXPECT_LT(rig.drive->shaftSpeedRpm(), 675.0);
   EXPECT_GT(rig.drive->shaftSpeedRpm(), 0.0);
+}
+
+// With the pulses off the load's friction torque brakes the shaft too (issue 16: the coast
+// ignored it, so a loaded axis ran on for seconds). 0.5 Nm on 0.002 kgm^2 is 250 rad/s^2, about
+// 2400 rpm/s: from 675 rpm the shaft stands within 0.3 s; without a load torque it still turns.
+TEST(SpeedAxis, CoastingIsBrakedByTheLoadTorque) {
+  DriveCommon loaded;
+  loaded.load.inertiaKgm2 = 0.002;
+  loaded.load.loadTorqueNm = 0.5;
+  SpeedRig rig;
+  rig.drive = std::make_unique<SpeedAxis>("G120", loaded, SpeedAxisParams{});
+  rig.drive->exchange({}, rig.nowNs);
+  rig.runAt(0x2000);
+  ASSERT_NEAR(rig.drive->shaftSpeedRpm(), 675.0, 2.0);
+  rig.sendFor({0x047D, 0x2000}, 150);  // OFF2: pulses off at once
+  EXPECT_GT(rig.drive->shaftSpeedRpm(), 100.0) << "still braking";
+  EXPECT_LT(rig.drive->shaftSpeedRpm(), 675.0 * std::exp(-0.15 / 2.0) - 300.0) << "faster than the run-down alone";
+  rig.sendFor({0x047D, 0x2000}, 200);
+  EXPECT_EQ(rig.drive->shaftSpeedRpm(), 0.0) << "stands, and never turns back";
+
+  SpeedRig idle;
+  idle.drive = std::make_unique<SpeedAxis>("G120", DriveCommon{}, SpeedAxisParams{});
+  idle.drive->exchange({}, idle.nowNs);
+  idle.runAt(0x2000);
+  idle.sendFor({0x047D, 0x2000}, 350);
+  EXPECT_NEAR(idle.drive->shaftSpeedRpm(), 675.0 * std::exp(-0.35 / 2.0), 15.0) << "tau_coast alone";
 }
 
 TEST(SpeedAxis, E30InhibitOperationGoesToS3AndBack) {

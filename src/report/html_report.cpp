@@ -95,6 +95,9 @@ table.events td:nth-child(2),table.events td:nth-child(3){width:1%}
 .fill{height:100%;background:var(--accent);border-radius:4px}
 .note{color:var(--muted);font-size:12.5px;margin:8px 0 0}
 .scroll{max-height:320px;overflow-y:auto}
+.two{display:flex;flex-wrap:wrap;gap:0 16px}
+.two .devices{flex:1 1 auto}
+.two .energy{flex:1 1 480px}
 footer{color:var(--muted);font-size:12px;margin-top:6px}
 @media print{body{background:#fff}.panel,.card{break-inside:avoid}}
 )css";
@@ -324,12 +327,12 @@ std::string htmlReport(const Trace& trace, const Kpis& kpis, const HtmlOptions& 
 
   std::string energyHeading;
   std::string energySvg = energyChart(trace, kpis, energyHeading);
-  // One panel per row: beside the energy chart the device table needed a scroll bar even at
-  // 1400 px (issue 16).
-  out += "<section class=\"panel\"><h2>Devices<span class=\"hint\">busy and idle time "
+  // Side by side while the device table fits beside the energy chart, else one below the other:
+  // a fixed 3:2 grid made the table scroll sideways at 1400 px (issue 16).
+  out += "<div class=\"two\"><section class=\"panel devices\"><h2>Devices<span class=\"hint\">busy and idle time "
          "within the measured window</span></h2>\n" + deviceTable(trace, kpis) +
-         "</section>\n<section class=\"panel\"><h2>" + energyHeading +
-         "<span class=\"hint\">whole run, idle included</span></h2>\n" + energySvg + "</section>\n";
+         "</section><section class=\"panel energy\"><h2>" + energyHeading +
+         "<span class=\"hint\">whole run, idle included</span></h2>\n" + energySvg + "</section></div>\n";
   out += cycleTable(trace, kpis);
 
   if (!options.signals.empty())

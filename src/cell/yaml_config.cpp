@@ -117,7 +117,7 @@ class TreeBuilder {
     SourceLocation first = map.keyLoc(key.scalar());
     diags_.error(celldiag::C003, key.loc(),
                  "duplicate key '" + key.scalar() + "' (first at line " + std::to_string(first.line) + ", column " +
-                     std::to_string(first.column) + "; a key may appear once per mapping)");
+                     std::to_string(first.col) + "; a key may appear once per mapping)");
   }
 
   static std::string anchorOf(const yaml_char_t* anchor) { return anchor ? reinterpret_cast<const char*>(anchor) : ""; }

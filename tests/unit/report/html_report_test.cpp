@@ -309,7 +309,7 @@ TEST(HtmlReport, ChartLabelsSpeakTheSignalsType) {
   t.changes.push_back({10 * kS, status, 0xB637});
   t.changes.push_back({10 * kS, delay, 1500});
   t.changes.push_back({10 * kS, speed, std::bit_cast<uint64_t>(1124.9999999999977)});
-  std::sort(t.changes.begin(), t.changes.end(), [](const SignalChange& a, const SignalChange& b) { return a.timeNs < b.timeNs; });
+  std::stable_sort(t.changes.begin(), t.changes.end(), [](const SignalChange& a, const SignalChange& b) { return a.timeNs < b.timeNs; });
   HtmlOptions o;
   o.signals = {"Drive.ZSW1", "MAIN.delay", "Drive.speed"};
   const std::string html = render(t, o);

@@ -1,5 +1,7 @@
 #include "report/json_report.hpp"
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "report/text_util.hpp"
@@ -30,7 +32,7 @@ Json cycleJson(const Trace& trace, const Kpis& k) {
               {"end_s", seconds(k.windowEndNs)},
               {"time_s", seconds(k.cycleTimeNs)},
               {"min_s", seconds(k.cycleMinNs)},
-              {"mean_s", k.cycleMeanNs * 1e-9},
+              {"mean_s", seconds(std::llround(k.cycleMeanNs))},  // whole ns: 94.6, not 94.60000000000001
               {"max_s", seconds(k.cycleMaxNs)},
               {"cycles", all}};
 }

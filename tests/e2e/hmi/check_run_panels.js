@@ -1,6 +1,7 @@
 // Browser checks of the HMI's reset and of the panels beyond the gearbox's devices, in real
 // Chromium. Run by tests/e2e/hmi_e2e_test.cpp against a running virtcom:
 //   node check_run_panels.js reset PORT OUTDIR    the gearbox cell under `serve --http`: Reset
+//   node check_run_panels.js reset-ended PORT OUTDIR  `run --hmi` ended: Reset starts it again
 //   node check_run_panels.js refused PORT OUTDIR  `serve --http --modbus`: reset refused (409)
 //   node check_run_panels.js sfc PORT OUTDIR      cell-sfc.yaml: the active SFC steps
 //   node check_run_panels.js rules PORT OUTDIR    examples/activity/tank-cell.yaml: fired rules
@@ -12,6 +13,7 @@ const { hmiPage, runMode } = require('./hmi_page.js');
 
 const [mode, port, outDir] = process.argv.slice(2);
 const { launch, sleep, virtualNs, api, shot, eventually, openHmi } = hmiPage(port, outDir);
+
 
 // Opens the page, runs `check(page)`, closes the browser whatever happens.
 async function withPage(check) {
@@ -25,25 +27,40 @@ async function withPage(check) {
 
 const gantt = (page) => page.$$eval('#gantt rect.bar', (r) => r.length);
 
-// Reset: time back to 0, the Gantt cleared, then the new run goes on in the same page (its
-// stream never closed, no script error).
+// Reset of a paused run: the new run waits at its first tick (pause is kept), so the page shows
+// exactly time 0 and an empty Gantt chart; Run then goes on in the same page (its stream never
+// closed, no script error).
 async function reset() {
   await withPage(async (page) => {
     await eventually(async () => [await virtualNs(page), await gantt(page)], ([ns, bars]) => ns > 3e9 && bars > 5,
                      'the run is under way');
-    const [beforeNs, beforeBars] = [await virtualNs(page), await gantt(page)];
+    await page.click('#btn-pause');
+    await eventually(() => page.textContent('#run-state'), (s) => s === 'paused', 'paused');
     await shot(page, 'before-reset');
     await page.click('#btn-reset');
-    const [afterNs, afterBars] = await eventually(async () => [await virtualNs(page), await gantt(page)],
-                                                  ([ns]) => ns < beforeNs, 'virtual time goes back after Reset');
-    assert.ok(afterNs < 2e9, `the new run starts at 0 (${afterNs} ns)`);
-    assert.ok(afterBars < beforeBars, `the Gantt chart was cleared (${afterBars} bars, ${beforeBars} before)`);
+    await eventually(async () => [await virtualNs(page), await gantt(page)], ([ns, bars]) => ns === 0 && bars === 0,
+                     'Reset brings virtual time back to 0 and clears the Gantt chart');
     assert.match(await page.textContent('#message'), /reset/);
+    assert.equal(await page.$$eval('#events li', (l) => l.length), 0, 'no faults of the previous run');
     await shot(page, 'after-reset');
-    await eventually(() => virtualNs(page), (ns) => ns > afterNs + 1e9, 'the new run goes on');
-    await eventually(() => gantt(page), (n) => n > afterBars, 'the Gantt grows again');
+    await page.click('#btn-run');
+    await eventually(() => virtualNs(page), (ns) => ns > 1e9, 'the new run goes on');
+    await eventually(() => gantt(page), (n) => n > 0, 'the Gantt grows again');
     assert.notEqual(await page.textContent('#run-state'), 'reconnecting', 'the stream stayed connected');
     await shot(page, 'running-after-reset');
+  });
+}
+
+// Reset after `run --hmi` has ended: the run starts again and the page follows it.
+async function resetEnded() {
+  await withPage(async (page) => {
+    await eventually(() => page.textContent('#run-state'), (s) => s === 'ended', 'the run has ended');
+    const [endNs, endBars] = [await virtualNs(page), await gantt(page)];
+    await page.click('#btn-reset');
+    await eventually(() => virtualNs(page), (ns) => ns < endNs, 'virtual time went back');
+    await eventually(() => page.textContent('#run-state'), (s) => s === 'ended', 'the new run ends too');
+    assert.equal(await gantt(page), endBars, 'the new run has the same operations, not those of both runs');
+    await shot(page, 'reset-after-end');
   });
 }
 
@@ -109,4 +126,4 @@ async function parts() {
   });
 }
 
-runMode({ reset, refused, sfc, rules, parts }, mode);
+runMode({ reset, 'reset-ended': resetEnded, refused, sfc, rules, parts }, mode);

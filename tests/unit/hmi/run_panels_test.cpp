@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <set>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -74,9 +76,11 @@ struct Served {
   void steps(int n) {
     for (int i = 0; i < n; ++i) ASSERT_TRUE(simulation->step());
   }
-  // Publishes now (whatever the wall clock says) without ending the run.
+  // Publishes the last tick as the running simulation does: after the publication period of
+  // wall time (end() would publish the end time instead).
   void publish() {
-    live->end(simulation->trace());
+    std::this_thread::sleep_for(std::chrono::nanoseconds(LiveState::kPublishPeriodNs + 5'000'000));
+    live->tick(simulation->trace(), simulation->nowNs());
   }
 };
 
@@ -114,6 +118,26 @@ TEST(HmiReset, TheRunStartsAgainFromTimeZeroAndViewersStartOver) {
   EXPECT_GT(s.simulation->nowNs(), 3'000'000'000) << "the new run goes on";
 }
 
+TEST(HmiReset, AResetEndsThePausedWaitAndTheNewRunStartsPaused) {
+  Served s("gearbox-cell/cell.yaml");
+  s.steps(5);
+  ASSERT_EQ(s.post("/api/control", R"({"action": "pause"})").status, 200);
+  // Whether the reset arrives before or during the paused wait, the run ends on it.
+  std::thread viewer([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    s.post("/api/control", R"({"action": "reset"})");
+  });
+  EXPECT_FALSE(s.simulation->step());
+  viewer.join();
+  EXPECT_EQ(s.simulation->trace().endMessage, "reset");
+  s.restart();
+  ASSERT_EQ(s.post("/api/control", R"({"action": "step", "value": 3})").status, 200);
+  s.steps(3);
+  EXPECT_EQ(s.simulation->nowNs(), 2 * 10'000'000) << "three ticks from 0, one at a time";
+  s.publish();
+  s.live->read([](const Snapshot& snap) { EXPECT_TRUE(snap.paused); });
+}
+
 TEST(HmiReset, AResetAfterTheEndIsTakenOnceAndOtherCommandsBeforeItAreDropped) {
   Served s("gearbox-cell/cell.yaml");
   EXPECT_FALSE(s.live->takeReset());
@@ -147,8 +171,8 @@ TEST(HmiPanels, TheSfcPanelShowsTheActiveStepAndItsTime) {
   ASSERT_FALSE(first["steps"].empty());
   const Json initial = first["steps"];
   std::set<std::string> seen;
-  for (int i = 0; i < 200 && seen.size() < 3; ++i) {
-    s.steps(5);
+  for (int i = 0; i < 100 && seen.size() < 3; ++i) {
+    s.steps(20);
     s.publish();
     Json f = Json::parse(stream->nextFrame());
     if (!f.contains("steps")) continue;

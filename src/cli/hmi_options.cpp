@@ -123,12 +123,15 @@ bool sameProgram(const bc::Module& a, const bc::Module& b) {
   return true;
 }
 
-bool sameDevices(const cell::Cell& a, const cell::Cell& b) {
-  if (a.devices.size() != b.devices.size() || a.bus.size() != b.bus.size()) return false;
-  for (size_t i = 0; i < a.devices.size(); ++i)
-    if (a.devices[i]->name() != b.devices[i]->name() || a.devices[i]->type() != b.devices[i]->type()) return false;
-  for (TagId id = 0; id < a.bus.size(); ++id)
-    if (a.bus.name(id) != b.bus.name(id) || a.bus.type(id) != b.bus.type(id)) return false;
+// The fresh cell's devices and signals are the running one's. The running cell's bus may have
+// more signals: the simulation adds the recorded PLC variables, and will add them to the fresh
+// one in the same order.
+bool sameDevices(const cell::Cell& fresh, const cell::Cell& running) {
+  if (fresh.devices.size() != running.devices.size() || fresh.bus.size() > running.bus.size()) return false;
+  for (size_t i = 0; i < fresh.devices.size(); ++i)
+    if (fresh.devices[i]->name() != running.devices[i]->name() || fresh.devices[i]->type() != running.devices[i]->type()) return false;
+  for (TagId id = 0; id < fresh.bus.size(); ++id)
+    if (fresh.bus.name(id) != running.bus.name(id) || fresh.bus.type(id) != running.bus.type(id)) return false;
   return true;
 }
 

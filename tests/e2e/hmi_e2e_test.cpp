@@ -108,7 +108,7 @@ TEST(Hmi, TheRulePanelCountsTheTanksFiredRules) {
 
 TEST(Hmi, PartsAreDrawnOnTheConveyorAndBinsCountThem) {
   if (browserMissing()) GTEST_SKIP() << "no browser";
-  checkServedPanels(kActivity, "conveyor-cell.yaml", "parts", {"--speed", "5"});
+  checkServedPanels(kActivity, "conveyor-cell.yaml", "parts", {"--speed", "2", "--hmi-paused"});
 }
 
 TEST(Hmi, AResetAfterTheEndOfARunStartsItAgain) {

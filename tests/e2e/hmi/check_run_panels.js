@@ -16,10 +16,10 @@ const { launch, sleep, virtualNs, api, shot, eventually, openHmi } = hmiPage(por
 
 
 // Opens the page, runs `check(page)`, closes the browser whatever happens.
-async function withPage(check) {
+async function withPage(check, running = true) {
   const browser = await launch();
   try {
-    await check(await openHmi(browser));
+    await check(await openHmi(browser, running));
   } finally {
     await browser.close();
   }
@@ -110,9 +110,13 @@ async function rules() {
   });
 }
 
-// The conveyor cell: parts drawn on the belt move along it; the bins count what they received.
+// The conveyor cell, served paused (its lot of parts would be through before a slow browser
+// has started): Run, then parts drawn on the belt move along it; the bins count what they
+// received.
 async function parts() {
   await withPage(async (page) => {
+    await eventually(() => page.textContent('#run-state'), (s) => s === 'paused', 'served paused');
+    await page.click('#btn-run');
     const onBelt = () => page.$$eval('g.device[data-name="Belt"] rect.part', (r) => r.map((e) => Number(e.getAttribute('x'))));
     const first = await eventually(onBelt, (xs) => xs.length > 0, 'a part is drawn on the belt');
     await eventually(onBelt, (xs) => xs.length > 0 && Math.max(...xs) > Math.max(...first), 'the parts move along the belt');
@@ -123,7 +127,7 @@ async function parts() {
     const kinds = await page.$$eval('rect.part', (r) => r.map((e) => e.dataset.kind));
     assert.ok(kinds.every((k) => ['steel', 'plastic', 'bad_steel', 'bad_plastic'].includes(k)), `part kinds ${kinds}`);
     await shot(page, 'conveyor-parts');
-  });
+  }, false);
 }
 
 runMode({ reset, 'reset-ended': resetEnded, refused, sfc, rules, parts }, mode);

@@ -34,13 +34,14 @@ function hmiPage(port, outDir) {
     return { status: response.status, json: await response.json() };
   };
   const shot = (page, name) => page.screenshot({ path: path.join(outDir, `${name}.png`), fullPage: true });
-  // A page that shows the running cell; an error in the page's script fails the check.
-  async function openHmi(browser) {
+  // A page that shows the running cell (`running` false: a run started paused, at time 0); an
+  // error in the page's script fails the check.
+  async function openHmi(browser, running = true) {
     const page = await browser.newPage({ viewport: { width: 1500, height: 1000 } });
     page.on('pageerror', (error) => { throw error; });
     await page.goto(url);
     await page.waitForSelector('g.device');
-    await eventually(() => virtualNs(page), (ns) => ns > 0, 'the page shows virtual time');
+    if (running) await eventually(() => virtualNs(page), (ns) => ns > 0, 'the page shows virtual time');
     return page;
   }
   return { url, kLaunch, launch: () => chromium.launch(kLaunch), sleep, virtualNs, api, shot, eventually, openHmi };

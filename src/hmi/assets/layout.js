@@ -148,9 +148,11 @@ export class Layout {
     }));
     const kinds = geo.kinds ?? ['parts'];
     const bin = (name, x) => {
+      // The count inside the bin (a belt's bins stand close together), its name as the tooltip.
       const b = el(g, 'g', { class: 'bin', 'data-bin': name });
+      el(b, 'title', {}, name);
       el(b, 'rect', { x: x - 60, y: y - 200, width: 120, height: 100 });
-      const count = el(b, 'text', { class: 'bin-count', x: x - 50, y: y - 220 }, '');
+      const count = el(b, 'text', { class: 'bin-count', x: x - 45, y: y - 130 }, '');
       return { name, count, tags: kinds.map(k => portTag(d, `${name}_${k}`)) };
     };
     const bins = (geo.pushers ?? []).map(s => bin(s.name, at(s.position)));
@@ -164,7 +166,7 @@ export class Layout {
       for (const s of sensors) s.shape.classList.toggle('on', !!values[s.tag]);
       for (const b of bins) {
         const total = b.tags.reduce((sum, tag) => sum + (values[tag] ?? 0), 0);
-        b.count.textContent = `${b.name}: ${total}`;
+        b.count.textContent = total;
         b.count.dataset.count = total;
       }
       const onBelt = belts?.get(index) ?? [];

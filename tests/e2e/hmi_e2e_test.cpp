@@ -121,6 +121,28 @@ TEST(Hmi, AResetAfterTheEndOfARunStartsItAgain) {
   EXPECT_NE(run.errorOutput().find("hmi: reset: the run starts again"), std::string::npos) << run.errorOutput();
 }
 
+// With --history, each reset ends the recorded run and starts a new one (no browser needed: the
+// reset is POSTed by node).
+TEST(Hmi, EveryResetStartsANewRecordedRun) {
+  const std::string db = (fs::temp_directory_path() / ("virtcom-hmi-reset-" + std::to_string(::getpid()) + ".sqlite")).string();
+  fs::remove(db);
+  ServerProcess cell(kExe, {"serve", kGearbox + "/cell.yaml", "--http", "127.0.0.1:0", "--quiet", "--history", db}, kGearbox, kAnnounce);
+  ASSERT_GT(cell.port(), 0) << cell.errorOutput();
+  const std::string reset = "node -e \"fetch('http://127.0.0.1:" + std::to_string(cell.port()) +
+                            "/api/control', {method: 'POST', body: JSON.stringify({action: 'reset'})})"
+                            ".then((r) => process.exit(r.status === 200 ? 0 : 1))\"";
+  std::string out;
+  ASSERT_EQ(shell(reset, out), 0) << out;
+  ASSERT_TRUE(cell.waitFor("hmi: reset: the run starts again")) << cell.errorOutput();
+  EXPECT_EQ(cell.stop(), 0) << cell.errorOutput();
+  EXPECT_NE(cell.errorOutput().find("history: run 1 recorded"), std::string::npos) << cell.errorOutput();
+  EXPECT_NE(cell.errorOutput().find("history: run 2 recorded"), std::string::npos) << cell.errorOutput();
+  out.clear();
+  ASSERT_EQ(shell(kExe + " history '" + db + "'", out), 0) << out;
+  EXPECT_NE(out.find("\n2 "), std::string::npos) << "two runs listed: " << out;
+  fs::remove(db);
+}
+
 TEST(Hmi, BindingBeyondLoopbackNeedsAnAllowList) {
   std::string out;
   EXPECT_EQ(shell(kExe + " serve '" + kGearbox + "/cell.yaml' --http 0.0.0.0:0 --quiet", out), 64) << out;

@@ -172,11 +172,14 @@ ExitCode monitorCell(const MonitorOptions& o) {
   AlertPrinter alerts(model && model->trace.cyclesCompleted > 0 ? model->trace.cycleEndNs - model->trace.cycleStartNs : 0);
   options.traceSinks.push_back(&alerts);
   std::optional<LiveHmi> hmi;
-  if (hmiBinding) hmi.emplace(*cell, &gMonitorStop, o.hmi.paused, options);
+  if (hmiBinding) {
+    hmi.emplace(*cell, &gMonitorStop, o.hmi.paused, options);
+    hmi->refuseReset("reset is off in monitor: the plant is real and keeps its own state");
+  }
   if (model) options.watch.model = &model->trace;
   sim::Simulation simulation(*cell, options);
   if (hmi) {
-    if (auto served = hmi->serve(*hmiBinding, simulation); !served) {
+    if (auto served = hmi->serve(*hmiBinding, simulation, sources); !served) {
       std::cerr << "error: --http: " << served.error() << "\n";
       return ExitCode::Usage;
     }

@@ -143,10 +143,42 @@ std::unique_ptr<proto::modbus::ClientBridge> startClientBridge(const cell::Modbu
 }
 
 
-// After a run watched in the HMI: the page keeps showing its end until the user stops the command.
-void lingerForViewers() {
-  std::cerr << "hmi: the run has ended; the page stays up until Ctrl-C\n";
-  while (!gStop.load()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+// After a run watched in the HMI: the page keeps showing its end until the user stops the
+// command (false) or resets the run from the page (true).
+bool lingerForViewers(LiveHmi& hmi) {
+  std::cerr << "hmi: the run has ended; the page stays up until Ctrl-C (or Reset on the page)\n";
+  while (!gStop.load()) {
+    if (hmi.takeReset()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return false;
+}
+
+// Why the HMI's reset is refused for this run (null: it is allowed). An external PLC keeps its
+// own state, which a reset of the cell cannot bring back; a streamed file holds a single run.
+const char* resetRefusal(const cell::Cell& cell, bool streamedFiles) {
+  if (cell.plcModbus || cell.plcAds)
+    return "reset is off when an external PLC ('plc: modbus' or 'plc: ads') is the controller: it keeps its own state; restart the command";
+  if (streamedFiles) return "reset is off with --vcd or --csv: the file holds one run; restart the command";
+  return nullptr;
+}
+
+// The run's summary and report files, after it ended. False if a file could not be written.
+bool writeRunOutputs(const RunOptions& o, const cell::Cell& cell, const std::vector<std::string>& timeline,
+                     std::vector<std::unique_ptr<StreamedFile>>& files) {
+  const Trace& trace = cell.trace;
+  report::Kpis kpis = report::computeKpis(trace);
+  // --quiet drops the table, never the reason a run failed.
+  if (o.quiet) std::cerr << report::runOutcome(trace, kpis);
+  else std::cout << report::summaryTable(trace, kpis);
+  report::HtmlOptions html;
+  html.title = cell.name;
+  // Without --signal the timeline shows what the cell file asked to record.
+  html.signals = timeline;
+  bool ok = closeStreamedFiles(files);
+  if (!o.html.empty()) ok = writeFile(o.html, report::htmlReport(trace, kpis, html)) && ok;
+  if (!o.json.empty()) ok = writeFile(o.json, report::jsonReport(trace, kpis)) && ok;
+  return ok;
 }
 
 ExitCode runCell(const RunOptions& o) {
@@ -249,35 +281,53 @@ ExitCode runCell(const RunOptions& o) {
   ChangePrinter printer;
   if (o.step) options.traceSinks.push_back(&printer);
   std::optional<LiveHmi> hmi;
-  if (hmiBinding) hmi.emplace(*cell, &gStop, o.hmi.paused, options);  // paced: speed 1 unless --speed
-  sim::Simulation simulation(*cell, options);
+  if (hmiBinding) {
+    hmi.emplace(*cell, &gStop, o.hmi.paused, options);  // paced: speed 1 unless --speed
+    if (const char* why = resetRefusal(*cell, !files.empty())) hmi->refuseReset(why);
+  }
   std::signal(SIGINT, onRunSignal);
   std::signal(SIGTERM, onRunSignal);
-  if (hmi) {
-    if (auto served = hmi->serve(*hmiBinding, simulation); !served) {
-      std::cerr << "error: --hmi: " << served.error() << "\n";
-      return ExitCode::Usage;
+  RunEnd end = RunEnd::Completed;
+  bool ok = true, historyOk = true;
+  // One run, or with the HMI one per reset: a reset (during the run, or after its end while the
+  // page stays up) starts again from the cell file's initial state, as a new run.
+  for (bool first = true;; first = false) {
+    {
+      sim::Simulation simulation(*cell, options);
+      if (hmi && first) {
+        if (auto served = hmi->serve(*hmiBinding, simulation, sources); !served) {
+          std::cerr << "error: --hmi: " << served.error() << "\n";
+          return ExitCode::Usage;
+        }
+      }
+      end = o.step ? stepInteractively(simulation, simulation.trace()) : simulation.run();
     }
+    bool reset = hmi && hmi->resetRequested();
+    if (!reset) {
+      ok = writeRunOutputs(o, *cell, timeline, files);
+      if (hmi) reset = lingerForViewers(*hmi);
+    }
+    if (!reset) break;
+    std::unique_ptr<cell::Cell> fresh;
+    while (true) {
+      auto reloaded = reloadForReset(*cell, sources);
+      if (reloaded) {
+        fresh = std::move(*reloaded);
+        break;
+      }
+      std::cerr << "error: hmi: reset: " << reloaded.error() << "\n";
+      if (!lingerForViewers(*hmi)) break;  // a later reset tries again (the files may be back as they were)
+    }
+    if (!fresh) break;
+    historyOk = recordNextRun(o.history, *recorder, *fresh, o.cellFile, timeline, true, options.traceSinks) && historyOk;
+    hmi->restart(*fresh);
+    cell = std::move(fresh);
+    std::cerr << "hmi: reset: the run starts again\n";
   }
-  RunEnd end = o.step ? stepInteractively(simulation, simulation.trace()) : simulation.run();
-  const Trace& trace = simulation.trace();
-  report::Kpis kpis = report::computeKpis(trace);
-  // --quiet drops the table, never the reason a run failed.
-  if (o.quiet) std::cerr << report::runOutcome(trace, kpis);
-  else std::cout << report::summaryTable(trace, kpis);
-  report::HtmlOptions html;
-  html.title = cell->name;
-  // Without --signal the timeline shows what the cell file asked to record.
-  html.signals = timeline;
-  bool ok = closeStreamedFiles(files);
-  if (!o.html.empty()) ok = writeFile(o.html, report::htmlReport(trace, kpis, html)) && ok;
-  if (!o.json.empty()) ok = writeFile(o.json, report::jsonReport(trace, kpis)) && ok;
-  if (hmi) {
-    lingerForViewers();
-    hmi->stop();
-  }
+  if (hmi) hmi->stop();
   if (!ok) return ExitCode::Usage;
   if (*recorder && !reportRecording(o.history, **recorder)) return ExitCode::HistoryError;
+  if (!historyOk) return ExitCode::HistoryError;
   return exitCodeFor(end);
 }
 

@@ -162,26 +162,48 @@ ExitCode serveCell(const ServeOptions& o) {
     options.afterScan = [&](plc::Runtime& plc) { ads->afterScan(plc); };
   }
   std::optional<LiveHmi> hmi;
-  if (hmiBinding) hmi.emplace(*cell, &gServeStop, o.hmi.paused, options);
-  if (*recorder) options.traceSinks.push_back(recorder->get());
-  sim::Simulation simulation(*cell, options);
-  if (hmi) {
-    if (auto served = hmi->serve(*hmiBinding, simulation); !served) {
-      std::cerr << "error: --http: " << served.error() << "\n";
-      return ExitCode::Usage;
-    }
+  if (hmiBinding) {
+    hmi.emplace(*cell, &gServeStop, o.hmi.paused, options);
+    if (!o.modbus.empty() || ads)
+      hmi->refuseReset("reset is off while --modbus or --ads serve the run: their clients hold the state of the run; restart serve");
   }
-  RunEnd end = simulation.run();
+  if (*recorder) options.traceSinks.push_back(recorder->get());
+  RunEnd end = RunEnd::Completed;
+  bool historyOk = true;
+  // One run, or one per reset from the HMI (docs/hmi.md): the cell starts again from its file.
+  for (bool first = true;; first = false) {
+    {
+      sim::Simulation simulation(*cell, options);
+      if (hmi && first) {
+        if (auto served = hmi->serve(*hmiBinding, simulation, sources); !served) {
+          std::cerr << "error: --http: " << served.error() << "\n";
+          return ExitCode::Usage;
+        }
+      }
+      end = simulation.run();
+    }
+    if (!hmi || !hmi->resetRequested()) break;
+    auto fresh = reloadForReset(*cell, sources);
+    if (!fresh) {
+      std::cerr << "error: hmi: reset: " << fresh.error() << "\n";
+      break;
+    }
+    historyOk = recordNextRun(o.history, *recorder, **fresh, o.cellFile, cell->run.recordVars, true, options.traceSinks) && historyOk;
+    hmi->restart(**fresh);
+    cell = std::move(*fresh);
+    std::cerr << "hmi: reset: the run starts again\n";
+  }
   bridges->clear();  // stops the servers before the report
   if (ads) ads->stop();
   if (hmi) hmi->stop();
-  const Trace& trace = simulation.trace();
+  const Trace& trace = cell->trace;
   const report::Kpis kpis = report::computeKpis(trace);
   // --quiet drops the table, never the reason a run failed.
   if (o.quiet) std::cerr << report::runOutcome(trace, kpis);
   else std::cout << report::summaryTable(trace, kpis);
   if (!o.json.empty() && !writeFile(o.json, report::jsonReport(trace, kpis))) return ExitCode::Usage;
   if (*recorder && !reportRecording(o.history, **recorder)) return ExitCode::HistoryError;
+  if (!historyOk) return ExitCode::HistoryError;
   if (end == RunEnd::PlcFault) {
     std::cerr << "runtime fault: " << trace.endMessage << "\n";
     return ExitCode::PlcFault;

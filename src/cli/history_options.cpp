@@ -50,4 +50,20 @@ bool reportRecording(const HistoryRecordOptions& o, const history::Recorder& rec
   return true;
 }
 
+bool recordNextRun(const HistoryRecordOptions& o, std::unique_ptr<history::Recorder>& recorder, const cell::Cell& cell,
+                   const std::string& cellFile, std::vector<std::string> timeline, bool paced, std::vector<TraceSink*>& sinks) {
+  if (!recorder) return true;
+  std::erase(sinks, recorder.get());
+  bool ok = reportRecording(o, *recorder);
+  recorder.reset();
+  auto next = openRecorder(o, cell, cellFile, std::move(timeline), paced);
+  if (!next) {
+    std::cerr << "error: " << next.error() << "\n";
+    return false;
+  }
+  recorder = std::move(*next);
+  sinks.push_back(recorder.get());
+  return ok;
+}
+
 }  // namespace virtcom::cli

@@ -36,4 +36,11 @@ std::expected<std::unique_ptr<history::Recorder>, std::string> openRecorder(cons
 // or a database failure. False if the recording failed.
 bool reportRecording(const HistoryRecordOptions& o, const history::Recorder& recorder);
 
+// A reset from the HMI starts a new run: the one that ended is reported (reportRecording) and
+// a new recorder over the fresh `cell` takes `recorder`'s place among `sinks` (nothing without
+// --history). False (after a message) if the run's recording failed or the file cannot be
+// opened again; the runs then go on unrecorded.
+bool recordNextRun(const HistoryRecordOptions& o, std::unique_ptr<history::Recorder>& recorder, const cell::Cell& cell,
+                   const std::string& cellFile, std::vector<std::string> timeline, bool paced, std::vector<TraceSink*>& sinks);
+
 }  // namespace virtcom::cli

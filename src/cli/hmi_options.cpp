@@ -3,6 +3,9 @@
 #include <iostream>
 #include <random>
 
+#include "cli/common.hpp"
+#include "cli/rule_trace.hpp"
+
 namespace virtcom::cli {
 
 namespace {
@@ -68,7 +71,7 @@ std::expected<HmiBinding, std::string> checkHmiOptions(const HmiServeOptions& o,
 }
 
 LiveHmi::LiveHmi(cell::Cell& cell, const std::atomic<bool>* interrupt, bool paused, sim::SimOptions& options)
-    : cell_(cell), live_(cell, interrupt, paused) {
+    : cell_(&cell), live_(cell, interrupt, paused) {
   options.traceSinks.push_back(&live_);
   options.control = &live_;
   if (cell.module) {
@@ -77,9 +80,21 @@ LiveHmi::LiveHmi(cell::Cell& cell, const std::atomic<bool>* interrupt, bool paus
   }
 }
 
-std::expected<void, std::string> LiveHmi::serve(const HmiBinding& binding, sim::Simulation& simulation) {
-  int64_t baseTickNs = simulation.hasPlc() ? simulation.plc().baseTickNs() : cell_.run.plcCycleNs;
-  api_ = std::make_unique<hmi::Api>(cell_, live_, baseTickNs, binding.access);
+std::expected<void, std::string> LiveHmi::serve(const HmiBinding& binding, sim::Simulation& simulation, const SourceManager& sources) {
+  int64_t baseTickNs = simulation.hasPlc() ? simulation.plc().baseTickNs() : cell_->run.plcCycleNs;
+  std::vector<hmi::RuleInfo> rules;
+  if (cell_->module) {
+    std::vector<std::string> files;
+    for (uint32_t file = 0; file < sources.fileCount(); ++file) files.push_back(sources.path(file));
+    std::vector<hmi::RuleFlag> flags;
+    for (WatchedRule& w : findWatchedRules(files, *cell_->module).value_or(std::vector<WatchedRule>{})) {
+      rules.push_back({std::move(w.rule.diagram), std::move(w.rule.index), std::move(w.rule.luType), std::move(w.rule.then)});
+      flags.push_back({w.flag.address, w.flag.bit});
+    }
+    live_.watchRules(std::move(flags));
+  }
+  api_ = std::make_unique<hmi::Api>(*cell_, live_, baseTickNs, binding.access, std::move(rules));
+  if (!resetRefusal_.empty()) api_->refuseReset(resetRefusal_);
   auto server = hmi::HttpServer::start(*api_, binding.at, binding.allowedPeers);
   if (!server) return std::unexpected(server.error());
   server_ = std::move(*server);
@@ -92,6 +107,47 @@ std::expected<void, std::string> LiveHmi::serve(const HmiBinding& binding, sim::
 
 void LiveHmi::stop() {
   if (server_) server_->stop();
+}
+
+namespace {
+
+// Whether two compilations of the PLC files gave the same program: its code, memory image and
+// variables (names, types, addresses).
+bool sameProgram(const bc::Module& a, const bc::Module& b) {
+  if (a.staticSize != b.staticSize || a.code.size() != b.code.size() || a.initialImage != b.initialImage ||
+      a.constants != b.constants || a.symbols.size() != b.symbols.size())
+    return false;
+  for (size_t i = 0; i < a.symbols.size(); ++i)
+    if (a.symbols[i].name != b.symbols[i].name || a.symbols[i].address != b.symbols[i].address || a.symbols[i].type != b.symbols[i].type)
+      return false;
+  return true;
+}
+
+// The fresh cell's devices and signals are the running one's. The running cell's bus may have
+// more signals: the simulation adds the recorded PLC variables, and will add them to the fresh
+// one in the same order.
+bool sameDevices(const cell::Cell& fresh, const cell::Cell& running) {
+  if (fresh.devices.size() != running.devices.size() || fresh.bus.size() > running.bus.size()) return false;
+  for (size_t i = 0; i < fresh.devices.size(); ++i)
+    if (fresh.devices[i]->name() != running.devices[i]->name() || fresh.devices[i]->type() != running.devices[i]->type()) return false;
+  for (TagId id = 0; id < fresh.bus.size(); ++id)
+    if (fresh.bus.name(id) != running.bus.name(id) || fresh.bus.type(id) != running.bus.type(id)) return false;
+  return true;
+}
+
+}  // namespace
+
+std::expected<std::unique_ptr<cell::Cell>, std::string> reloadForReset(cell::Cell& running, SourceManager& sources) {
+  const std::string path = running.file.string();
+  auto fresh = loadCellFile(path, sources);
+  if (!fresh) return std::unexpected(path + " no longer loads (see above): restart the command");
+  const bool samePlc = (fresh->module == nullptr) == (running.module == nullptr) &&
+                       (!fresh->module || sameProgram(*fresh->module, *running.module));
+  if (!samePlc || !sameDevices(*fresh, running))
+    return std::unexpected(path + " or its PLC files changed since the start: the HMI shows the cell it started with; restart the command");
+  fresh->module = std::move(running.module);
+  fresh->run = running.run;
+  return fresh;
 }
 
 }  // namespace virtcom::cli

@@ -42,21 +42,45 @@ struct HmiBinding {
 // required, and writing needs a token (generated when --hmi-token is not given).
 std::expected<HmiBinding, std::string> checkHmiOptions(const HmiServeOptions& o, const std::string& listenFlag);
 
-// The HMI of one run: construct before the simulation (it hooks into the options), serve() once
-// the simulation is constructed, stop() when done.
+// The HMI of a command's runs: construct before the simulation (it hooks into the options),
+// serve() once the first simulation is constructed, stop() when done. A reset from the page
+// ends the run (resetRequested()); the command then builds the fresh cell (reloadForReset), a
+// new simulation over it, restart()s the HMI with it and runs again.
 class LiveHmi {
  public:
   LiveHmi(cell::Cell& cell, const std::atomic<bool>* interrupt, bool paused, sim::SimOptions& options);
-  // Starts the server and prints "hmi: serving http://HOST:PORT/ ..." on stderr. Error text if
-  // the address cannot be bound.
-  std::expected<void, std::string> serve(const HmiBinding& binding, sim::Simulation& simulation);
+  // Before serve(): reset answers 409 with `why` (what holds the run's state: an attached
+  // protocol server, a file written as the run goes).
+  void refuseReset(std::string why) { resetRefusal_ = std::move(why); }
+  // Starts the server and prints "hmi: serving http://HOST:PORT/ ..." on stderr. The rule panel
+  // lists the rules of the activity diagrams among `sources` (the cell's PLC files). Error text
+  // if the address cannot be bound.
+  std::expected<void, std::string> serve(const HmiBinding& binding, sim::Simulation& simulation, const SourceManager& sources);
   void stop();
 
+  // The run just ended on a reset from the page.
+  bool resetRequested() const { return live_.resetting(); }
+  // After a run that ended by itself: true (once) when the page asks for a reset.
+  bool takeReset() { return live_.takeReset(); }
+  // The page shows the run of `cell` (from reloadForReset) from now on.
+  void restart(cell::Cell& cell) {
+    cell_ = &cell;
+    live_.restart(cell);
+  }
+
  private:
-  cell::Cell& cell_;
+  cell::Cell* cell_;
+  std::string resetRefusal_;
   hmi::LiveState live_;
   std::unique_ptr<hmi::Api> api_;
   std::unique_ptr<hmi::HttpServer> server_;
 };
+
+// A reset's fresh cell: `running`'s file loaded again (new devices, world and trace in their
+// initial state), which must still be the same cell (the same PLC program and memory layout,
+// devices and signals: the HMI's model and variable catalog stay true). It takes over
+// `running`'s PLC module object (the HMI, presets and compiled code point at it) and run
+// settings (the command's adjustments). Error text if the files changed or no longer load.
+std::expected<std::unique_ptr<cell::Cell>, std::string> reloadForReset(cell::Cell& running, SourceManager& sources);
 
 }  // namespace virtcom::cli

@@ -1,21 +1,25 @@
 #include "cli/rule_trace.hpp"
 
+#include <algorithm>
 #include <iostream>
 
 #include "cli/common.hpp"
 #include "core/diagnostics.hpp"
 #include "lang/ad/lower.hpp"
 #include "lang/ad/reader.hpp"
-#include "lang/ad/rule_trace.hpp"
 
 namespace virtcom::cli {
 
-std::optional<RuleTracer> RuleTracer::load(const std::vector<std::string>& files, const bc::Module& module) {
-  RuleTracer tracer;
-  bool anyDiagram = false;
+namespace {
+
+bool isDiagramFile(const std::string& path) { return ad::isDiagramPath(path) || ad::isXmlDiagramPath(path); }
+
+}  // namespace
+
+std::optional<std::vector<WatchedRule>> findWatchedRules(const std::vector<std::string>& files, const bc::Module& module) {
+  std::vector<WatchedRule> found;
   for (const std::string& path : files) {
-    if (!ad::isDiagramPath(path) && !ad::isXmlDiagramPath(path)) continue;
-    anyDiagram = true;
+    if (!isDiagramFile(path)) continue;
     auto text = readSources({path});
     if (!text) return std::nullopt;
     Diagnostics diags;  // the file compiled, so it reads cleanly
@@ -25,12 +29,23 @@ std::optional<RuleTracer> RuleTracer::load(const std::vector<std::string>& files
       std::string flag = program.name + "." + std::string(ad::kFiredVariable) + "[" + std::to_string(k + 1) + "]";
       auto ref = bc::resolveVariable(module, flag);
       if (!ref) continue;  // a PROGRAM never instantiated (a configuration that runs others)
-      tracer.rules_.push_back({rules[k].diagram + " rule " + rules[k].index + " fired: " + rules[k].then, *ref});
+      found.push_back({std::move(rules[k]), *ref});
     }
   }
-  if (anyDiagram) return tracer;
-  std::cerr << "error: --trace-rules: no activity-diagram file (.ad, .adxml) among the PLC sources\n";
-  return std::nullopt;
+  return found;
+}
+
+std::optional<RuleTracer> RuleTracer::load(const std::vector<std::string>& files, const bc::Module& module) {
+  if (!std::ranges::any_of(files, isDiagramFile)) {
+    std::cerr << "error: --trace-rules: no activity-diagram file (.ad, .adxml) among the PLC sources\n";
+    return std::nullopt;
+  }
+  auto rules = findWatchedRules(files, module);
+  if (!rules) return std::nullopt;
+  RuleTracer tracer;
+  for (const WatchedRule& w : *rules)
+    tracer.rules_.push_back({w.rule.diagram + " rule " + w.rule.index + " fired: " + w.rule.then, w.flag});
+  return tracer;
 }
 
 void RuleTracer::print(uint64_t scan, const uint8_t* memory, std::ostream& out) const {

@@ -26,9 +26,18 @@ bool isForced(const Snapshot& s, const std::string& name) {
 
 }  // namespace
 
-Api::Api(const cell::Cell& cell, LiveState& live, int64_t baseTickNs, WriteAccess access)
-    : cell_(cell), live_(live), access_(std::move(access)), model_(cellModel(cell, baseTickNs)), catalog_(cell.module.get()) {
+Api::Api(const cell::Cell& cell, LiveState& live, int64_t baseTickNs, WriteAccess access, std::vector<RuleInfo> rules)
+    : live_(live), access_(std::move(access)), model_(cellModel(cell, baseTickNs)), catalog_(cell.module.get()) {
+  for (const auto& d : cell.devices) deviceNames_.push_back(d->name());
   for (TagId id = 0; id < cell.bus.size(); ++id) tagTypes_.push_back(cell.bus.type(id));
+  if (cell.module) steps_ = sfc::findSteps(*cell.module);
+  Json steps = Json::array();
+  for (const sfc::StepVariable& step : steps_) steps.push_back(step.path);
+  model_["sfcSteps"] = std::move(steps);
+  Json ruleList = Json::array();
+  for (const RuleInfo& r : rules)
+    ruleList.push_back({{"diagram", r.diagram}, {"index", r.index}, {"luType", r.luType}, {"then", r.then}});
+  model_["rules"] = std::move(ruleList);
   model_["readOnly"] = access_.readOnly;
   model_["tokenRequired"] = !access_.readOnly && !access_.token.empty();
 }
@@ -55,7 +64,7 @@ Response Api::handle(const ParsedRequest& r) {
 }
 
 std::unique_ptr<StreamSession> Api::openStream(const ParsedRequest& request) const {
-  return std::make_unique<StreamSession>(live_, catalog_, tagTypes_, request.watch);
+  return std::make_unique<StreamSession>(live_, catalog_, tagTypes_, steps_, request.watch);
 }
 
 Response Api::asset(const std::string& path) const {
@@ -97,7 +106,10 @@ Response Api::control(const ParsedRequest& r) {
     case Action::Run: c.kind = Command::Kind::Run; break;
     case Action::Step: c.kind = Command::Kind::Step; break;
     case Action::Speed: c.kind = Command::Kind::Speed; break;
-    case Action::Reset: return errorResponse(501, "reset is not available yet: restart the command");
+    case Action::Reset:
+      if (!resetRefusal_.empty()) return errorResponse(409, resetRefusal_);
+      c.kind = Command::Kind::Reset;
+      break;
   }
   c.value = r.value;
   live_.post(std::move(c));
@@ -131,8 +143,8 @@ Response Api::write(const ParsedRequest& r) {
 }
 
 Response Api::fault(const ParsedRequest& r) {
-  for (uint32_t i = 0; i < cell_.devices.size(); ++i) {
-    if (!iequalsAscii(cell_.devices[i]->name(), r.name)) continue;
+  for (uint32_t i = 0; i < deviceNames_.size(); ++i) {
+    if (!iequalsAscii(deviceNames_[i], r.name)) continue;
     Command c;
     c.kind = Command::Kind::Fault;
     c.device = i;

@@ -11,13 +11,25 @@
 #include "hmi/request.hpp"
 #include "hmi/stream_session.hpp"
 #include "hmi/variable_catalog.hpp"
+#include "lang/sfc/step_monitor.hpp"
 
 namespace virtcom::hmi {
 
+// An activity-diagram rule as the rule panel lists it (the CLI finds them with their fired
+// flags, which it gives LiveState::watchRules in the same order).
+struct RuleInfo {
+  std::string diagram, index, luType, then;
+};
+
 class Api {
  public:
-  // `cell` and `live` must outlive the Api; the devices must be prepared (see cellModel()).
-  Api(const cell::Cell& cell, LiveState& live, int64_t baseTickNs, WriteAccess access);
+  // `live` and the cell's PLC module must outlive the Api (a reset keeps the module object:
+  // LiveState::restart); the devices must be prepared (see cellModel()).
+  Api(const cell::Cell& cell, LiveState& live, int64_t baseTickNs, WriteAccess access, std::vector<RuleInfo> rules = {});
+
+  // Before serving: reset answers 409 with `why` (e.g. an attached protocol server holds the
+  // PLC image); without it, reset is posted to the live state.
+  void refuseReset(std::string why) { resetRefusal_ = std::move(why); }
 
   const WriteAccess& access() const { return access_; }
   // Any route but Route::Stream. Thread-safe (HTTP threads call it at once).
@@ -33,12 +45,14 @@ class Api {
   Response write(const ParsedRequest& r);
   Response fault(const ParsedRequest& r);
 
-  const cell::Cell& cell_;
+  std::vector<std::string> deviceNames_;
   LiveState& live_;
   WriteAccess access_;
   nlohmann::json model_;
   VariableCatalog catalog_;
   std::vector<ElemType> tagTypes_;
+  std::vector<sfc::StepVariable> steps_;  // the SFC panel's steps, in declaration order
+  std::string resetRefusal_;
 };
 
 }  // namespace virtcom::hmi

@@ -37,7 +37,17 @@ Json geometry(const plant::Device& d, const cell::Cell& cell) {
     const auto& p = conveyor->params();
     Json sensors = Json::array();
     for (const auto& s : p.sensors) sensors.push_back({{"name", s.name}, {"position", static_cast<double>(s.positionNm) * 1e-6}});
-    return {{"length", static_cast<double>(p.lengthNm) * 1e-6}, {"sensors", sensors}};
+    // The bins (pushers in order, then the belt end with discharge) count their parts on the
+    // ports `<bin>_<kind>`; the page reads those signals.
+    Json pushers = Json::array();
+    for (const auto& s : p.pushers) pushers.push_back({{"name", s.name}, {"position", static_cast<double>(s.positionNm) * 1e-6}});
+    Json kinds = p.kinds.empty() ? Json::array({"parts"}) : Json(p.kinds);
+    return {{"length", static_cast<double>(p.lengthNm) * 1e-6},
+            {"partLength", static_cast<double>(p.partLengthNm) * 1e-6},
+            {"sensors", sensors},
+            {"pushers", pushers},
+            {"kinds", kinds},
+            {"discharge", p.discharge}};
   }
   return Json::object();
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 
 #include "core/ascii.hpp"
@@ -17,16 +18,70 @@ constexpr auto kPausedPoll = std::chrono::milliseconds(20);
 }  // namespace
 
 LiveState::LiveState(cell::Cell& cell, const std::atomic<bool>* interrupt, bool startPaused)
-    : cell_(cell), interrupt_(interrupt), paused_(startPaused) {}
+    : cell_(&cell), interrupt_(interrupt), paused_(startPaused) {}
+
+void LiveState::watchRules(std::vector<RuleFlag> flags) {
+  ruleFlags_ = std::move(flags);
+  fires_.assign(ruleFlags_.size(), {});
+}
 
 void LiveState::begin(const Trace& trace) {
   trace_ = &trace;
+  conveyors_.clear();
+  for (const auto& d : cell_->devices)
+    if (const auto* conveyor = dynamic_cast<const plant::Conveyor*>(d.get())) conveyors_.push_back(conveyor);
   std::lock_guard lock(snapshotMutex_);
-  snapshot_.tags.assign(cell_.bus.size(), 0);
-  snapshot_.memory.assign(cell_.module ? cell_.module->staticSize : 0, 0);
-  snapshot_.injected.assign(cell_.devices.size(), 0);
+  snapshot_.tags.assign(cell_->bus.size(), 0);
+  snapshot_.memory.assign(cell_->module ? cell_->module->staticSize : 0, 0);
+  snapshot_.injected.assign(cell_->devices.size(), 0);
   snapshot_.activities.reserve(trace.activities.capacity());
-  open_.reserve(cell_.devices.size() * 2);
+  snapshot_.rules.assign(fires_.size(), {});
+  snapshot_.belts.resize(conveyors_.size());
+  for (size_t b = 0; b < conveyors_.size(); ++b)
+    snapshot_.belts[b].device = static_cast<uint32_t>(
+        std::ranges::find_if(cell_->devices, [&](const auto& d) { return d.get() == conveyors_[b]; }) - cell_->devices.begin());
+  open_.reserve(cell_->devices.size() * 2);
+}
+
+void LiveState::restart(cell::Cell& cell) {
+  cell_ = &cell;
+  trace_ = nullptr;
+  plc_ = nullptr;
+  resetting_ = false;
+  rebound_ = true;
+  stepsLeft_ = 0;
+  nowNs_ = 0;
+  open_.clear();
+  forced_.clear();  // the PLC starts from its initial values: nothing forced
+  fires_.assign(ruleFlags_.size(), {});
+  std::lock_guard lock(snapshotMutex_);
+  Snapshot& s = snapshot_;
+  ++s.run;
+  ++s.seq;
+  s.nowNs = 0;
+  s.ended = false;
+  s.endMessage.clear();
+  s.activities.clear();
+  s.faults.clear();
+  s.collisions.clear();
+  s.cyclesCompleted = 0;
+  s.lastCycleNs = 0;
+  s.cycleStartNs = 0;
+  s.energyJ = 0;
+  s.forced.clear();
+  for (BeltParts& b : s.belts) {
+    b.positionMm.clear();
+    b.kind.clear();
+  }
+}
+
+bool LiveState::takeReset() {
+  std::lock_guard lock(commandMutex_);
+  auto reset = std::ranges::find(commands_, Command::Kind::Reset, &Command::kind);
+  if (reset == commands_.end()) return false;
+  commands_.erase(commands_.begin(), reset + 1);
+  hasCommands_.store(!commands_.empty(), std::memory_order_release);
+  return true;
 }
 
 void LiveState::tick(const Trace& trace, int64_t nowNs) {
@@ -54,10 +109,12 @@ bool LiveState::publish(const Trace& trace, bool wait) {
   s.nowNs = nowNs_;
   s.paused = paused_ && stepsLeft_ == 0;
   s.speed = speed_;
-  for (TagId id = 0; id < s.tags.size(); ++id) s.tags[id] = cell_.bus.raw(id);
+  for (TagId id = 0; id < s.tags.size(); ++id) s.tags[id] = cell_->bus.raw(id);
   mirrorTrace(trace);
   if (plc_ && !s.memory.empty()) std::memcpy(s.memory.data(), plc_->machine().memory(), s.memory.size());
-  for (size_t d = 0; d < s.injected.size(); ++d) s.injected[d] = cell_.devices[d]->faults().errorCode;
+  for (size_t d = 0; d < s.injected.size(); ++d) s.injected[d] = cell_->devices[d]->faults().errorCode;
+  std::ranges::copy(fires_, s.rules.begin());
+  copyBelts();
   dirty_ = false;
   lastPublishWallNs_ = monotonicNowNs();
   return true;
@@ -93,13 +150,33 @@ void LiveState::mirrorTrace(const Trace& trace) {
   s.cycleStartNs = trace.cyclesCompleted ? trace.cycleEndNs : 0;
 }
 
+// The parts' positions in whole millimetres: vectors keep their largest size, so this allocates
+// only when a belt carries more parts than it ever did.
+void LiveState::copyBelts() {
+  for (size_t b = 0; b < conveyors_.size(); ++b) {
+    const plant::Conveyor& c = *conveyors_[b];
+    BeltParts& out = snapshot_.belts[b];
+    out.positionMm.resize(c.partCount());
+    out.kind.resize(c.partCount());
+    for (size_t i = 0; i < c.partCount(); ++i) {
+      out.positionMm[i] = static_cast<int32_t>(std::lround(c.partPositionM(i) * 1000));
+      out.kind[i] = c.partKind(i);
+    }
+  }
+}
+
 bool LiveState::beforeTick(sim::Simulation& sim) {
   if (!plc_ && sim.hasPlc()) plc_ = &sim.plc();
   if (speed_ == 0) speed_ = sim.speed();
+  if (rebound_) {
+    sim.setSpeed(speed_);  // the speed chosen before the reset
+    rebound_ = false;
+  }
   if (hasCommands_.load(std::memory_order_acquire)) applyCommands(sim);
+  if (resetting_) return false;
   if (paused_ && stepsLeft_ == 0) {
     dirty_ = true;
-    while (paused_ && stepsLeft_ == 0) {
+    while (paused_ && stepsLeft_ == 0 && !resetting_) {
       if (dirty_) publish(*trace_, false);
       if (interrupt_ && interrupt_->load()) return false;
       {
@@ -108,6 +185,7 @@ bool LiveState::beforeTick(sim::Simulation& sim) {
       }
       if (hasCommands_.load(std::memory_order_acquire)) applyCommands(sim);
     }
+    if (resetting_) return false;
     sim.resumePacing();  // the paused wall time does not count
   }
   if (stepsLeft_ > 0) --stepsLeft_;
@@ -159,11 +237,12 @@ void LiveState::apply(Command& c, sim::Simulation& sim) {
       break;
     case Command::Kind::Fault: {
       // Every command of the device fails with the code (errorAtCommand 0) until cleared with 0.
-      plant::FaultPlan& plan = cell_.devices[c.device]->faults();
+      plant::FaultPlan& plan = cell_->devices[c.device]->faults();
       plan.errorCode = c.code;
       plan.errorAtCommand = 0;
       break;
     }
+    case Command::Kind::Reset: resetting_ = true; break;  // the run ends before this tick
   }
   if (c.kind == Command::Kind::Write || c.kind == Command::Kind::Release) {
     std::lock_guard lock(snapshotMutex_);
@@ -180,6 +259,19 @@ void LiveState::applyForces(plc::Runtime& plc) {
     plc::syncInputImage(plc.module(), f.ref, memory, plc.inputImage());
   }
   if (touched) plc.inputsTouched();
+}
+
+void LiveState::countFirings(const plc::Runtime& plc) {
+  if (ruleFlags_.empty()) return;
+  const uint8_t* memory = plc.machine().memory();
+  const int64_t scanNs = static_cast<int64_t>(plc.ticks() - 1) * plc.baseTickNs();  // tick() has counted this scan
+  for (size_t r = 0; r < ruleFlags_.size(); ++r) {
+    const RuleFlag& f = ruleFlags_[r];
+    const bool fired = f.bit < 0 ? memory[f.address] != 0 : ((memory[f.address] >> f.bit) & 1) != 0;
+    if (!fired) continue;
+    ++fires_[r].count;
+    fires_[r].lastNs = scanNs;
+  }
 }
 
 bool LiveState::writeBytes(const Forced& f, uint8_t* memory) {

@@ -19,15 +19,37 @@
 
 #include "cell/cell.hpp"
 #include "core/trace.hpp"
+#include "plant/conveyor.hpp"
 #include "plc/runtime.hpp"
 #include "sim/run_control.hpp"
 
 namespace virtcom::hmi {
 
+// An activity-diagram rule's firings (the scans whose IF held) so far.
+struct RuleFires {
+  uint64_t count = 0;
+  int64_t lastNs = -1;          // virtual time of the last one, -1 = never
+};
+
+// The parts on one conveyor's belt, as the layout draws them.
+struct BeltParts {
+  uint32_t device = 0;          // index into Cell::devices
+  std::vector<int32_t> positionMm;  // each part's upstream edge along the belt
+  std::vector<uint8_t> kind;        // its kind (index into the conveyor's part kinds)
+};
+
+// Where an activity-diagram rule's fired flag is in the PLC memory (lang/ad/lower.hpp).
+struct RuleFlag {
+  uint32_t address = 0;
+  int8_t bit = -1;
+};
+
 // What the HMI shows, as of one published tick. Sizes are fixed at begin() except the lists
-// that grow with the run (activities, faults, collisions), which only append.
+// that grow with the run (activities, faults, collisions), which only append, and the parts on
+// the belts, which keep their largest size.
 struct Snapshot {
   uint64_t seq = 0;             // +1 per publication
+  uint32_t run = 0;             // +1 per reset: viewers drop what they show of the previous run
   int64_t nowNs = 0;            // virtual time of the last tick run
   bool paused = false;
   bool ended = false;
@@ -44,12 +66,14 @@ struct Snapshot {
   std::vector<uint8_t> memory;  // the soft PLC's variables (Module::staticSize bytes), empty without one
   std::vector<std::string> forced;  // names of the forced variables, in forcing order
   std::vector<int32_t> injected;    // per device: the injected error code, 0 = none
+  std::vector<RuleFires> rules;     // per watched rule (LiveState::watchRules), in its order
+  std::vector<BeltParts> belts;     // per conveyor, in device order
 };
 
 // A request from an HTTP thread, applied on the simulation's thread between two ticks. Values
 // are already parsed (the bytes of the variable's type), so applying one never parses text.
 struct Command {
-  enum class Kind : uint8_t { Pause, Run, Step, Speed, Write, Release, Fault };
+  enum class Kind : uint8_t { Pause, Run, Step, Speed, Write, Release, Fault, Reset };
   Kind kind = Kind::Pause;
   double value = 0;              // Speed: the factor; Step: the tick count
   bool force = false;            // Write: keep writing it before and after every scan
@@ -64,9 +88,22 @@ class LiveState final : public TraceSink, public sim::RunControl {
  public:
   static constexpr int64_t kPublishPeriodNs = 50'000'000;
 
-  // `cell` and `interrupt` (may be null) must outlive this. `startPaused`: the first tick waits
-  // for run or step.
+  // `cell` and `interrupt` (may be null) must outlive this (or the next restart()).
+  // `startPaused`: the first tick waits for run or step.
   LiveState(cell::Cell& cell, const std::atomic<bool>* interrupt, bool startPaused = false);
+
+  // Before the run: count the firings of these activity-diagram rules after every scan (their
+  // fired flags, addresses resolved once, so the scan looks nothing up).
+  void watchRules(std::vector<RuleFlag> flags);
+
+  // ---- the simulation's thread, between runs ----
+  // After a run that ended on a reset (resetting()): the fresh `cell` (the same cell file, the
+  // same PLC module object) is watched from now on; the snapshot starts over (time 0, no
+  // activities, faults, forces or firings) under a new `run` number, pause and speed are kept.
+  void restart(cell::Cell& cell);
+  // After the run ended by itself: true (once) if a reset was asked for since; the commands
+  // before it are dropped (there is no run to apply them to).
+  bool takeReset();
 
   // ---- the simulation's thread ----
   void begin(const Trace& trace) override;
@@ -74,9 +111,14 @@ class LiveState final : public TraceSink, public sim::RunControl {
   void tick(const Trace& trace, int64_t nowNs) override;
   void end(const Trace& trace) override;
   bool beforeTick(sim::Simulation& sim) override;
-  // Around every scan of the soft PLC (sim::SimOptions::beforeScan/afterScan): the forced values.
+  bool resetting() const override { return resetting_; }
+  // Around every scan of the soft PLC (sim::SimOptions::beforeScan/afterScan): the forced
+  // values; after it, the rules that fired.
   void beforeScan(plc::Runtime& plc) { applyForces(plc); }
-  void afterScan(plc::Runtime& plc) { applyForces(plc); }
+  void afterScan(plc::Runtime& plc) {
+    applyForces(plc);
+    countFirings(plc);
+  }
 
   // ---- any thread ----
   void post(Command command);
@@ -99,9 +141,11 @@ class LiveState final : public TraceSink, public sim::RunControl {
   void applyCommands(sim::Simulation& sim);
   void apply(Command& c, sim::Simulation& sim);
   void applyForces(plc::Runtime& plc);
+  void countFirings(const plc::Runtime& plc);
+  void copyBelts();
   static bool writeBytes(const Forced& f, uint8_t* memory);
 
-  cell::Cell& cell_;
+  cell::Cell* cell_;
   const std::atomic<bool>* interrupt_;
   const Trace* trace_ = nullptr;
   plc::Runtime* plc_ = nullptr;
@@ -116,6 +160,11 @@ class LiveState final : public TraceSink, public sim::RunControl {
   std::vector<Forced> forced_;
   std::vector<Command> applying_;
   std::vector<uint32_t> open_;   // indices of activities still running in the snapshot
+  bool resetting_ = false;       // a reset was applied: the run ends at this tick
+  bool rebound_ = false;         // restart() since the last tick: the new simulation takes speed_
+  std::vector<RuleFlag> ruleFlags_;
+  std::vector<RuleFires> fires_;  // parallel to ruleFlags_
+  std::vector<const plant::Conveyor*> conveyors_;  // parallel to snapshot_.belts
 
   // HTTP threads -> simulation thread
   std::mutex commandMutex_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
 
 #include <nlohmann/json.hpp>
 
@@ -28,8 +29,8 @@ Json activityJson(uint32_t index, const ActivityRecord& a) {
 }  // namespace
 
 StreamSession::StreamSession(const LiveState& live, const VariableCatalog& catalog, const std::vector<ElemType>& tagTypes,
-                             const std::vector<std::string>& watch)
-    : live_(live), catalog_(catalog), tagTypes_(tagTypes) {
+                             const std::vector<sfc::StepVariable>& steps, const std::vector<std::string>& watch)
+    : live_(live), catalog_(catalog), tagTypes_(tagTypes), steps_(steps) {
   for (const std::string& name : watch) {
     auto ref = catalog_.find(name);
     if (ref) watched_.push_back({name, *ref, {}, false, false});
@@ -43,6 +44,11 @@ std::string StreamSession::nextFrame() {
     if (s.seq == seq_ && !first_) return;
     seq_ = s.seq;
     frame = {{"t", s.nowNs}, {"paused", s.paused}, {"speed", s.speed}};
+    if (s.run != run_) {
+      run_ = s.run;
+      startOver();
+      frame["reset"] = s.run;
+    }
     if (first_ && !unknown_.empty()) frame["unknownWatch"] = unknown_;
     tags_.resize(s.tags.size());
     Json signals = Json::array();
@@ -98,6 +104,12 @@ std::string StreamSession::nextFrame() {
       w.sent = true;
     }
     if (!vars.empty()) frame["vars"] = std::move(vars);
+    if (!steps_.empty() && !s.memory.empty()) {
+      Json active = activeSteps(s);
+      if (first_ || active != stepsSent_) frame["steps"] = stepsSent_ = std::move(active);
+    }
+    if (Json rules = changedRules(s); !rules.empty()) frame["rules"] = std::move(rules);
+    if (Json belts = changedBelts(s); !belts.empty()) frame["belts"] = std::move(belts);
     if (s.ended && !ended_) {
       frame["ended"] = s.endMessage;
       ended_ = true;
@@ -105,6 +117,56 @@ std::string StreamSession::nextFrame() {
     first_ = false;
   });
   return frame.is_null() ? std::string() : frame.dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
+void StreamSession::startOver() {
+  first_ = true;
+  activities_ = faults_ = collisions_ = 0;
+  open_.clear();
+  ended_ = false;
+  rules_.clear();
+  belts_.clear();
+  for (Watched& w : watched_) w.sent = false;
+}
+
+// [step index, milliseconds in the step] of every active step (the X flags and T times in the
+// published memory image: the panel costs the scan nothing).
+Json StreamSession::activeSteps(const Snapshot& s) const {
+  Json active = Json::array();
+  for (size_t i = 0; i < steps_.size(); ++i) {
+    if (s.memory[steps_[i].activeAddress] == 0) continue;
+    int32_t ms = 0;
+    std::memcpy(&ms, s.memory.data() + steps_[i].timeAddress, sizeof ms);
+    active.push_back(Json::array({i, ms}));
+  }
+  return active;
+}
+
+// [rule index, fire count, last fired ns] of the rules that fired since the last frame.
+Json StreamSession::changedRules(const Snapshot& s) {
+  Json changed = Json::array();
+  rules_.resize(s.rules.size());
+  for (size_t i = 0; i < s.rules.size(); ++i) {
+    if (!first_ && s.rules[i].count == rules_[i].count) continue;
+    rules_[i] = s.rules[i];
+    changed.push_back(Json::array({i, s.rules[i].count, s.rules[i].lastNs}));
+  }
+  return changed;
+}
+
+// {device, parts: [[position mm, kind], ...]} of the belts whose parts moved.
+Json StreamSession::changedBelts(const Snapshot& s) {
+  Json changed = Json::array();
+  belts_.resize(s.belts.size());
+  for (size_t b = 0; b < s.belts.size(); ++b) {
+    const BeltParts& now = s.belts[b];
+    if (!first_ && now.positionMm == belts_[b].positionMm && now.kind == belts_[b].kind) continue;
+    belts_[b] = now;
+    Json parts = Json::array();
+    for (size_t i = 0; i < now.positionMm.size(); ++i) parts.push_back(Json::array({now.positionMm[i], now.kind[i]}));
+    changed.push_back({{"device", now.device}, {"parts", std::move(parts)}});
+  }
+  return changed;
 }
 
 }  // namespace virtcom::hmi

@@ -7,17 +7,21 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "hmi/live_state.hpp"
 #include "hmi/variable_catalog.hpp"
+#include "lang/sfc/step_monitor.hpp"
 
 namespace virtcom::hmi {
 
 class StreamSession {
  public:
-  // `live`, `catalog` and `tagTypes` (the type of each tag) must outlive the session.
-  // `watch`: PLC variables shown with their values; unknown names are listed in the first frame.
+  // `live`, `catalog`, `tagTypes` (the type of each tag) and `steps` (the SFC panel's) must
+  // outlive the session. `watch`: PLC variables shown with their values; unknown names are
+  // listed in the first frame.
   StreamSession(const LiveState& live, const VariableCatalog& catalog, const std::vector<ElemType>& tagTypes,
-                const std::vector<std::string>& watch);
+                const std::vector<sfc::StepVariable>& steps, const std::vector<std::string>& watch);
 
   // The next frame's JSON text, or "" when nothing was published since the last one.
   std::string nextFrame();
@@ -33,7 +37,14 @@ class StreamSession {
 
   const LiveState& live_;
   const VariableCatalog& catalog_;
+  // A reset started a new run: everything is sent again, as in a first frame.
+  void startOver();
+  nlohmann::json activeSteps(const Snapshot& s) const;
+  nlohmann::json changedRules(const Snapshot& s);
+  nlohmann::json changedBelts(const Snapshot& s);
+
   const std::vector<ElemType>& tagTypes_;
+  const std::vector<sfc::StepVariable>& steps_;
   std::vector<Watched> watched_;
   std::vector<std::string> unknown_;
   uint64_t seq_ = 0;
@@ -45,6 +56,10 @@ class StreamSession {
   std::vector<std::string> forced_;
   std::vector<int32_t> injected_;
   bool ended_ = false;
+  uint32_t run_ = 0;                    // Snapshot::run of the frames sent
+  nlohmann::json stepsSent_;            // the active steps sent last
+  std::vector<RuleFires> rules_;        // the firings sent last
+  std::vector<BeltParts> belts_;        // the parts sent last
 };
 
 }  // namespace virtcom::hmi

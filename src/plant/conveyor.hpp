@@ -69,6 +69,8 @@ class Conveyor final : public Device {
   size_t runPort() const { return runPort_; }
   uint32_t runningLabel() const { return runLabel_; }
   double partPositionM(size_t i) const { return static_cast<double>(parts_[i]) * 1e-9; }
+  // The kind of part i (index into params().kinds; 0 with no kinds).
+  uint8_t partKind(size_t i) const { return partKinds_[i]; }
 
  private:
   void advance(int64_t dtNs);

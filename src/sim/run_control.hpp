@@ -14,6 +14,9 @@ class RunControl {
   // PLC's memory). False ends the run now, as interrupted. Must not allocate while nothing is
   // asked of it.
   virtual bool beforeTick(Simulation& sim) = 0;
+  // Read when beforeTick() returned false: true if the run ends to be started again from its
+  // initial state (the HMI's reset), which the trace's end message then says ("reset").
+  virtual bool resetting() const { return false; }
 };
 
 }  // namespace virtcom::sim

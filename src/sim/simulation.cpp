@@ -203,7 +203,7 @@ bool Simulation::step() {
   if (ended_) return false;
   if (!started_) start();
   if (options_.control && !options_.control->beforeTick(*this)) {
-    finish(RunEnd::Interrupted, "interrupted");
+    finish(RunEnd::Interrupted, options_.control->resetting() ? "reset" : "interrupted");
     return false;
   }
   int64_t baseTickNs = runtime_ ? runtime_->baseTickNs() : cell_.run.plcCycleNs;

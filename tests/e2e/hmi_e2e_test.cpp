@@ -4,6 +4,9 @@
 //    browsers at once, one killed mid-run, pause and single step, a forced variable changes the
 //    PLC; screenshots in the test's output directory (artifacts);
 //  - `virtcom run cell.yaml --hmi`: the page follows a paced run to its end;
+//  - Reset (served, and after a run's end; refused with --modbus), the SFC step panel
+//    (cell-sfc.yaml), the fired-rule panel (activity/tank-cell.yaml) and parts on a conveyor
+//    (activity/conveyor-cell.yaml): tests/e2e/hmi/check_run_panels.js;
 //  - the start-up checks of the HMI options.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -11,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "server_process.hpp"
 #include "shell_command.hpp"
@@ -23,6 +27,7 @@ using virtcom::e2e::shell;
 
 const std::string kExe = VIRTCOM_EXE;
 const std::string kGearbox = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell";
+const std::string kActivity = std::string(VIRTCOM_SOURCE_DIR) + "/examples/activity";
 const std::string kClientDir = VIRTCOM_HMI_CLIENT_DIR;
 const std::string kAnnounce = "hmi: serving http://";
 constexpr const char* kChromium = "/usr/bin/chromium";
@@ -44,8 +49,20 @@ bool browserMissing() {
   return true;
 }
 
-int runCheck(const std::string& mode, int port, std::string& out) {
-  return shell("cd '" + kClientDir + "' && node check_hmi.js " + mode + " " + std::to_string(port) + " '" + artifactDir() + "'", out);
+int runCheck(const std::string& mode, int port, std::string& out, const std::string& script = "check_hmi.js") {
+  return shell("cd '" + kClientDir + "' && node " + script + " " + mode + " " + std::to_string(port) + " '" + artifactDir() + "'", out);
+}
+
+// `virtcom serve CELL --http 127.0.0.1:0 ARGS...` in `dir`, checked by check_run_panels.js MODE.
+void checkServedPanels(const std::string& dir, const std::string& cellFile, const std::string& mode, std::vector<std::string> extra = {}) {
+  std::vector<std::string> args = {"serve", dir + "/" + cellFile, "--http", "127.0.0.1:0", "--quiet"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  ServerProcess cell(kExe, args, dir, kAnnounce);
+  ASSERT_GT(cell.port(), 0) << cell.errorOutput();
+  std::string out;
+  EXPECT_EQ(runCheck(mode, cell.port(), out, "check_run_panels.js"), 0) << out << cell.errorOutput();
+  EXPECT_NE(out.find("hmi checks passed"), std::string::npos) << out;
+  EXPECT_EQ(cell.stop(), 0) << cell.errorOutput();
 }
 
 TEST(Hmi, TheServedGearboxCellIsWatchedAndSteeredFromTwoBrowsers) {
@@ -67,6 +84,63 @@ TEST(Hmi, APacedRunIsFollowedToItsEnd) {
   EXPECT_NE(out.find("hmi checks passed"), std::string::npos) << out;
   EXPECT_EQ(run.stop(), 0) << run.errorOutput();
   EXPECT_NE(run.errorOutput().find("the run has ended"), std::string::npos) << run.errorOutput();
+}
+
+TEST(Hmi, ResetStartsTheServedRunAgainAndThePageFollows) {
+  if (browserMissing()) GTEST_SKIP() << "no browser";
+  checkServedPanels(kGearbox, "cell.yaml", "reset", {"--speed", "4"});
+}
+
+TEST(Hmi, ResetIsRefusedWhileModbusServesTheRun) {
+  if (browserMissing()) GTEST_SKIP() << "no browser";
+  checkServedPanels(kGearbox, "cell.yaml", "refused", {"--modbus", "127.0.0.1:0"});
+}
+
+TEST(Hmi, TheSfcPanelFollowsTheActiveSteps) {
+  if (browserMissing()) GTEST_SKIP() << "no browser";
+  checkServedPanels(kGearbox, "cell-sfc.yaml", "sfc", {"--speed", "4"});
+}
+
+TEST(Hmi, TheRulePanelCountsTheTanksFiredRules) {
+  if (browserMissing()) GTEST_SKIP() << "no browser";
+  checkServedPanels(kActivity, "tank-cell.yaml", "rules", {"--speed", "4"});
+}
+
+TEST(Hmi, PartsAreDrawnOnTheConveyorAndBinsCountThem) {
+  if (browserMissing()) GTEST_SKIP() << "no browser";
+  checkServedPanels(kActivity, "conveyor-cell.yaml", "parts", {"--speed", "2", "--hmi-paused"});
+}
+
+TEST(Hmi, AResetAfterTheEndOfARunStartsItAgain) {
+  if (browserMissing()) GTEST_SKIP() << "no browser";
+  ServerProcess run(kExe, {"run", kGearbox + "/cell.yaml", "--hmi", "127.0.0.1:0", "--speed", "5", "--quiet"}, kGearbox, kAnnounce);
+  ASSERT_GT(run.port(), 0) << run.errorOutput();
+  std::string out;
+  EXPECT_EQ(runCheck("reset-ended", run.port(), out, "check_run_panels.js"), 0) << out << run.errorOutput();
+  EXPECT_EQ(run.stop(), 0) << run.errorOutput();
+  EXPECT_NE(run.errorOutput().find("hmi: reset: the run starts again"), std::string::npos) << run.errorOutput();
+}
+
+// With --history, each reset ends the recorded run and starts a new one (no browser needed: the
+// reset is POSTed by node).
+TEST(Hmi, EveryResetStartsANewRecordedRun) {
+  const std::string db = (fs::temp_directory_path() / ("virtcom-hmi-reset-" + std::to_string(::getpid()) + ".sqlite")).string();
+  fs::remove(db);
+  ServerProcess cell(kExe, {"serve", kGearbox + "/cell.yaml", "--http", "127.0.0.1:0", "--quiet", "--history", db}, kGearbox, kAnnounce);
+  ASSERT_GT(cell.port(), 0) << cell.errorOutput();
+  const std::string reset = "node -e \"fetch('http://127.0.0.1:" + std::to_string(cell.port()) +
+                            "/api/control', {method: 'POST', body: JSON.stringify({action: 'reset'})})"
+                            ".then((r) => process.exit(r.status === 200 ? 0 : 1))\"";
+  std::string out;
+  ASSERT_EQ(shell(reset, out), 0) << out;
+  ASSERT_TRUE(cell.waitFor("hmi: reset: the run starts again")) << cell.errorOutput();
+  EXPECT_EQ(cell.stop(), 0) << cell.errorOutput();
+  EXPECT_NE(cell.errorOutput().find("history: run 1 recorded"), std::string::npos) << cell.errorOutput();
+  EXPECT_NE(cell.errorOutput().find("history: run 2 recorded"), std::string::npos) << cell.errorOutput();
+  out.clear();
+  ASSERT_EQ(shell(kExe + " history '" + db + "'", out), 0) << out;
+  EXPECT_NE(out.find("\n2 "), std::string::npos) << "two runs listed: " << out;
+  fs::remove(db);
 }
 
 TEST(Hmi, BindingBeyondLoopbackNeedsAnAllowList) {

@@ -3,6 +3,7 @@
 import { Layout } from './layout.js';
 import { Gantt } from './gantt.js';
 import { Trend } from './trend.js';
+import { SfcPanel, RulePanel } from './panels.js';
 
 const $ = (id) => document.getElementById(id);
 const seconds = (ns) => `${(ns / 1e9).toFixed(3)} s`;
@@ -16,10 +17,11 @@ const state = {
   forced: [],
   watch: JSON.parse(localStorage.getItem('virtcom.watch') || '[]'),
   vars: new Map(),            // watched name -> {value, forced}
+  belts: new Map(),           // device index -> [[position mm, kind], ...] on its belt
   nowNs: 0,
   dirty: true,
 };
-let layout, gantt, trend, stream;
+let layout, gantt, trend, stream, sfcPanel, rulePanel;
 
 async function post(path, body) {
   const headers = { 'Content-Type': 'application/json' };
@@ -41,7 +43,19 @@ function deviceState(device) {
   return { state: running ? 'busy' : 'idle', op };
 }
 
+// A reset started the run again: what the page shows of the previous run goes.
+function startOver() {
+  state.activities.clear();
+  state.current.clear();
+  state.belts.clear();
+  $('events').replaceChildren();
+  trend.clear();
+  rulePanel.clear();
+  $('message').textContent = 'reset: the run started again';
+}
+
 function applyFrame(f) {
+  if (f.reset !== undefined) startOver();
   state.nowNs = f.t;
   const badge = $('run-state');
   badge.textContent = f.ended !== undefined ? 'ended' : f.paused ? 'paused' : 'running';
@@ -76,6 +90,9 @@ function applyFrame(f) {
     state.vars.set(v.name, v);
     trend.push(v.name, f.t, v.value);
   }
+  if (f.steps) sfcPanel.update(f.steps);
+  if (f.rules) rulePanel.update(f.rules);
+  for (const b of f.belts ?? []) state.belts.set(b.device, b.parts);
   state.dirty = true;
 }
 
@@ -91,7 +108,7 @@ function render() {
     state.dirty = false;
     $('vtime').textContent = seconds(state.nowNs);
     $('vtime').dataset.ns = state.nowNs;
-    layout.update(state.values, deviceState);
+    layout.update(state.values, deviceState, state.belts);
     gantt.render(state.activities, state.nowNs);
     trend.render(state.nowNs);
     renderWatch();
@@ -189,6 +206,8 @@ async function start() {
   if (m.readOnly) for (const b of document.querySelectorAll('button:not(#trend-form button), #speed')) b.disabled = true;  // trends only watch
   layout = new Layout($('layout'), m);
   gantt = new Gantt($('gantt'), m);
+  sfcPanel = new SfcPanel($('sfc-panel'), $('sfc-steps').tBodies[0], m.sfcSteps ?? []);
+  rulePanel = new RulePanel($('rules-panel'), $('rules').tBodies[0], m.rules ?? []);
   setUpTrends();
   for (const d of m.devices) $('fault-device').add(new Option(d.name, d.name));
   for (const button of document.querySelectorAll('[data-action]'))

@@ -55,7 +55,7 @@ export class Layout {
     svg.setAttribute('viewBox', `${box.x - pad} ${-(box.y + box.h) - pad} ${box.w + 2 * pad} ${box.h + 2 * pad}`);
     for (const s of shapes) drawShape(svg, s);
     this.drawGroups(svg, model.devices);
-    for (const d of model.devices) this.views.push(this.drawDevice(svg, d, model));
+    model.devices.forEach((d, i) => this.views.push(this.drawDevice(svg, d, model, i)));
   }
 
   drawGroups(svg, devices) {
@@ -70,12 +70,12 @@ export class Layout {
     }
   }
 
-  drawDevice(svg, d, model) {
+  drawDevice(svg, d, model, index) {
     const p = d.place;
     const g = el(svg, 'g', { class: `device ${d.type}`, 'data-name': d.name, 'data-state': 'idle' });
     el(g, 'rect', { class: 'body', x: p.x, y: -(p.y + p.h), width: p.w, height: p.h, rx: 20 });
     el(g, 'text', { x: p.x + 20, y: -(p.y + p.h) + 70 }, d.label ?? d.name);
-    const view = { device: d, g, op: el(g, 'text', { class: 'op', x: p.x + 20, y: -(p.y + p.h) + 130 }, ''), update: () => {} };
+    const view = { device: d, index, g, op: el(g, 'text', { class: 'op', x: p.x + 20, y: -(p.y + p.h) + 130 }, ''), update: () => {} };
     const draw = { robot: this.drawRobot, axis: this.drawAxis, press: this.drawPress, conveyor: this.drawConveyor, sensor: this.drawSensor }[d.type];
     if (draw) draw.call(this, g, d, view, model);
     return view;
@@ -134,18 +134,50 @@ export class Layout {
     };
   }
 
+  // The belt with its sensors, the parts it carries (drawn where the stream's `belts` put them,
+  // coloured by kind) and its bins (one per pusher, beside it, and the end bin with discharge)
+  // with their part counts (the `<bin>_<kind>` ports).
   drawConveyor(g, d, view) {
     const p = d.place, geo = d.geometry, y = -(p.y + p.h / 2) + 40;
     const belt = el(g, 'rect', { class: 'belt', x: p.x + 40, y: y - 40, width: p.w - 80, height: 80 });
     const length = Math.max(geo.length || 1, 1e-9);
+    const at = (mm) => p.x + 40 + (mm / length) * (p.w - 80);
     const sensors = geo.sensors.map(s => ({
       tag: portTag(d, s.name),
-      shape: el(g, 'circle', { class: 'sensor', r: 25, cx: p.x + 40 + (s.position / length) * (p.w - 80), cy: y + 80 }),
+      shape: el(g, 'circle', { class: 'sensor', r: 25, cx: at(s.position), cy: y + 80 }),
     }));
+    const kinds = geo.kinds ?? ['parts'];
+    const bin = (name, x) => {
+      // The count inside the bin (a belt's bins stand close together), its name as the tooltip.
+      const b = el(g, 'g', { class: 'bin', 'data-bin': name });
+      el(b, 'title', {}, name);
+      el(b, 'rect', { x: x - 60, y: y - 200, width: 120, height: 100 });
+      const count = el(b, 'text', { class: 'bin-count', x: x - 45, y: y - 130 }, '');
+      return { name, count, tags: kinds.map(k => portTag(d, `${name}_${k}`)) };
+    };
+    const bins = (geo.pushers ?? []).map(s => bin(s.name, at(s.position)));
+    if (geo.discharge) bins.push(bin('end', p.x + p.w - 60));
+    const parts = el(g, 'g', { class: 'parts' });
+    const partWidth = Math.max(((geo.partLength ?? 100) / length) * (p.w - 80), 6);
     const moving = portTag(d, 'moving');
-    view.update = (values) => {
+    const index = view.index;
+    view.update = (values, belts) => {
       belt.classList.toggle('moving', !!values[moving]);
       for (const s of sensors) s.shape.classList.toggle('on', !!values[s.tag]);
+      for (const b of bins) {
+        const total = b.tags.reduce((sum, tag) => sum + (values[tag] ?? 0), 0);
+        b.count.textContent = total;
+        b.count.dataset.count = total;
+      }
+      const onBelt = belts?.get(index) ?? [];
+      while (parts.childNodes.length > onBelt.length) parts.lastChild.remove();
+      while (parts.childNodes.length < onBelt.length) el(parts, 'rect', { class: 'part', y: y - 30, height: 60, width: partWidth });
+      onBelt.forEach(([mm, kind], i) => {
+        const r = parts.childNodes[i];
+        r.setAttribute('x', at(mm).toFixed(1));
+        r.dataset.kind = kinds[kind] ?? kind;
+        r.style.fill = `hsl(${(kind * 67) % 360} 60% 45%)`;
+      });
     };
   }
 
@@ -156,13 +188,14 @@ export class Layout {
     view.update = (values) => lamp.classList.toggle('on', !!values[tag]);
   }
 
-  // values: signal values by tag; state(device) -> {state, op}.
-  update(values, state) {
+  // values: signal values by tag; state(device) -> {state, op}; belts: device index -> the
+  // parts on its belt ([position mm, kind], ...).
+  update(values, state, belts) {
     for (const v of this.views) {
       const s = state(v.device);
       v.g.dataset.state = s.state;
       v.op.textContent = s.op;
-      v.update(values);
+      v.update(values, belts);
     }
   }
 

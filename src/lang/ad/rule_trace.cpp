@@ -24,8 +24,11 @@ std::string thenText(const Diagram& d, const Rule& rule) {
 
 std::vector<TracedRule> tracedRules(const Program& program) {
   std::vector<TracedRule> out;
-  for (const Diagram& d : program.diagrams)
-    for (const Rule& rule : decompose(d).rules) out.push_back({d.name, rule.index, thenText(d, rule)});
+  for (const Diagram& d : program.diagrams) {
+    DiagramTables tables = decompose(d);
+    for (const Rule& rule : tables.rules)
+      out.push_back({d.name, rule.index, std::string(luTypeLabel(tables.units[rule.unit].type)), thenText(d, rule)});
+  }
   return out;
 }
 

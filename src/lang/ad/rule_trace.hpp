@@ -1,5 +1,5 @@
 #pragma once
-// What `--trace-rules` prints about a rule that fired: the rules of a program in the order of
+// What `--trace-rules` prints (and the HMI's rule panel shows) about a rule that fired: the rules of a program in the order of
 // their fired flags (lower.hpp, kFiredVariable), each with its diagram, index and THEN.
 #include <string>
 #include <vector>
@@ -11,6 +11,7 @@ namespace virtcom::ad {
 struct TracedRule {
   std::string diagram;  // "Supply"
   std::string index;    // "3", "2.1"
+  std::string luType;   // its logic unit's type: "1", "2", "3", "4-1", "4-2"
   std::string then;     // "SupplyValve := FALSE, Filled := TRUE"; blocks: "React.IN := TRUE"
 };
 

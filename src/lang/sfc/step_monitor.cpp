@@ -17,7 +17,9 @@ void collect(const bc::Module& m, bc::TypeId type, const std::string& path, std:
       collect(m, f.type, fieldPath, out);
       continue;
     }
-    if (auto x = bc::resolveVariable(m, fieldPath + ".X")) out.push_back({fieldPath, x->address});
+    auto x = bc::resolveVariable(m, fieldPath + ".X");
+    auto t = bc::resolveVariable(m, fieldPath + ".T");
+    if (x && t) out.push_back({fieldPath, x->address, t->address});
   }
 }
 

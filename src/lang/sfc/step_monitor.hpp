@@ -1,6 +1,6 @@
 #pragma once
 // Finding the SFC steps of a compiled program, for tools that show which steps are active
-// (`virtcom exec --trace-steps`, later the HMI).
+// (`virtcom exec --trace-steps`, the HMI's SFC panel).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -12,6 +12,7 @@ namespace virtcom::sfc {
 struct StepVariable {
   std::string path;        // "MAIN.Step2", "MAIN.fbFeeder.Wait"
   uint32_t activeAddress;  // the byte of its X flag in the PLC memory image
+  uint32_t timeAddress;    // its T (TIME: 32-bit milliseconds in the step) in the image
 };
 
 // Every step of every chart reachable from the program instances, through FB instances (not

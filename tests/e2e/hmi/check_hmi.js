@@ -5,48 +5,12 @@
 // Screenshots go to OUTDIR (kept as artifacts). Prints "hmi checks passed" on success.
 'use strict';
 const assert = require('node:assert/strict');
-const path = require('node:path');
 const { chromium } = require('playwright-core');
+const { hmiPage, runMode } = require('./hmi_page.js');
 
 const [mode, port, outDir] = process.argv.slice(2);
-const url = `http://127.0.0.1:${port}/`;
+const { launch, kLaunch, sleep, virtualNs, api, shot, eventually, openHmi } = hmiPage(port, outDir);
 const kGearboxDevices = ['AxisX', 'AxisY', 'Press', 'Robot1', 'Robot2'];
-const kTimeoutMs = 30000;
-
-const kLaunch = {
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  args: ['--no-sandbox', '--disable-gpu', '--disable-dev-shm-usage'],
-};
-const launch = () => chromium.launch(kLaunch);
-
-const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
-const virtualNs = (page) => page.$eval('#vtime', (e) => Number(e.dataset.ns));
-const api = async (route, body) => {
-  const response = await fetch(`${url}api/${route}`, body === undefined ? {} : {
-    method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) });
-  return { status: response.status, json: await response.json() };
-};
-const shot = (page, name) => page.screenshot({ path: path.join(outDir, `${name}.png`), fullPage: true });
-
-// Polls `read` until `accept` holds.
-async function eventually(read, accept, what) {
-  let last;
-  for (let waited = 0; waited < kTimeoutMs; waited += 50) {
-    last = await read();
-    if (accept(last)) return last;
-    await sleep(50);
-  }
-  assert.fail(`${what}: last value ${JSON.stringify(last)}`);
-}
-
-async function openHmi(browser) {
-  const page = await browser.newPage({ viewport: { width: 1500, height: 1000 } });
-  page.on('pageerror', (error) => { throw error; });
-  await page.goto(url);
-  await page.waitForSelector('g.device');
-  await eventually(() => virtualNs(page), (ns) => ns > 0, 'the page shows virtual time');
-  return page;
-}
 
 async function everyDeviceIsDrawn(page) {
   const names = await page.$$eval('g.device', (gs) => gs.map((g) => g.dataset.name).sort());
@@ -172,9 +136,4 @@ async function ended() {
   }
 }
 
-({ served, ended }[mode] ?? (() => assert.fail(`unknown mode ${mode}`)))()
-  .then(() => console.log('hmi checks passed'))
-  .catch((error) => {
-    console.error(error);
-    process.exit(1);
-  });
+runMode({ served, ended }, mode);

@@ -379,9 +379,9 @@ class RunDrives : public RunCommand {
 
 // The drives follow the ideal axes' trapezoid (250 mm/s, 500 mm/s^2); on top come only the
 // position loop's lag settling into the 40 LU positioning window (about 40 ms) and at most one
-// more scan (10 ms) per handshake edge through TABLE: well under 100 ms per move, and at most
-// eight moves lie on the critical path, so the cycle is at most 1 % (0.95 s of sequence 3's
-// 94.6 s) longer, and never shorter. Every move ends at its target: X at 420 mm and Y at 180 mm
+// more scan (10 ms) per handshake edge through TABLE: about 50 ms per move, and at most eight
+// moves lie on the critical path, so the cycle is at most 1 % (0.71 s of sequence 3's 70.95 s)
+// longer, and never shorter. Every move ends at its target: X at 420 mm and Y at 180 mm
 // under the press, both back at 0 mm at the end, without passing a target.
 TEST_F(RunDrives, CycleTimeWithinOnePercentOfTheIdealAxesAndTargetsReached) {
   for (const std::string sequence : {"1", "2", "3"}) {

@@ -8,6 +8,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "cli/compile_library.hpp"
 #include "lang/plcopen/exporter.hpp"
 
 namespace virtcom::cli {
@@ -35,7 +36,8 @@ ExitCode exportPlcopen(const std::string& out, const std::string& name, const st
   {
     SourceManager sources;
     Diagnostics diags;
-    if (!compileFiles(files, sources, diags)) return ExitCode::InputError;  // only a valid program is exported
+    // Only valid files are exported; a library (no PROGRAM) is valid.
+    if (!compileLibraryFiles(files, sources, diags)) return ExitCode::InputError;
   }
   auto inputs = readSources(files);
   if (!inputs) return ExitCode::InputError;

@@ -1,4 +1,5 @@
 #include "cli/common.hpp"
+#include "cli/compile_library.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -32,13 +33,25 @@ std::optional<std::vector<st::SourceInput>> readSources(const std::vector<std::s
   return inputs;
 }
 
-std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, SourceManager& sources,
-                                         Diagnostics& diags, bool printWarnings) {
+namespace {
+std::unique_ptr<bc::Module> compileWith(const std::vector<std::string>& paths, SourceManager& sources,
+                                        Diagnostics& diags, bool printWarnings, st::CompileOptions options) {
   auto inputs = readSources(paths);
   if (!inputs) return nullptr;
-  auto module = st::compileProgram(*inputs, sources, diags);
+  auto module = st::compileProgram(*inputs, sources, diags, options);
   if (!module || printWarnings) std::cerr << diags.render(sources);
   return module;
+}
+}  // namespace
+
+std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, SourceManager& sources,
+                                         Diagnostics& diags, bool printWarnings) {
+  return compileWith(paths, sources, diags, printWarnings, {});
+}
+
+std::unique_ptr<bc::Module> compileLibraryFiles(const std::vector<std::string>& paths, SourceManager& sources,
+                                                Diagnostics& diags) {
+  return compileWith(paths, sources, diags, true, {.library = true});
 }
 
 std::unique_ptr<cell::Cell> loadCellFile(const std::string& path, SourceManager& sources) {

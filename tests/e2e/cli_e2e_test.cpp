@@ -284,17 +284,30 @@ TEST_F(CliCheck, MissingFileIsAnError) {
   EXPECT_TRUE(contains(r.err, "no_such_file.st")) << show(r);
 }
 
-TEST_F(CliCheck, NoProgramIsAnError) {
-  RunResult r = run({"check", "no_program.st"});
+TEST_F(CliCheck, NoProgramIsAnErrorWhenRunning) {
+  RunResult r = run({"exec", "no_program.st", "--cycles", "1"});
   EXPECT_EQ(r.exitCode, 1) << show(r);
   EXPECT_TRUE(contains(r.err, "error[E217]: no PROGRAM to run")) << show(r);
 }
 
 // Regression test (was a bug found by the e2e/unit suites).
 TEST_F(CliCheck, NoProgramDoesNotBlameTheStandardLibrary) {
-  RunResult r = run({"check", "no_program.st"});
+  RunResult r = run({"exec", "no_program.st", "--cycles", "1"});
   EXPECT_EQ(r.exitCode, 1) << show(r);
   EXPECT_FALSE(contains(r.err, "<standard library>")) << show(r);
+}
+
+// Library mode: files with only FUNCTIONs, FBs, types and GVLs are checked, not refused (E217).
+TEST_F(CliCheck, FilesWithoutProgramAreCheckedAsALibrary) {
+  RunResult r = run({"check", "no_program.st"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.err, "ok: 1 file(s), no diagnostics (a library: no PROGRAM)\n");
+}
+
+TEST_F(CliCheck, LibraryErrorsAreStillReported) {
+  RunResult r = run({"check", "library_bad_init.st"});
+  EXPECT_EQ(r.exitCode, 1) << show(r);
+  EXPECT_TRUE(contains(r.err, "library_bad_init.st:4:19: error[E117]")) << show(r);
 }
 
 class CliExec : public CliTest {};
@@ -687,6 +700,13 @@ TEST_F(CliPlcopen, CheckAcceptsXmlAndStMixed) {
   r = run({"exec", "cells/ld_handshake.xml", "cells/edge_counter.st", "--cycles", "2", "--print", "MAIN.starts.count"});
   EXPECT_EQ(r.exitCode, 0) << show(r);
   EXPECT_EQ(r.out, "MAIN.starts.count = 1\n");
+}
+
+TEST_F(CliPlcopen, ExportsALibraryWithoutProgram) {
+  std::string out = (work_ / "library.xml").string();
+  RunResult r = run({"export", "--plcopen", out, "no_program.st"});
+  ASSERT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(contains(readFile(out), "<pou name=\"Twice\" pouType=\"function\">")) << readFile(out);
 }
 
 TEST_F(CliPlcopen, ExportRefusesAProgramWithErrors) {

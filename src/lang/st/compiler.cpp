@@ -133,7 +133,7 @@ std::vector<CompilationUnit> parseInputs(const std::vector<SourceInput>& inputs,
 }
 
 std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& inputs, SourceManager& sources,
-                                           Diagnostics& diags) {
+                                           Diagnostics& diags, CompileOptions options) {
   auto module = std::make_unique<bc::Module>();
   std::vector<CompilationUnit> units;
   NodeId nextId = 0;
@@ -158,7 +158,7 @@ std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& input
     for (size_t i = 0; i < libraryPous; ++i)
       if (p->ast == units.front().pous[i].get() || (p->owner && p->owner->ast == units.front().pous[i].get())) p->isLibrary = true;
   bool noProgram = model.programInstances.empty();
-  if (noProgram && !diags.hasErrors())
+  if (noProgram && !options.library && !diags.hasErrors())
     diags.error(diag::E217, {kNoFile, 0, 0}, "no PROGRAM to run: declare a PROGRAM (e.g. PROGRAM MAIN ... END_PROGRAM)");
   if (diags.hasErrors()) {
     diags.sortByLocation();

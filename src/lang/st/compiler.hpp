@@ -28,10 +28,16 @@ struct SourceInput {
 std::vector<CompilationUnit> parseInputs(const std::vector<SourceInput>& inputs, SourceManager& sources,
                                          Diagnostics& diags, NodeId& nextNodeId);
 
+struct CompileOptions {
+  // Library mode (`virtcom check`, `export`): files holding only FUNCTIONs, FBs, types and
+  // global variable lists compile (every POU is checked) instead of failing with E217.
+  bool library = false;
+};
+
 // Compiles every file as one program (plus the standard library). All diagnostics go to `diags`
 // (sorted by location); the sources are registered in `sources`. Returns the module, or null if
 // there was any error. Never throws on bad input.
 std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& inputs, SourceManager& sources,
-                                           Diagnostics& diags);
+                                           Diagnostics& diags, CompileOptions options = {});
 
 }  // namespace virtcom::st

@@ -347,8 +347,16 @@ TEST(ParserExpr, OperatorsAsFunctionCalls) {
   EXPECT_EQ(notCall.kind, ExprKind::Call);
   EXPECT_TRUE(notCall.loc.line == 3 && notCall.loc.col == 6 && notCall.lhs->loc.col == 6);
   // Errors inside stay single.
-  EXPECT_EQ(body("x := MOD(a, );"), "DIAGS: 2:13 E006 expected an expression, found ')'\n");
+  EXPECT_EQ(body("x := MOD(a, , b);"), "DIAGS: 2:13 E006 expected an expression, found ','\n");
   EXPECT_EQ(body("x := NOT(a, b;"), "DIAGS: 2:14 E006 expected ')' to close the argument list, found ';'\n");
+}
+
+// CODESYS accepts one trailing comma before ')'; an empty argument elsewhere stays an error.
+TEST(ParserExpr, TrailingCommaInCallArguments) {
+  EXPECT_EQ(expr("f(a, b,)"), "(call f a b)");
+  EXPECT_EQ(expr("fb(IN := x, Q => q,)"), "(call fb (IN := x) (Q => q))");
+  EXPECT_EQ(body("x := f(,);"), "DIAGS: 2:8 E006 expected an expression, found ','\n");
+  EXPECT_EQ(body("x := f(a,,);"), "DIAGS: 2:10 E006 expected an expression, found ','\n");
 }
 
 TEST(ParserStmt, Assignments) {

@@ -68,8 +68,8 @@ TypeId selectionType(BuiltinCall& c, const std::vector<Value>& inputs, TypeId co
   return common;
 }
 
-// The selector: SEL's BOOL G or MUX's integer K; nullopt after E202.
-std::optional<uint16_t> selector(BuiltinCall& c, bool sel) {
+// The selector: SEL's BOOL G or MUX's integer K (`isSigned` set for a signed K); nullopt after E202.
+std::optional<uint16_t> selector(BuiltinCall& c, bool sel, bool& isSigned) {
   TypeTable& t = c.types();
   Value k = c.arg(0);
   if (!k.ok()) return std::nullopt;
@@ -81,6 +81,7 @@ std::optional<uint16_t> selector(BuiltinCall& c, bool sel) {
     c.diags().error(diag::E202, c.loc(), "MUX needs an integer selector, found " + describe(t, k.type));
     return std::nullopt;
   }
+  isSigned = t.isSignedInt(k.type);
   return c.pc.toReg(k);
 }
 
@@ -106,11 +107,13 @@ Value emitExtremum(BuiltinCall& c) {
   return acc;
 }
 
-// SEL(G, IN0, IN1) and MUX(K, IN0, ...): a chain of compare-and-jump over the inputs. MUX with
-// an out-of-range selector takes the last input (documented in docs/st-dialect.md).
+// SEL(G, IN0, IN1) and MUX(K, IN0, ...): a chain of compare-and-jump over the inputs. MUX
+// clamps an out-of-range selector: a negative K takes the first input, a K past the end the
+// last (documented in docs/st-dialect.md).
 Value emitSelection(BuiltinCall& c) {
   PouCompiler& pc = c.pc;
-  auto kr = selector(c, c.fn.id == StandardFunctionId::SEL);
+  bool signedSelector = false;
+  auto kr = selector(c, c.fn.id == StandardFunctionId::SEL, signedSelector);
   if (!kr) return Value::error();
   std::vector<Value> inputs;
   TypeId common = c.expected;
@@ -129,8 +132,12 @@ Value emitSelection(BuiltinCall& c) {
     bool last = i + 1 == inputs.size();
     uint32_t skip = 0;
     if (!last) {
-      uint16_t differs = pc.allocReg(), index = pc.loadConstInt(static_cast<int64_t>(i));
-      pc.emit(Op::NE, differs, *kr, index);
+      uint16_t differs = pc.allocReg();
+      if (i == 0 && signedSelector) {
+        pc.emit(Op::GTK, differs, *kr, 0);  // K <= 0 takes IN0
+      } else {
+        pc.emit(Op::NE, differs, *kr, pc.loadConstInt(static_cast<int64_t>(i)));
+      }
       skip = pc.emitJump(Op::JNZ, differs);
     }
     Value v = strings ? inputs[i] : pc.coerce(inputs[i], common, c.loc());

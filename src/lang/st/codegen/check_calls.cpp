@@ -21,6 +21,7 @@ std::string canonicalParam(const PouSym* callee, const std::string& upperName) {
                                    {"CTUD", "LD", "LOAD"}, {"SR", "S1", "SET1"},  {"SR", "R", "RESET"},
                                    {"RS", "S", "SET"},     {"RS", "R1", "RESET1"}};
   std::string fb = upper(callee->name);
+  if (fb.rfind("CT", 0) == 0) fb = fb.substr(0, fb.find('_'));  // the typed counters: CTU_DINT is a CTU
   for (const auto& a : kAliases)
     if (fb == a.fb && upperName == a.iec) return a.codesys;
   return upperName;

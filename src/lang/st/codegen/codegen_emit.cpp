@@ -340,6 +340,13 @@ Value PouCompiler::convert(Value v, TypeId to, SourceLocation loc) {
     int64_t i = v.c.kind == ConstValue::Kind::Real ? static_cast<int64_t>(std::llround(v.c.f)) : v.c.i;
     if (from != kNoType && t.isElem(from, ElemType::Time) && t.isElem(to, ElemType::Ltime)) i *= 1'000'000;
     if (from != kNoType && t.isElem(from, ElemType::Ltime) && t.isElem(to, ElemType::Time)) i /= 1'000'000;
+    // DT (seconds) splits into DATE (seconds at midnight) and TOD (ms since midnight), as the
+    // code emitted below does at run time.
+    if (from != kNoType && t.storageElem(from) == ElemType::Dt &&
+        (t.storageElem(to) == ElemType::Tod || t.storageElem(to) == ElemType::Date)) {
+      const int64_t rem = static_cast<int64_t>(static_cast<uint64_t>(i) % 86400);
+      i = t.storageElem(to) == ElemType::Tod ? rem * 1000 : i - rem;
+    }
     // wrap to the target width
     ElemType e = t.storageElem(to);
     uint32_t bits = bitWidth(e);

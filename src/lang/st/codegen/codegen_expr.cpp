@@ -140,6 +140,31 @@ static const VarInfo* findMember(PouSym* fb, const std::string& key) {
 std::optional<Place> PouCompiler::memberPlace(const Expr& e, bool forWrite) {
   const Expr& lhs = *e.lhs;
   std::string key = upper(e.text);
+  if (!key.empty() && key[0] == '%') {
+    // Partial access `dw.%B1`, `lw.%W3`, `dw.%D0` (IEC 61131-3 ed. 3): the n-th BYTE/WORD/DWORD
+    // of a bit string or integer, counted from the least significant end (memory is little endian).
+    auto host = place(lhs, forWrite);
+    if (!host) return std::nullopt;
+    const ElemType part = key[1] == 'B' ? ElemType::Byte : key[1] == 'W' ? ElemType::Word
+                          : key[1] == 'D' ? ElemType::Dword : ElemType::Lword;
+    const uint32_t size = bitWidth(part) / 8;
+    uint64_t index = 0;
+    for (char c : key.substr(2)) index = std::min<uint64_t>(index * 10 + static_cast<uint64_t>(c - '0'), 1u << 20);
+    if (!types().isInteger(host->type) || host->bit >= 0 || host->valueBit >= 0) {
+      diags().error(diag::E213, e.loc, "partial access needs an integer or bit-string variable, found " + describe(types(), host->type));
+      return std::nullopt;
+    }
+    if ((index + 1) * size > types()[host->type].size) {
+      diags().error(diag::E213, e.loc, "'" + e.text + "' does not exist in " + describe(types(), host->type));
+      return std::nullopt;
+    }
+    Place p = *host;
+    p.var = nullptr;
+    p.viaReference = false;
+    p.type = TypeTable::elem(part);
+    p.offset += static_cast<uint32_t>(index * size);
+    return p;
+  }
   // A property read where a place is needed (`r.Pos.x`, `r.Flags.3`); written only whole.
   if (!forWrite) {
     if (auto prop = memberProperty(e)) return valuePlace(*prop);
@@ -281,6 +306,8 @@ std::optional<Place> PouCompiler::indexPlace(const Expr& e, bool forWrite) {
     }
     p.base = addr;
   }
+  // An element of an ARRAY OF REFERENCE TO is used like its referee, as a REFERENCE TO variable is.
+  if (types().isReference(p.type) && !model().interfaceByType.count(p.type)) p = referee(p);
   return p;
 }
 
@@ -356,7 +383,12 @@ std::optional<Place> PouCompiler::place(const Expr& e, bool forWrite) {
   switch (e.kind) {
     case ExprKind::Name: {
       auto p = namePlace(e, forWrite);
-      if (!p) diags().error(diag::E201, e.loc, "'" + e.text + "' is not declared");
+      if (p) return p;
+      if (pou_.kind == PouKind::Function && pou_.returnType == kNoType && upper(e.text) == upper(pou_.name))
+        diags().error(diag::E114, e.loc, "FUNCTION '" + pou_.name + "' has no return type, so it has no result to assign; "
+                                         "declare one: FUNCTION " + pou_.name + " : INT");
+      else
+        diags().error(diag::E201, e.loc, "'" + e.text + "' is not declared");
       return p;
     }
     case ExprKind::Member: return memberPlace(e, forWrite);
@@ -419,7 +451,14 @@ Value PouCompiler::expr(const Expr& e, TypeId expected) {
     case ExprKind::EnumLit: return literal(e, expected);
     case ExprKind::Unary: return unary(e, expected);
     case ExprKind::Binary: return binary(e, expected);
-    case ExprKind::Call: return call(e, expected);
+    case ExprKind::Call: {
+      // A call as a statement goes to call() directly; here a value is needed.
+      Value v = call(e, expected);
+      if (v.kind != Value::Kind::Void) return v;
+      diags().error(diag::E202, e.loc, "this call returns no value (its POU has no return type); "
+                                       "call it as a statement instead of using it in an expression");
+      return Value::error();
+    }
     case ExprKind::Name: {
       std::string key = upper(e.text);
       auto p = namePlace(e, false);
@@ -780,6 +819,12 @@ Value PouCompiler::arithmetic(const Expr& e, Value a, Value b) {
     v.c = *r;
     v.type = common;
     v.untyped = a.untyped && b.untyped;
+    if (v.untyped && r->kind == ConstValue::Kind::Int) {
+      // Literals alone compute exactly, like one literal: the target takes the value or reports
+      // E117, whatever its size (2147483647 + 1 is out of range for DINT as 127 + 1 is for SINT).
+      v.type = TypeTable::elem(r->i >= INT32_MIN && r->i <= INT32_MAX ? ElemType::Dint : ElemType::Lint);
+      return v;
+    }
     return convert(v, common, e.loc);
   }
   if (!real && (op == BinaryOp::Add || op == BinaryOp::Sub) && cb.kind == Value::Kind::Const) {

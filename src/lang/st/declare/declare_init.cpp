@@ -28,7 +28,7 @@ uint32_t areaExtent(const VarDecl& decl) {
 
 std::optional<DirectAddress> parseDirectAddress(std::string_view text) {
   std::string t = upper(text);
-  if (t.size() < 3 || t[0] != '%') return std::nullopt;
+  if (t.size() < 3 || t[0] != '%') return std::nullopt;  // %I5 is the shortest form
   DirectAddress a;
   a.area = t[1];
   if (a.area != 'I' && a.area != 'Q' && a.area != 'M') return std::nullopt;
@@ -49,13 +49,19 @@ std::optional<DirectAddress> parseDirectAddress(std::string_view text) {
   if (!number(first)) return std::nullopt;
   switch (sizeChar) {
     case 'X': {
+      a.size = 1;
+      if (i >= t.size()) {
+        // IEC 61131-3's flat bit number (%IX1, %QX75, %I75): bit n is bit n MOD 8 of byte n / 8.
+        a.byteOffset = first / 8;
+        a.bit = static_cast<int8_t>(first % 8);
+        break;
+      }
       uint32_t bit = 0;
-      if (i >= t.size() || t[i] != '.') return std::nullopt;
+      if (t[i] != '.') return std::nullopt;
       ++i;
       if (!number(bit) || bit > 7) return std::nullopt;
       a.byteOffset = first;
       a.bit = static_cast<int8_t>(bit);
-      a.size = 1;
       break;
     }
     // CODESYS numbers B/W/D/L addresses in units of their own size: %IW2 starts at byte 4.
@@ -109,7 +115,10 @@ void Declarer::allocateProcessAreas() {
   for (const auto& unit : units_) {
     for (const auto& pou : unit.pous) visit(pou->varBlocks);
     for (const auto& gvl : unit.globals) visit(gvl.blocks);
-    for (const auto& cfg : unit.configurations) visit(cfg.globals);
+    for (const auto& cfg : unit.configurations) {
+      visit(cfg.globals);
+      for (const auto& res : cfg.resources) visit(res.globals);
+    }
   }
   for (auto& e : extent) e = std::min((e + 63) / 64 * 64, kMaxAreaSize);
   module_.inputs = {image_.allocate(extent[0], 8), extent[0]};
@@ -134,8 +143,15 @@ void Declarer::collectGlobalConstants() {
     for (const auto& unit : units_) {
       for (const auto& gvl : unit.globals)
         for (const auto& block : gvl.blocks) collect(block, gvl.name);
-      for (const auto& cfg : unit.configurations)
+      for (const auto& cfg : unit.configurations) {
         for (const auto& block : cfg.globals) collect(block, "");
+        for (const auto& res : cfg.resources)
+          for (const auto& block : res.globals) collect(block, "");
+      }
+      for (const auto& pou : unit.pous)
+        if (pou->kind == PouKind::Program)
+          for (const auto& block : pou->varBlocks)
+            if (block.section == VarSection::Global) collect(block, "");
     }
 }
 
@@ -186,6 +202,17 @@ void Declarer::declareGlobals() {
       for (const auto& res : cfg.resources)
         for (const auto& block : res.globals) declareBlock(block, "");
     }
+    // IEC 61131-3 lets a PROGRAM declare globals (its FBs reach them through VAR_EXTERNAL);
+    // nothing else may.
+    for (const auto& pou : unit.pous)
+      for (const auto& block : pou->varBlocks) {
+        if (block.section != VarSection::Global) continue;
+        if (pou->kind == PouKind::Program)
+          declareBlock(block, "");
+        else
+          diags_.error(diag::E108, block.loc, "VAR_GLOBAL is only allowed in a PROGRAM, a CONFIGURATION, a RESOURCE "
+                                              "or at the top level of a file (a global variable list)");
+      }
   }
   // Located variables declared inside POUs need their initial values too.
   for (auto& sym : model_.pous)

@@ -265,6 +265,13 @@ void Declarer::layoutFrame(PouSym& pou) {
                                                          block.section != VarSection::Global);
     if (!inFrame) continue;
     for (const auto& decl : block.vars) {
+      if (!decl.location.empty()) {
+        // A frame exists only during one call: it has no place in the process image.
+        diags_.error(diag::E109, decl.loc, "'AT " + decl.location + "' is not allowed here: " +
+                                               (block.section == VarSection::Temp ? "a VAR_TEMP" : "a local of a FUNCTION or METHOD") +
+                                               " lives only during one call; declare it in VAR of a PROGRAM or FUNCTION_BLOCK, or as a global");
+        continue;
+      }
       if (!layoutFbOf(decl.type, block.section)) continue;
       TypeId type = resolveType(decl.type, &pou);
       if (type == kNoType) continue;
@@ -362,8 +369,6 @@ void Declarer::declarePous() {
         layoutFrame(*sym);
         break;
       case PouKind::Function:
-        if (!sym->ast->hasReturnType)
-          diags_.error(diag::E114, sym->ast->loc, "FUNCTION '" + sym->name + "' needs a return type: FUNCTION " + sym->name + " : INT");
         layoutFrame(*sym);
         for (const auto& b : sym->ast->varBlocks)
           if (b.section == VarSection::Inst || b.section == VarSection::Stat)

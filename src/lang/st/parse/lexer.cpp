@@ -378,7 +378,9 @@ class Lexer {
     Token& t = emit(Tok::DirectAddress, start, loc);
     bool areaOk = !letters.empty() && std::string_view("IQM").find(letters[0]) != std::string_view::npos &&
                   (letters.size() == 1 || (letters.size() == 2 && std::string_view("XBWDL").find(letters[1]) != std::string_view::npos));
-    bool bitForm = letters == "X" && hasDigits && textFrom(digitsStart).find('.') == std::string_view::npos;
+    // `.%X3`, `.%B1`, `.%W0`, `.%D1`, `.%L0`: partial access to a bit string after a '.'.
+    bool bitForm = letters.size() == 1 && std::string_view("XBWDL").find(letters[0]) != std::string_view::npos &&
+                   hasDigits && textFrom(digitsStart).find('.') == std::string_view::npos;
     if (!((areaOk && (hasDigits || star)) || bitForm))
       error(diag::E012, loc, "invalid direct address '" + std::string(t.text) +
                                  "' (expected %I, %Q or %M, an optional size X, B, W, D or L, then numbers such as %IX0.1)");

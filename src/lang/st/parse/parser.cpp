@@ -267,9 +267,35 @@ StmtPtr Parser::makeStmt(StmtKind kind, SourceLocation loc) {
 CompilationUnit Parser::parseUnit() {
   CompilationUnit unit;
   unit.fileId = fileId_;
+  // Actions written outside their POU (RuSTy, IronPLC): `ACTIONS prg ACTION a ... END_ACTION
+  // END_ACTIONS` and `ACTION prg.a ... END_ACTION`; attached to the POU of this file at the end.
+  std::vector<std::pair<std::string, std::unique_ptr<Pou>>> outsideActions;
   while (!at(Tok::Eof)) {
     size_t before = pos_;
     std::vector<Attribute> attributes = takeAttributes();
+    if (at(Tok::KwAction) && isNameToken(peekTok(1).kind) && peekTok(2).kind == Tok::Dot) {
+      SourceLocation loc = cur().loc;
+      advance();
+      std::string owner(cur().text);
+      advance();  // parseAction skips the '.' as it would skip the ACTION keyword
+      auto action = parseAction(std::move(attributes));
+      action->loc = loc;
+      outsideActions.emplace_back(std::move(owner), std::move(action));
+      continue;
+    }
+    if (atName() && iequalsAscii(cur().text, "ACTIONS")) {
+      advance();
+      std::string owner = expectName("the name of the PROGRAM or FUNCTION_BLOCK the actions belong to");
+      accept(Tok::Semicolon);
+      while (at(Tok::KwAction) && !stopped_) outsideActions.emplace_back(owner, parseAction(takeAttributes()));
+      if (atName() && iequalsAscii(cur().text, "END_ACTIONS")) {
+        advance();
+        accept(Tok::Semicolon);
+      } else {
+        errorExpected("END_ACTIONS", "to close ACTIONS " + owner);
+      }
+      continue;
+    }
     switch (cur().kind) {
       case Tok::KwProgram: case Tok::KwFunction: case Tok::KwFunctionBlock:
         unit.pous.push_back(parsePou(std::move(attributes)));
@@ -292,6 +318,16 @@ CompilationUnit Parser::parseUnit() {
         break;
     }
     if (pos_ == before) advance();  // every branch consumes its keyword; this is a safety net
+  }
+  for (auto& [owner, action] : outsideActions) {
+    auto pou = std::find_if(unit.pous.begin(), unit.pous.end(), [&](const std::unique_ptr<Pou>& p) {
+      return iequalsAscii(p->name, owner) && (p->kind == PouKind::Program || p->kind == PouKind::FunctionBlock);
+    });
+    if (pou == unit.pous.end())
+      diags_.error(diag::E006, action->loc, "ACTION '" + action->name + "' belongs to '" + owner +
+                                                "', which is no PROGRAM or FUNCTION_BLOCK of this file");
+    else
+      (*pou)->actions.push_back(std::move(action));
   }
   return unit;
 }

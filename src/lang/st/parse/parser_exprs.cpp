@@ -31,13 +31,15 @@ bool binaryOperator(Tok kind, BinaryOp& op, int& precedence) {
   }
 }
 
-// `%X3` after a dot selects bit 3.
-bool isBitAddress(std::string_view text) {
-  if (text.size() < 3 || (text[1] != 'X' && text[1] != 'x')) return false;
+// `%X3` (bit 3), `%B1`, `%W0`, `%D1`, `%L0` (byte 1, word 0, ...): partial access after a dot.
+bool isPartialAccess(std::string_view text) {
+  if (text.size() < 3 || std::string_view("XBWDLxbwdl").find(text[1]) == std::string_view::npos) return false;
   for (char c : text.substr(2))
     if (c < '0' || c > '9') return false;
   return true;
 }
+
+bool isBitAddress(std::string_view text) { return isPartialAccess(text) && (text[1] == 'X' || text[1] == 'x'); }
 
 }  // namespace
 
@@ -175,6 +177,10 @@ ExprPtr Parser::parseMemberOrBit(ExprPtr base) {
   } else if (tok.kind == Tok::DirectAddress && isBitAddress(tok.text)) {
     e = makeExpr(ExprKind::BitAccess, tok.loc);
     for (char c : tok.text.substr(2)) e->intValue = e->intValue * 10 + static_cast<uint64_t>(c - '0');
+  } else if (tok.kind == Tok::DirectAddress && isPartialAccess(tok.text)) {
+    // `w.%B1`: a partial access, resolved like a member (codegen's partialAccessPlace).
+    e = makeExpr(ExprKind::Member, tok.loc);
+    e->text = std::string(tok.text);
   } else if (isNameToken(tok.kind) || isKeyword(tok.kind)) {
     // After '.' only a name can follow, so even reserved words are member names here.
     e = makeExpr(ExprKind::Member, tok.loc);
@@ -196,7 +202,8 @@ ExprPtr Parser::parsePrimary() {
       return parseLiteralToken();
     case Tok::TypedPrefix: return parseTypedLiteral();
     case Tok::DirectAddress: {
-      if (isBitAddress(tok.text)) error(diag::E012, "'" + std::string(tok.text) + "' is only valid as a bit selector after '.', e.g. w.%X3");
+      if (isPartialAccess(tok.text))
+        error(diag::E012, "'" + std::string(tok.text) + "' is only valid as a partial access after '.', e.g. w.%X3 or dw.%B1");
       auto e = makeExpr(ExprKind::DirectAddr, tok.loc);
       e->text = std::string(tok.text);
       advance();
@@ -381,10 +388,13 @@ ExprPtr Parser::parseStructInit() {
   return e;
 }
 
+// A trailing comma before ')' is accepted, as CODESYS does (`F(a := 1, b := 2,)`).
 void Parser::parseCallArgs(std::vector<CallArg>& args) {
   if (accept(Tok::RParen)) return;
-  do args.push_back(parseCallArg());
-  while (!stopped_ && accept(Tok::Comma));
+  do {
+    if (at(Tok::RParen) && !args.empty()) break;
+    args.push_back(parseCallArg());
+  } while (!stopped_ && accept(Tok::Comma));
   expect(Tok::RParen, "to close the argument list");
 }
 

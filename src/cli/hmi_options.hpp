@@ -51,6 +51,8 @@ class LiveHmi {
   // the address cannot be bound.
   std::expected<void, std::string> serve(const HmiBinding& binding, sim::Simulation& simulation);
   void stop();
+  // virtcom monitor with a plan: the KPI panel shows the current shift's parts against the plan.
+  void watchShifts(std::function<void(hmi::ShiftProgress&)> fill) { live_.watchShifts(std::move(fill)); }
 
  private:
   cell::Cell& cell_;

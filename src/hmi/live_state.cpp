@@ -58,6 +58,8 @@ bool LiveState::publish(const Trace& trace, bool wait) {
   mirrorTrace(trace);
   if (plc_ && !s.memory.empty()) std::memcpy(s.memory.data(), plc_->machine().memory(), s.memory.size());
   for (size_t d = 0; d < s.injected.size(); ++d) s.injected[d] = cell_.devices[d]->faults().errorCode;
+  s.planned = static_cast<bool>(shiftProgress_);
+  if (shiftProgress_) shiftProgress_(s.shift);
   dirty_ = false;
   lastPublishWallNs_ = monotonicNowNs();
   return true;

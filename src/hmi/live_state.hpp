@@ -13,6 +13,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -23,6 +24,13 @@
 #include "sim/run_control.hpp"
 
 namespace virtcom::hmi {
+
+// Production against the plan in the current shift (virtcom monitor with a `plan:`).
+struct ShiftProgress {
+  std::string shift;   // empty: between shifts
+  double planNow = 0;  // the shift's plan pro-rated to the part watched, up to now
+  uint32_t parts = 0;  // parts made in it
+};
 
 // What the HMI shows, as of one published tick. Sizes are fixed at begin() except the lists
 // that grow with the run (activities, faults, collisions), which only append.
@@ -44,6 +52,8 @@ struct Snapshot {
   std::vector<uint8_t> memory;  // the soft PLC's variables (Module::staticSize bytes), empty without one
   std::vector<std::string> forced;  // names of the forced variables, in forcing order
   std::vector<int32_t> injected;    // per device: the injected error code, 0 = none
+  bool planned = false;             // a production plan is watched: `shift` is meaningful
+  ShiftProgress shift;
 };
 
 // A request from an HTTP thread, applied on the simulation's thread between two ticks. Values
@@ -77,6 +87,10 @@ class LiveState final : public TraceSink, public sim::RunControl {
   // Around every scan of the soft PLC (sim::SimOptions::beforeScan/afterScan): the forced values.
   void beforeScan(plc::Runtime& plc) { applyForces(plc); }
   void afterScan(plc::Runtime& plc) { applyForces(plc); }
+
+  // Before the run: `fill` updates the shift's progress in place at each publication, on the
+  // simulation's thread (virtcom monitor with a plan). Without it the snapshot has none.
+  void watchShifts(std::function<void(ShiftProgress&)> fill) { shiftProgress_ = std::move(fill); }
 
   // ---- any thread ----
   void post(Command command);
@@ -116,6 +130,7 @@ class LiveState final : public TraceSink, public sim::RunControl {
   std::vector<Forced> forced_;
   std::vector<Command> applying_;
   std::vector<uint32_t> open_;   // indices of activities still running in the snapshot
+  std::function<void(ShiftProgress&)> shiftProgress_;
 
   // HTTP threads -> simulation thread
   std::mutex commandMutex_;

@@ -14,6 +14,7 @@
 #include "core/diagnostics.hpp"
 #include "core/endpoint.hpp"
 #include "core/modbus_map.hpp"
+#include "core/production_plan.hpp"
 #include "core/source.hpp"
 #include "core/tag_bus.hpp"
 #include "core/trace.hpp"
@@ -109,6 +110,7 @@ struct Cell {
   std::optional<ModbusClientSettings> plcModbus;
   std::optional<AdsClientSettings> plcAds;
   HmiSettings hmi;                     // `hmi:`: the HMI layout's placements and static shapes
+  ProductionPlan plan;                 // `plan:`: shifts and their planned parts (virtcom monitor)
 };
 
 // Every device port as a signal a protocol map can name ("Press.execute"), in device and port

@@ -10,6 +10,7 @@
 #include "cell/ads_settings.hpp"
 #include "cell/cell.hpp"
 #include "cell/hmi_section.hpp"
+#include "cell/plan_section.hpp"
 #include "cell/mapping_file.hpp"
 #include "cell/modbus_settings.hpp"
 #include "cell/yaml_config.hpp"
@@ -67,6 +68,7 @@ class Loader {
     readModbusSection(*cell, top.child("modbus"), diags_);
     if (plcModbus_) readModbusClient(*cell, *plcModbus_, diags_);
     readHmiSection(*cell, top.child("hmi"), diags_);  // names devices
+    readPlanSection(*cell, top.child("plan"), diags_);
     top.child("extends");          // applied by takeBaseSections()
     top.child("replace_devices");  // applied by takeBaseSections()
     if (plcAds_) {

@@ -52,6 +52,16 @@ void printRuns(const std::vector<history::RunSummary>& runs) {
               << r.drops << "\n";
 }
 
+// A monitored run's shifts against its plan (virtcom monitor with a `plan:`), if it has any.
+void printProduction(const std::vector<history::ProductionRow>& rows) {
+  if (rows.empty()) return;
+  std::cout << "\n" << std::left << std::setw(12) << "day" << std::setw(14) << "shift" << std::right << std::setw(8) << "plan"
+            << std::setw(10) << "plan now" << std::setw(8) << "actual" << "\n";
+  for (const auto& r : rows)
+    std::cout << std::left << std::setw(12) << r.day << std::setw(14) << r.shift << std::right << std::setw(8) << r.plan << std::setw(10)
+              << std::fixed << std::setprecision(1) << r.planNow << std::setw(8) << r.actual << "\n";
+}
+
 // --from/--to as a range; nullopt after an error message.
 std::optional<history::TimeRange> timeRange(const HistoryOptions& o) {
   history::TimeRange range;
@@ -117,6 +127,7 @@ ExitCode showHistory(const HistoryOptions& o) {
   }
   if (!o.exports()) {
     printRuns({*run});
+    printProduction(reader->production(id));
     return ExitCode::Ok;
   }
   return exportRun(o, *reader, *run, *range) ? ExitCode::Ok : ExitCode::Usage;

@@ -1,6 +1,7 @@
 // `virtcom monitor`: the cell model and its HMI watching the real plant (docs/monitor.md). No
 // device is simulated: every wired PLC variable of the cell (commands and feedback alike) is
-// read from the real controller over ADS each poll onto the cell's tag bus, the devices'
+// read from the real controller each poll onto the cell's tag bus, over ADS (the wiring's
+// variables) or Modbus TCP (the cell's Modbus map); one loop watches either link. The devices'
 // operations are recognised from their handshake (sim/operation_recogniser.hpp) and recorded
 // as a simulated run's would be, so the HMI, the reports and the summary work unchanged. The
 // digital shadow: the cell model, run once in virtual time at start-up, predicts each
@@ -9,6 +10,7 @@
 #include <climits>
 #include <csignal>
 #include <cstdio>
+#include <ctime>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -16,9 +18,12 @@
 #include "cli/ads_client.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "cli/history_options.hpp"
 #include "cli/hmi_options.hpp"
+#include "cli/modbus_options.hpp"
 #include "report/json_report.hpp"
 #include "report/kpis.hpp"
+#include "report/production.hpp"
 #include "report/summary.hpp"
 #include "sim/simulation.hpp"
 
@@ -32,12 +37,14 @@ extern "C" void onMonitorSignal(int) { gMonitorStop = true; }
 struct MonitorOptions {
   std::string cellFile;
   std::string ads;          // HOST:PORT of the PLC's AMS router
+  std::string modbus;       // HOST:PORT of the PLC's Modbus TCP server (instead of --ads)
   std::string netId;        // the PLC's AmsNetId; empty: the cell's, or 127.0.0.1.1.1
   std::string poll = "10ms";
   double deviationPercent = 20;
   std::string json;
   bool quiet = false;
   HmiServeOptions hmi;
+  HistoryRecordOptions history;
 };
 
 // The cell's wiring as variables to read from the real PLC: the soft PLC's wires by their
@@ -69,6 +76,47 @@ std::expected<void, std::string> watchOverAds(cell::Cell& cell, const MonitorOpt
   cell.plcAds = std::move(watch);
   cell.run.cycleDoneTag = cycleTag;
   return {};
+}
+
+// The cell's Modbus map as the PLC's tables to read: `plc: modbus:`'s (the PLC's own addresses),
+// else the `modbus:` one (the tables `serve --modbus` serves the cell as), every entry read each
+// poll, none written. Replaces the cell's controller by that read-only link. A Modbus PLC has
+// no variables by name, so no `cycle_done` or `record` either.
+std::expected<cell::ModbusClientSettings, std::string> watchOverModbus(cell::Cell& cell, const MonitorOptions& o, int64_t pollNs) {
+  auto peer = parseEndpoint(o.modbus);
+  if (!peer) return std::unexpected("--modbus: " + peer.error());
+  cell::ModbusClientSettings watch = cell.plcModbus.value_or(cell::ModbusClientSettings{});
+  if (!cell.plcModbus) watch.map = cell.modbus;
+  watch.address = o.modbus;
+  watch.peer = *peer;
+  watch.pollNs = pollNs;
+  watch.faultOnLoss = true;
+  for (auto& e : watch.map.entries) e.dir = modbus_map::SignalDir::Command;  // read by the bridge, never written
+  cell::detachSoftPlc(cell);
+  cell.plcModbus.reset();
+  cell.plcAds.reset();
+  return watch;
+}
+
+// The read-only link to the plant's PLC (--ads or --modbus) over the cell's tag bus; the cell's
+// own controller is detached. Null, the problem printed, if it cannot start; `failure` says how.
+std::unique_ptr<BusBridge> openLink(cell::Cell& cell, const SourceManager& sources, const MonitorOptions& o, int64_t pollNs,
+                                    ExitCode& failure) {
+  failure = ExitCode::Usage;
+  if (!o.modbus.empty()) {
+    auto watch = watchOverModbus(cell, o, pollNs);
+    if (!watch) {
+      std::cerr << "error: " << watch.error() << "\n";
+      return nullptr;
+    }
+    return startClientBridge(*watch, "is watched (read only)");
+  }
+  if (auto watched = watchOverAds(cell, o); !watched) {
+    std::cerr << "error: " << watched.error() << "\n";
+    return nullptr;
+  }
+  failure = ExitCode::InputError;
+  return startAdsBridge(cell, sources, "is watched (read only)");
 }
 
 // The model's prediction: the cell run once in virtual time with its own soft PLC. Null (and a
@@ -112,6 +160,59 @@ class AlertPrinter final : public TraceSink {
   uint32_t cycles_ = 0;
 };
 
+// Local wall time (ns since 1970-01-01 00:00 local), what the plan's shifts are written in: the
+// UTC clock plus the UTC offset at start-up (a change to or from summer time applies from the
+// next start).
+class LocalWallClock {
+ public:
+  LocalWallClock() {
+    const std::time_t now = std::time(nullptr);
+    std::tm local{};
+    offsetNs_ = localtime_r(&now, &local) ? static_cast<int64_t>(local.tm_gmtoff) * 1'000'000'000 : 0;
+  }
+  int64_t nowNs() const { return utcNowNs() + offsetNs_; }
+
+ private:
+  int64_t offsetNs_ = 0;
+};
+
+// Counts the completed cycles (parts) into the planned shift the wall clock is in, every poll.
+class ProductionSink final : public TraceSink {
+ public:
+  ProductionSink(const ProductionPlan& plan, const LocalWallClock& clock) : counter_(plan), clock_(clock) {}
+  void begin(const Trace&) override {}
+  void change(const SignalChange&) override {}
+  void tick(const Trace& trace, int64_t) override { counter_.update(clock_.nowNs(), trace.cyclesCompleted); }
+  void end(const Trace& trace) override { counter_.update(clock_.nowNs(), trace.cyclesCompleted); }
+  report::ProductionReport report(const Trace& trace) const {
+    return report::productionReport(counter_, clock_.nowNs(), trace, trace.endNs);
+  }
+  // The HMI's view of the current shift, updated in place (the name's storage is reused).
+  void progress(hmi::ShiftProgress& p) const {
+    const report::ShiftCount* c = counter_.current();
+    if (!c) {
+      p = {};
+      return;
+    }
+    const PlannedShift& s = counter_.plan().shifts[c->shift];
+    p.shift = s.name;
+    p.planNow = report::planNow(s, *c, counter_.lastNs());
+    p.parts = c->actual;
+  }
+
+ private:
+  report::ProductionCounter counter_;
+  const LocalWallClock& clock_;
+};
+
+// The shifts watched, as the historian's `production` rows.
+std::vector<history::ProductionRow> productionRows(const report::ProductionReport& r) {
+  std::vector<history::ProductionRow> rows;
+  for (const auto& s : r.shifts)
+    rows.push_back({s.day, s.name, s.startNs, s.endNs, s.watchedFromNs, int64_t{s.plan}, s.planNow, int64_t{s.actual}});
+  return rows;
+}
+
 // Per (device, operation): runs, mean actual duration, the model's range, the worst deviation.
 void printShadow(const Trace& trace, const sim::OperationRecogniser& recogniser) {
   std::printf("\n%-12s %-16s %5s %10s %15s %9s %6s\n", "Device", "Operation", "Runs", "Actual s", "Model s", "Worst", "Alerts");
@@ -125,6 +226,10 @@ void printShadow(const Trace& trace, const sim::OperationRecogniser& recogniser)
 }
 
 ExitCode monitorCell(const MonitorOptions& o) {
+  if (o.ads.empty() == o.modbus.empty()) {
+    std::cerr << "error: give the plant's PLC as either --ads HOST:PORT or --modbus HOST:PORT\n";
+    return ExitCode::Usage;
+  }
   auto pollNs = parseDurationNs(o.poll);
   if (!pollNs || *pollNs <= 0) {
     std::cerr << "error: --poll: '" << o.poll << "' is not a positive duration (e.g. 10ms)\n";
@@ -146,10 +251,6 @@ ExitCode monitorCell(const MonitorOptions& o) {
   SourceManager sources;
   auto cell = loadCellFile(o.cellFile, sources);
   if (!cell) return ExitCode::InputError;
-  if (auto watched = watchOverAds(*cell, o); !watched) {
-    std::cerr << "error: " << watched.error() << "\n";
-    return ExitCode::Usage;
-  }
   // Watching lasts until interrupted; what the plant does is reported, never stops the watch.
   cell->run.until = {};
   cell->run.cycles = UINT32_MAX;
@@ -158,8 +259,15 @@ ExitCode monitorCell(const MonitorOptions& o) {
   cell->run.plcCycleNs = *pollNs;
   std::signal(SIGINT, onMonitorSignal);
   std::signal(SIGTERM, onMonitorSignal);
-  auto bridge = startAdsBridge(*cell, sources, "is watched (read only)");
-  if (!bridge) return ExitCode::InputError;
+  ExitCode linkFailure = ExitCode::Ok;
+  auto bridge = openLink(*cell, sources, o, *pollNs, linkFailure);
+  if (!bridge) return linkFailure;
+  // The monitor's own time follows the wall clock: a full queue drops events, never waits.
+  auto recorder = openRecorder(o.history, *cell, o.cellFile, cell->run.recordVars, true);
+  if (!recorder) {
+    std::cerr << "error: " << recorder.error() << "\n";
+    return ExitCode::HistoryError;
+  }
   auto model = runModel(o.cellFile, sources);
   sim::SimOptions options;
   options.speed = 1;  // the plant's own time
@@ -171,11 +279,16 @@ ExitCode monitorCell(const MonitorOptions& o) {
   options.watch.threshold = o.deviationPercent / 100;
   AlertPrinter alerts(model && model->trace.cyclesCompleted > 0 ? model->trace.cycleEndNs - model->trace.cycleStartNs : 0);
   options.traceSinks.push_back(&alerts);
+  LocalWallClock wallClock;
+  ProductionSink production(cell->plan, wallClock);
+  options.traceSinks.push_back(&production);
+  if (*recorder) options.traceSinks.push_back(recorder->get());
   std::optional<LiveHmi> hmi;
   if (hmiBinding) {
     hmi.emplace(*cell, &gMonitorStop, o.hmi.paused, options);
     hmi->refuseReset("reset is off in monitor: the plant is real and keeps its own state");
   }
+  if (hmi && !cell->plan.shifts.empty()) hmi->watchShifts([&production](hmi::ShiftProgress& p) { production.progress(p); });
   if (model) options.watch.model = &model->trace;
   sim::Simulation simulation(*cell, options);
   if (hmi) {
@@ -188,11 +301,16 @@ ExitCode monitorCell(const MonitorOptions& o) {
   if (hmi) hmi->stop();
   const Trace& trace = cell->trace;
   report::Kpis kpis = report::computeKpis(trace);
+  const report::ProductionReport produced = production.report(trace);
   if (!o.quiet) {
     std::cout << report::summaryTable(trace, kpis);
     printShadow(trace, *simulation.recogniser());
+    std::cout << report::productionTable(produced);
   }
-  if (!o.json.empty() && !writeFile(o.json, report::jsonReport(trace, kpis))) return ExitCode::Usage;
+  if (!o.json.empty() && !writeFile(o.json, report::jsonReport(trace, kpis, &produced))) return ExitCode::Usage;
+  // A failure is kept in the recorder's error(), which reportRecording() prints.
+  if (*recorder && !cell->plan.shifts.empty()) (*recorder)->recordProduction(productionRows(produced));
+  if (*recorder && !reportRecording(o.history, **recorder)) return ExitCode::HistoryError;
   if (end == RunEnd::PlcFault) {
     std::cerr << "monitor: " << trace.endMessage << "\n";
     return ExitCode::PlcFault;
@@ -205,10 +323,13 @@ ExitCode monitorCell(const MonitorOptions& o) {
 void addMonitorCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   auto o = std::make_shared<MonitorOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "monitor", "Watch the real plant through the cell's wiring until SIGINT/SIGTERM: its PLC's variables read over ADS, the "
+      "monitor", "Watch the real plant through the cell's wiring until SIGINT/SIGTERM: its PLC's variables read over ADS or Modbus TCP, the "
                  "devices' operations recognised and compared with the cell model (digital shadow), optionally in the web HMI");
   cmd->add_option("cell", o->cellFile, "the cell file (YAML) whose wiring names the PLC's variables")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--ads", o->ads, "the PLC's AMS router, HOST:PORT (TwinCAT: 48898; or a virtcom serve --ads)")->required();
+  CLI::Option* ads = cmd->add_option("--ads", o->ads, "the PLC's AMS router, HOST:PORT (TwinCAT: 48898; or a virtcom serve --ads)");
+  cmd->add_option("--modbus", o->modbus, "instead of --ads: the PLC's Modbus TCP server, HOST:PORT, read through the cell's Modbus map "
+                                        "(plc: modbus: map, else the modbus: one; see virtcom modbus-map)")
+      ->excludes(ads);
   cmd->add_option("--netid", o->netId, "the PLC's AmsNetId (default: the cell's plc: ads: netid, else 127.0.0.1.1.1)");
   cmd->add_option("--poll", o->poll, "read every wired variable this often (default 10ms; shorter than the shortest handshake pulse)");
   cmd->add_option("--deviation", o->deviationPercent, "alert when an operation's duration deviates from the model's by more than this "
@@ -217,6 +338,7 @@ void addMonitorCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_option("--json", o->json, "write the JSON report (docs/report.md) of what was watched to this file when stopped");
   cmd->add_flag("--quiet", o->quiet, "do not print the summary and the model comparison when stopped");
   addHmiOptions(cmd, o->hmi, "--http");  // always read-only here (--hmi-readonly is implied)
+  addHistoryOptions(cmd, o->history);
   cmd->callback([o, setExit] { setExit(monitorCell(*o)); });
 }
 

@@ -15,6 +15,7 @@
 #include "cli/common.hpp"
 #include "cli/hmi_options.hpp"
 #include "cli/history_options.hpp"
+#include "cli/modbus_options.hpp"
 #include "cli/rule_trace.hpp"
 #include "core/cell_diagnostic_codes.hpp"
 #include "proto/ads/client_bridge.hpp"
@@ -128,21 +129,6 @@ ExitCode exitCodeFor(RunEnd end) {
   }
 }
 
-// `plc: modbus:`: the external PLC polled as the cell's controller.
-std::unique_ptr<proto::modbus::ClientBridge> startClientBridge(const cell::ModbusClientSettings& s) {
-  proto::modbus::ClientConfig config;
-  config.peer = s.peer;
-  config.unit = s.unit;
-  config.pollNs = s.pollNs;
-  config.timeoutNs = s.timeoutNs;
-  config.faultOnLoss = s.faultOnLoss;
-  config.map = s.map;
-  config.report = [](const std::string& line) { std::cerr << line << "\n"; };
-  std::cerr << "modbus: the PLC at " << s.address << " is the controller (polled every " << s.pollNs / 1e6 << " ms)\n";
-  return std::make_unique<proto::modbus::ClientBridge>(std::move(config));
-}
-
-
 // After a run watched in the HMI: the page keeps showing its end until the user stops the
 // command (false) or resets the run from the page (true).
 bool lingerForViewers(LiveHmi& hmi) {
@@ -254,7 +240,7 @@ ExitCode runCell(const RunOptions& o) {
   }
   std::unique_ptr<proto::modbus::ClientBridge> bridge;
   if (cell->plcModbus) {
-    bridge = startClientBridge(*cell->plcModbus);
+    bridge = startClientBridge(*cell->plcModbus, "is the controller");
     options.bridges.push_back(bridge.get());
     if (options.speed == 0) options.speed = 1;  // the external PLC runs in real time
   }

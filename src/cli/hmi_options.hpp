@@ -57,6 +57,8 @@ class LiveHmi {
   // if the address cannot be bound.
   std::expected<void, std::string> serve(const HmiBinding& binding, sim::Simulation& simulation, const SourceManager& sources);
   void stop();
+  // virtcom monitor with a plan: the KPI panel shows the current shift's parts against the plan.
+  void watchShifts(std::function<void(hmi::ShiftProgress&)> fill) { live_.watchShifts(std::move(fill)); }
 
   // The run just ended on a reset from the page.
   bool resetRequested() const { return live_.resetting(); }

@@ -1,5 +1,7 @@
 #include "cli/modbus_options.hpp"
 
+#include <iostream>
+
 namespace virtcom::cli {
 
 std::expected<proto::modbus::ServerConfig, std::string> modbusServerConfig(const std::string& listen,
@@ -15,6 +17,19 @@ std::expected<proto::modbus::ServerConfig, std::string> modbusServerConfig(const
     config.allowedPeers = *peers;
   }
   return config;
+}
+
+std::unique_ptr<proto::modbus::ClientBridge> startClientBridge(const cell::ModbusClientSettings& s, const std::string& role) {
+  proto::modbus::ClientConfig config;
+  config.peer = s.peer;
+  config.unit = s.unit;
+  config.pollNs = s.pollNs;
+  config.timeoutNs = s.timeoutNs;
+  config.faultOnLoss = s.faultOnLoss;
+  config.map = s.map;
+  config.report = [](const std::string& line) { std::cerr << line << "\n"; };
+  std::cerr << "modbus: the PLC at " << s.address << " " << role << " (polled every " << s.pollNs / 1e6 << " ms)\n";
+  return std::make_unique<proto::modbus::ClientBridge>(std::move(config));
 }
 
 }  // namespace virtcom::cli

@@ -1,9 +1,13 @@
 #pragma once
-// The Modbus server settings that `exec` and `serve` share (docs/modbus.md): one place that
-// checks --modbus and --modbus-allow, so both commands accept and refuse the same values.
+// The Modbus settings that commands share (docs/modbus.md): the server options of `exec` and
+// `serve` (one place that checks --modbus and --modbus-allow, so both accept and refuse the same
+// values) and the client bridge that `run` (`plc: modbus:`) and `monitor --modbus` start.
 #include <expected>
+#include <memory>
 #include <string>
 
+#include "cell/cell.hpp"
+#include "proto/modbus/client_bridge.hpp"
 #include "proto/modbus/server.hpp"
 
 namespace virtcom::cli {
@@ -12,5 +16,9 @@ namespace virtcom::cli {
 // The error text names the option at fault.
 std::expected<proto::modbus::ServerConfig, std::string> modbusServerConfig(const std::string& listen,
                                                                           const std::string& allow);
+
+// The client bridge polling the PLC of `s`; prints "modbus: the PLC at ADDRESS <role> (polled
+// every N ms)". It connects at its first poll.
+std::unique_ptr<proto::modbus::ClientBridge> startClientBridge(const cell::ModbusClientSettings& s, const std::string& role);
 
 }  // namespace virtcom::cli

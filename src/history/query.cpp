@@ -165,6 +165,18 @@ std::vector<uint64_t> HistoryReader::valuesBefore(int64_t run, int64_t fromNs) {
   return values;
 }
 
+std::vector<ProductionRow> HistoryReader::production(int64_t run) {
+  std::vector<ProductionRow> result;
+  Statement s(db_,
+              "SELECT day, shift, start_wall_ns, end_wall_ns, watched_from_wall_ns, plan, plan_now, actual FROM production "
+              "WHERE run = ?1 ORDER BY start_wall_ns");
+  s.bind(1, run);
+  while (s.step())
+    result.push_back({s.columnText(0), s.columnText(1), s.columnInt(2), s.columnInt(3), s.columnInt(4), s.columnInt(5), s.columnDouble(6),
+                      s.columnInt(7)});
+  return result;
+}
+
 std::vector<ActivityRecord> HistoryReader::activities(int64_t run, TimeRange range) {
   std::vector<ActivityRecord> result;
   Statement s(db_,

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/trace.hpp"
+#include "history/run_writer.hpp"
 #include "history/sqlite.hpp"
 
 namespace virtcom::history {
@@ -63,6 +64,8 @@ class HistoryReader {
   // The activities overlapping the range (start <= toNs, end >= fromNs or still running), in
   // start order, with endNs -1 for one that had not ended. Uses the (run, start_ns) index.
   std::vector<ActivityRecord> activities(int64_t run, TimeRange range);
+  // The shifts a monitored run worked against its plan, in time order (none for other runs).
+  std::vector<ProductionRow> production(int64_t run);
 
   // The run as a Trace, as `virtcom run` had it at its end, for the report writers: the whole
   // run gives the same VCD, CSV and JSON as the run wrote. A part of a run is shifted to start

@@ -146,6 +146,13 @@ void Recorder::end(const Trace& trace) {
   if (!writer_.writeEnd(trace, drops(), error_) && error_.empty()) error_ = writer_.error();
 }
 
+bool Recorder::recordProduction(const std::vector<ProductionRow>& rows) {
+  if (run_ < 0 || thread_.joinable()) return false;  // not begun, or not ended yet
+  if (writer_.writeProduction(rows)) return true;
+  if (error_.empty()) error_ = writer_.error();
+  return false;
+}
+
 void Recorder::stopWriter() {
   if (!thread_.joinable()) return;
   {

@@ -49,6 +49,10 @@ class Recorder final : public TraceSink {
   // writes how the run ended. Blocks until everything is committed.
   void end(const Trace& trace) override;
 
+  // After end(): the shifts a monitored plant worked, against its plan (blocks on I/O). False
+  // (and error() says why) on a database failure.
+  bool recordProduction(const std::vector<ProductionRow>& rows);
+
   int64_t runId() const { return run_; }
   // Events the full queue refused so far (a fault's text counts as one event with its fault).
   uint64_t drops() const { return drops_.load(std::memory_order_relaxed); }

@@ -140,4 +140,17 @@ bool RunWriter::writeEnd(const Trace& trace, uint64_t drops, const std::string& 
   return (writeLabels(trace) && tx.commit()) || fail();
 }
 
+bool RunWriter::writeProduction(const std::vector<ProductionRow>& rows) {
+  Transaction tx(db_);
+  if (!tx.began()) return fail();
+  Statement row(db_,
+                "INSERT OR REPLACE INTO production (run, start_wall_ns, end_wall_ns, watched_from_wall_ns, day, shift, plan, plan_now, "
+                "actual) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)");
+  for (const ProductionRow& r : rows)
+    if (!row.bind(1, run_).bind(2, r.startWallNs).bind(3, r.endWallNs).bind(4, r.watchedFromWallNs).bind(5, r.day).bind(6, r.shift)
+             .bind(7, r.plan).bind(8, r.planNow).bind(9, r.actual).run())
+      return fail();
+  return tx.commit() || fail();
+}
+
 }  // namespace virtcom::history

@@ -20,6 +20,17 @@ struct RunIdentity {
   std::vector<std::string> timeline;  // the report's timeline signals, in order
 };
 
+// One planned shift as a monitored plant worked it (`virtcom monitor` with a `plan:`; the
+// `production` table of docs/history.md). Wall times are local, ns since 1970-01-01 00:00.
+struct ProductionRow {
+  std::string day;    // "2026-12-02"
+  std::string shift;  // its name in the plan
+  int64_t startWallNs = 0, endWallNs = 0, watchedFromWallNs = 0;
+  int64_t plan = 0;   // the whole shift's planned parts
+  double planNow = 0; // pro-rated to the part watched
+  int64_t actual = 0; // parts (cycles) completed
+};
+
 class RunWriter {
  public:
   explicit RunWriter(Connection& db);
@@ -32,6 +43,8 @@ class RunWriter {
   bool writeBatch(const EventQueue& queue, size_t count, int64_t progressNs, uint64_t drops);
   // How the run ended, the labels interned during the run, the devices' totals.
   bool writeEnd(const Trace& trace, uint64_t drops, const std::string& writerError);
+  // The run's shifts, replacing what was written for them before.
+  bool writeProduction(const std::vector<ProductionRow>& rows);
 
   const std::string& error() const { return error_; }
   Connection& connection() { return db_; }

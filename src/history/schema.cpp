@@ -64,6 +64,14 @@ CREATE TABLE cycles (
   PRIMARY KEY (run, number)
 ) STRICT, WITHOUT ROWID;
 )sql",
+    // 2: the production a monitored plant made per planned shift (virtcom monitor with a `plan:`).
+    R"sql(
+CREATE TABLE production (
+  run INTEGER NOT NULL, start_wall_ns INTEGER NOT NULL, end_wall_ns INTEGER NOT NULL, watched_from_wall_ns INTEGER NOT NULL,
+  day TEXT NOT NULL, shift TEXT NOT NULL, plan INTEGER NOT NULL, plan_now REAL NOT NULL, actual INTEGER NOT NULL,
+  PRIMARY KEY (run, start_wall_ns)
+) STRICT, WITHOUT ROWID;
+)sql",
 };
 static_assert(std::size(kMigrations) == kSchemaVersion);
 

@@ -115,6 +115,8 @@ bool LiveState::publish(const Trace& trace, bool wait) {
   for (size_t d = 0; d < s.injected.size(); ++d) s.injected[d] = cell_->devices[d]->faults().errorCode;
   std::ranges::copy(fires_, s.rules.begin());
   copyBelts();
+  s.planned = static_cast<bool>(shiftProgress_);
+  if (shiftProgress_) shiftProgress_(s.shift);
   dirty_ = false;
   lastPublishWallNs_ = monotonicNowNs();
   return true;

@@ -13,6 +13,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -42,6 +43,11 @@ struct BeltParts {
 struct RuleFlag {
   uint32_t address = 0;
   int8_t bit = -1;
+// Production against the plan in the current shift (virtcom monitor with a `plan:`).
+struct ShiftProgress {
+  std::string shift;   // empty: between shifts
+  double planNow = 0;  // the shift's plan pro-rated to the part watched, up to now
+  uint32_t parts = 0;  // parts made in it
 };
 
 // What the HMI shows, as of one published tick. Sizes are fixed at begin() except the lists
@@ -68,6 +74,8 @@ struct Snapshot {
   std::vector<int32_t> injected;    // per device: the injected error code, 0 = none
   std::vector<RuleFires> rules;     // per watched rule (LiveState::watchRules), in its order
   std::vector<BeltParts> belts;     // per conveyor, in device order
+  bool planned = false;             // a production plan is watched: `shift` is meaningful
+  ShiftProgress shift;
 };
 
 // A request from an HTTP thread, applied on the simulation's thread between two ticks. Values
@@ -120,6 +128,10 @@ class LiveState final : public TraceSink, public sim::RunControl {
     countFirings(plc);
   }
 
+  // Before the run: `fill` updates the shift's progress in place at each publication, on the
+  // simulation's thread (virtcom monitor with a plan). Without it the snapshot has none.
+  void watchShifts(std::function<void(ShiftProgress&)> fill) { shiftProgress_ = std::move(fill); }
+
   // ---- any thread ----
   void post(Command command);
   // Calls f(const Snapshot&) under the snapshot's lock: keep it short (copy what is needed).
@@ -165,6 +177,7 @@ class LiveState final : public TraceSink, public sim::RunControl {
   std::vector<RuleFlag> ruleFlags_;
   std::vector<RuleFires> fires_;  // parallel to ruleFlags_
   std::vector<const plant::Conveyor*> conveyors_;  // parallel to snapshot_.belts
+  std::function<void(ShiftProgress&)> shiftProgress_;
 
   // HTTP threads -> simulation thread
   std::mutex commandMutex_;

@@ -90,6 +90,7 @@ std::string StreamSession::nextFrame() {
                     {"cycleNs", s.nowNs - s.cycleStartNs},
                     {"energyJ", s.energyJ},
                     {"operations", s.activities.size()}};
+    if (s.planned) frame["kpi"]["shift"] = {{"name", s.shift.shift}, {"planNow", s.shift.planNow}, {"parts", s.shift.parts}};
     if (first_ || s.forced != forced_) frame["forced"] = forced_ = s.forced;
     if (first_ || s.injected != injected_) frame["injected"] = injected_ = s.injected;
     Json vars = Json::array();

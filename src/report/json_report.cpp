@@ -1,6 +1,7 @@
 #include "report/json_report.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include <nlohmann/json.hpp>
 
@@ -92,9 +93,36 @@ Json faultsJson(const Trace& trace) {
   return out;
 }
 
+// Wall-clock times as local "YYYY-MM-DD HH:MM:SS" (the plant's clock, as the plan is written).
+std::string localTime(int64_t localNs) {
+  const int64_t s = (localNs % kDayNs + kDayNs) % kDayNs / 1'000'000'000;
+  char hms[16];
+  std::snprintf(hms, sizeof hms, " %02d:%02d:%02d", static_cast<int>(s / 3600), static_cast<int>(s / 60 % 60), static_cast<int>(s % 60));
+  return localDate(localNs) + hms;
+}
+
+Json productionJson(const ProductionReport& p) {
+  Json shifts = Json::array(), days = Json::array(), stations = Json::array();
+  for (const auto& s : p.shifts)
+    shifts.push_back(Json{{"day", s.day},
+                          {"shift", s.name},
+                          {"start", localTime(s.startNs)},
+                          {"end", localTime(s.endNs)},
+                          {"watched_from", localTime(s.watchedFromNs)},
+                          {"plan", s.plan},
+                          {"plan_now", s.planNow},
+                          {"actual", s.actual}});
+  for (const auto& d : p.days) days.push_back(Json{{"day", d.day}, {"plan", d.plan}, {"plan_now", d.planNow}, {"actual", d.actual}});
+  for (const auto& s : p.stations)
+    stations.push_back(Json{{"device", s.name},
+                            {"operation", s.operation.empty() ? Json(nullptr) : Json(s.operation)},
+                            {"elapsed_s", seconds(s.elapsedNs)}});
+  return Json{{"shifts", shifts}, {"days", days}, {"stations", stations}};
+}
+
 }  // namespace
 
-std::string jsonReport(const Trace& trace, const Kpis& kpis) {
+std::string jsonReport(const Trace& trace, const Kpis& kpis, const ProductionReport* production) {
   Json doc{{"schema", "virtcom.report"},
            {"schema_version", kJsonSchemaVersion},
            {"run", runJson(kpis)},
@@ -108,6 +136,7 @@ std::string jsonReport(const Trace& trace, const Kpis& kpis) {
            {"activities", activitiesJson(trace)},
            {"collisions", collisionsJson(trace)},
            {"faults", faultsJson(trace)}};
+  if (production) doc["production"] = productionJson(*production);
   // `replace` turns invalid UTF-8 into U+FFFD instead of throwing: names come from user files.
   return doc.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }

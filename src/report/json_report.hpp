@@ -4,6 +4,7 @@
 
 #include "core/trace.hpp"
 #include "report/kpis.hpp"
+#include "report/production.hpp"
 
 namespace virtcom::report {
 
@@ -13,6 +14,7 @@ inline constexpr int kJsonSchemaVersion = 1;
 // The KPIs plus every activity, collision and fault as a JSON document (2-space indented, keys
 // in a fixed order, times in seconds, energies in joules, ends with '\n'). Invalid UTF-8 in
 // names is replaced by U+FFFD. Deterministic; `kpis` must come from computeKpis(trace).
-std::string jsonReport(const Trace& trace, const Kpis& kpis);
+// With `production` (virtcom monitor), a "production" member as well: shifts, days and stations.
+std::string jsonReport(const Trace& trace, const Kpis& kpis, const ProductionReport* production = nullptr);
 
 }  // namespace virtcom::report

@@ -120,8 +120,8 @@ TEST_F(CliHelp, ServeListsEveryOption) {
 TEST_F(CliHelp, MonitorListsEveryOption) {
   RunResult r = run({"monitor", "--help"});
   EXPECT_EQ(r.exitCode, 0) << show(r);
-  for (const char* option : {"cell", "--ads", "--netid", "--poll", "--deviation", "--json", "--quiet", "--http", "--http-allow",
-                             "--hmi-token", "--hmi-readonly"})
+  for (const char* option : {"cell", "--ads", "--modbus", "--netid", "--poll", "--deviation", "--json", "--quiet", "--http", "--http-allow",
+                             "--hmi-token", "--hmi-readonly", "--history", "--history-keep-days", "--history-max-mb", "--history-queue"})
     EXPECT_TRUE(contains(r.out, option)) << option << "\n" << show(r);
 }
 

@@ -83,6 +83,12 @@ function applyFrame(f) {
     $('kpi-last').textContent = f.kpi.lastCycleNs ? seconds(f.kpi.lastCycleNs) : '–';
     $('kpi-ops').textContent = f.kpi.operations;
     $('kpi-energy').textContent = `${f.kpi.energyJ.toFixed(0)} J`;
+    if (f.kpi.shift) {  // virtcom monitor with a production plan: parts against the plan so far
+      const s = f.kpi.shift;
+      $('kpi-shift-name').hidden = $('kpi-shift').hidden = false;
+      $('kpi-shift-name').textContent = s.name ? `shift ${s.name}: parts / plan now` : 'shift: none now';
+      $('kpi-shift').textContent = s.name ? `${s.parts} / ${s.planNow.toFixed(1)}` : '–';
+    }
   }
   if (f.injected) state.injected = f.injected;
   if (f.forced) state.forced = f.forced;

@@ -101,6 +101,30 @@ TEST_F(Recorder_, RoundTripGivesTheTraceBack) {
   EXPECT_GT(run->wallStartNs, 0);
 }
 
+// `virtcom monitor` with a plan: the shifts are written after the run ended and read back.
+TEST_F(Recorder_, ProductionPerShiftIsRecordedAfterTheEnd) {
+  auto recorder = open("h.sqlite");
+  EXPECT_FALSE(recorder->recordProduction({}));  // not begun
+  recordSample(*recorder);
+  const std::vector<ProductionRow> rows = {{"2026-12-02", "Early", 100, 200, 150, 400, 200.5, 190},
+                                           {"2026-12-02", "Late", 200, 300, 200, 320, 10, 12}};
+  ASSERT_TRUE(recorder->recordProduction(rows)) << recorder->error();
+  recorder.reset();
+  HistoryReader reader = read("h.sqlite");
+  const std::vector<ProductionRow> back = reader.production(1);
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[0].shift, "Early");
+  EXPECT_EQ(back[0].day, "2026-12-02");
+  EXPECT_EQ(back[0].startWallNs, 100);
+  EXPECT_EQ(back[0].endWallNs, 200);
+  EXPECT_EQ(back[0].watchedFromWallNs, 150);
+  EXPECT_EQ(back[0].plan, 400);
+  EXPECT_DOUBLE_EQ(back[0].planNow, 200.5);
+  EXPECT_EQ(back[0].actual, 190);
+  EXPECT_EQ(back[1].shift, "Late");
+  EXPECT_TRUE(reader.production(2).empty());
+}
+
 TEST_F(Recorder_, RunsAccumulateInOneFile) {
   for (int i = 0; i < 3; ++i) recordSample(*open("h.sqlite"));
   HistoryReader reader = read("h.sqlite");

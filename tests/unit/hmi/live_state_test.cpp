@@ -96,6 +96,22 @@ TEST_F(GearboxHmi, TheFirstFrameHasEverythingThenOnlyChanges) {
   EXPECT_EQ(stream->nextFrame(), "") << "nothing published since";
 }
 
+// virtcom monitor with a production plan: the KPIs carry the current shift's parts and plan.
+TEST_F(GearboxHmi, TheKpisCarryTheShiftsProgressWhenAPlanIsWatched) {
+  steps(1);
+  auto stream = api->openStream(parseRequest({"GET", "/api/stream", {}, "", ""}, {}));
+  live->end(simulation->trace());
+  EXPECT_FALSE(Json::parse(stream->nextFrame())["kpi"].contains("shift")) << "no plan, no shift";
+  live->watchShifts([](ShiftProgress& p) {
+    p.shift = "Early";
+    p.planNow = 12.5;
+    p.parts = 3;
+  });
+  live->end(simulation->trace());  // publishes again
+  Json frame = Json::parse(stream->nextFrame());
+  EXPECT_EQ(frame["kpi"]["shift"], Json({{"name", "Early"}, {"planNow", 12.5}, {"parts", 3}}));
+}
+
 TEST_F(GearboxHmi, PauseHoldsTheRunAndStepAdvancesOneTickAtATime) {
   steps(5);
   const int64_t before = simulation->nowNs();

@@ -44,16 +44,16 @@ struct Cursor {
 std::optional<Cursor> findRoot(const Module& m, std::string_view path, size_t& used) {
   std::optional<Cursor> best;
   size_t bestLen = 0;
-  auto consider = [&](std::string_view name, TypeId type, uint32_t address, bool readOnly) {
+  auto consider = [&](std::string_view name, TypeId type, uint32_t address, bool readOnly, int bit) {
     if (name.size() <= bestLen || name.size() > path.size()) return;
     if (!iequalsAscii(path.substr(0, name.size()), name)) return;
     if (name.size() < path.size() && path[name.size()] != '.' && path[name.size()] != '[') return;
-    best = Cursor{type, address, -1, readOnly};
+    best = Cursor{type, address, bit, readOnly};
     bestLen = name.size();
   };
-  for (const Symbol& s : m.symbols) consider(s.name, s.type, s.address, s.readOnly);
+  for (const Symbol& s : m.symbols) consider(s.name, s.type, s.address, s.readOnly, s.bit);
   for (const ProgramInstance& p : m.programs)
-    if (p.pou < m.pous.size()) consider(p.name, m.pous[p.pou].instanceType, p.address, false);
+    if (p.pou < m.pous.size()) consider(p.name, m.pous[p.pou].instanceType, p.address, false, -1);
   if (best) {
     used = bestLen;
     return best;
@@ -70,7 +70,7 @@ std::optional<Cursor> findRoot(const Module& m, std::string_view path, size_t& u
   }
   if (!unique || head == 0) return std::nullopt;
   used = head;
-  return Cursor{unique->type, unique->address, -1, unique->readOnly};
+  return Cursor{unique->type, unique->address, unique->bit, unique->readOnly};
 }
 
 bool parseIndex(std::string_view& rest, int64_t& out) {

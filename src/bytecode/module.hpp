@@ -98,6 +98,7 @@ struct Symbol {
   uint32_t address = 0;
   bool readOnly = false;
   bool retain = false;   // a RETAIN or PERSISTENT global: kept over a warm start
+  int8_t bit = -1;       // a located BOOL (AT %IX0.2): the bit of the byte at `address`
 };
 
 struct ProgramInstance {

@@ -35,6 +35,8 @@ void addAdsServeOptions(CLI::App* cmd, AdsServeOptions& o) {
   cmd->add_option("--ads-netid", o.netId, "AmsNetId of the --ads server (default 127.0.0.1.1.1; 127.0.0.1.1.1 is always accepted too)");
   cmd->add_option("--ads-allow", o.allow, "comma-separated IPv4 peers and/or client AmsNetIds allowed to use --ads (default: any)");
   cmd->add_flag("--ads-readonly", o.readOnly, "refuse every ADS write and RUN/STOP request (error 0x704)");
+  cmd->add_option("--ads-discovery", o.discovery,
+                  "UDP port of the ADS discovery service (identify, add route: adstool HOST netid, pyads add_route_to_plc) on the --ads address; 0 picks a free port, 'off' disables it (default 48899)");
 }
 
 std::expected<std::unique_ptr<proto::ads::PlcServer>, std::string> startAdsServer(const AdsServeOptions& o,
@@ -54,12 +56,24 @@ std::expected<std::unique_ptr<proto::ads::PlcServer>, std::string> startAdsServe
     std::string problem = parseAdsAllow(o.allow, config);
     if (!problem.empty()) return std::unexpected("--ads-allow: " + problem);
   }
+  if (o.discovery == "off") {
+    config.discoveryPort.reset();
+  } else {
+    // The port on the --ads host, with the endpoint parser's checks and message.
+    auto at = proto::net::parseEndpoint(proto::net::formatIpv4(endpoint->ipv4) + ":" + o.discovery);
+    if (!at) return std::unexpected("--ads-discovery: " + at.error() + " (or 'off')");
+    config.discoveryPort = at->port;
+  }
   auto server = ads::PlcServer::start(config, module);
   if (!server) return std::unexpected("--ads: " + server.error());
   return server;
 }
 
 void announceAdsServer(const AdsServeOptions& o, proto::ads::PlcServer& server) {
+  if (auto udp = server.server().discoveryEndpoint())
+    std::cerr << "ads: discovery on UDP " << proto::net::formatEndpoint(*udp) << "\n";
+  else if (!server.server().discoveryProblem().empty())
+    std::cerr << "warning: ads: discovery not served (" << server.server().discoveryProblem() << ")\n";
   std::cerr << "ads: serving on " << proto::net::formatEndpoint(server.server().endpoint()) << " as AmsNetId "
             << (o.netId.empty() ? "127.0.0.1.1.1" : o.netId) << ", AMS ports 851 and 10000\n";
 }

@@ -17,10 +17,11 @@ struct AdsServeOptions {
   std::string netId;   // --ads-netid; empty: 127.0.0.1.1.1
   std::string allow;   // --ads-allow: IPv4 peers and/or client AmsNetIds; empty: any
   bool readOnly = false;
+  std::string discovery = "48899";  // --ads-discovery: UDP port of identify / add route, or "off"
   bool enabled() const { return !listen.empty(); }
 };
 
-// Adds --ads, --ads-netid, --ads-allow and --ads-readonly to `cmd`.
+// Adds --ads, --ads-netid, --ads-allow, --ads-readonly and --ads-discovery to `cmd`.
 void addAdsServeOptions(CLI::App* cmd, AdsServeOptions& o);
 
 // Checks the options and starts the server over `module` (which must outlive it). The error
@@ -29,7 +30,8 @@ std::expected<std::unique_ptr<proto::ads::PlcServer>, std::string> startAdsServe
                                                                                   const bc::Module& module);
 
 // "ads: serving on 127.0.0.1:48898 as AmsNetId 127.0.0.1.1.1, AMS ports 851 and 10000" on
-// stderr: once the first image is published (e2e tests and scripts wait for it).
+// stderr: once the first image is published (e2e tests and scripts wait for it); before it, the
+// discovery line ("ads: discovery on UDP 127.0.0.1:48899", or a warning why not).
 void announceAdsServer(const AdsServeOptions& o, proto::ads::PlcServer& server);
 
 }  // namespace virtcom::cli

@@ -11,7 +11,7 @@ namespace virtcom::plc {
 std::vector<RetainedVariable> retainedVariables(const bc::Module& m) {
   std::vector<RetainedVariable> out;
   for (const bc::Symbol& s : m.symbols)
-    if (s.retain) out.push_back({s.name, s.type, s.address});
+    if (s.retain && s.bit < 0) out.push_back({s.name, s.type, s.address});  // located bits: the I/O image's
   for (const bc::ProgramInstance& p : m.programs) {
     if (p.pou >= m.pous.size() || m.pous[p.pou].instanceType >= m.types.size()) continue;
     for (const bc::Field& f : m.types[m.pous[p.pou].instanceType].fields)

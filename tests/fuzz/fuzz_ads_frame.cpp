@@ -2,12 +2,14 @@
 // scanFrame exactly as the server does, each answered by a Session over a small symbol table,
 // with notifications evaluated after every frame. Finds out-of-bounds reads/writes and aborts in
 // the AMS/TCP, AMS and ADS parsers, the sum commands and the notification code, and in the
-// symbol entry parser the client bridge applies to replies (each frame's ADS data).
+// symbol entry parser the client bridge applies to replies (each frame's ADS data), and in the
+// UDP discovery parser (the whole input as one datagram).
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "proto/ads/discovery.hpp"
 #include "proto/ads/entries.hpp"
 #include "proto/ads/session.hpp"
 
@@ -36,13 +38,15 @@ const ads::SymbolTable& table() {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   ads::DeviceConfig config;
-  config.maxHandlesPerConnection = 64;
+  config.maxHandlesPerRoute = 64;
+  config.maxHandleRoutes = 4;
   config.maxNotificationsPerConnection = 64;
   config.writeQueueBytes = 256;
   ads::Device device(table(), config);
   ads::Session session(device);
   std::span<const uint8_t> stream(data, size);
   std::vector<uint8_t> out;
+  (void)ads::answerDiscovery(stream, ads::DiscoveryInfo{{1, 2, 3, 4, 1, 1}, "fuzz", {{5, 6, 7, 8, 1, 1}}}, out);
   int64_t now = 0;
   while (true) {
     ads::FrameScan scan = ads::scanFrame(stream, 64 * 1024);

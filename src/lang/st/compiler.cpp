@@ -63,7 +63,7 @@ void fillSymbols(ProgramModel& model, bc::Module& module, TypeTable& types) {
     s.address = g.var.offset;
     s.readOnly = g.var.readOnly;
     s.retain = g.var.retain;
-    if (g.var.bit >= 0) continue;  // located single bits are reached through %IX addresses
+    s.bit = static_cast<int8_t>(g.var.bit);
     module.symbols.push_back(s);
   }
   for (const auto& inst : model.programInstances) {

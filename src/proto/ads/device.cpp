@@ -35,7 +35,8 @@ Device::Device(const SymbolTable& table, DeviceConfig config)
       config_(config),
       dataArea_{0, table.layout().dataSize},
       snapshot_(table.layout().dataSize, 0),
-      pending_(config.writeQueueBytes) {
+      pending_(config.writeQueueBytes),
+      handles_(config.maxHandlesPerRoute, config.maxHandleRoutes) {
   for (const Symbol& s : table_.symbols()) appendSymbolEntry(symbolUpload_, s);
   for (const DataType& t : table_.types()) appendDataTypeEntry(typeUpload_, t);
   typeCount_ = static_cast<uint32_t>(table_.types().size());
@@ -60,7 +61,9 @@ AdsError Device::read(uint32_t ig, uint32_t io, uint32_t length, std::vector<uin
   if (const ByteRange* area = areaOf(ig)) {
     if (isBitGroup(ig)) return readBits(*area, io, length, out);
     if (io > area->size) return AdsError::InvalidIndexOffset;
-    if (length == kAnyLength || length > area->size - io) return AdsError::InvalidSize;
+    if (length == kAnyLength) return AdsError::InvalidSize;
+    // Past the area's end: what there is, with its actual length (docs/ads.md, Read lengths).
+    length = std::min(length, area->size - io);
     auto bytes = std::span<const uint8_t>(snapshot_).subspan(area->offset + io, length);
     out.insert(out.end(), bytes.begin(), bytes.end());
     return AdsError::None;
@@ -101,7 +104,8 @@ AdsError Device::read(uint32_t ig, uint32_t io, uint32_t length, std::vector<uin
 AdsError Device::readBits(const ByteRange& area, uint32_t bitAddress, uint32_t length, std::vector<uint8_t>& out) const {
   // One byte (0 or 1) per bit, starting at bitAddress = byte * 8 + bit.
   if (bitAddress / 8 >= area.size) return AdsError::InvalidIndexOffset;
-  if (length == 0 || length == kAnyLength || length > uint64_t{area.size} * 8 - bitAddress) return AdsError::InvalidSize;
+  if (length == 0 || length == kAnyLength) return AdsError::InvalidSize;
+  length = static_cast<uint32_t>(std::min<uint64_t>(length, uint64_t{area.size} * 8 - bitAddress));
   for (uint64_t b = bitAddress; b < uint64_t{bitAddress} + length; ++b)
     out.push_back((snapshot_[area.offset + b / 8] >> (b % 8)) & 1);
   return AdsError::None;

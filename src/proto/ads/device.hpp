@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "proto/ads/ams.hpp"
+#include "proto/ads/handle_table.hpp"
 #include "proto/ads/symbol_table.hpp"
 #include "proto/ads/write_queue.hpp"
 
@@ -23,7 +24,8 @@ struct DeviceConfig {
   AmsNetId netId{127, 0, 0, 1, 1, 1};
   bool readOnly = false;                  // every write and WriteControl refused (0x704)
   size_t writeQueueBytes = 64 * 1024;     // queued write data between two scans; beyond: 0x708
-  size_t maxHandlesPerConnection = 10000;        // beyond: 0x70A
+  size_t maxHandlesPerRoute = 10000;            // per AMS route (NetId:port); beyond: 0x70A
+  size_t maxHandleRoutes = 256;                 // routes holding handles at once; beyond: 0x70A
   size_t maxNotificationsPerConnection = 1000;   // beyond: 0x716
   size_t maxSumItems = 4096;                     // sub-commands of one sum command; beyond: 0x706
   size_t maxSumReadBytes = 1024 * 1024;          // data of one sum read reply; beyond: 0x705
@@ -54,6 +56,8 @@ class Device {
   std::optional<uint16_t> takeStateRequest();
   void publish(std::span<const uint8_t> image, uint16_t adsState);
   WriteQueue& pendingWrites() { return pending_; }
+  // Symbol handles, per AMS route: they outlive connections (handle_table.hpp).
+  HandleTable& handles() { return handles_; }
 
   // A fresh client port for AMS/TCP port registration (0x1000).
   uint16_t assignPort();
@@ -71,6 +75,7 @@ class Device {
   std::vector<uint8_t> symbolUpload_, typeUpload_;
   uint32_t typeCount_ = 0;
   WriteQueue pending_;
+  HandleTable handles_;
   uint16_t adsState_ = kAdsStateRun;
   std::optional<uint16_t> requestedState_;
   uint8_t symbolVersion_ = 1;

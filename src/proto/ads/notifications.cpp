@@ -28,11 +28,11 @@ AdsError Session::addNotification(std::span<const uint8_t> body, uint32_t& handl
   if (length == 0 || length == kAnyLength) return AdsError::InvalidSize;
   if (ig == static_cast<uint32_t>(IndexGroup::SymValueByHandle)) {
     // AdsLib's notification by name: IO is a symbol handle (docs/ads.md, Device notifications).
-    const Handle* h = findHandle(io);
+    const Symbol* h = findHandle(io);
     if (!h) return AdsError::SymbolNotFound;
-    if (length > h->symbol.size) return AdsError::InvalidSize;
-    ig = h->symbol.indexGroup;
-    io = h->symbol.indexOffset;
+    if (length > h->size) return AdsError::InvalidSize;
+    ig = h->indexGroup;
+    io = h->indexOffset;
   }
   scratch_.clear();
   if (AdsError e = device_.read(ig, io, length, scratch_); e != AdsError::None) return e;
@@ -47,7 +47,9 @@ AdsError Session::addNotification(std::span<const uint8_t> body, uint32_t& handl
   n.length = length;
   n.onChange = mode == kServerOnChange || mode == kServerOnChangeInContext;
   n.cycleNs = int64_t{cycle} * kNsPer100Ns;
-  // Groups like 0xF100 accept any length and answer fewer bytes: size the sample by the answer.
+  // Groups like 0xF100 accept any length and answer fewer bytes, and a read past an area's end
+  // answers what there is: the sample is what the read answers, so every frame is consistent.
+  n.length = static_cast<uint32_t>(scratch_.size());
   n.last.reserve(scratch_.size());
   notifications_.push_back(std::move(n));
   handle = notifications_.back().handle;
@@ -64,13 +66,20 @@ AdsError Session::deleteNotification(uint32_t handle) {
 int64_t Session::nextCycleDueNs() const {
   int64_t next = std::numeric_limits<int64_t>::max();
   for (const Notification& n : notifications_)
-    if (!n.onChange && n.cycleNs > 0) next = std::min(next, n.nextCheckNs);
+    if ((!n.sent && n.firstDueSet) || (!n.onChange && n.cycleNs > 0)) next = std::min(next, n.nextCheckNs);
   return next;
 }
 
 void Session::sendDueNotifications(int64_t nowNs, uint64_t fileTime, std::vector<uint8_t>& out) {
   for (Notification& n : notifications_) {
-    if (n.sent && nowNs < n.nextCheckNs) continue;
+    if (!n.firstDueSet) {
+      // The first sample waits one task cycle after the reply, as TwinCAT sends it at the end of
+      // the next cycle: AdsLib registers its callback only once the reply is in, and a sample
+      // in the same segment as the reply is dropped (docs/ads.md, Device notifications).
+      n.firstDueSet = true;
+      n.nextCheckNs = nowNs + kFirstSampleDelayNs;
+    }
+    if (nowNs < n.nextCheckNs) continue;
     n.nextCheckNs = nowNs + n.cycleNs;
     value_.clear();
     if (device_.read(n.ig, n.io, n.length, value_) != AdsError::None) continue;

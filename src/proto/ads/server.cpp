@@ -1,5 +1,6 @@
 #include "proto/ads/server.hpp"
 
+#include <arpa/inet.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <poll.h>
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <cstring>
 #include <limits>
 
 #include "core/clock.hpp"
@@ -23,7 +25,11 @@ constexpr size_t kReadChunk = 16 * 1024;
 // dropped once notifications pile up beyond kMaxQueuedBytes (AdsLib's own buffer is 4 MB).
 constexpr size_t kMaxUnsentBytes = 256 * 1024;
 constexpr size_t kMaxQueuedBytes = 16 * 1024 * 1024;
-constexpr uint8_t kWakePublished = 2;  // besides net::ServerThread::kWakeStop
+constexpr uint8_t kWakePublished = 2;
+// Discovery requests are a few hundred bytes (names, a password); longer ones are cut and ignored.
+constexpr size_t kMaxDatagram = 2048;
+// Polled before the connections: the wake-up pipe, the TCP listener, the UDP socket.
+constexpr size_t kFixedFds = 3;  // besides net::ServerThread::kWakeStop
 // Windows FILETIME (100 ns ticks since 1601) of the Unix epoch (docs/ads.md, Device notifications).
 constexpr uint64_t kFileTimeUnixEpoch = 116'444'736'000'000'000ull;
 
@@ -50,14 +56,49 @@ Server::Server(const ServerConfig& config, const SymbolTable& table) : config_(c
 
 std::expected<std::unique_ptr<Server>, std::string> Server::start(const ServerConfig& config, const SymbolTable& table) {
   std::unique_ptr<Server> s(new Server(config, table));
+  s->openDiscovery();
   auto started = s->io_.start(config.listen, "ADS", [server = s.get()] { server->run(); });
   if (!started) return std::unexpected(started.error());
   return s;
 }
 
-Server::~Server() { stop(); }
+Server::~Server() {
+  stop();
+  if (udpFd_ >= 0) ::close(udpFd_);
+}
 
 void Server::stop() { io_.stop(); }
+
+void Server::openDiscovery() {
+  if (!config_.discoveryPort) return;
+  auto bound = net::bindUdp(net::Endpoint{config_.listen.ipv4, *config_.discoveryPort});
+  if (!bound) {
+    discoveryProblem_ = bound.error();
+    return;
+  }
+  udpFd_ = bound->fd;
+  discovery_ = bound->bound;
+  char host[256] = {};
+  if (::gethostname(host, sizeof host - 1) != 0) std::strcpy(host, "virtcom");
+  discoveryInfo_ = DiscoveryInfo{config_.device.netId, host, config_.allowedNetIds};
+  datagram_.resize(kMaxDatagram);
+  reply_.reserve(kMaxDatagram);
+}
+
+void Server::answerDatagrams() {
+  while (true) {
+    sockaddr_in peer{};
+    socklen_t len = sizeof peer;
+    ssize_t n = ::recvfrom(udpFd_, datagram_.data(), datagram_.size(), 0, reinterpret_cast<sockaddr*>(&peer), &len);
+    if (n < 0) return;  // EAGAIN: all answered (errors of a datagram socket concern one datagram)
+    const uint32_t ip = ntohl(peer.sin_addr.s_addr);
+    const auto& allowed = config_.allowedPeers;
+    if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), ip) == allowed.end()) continue;
+    reply_.clear();
+    if (!answerDiscovery(std::span<const uint8_t>(datagram_.data(), static_cast<size_t>(n)), discoveryInfo_, reply_)) continue;
+    ::sendto(udpFd_, reply_.data(), reply_.size(), MSG_DONTWAIT, reinterpret_cast<const sockaddr*>(&peer), len);
+  }
+}
 
 size_t Server::applyPendingWrites(const LiveImage& live) {
   std::lock_guard lock(mutex_);
@@ -106,6 +147,12 @@ void Server::run() {
     c.session.sendDueNotifications(monotonicNowNs(), fileTimeNow(), c.tx);
     return keep;
   };
+  auto closeConnection = [&](Connection& c) {
+    ::close(c.fd);
+    c.fd = -1;
+    std::lock_guard lock(mutex_);
+    c.session.end();
+  };
   auto countNotifications = [&] {
     size_t total = 0;
     for (const auto& c : clients) total += c->session.notificationCount();
@@ -116,6 +163,7 @@ void Server::run() {
       fds.clear();
       fds.push_back({io_.wakeFd(), POLLIN, 0});
       fds.push_back({io_.listenFd(), POLLIN, 0});
+      fds.push_back({udpFd_, POLLIN, 0});  // a negative fd is ignored by poll
       int64_t nextDue = std::numeric_limits<int64_t>::max();
       for (const auto& c : clients) {
         short events = c->tx.size() < kMaxUnsentBytes ? POLLIN : 0;
@@ -132,11 +180,9 @@ void Server::run() {
       }
       // A publish only needs the loop to run once: every session's notifications are due-checked below.
       if ((fds[0].revents & POLLIN) && io_.takeStopRequest()) break;
+      if (fds[2].revents & POLLIN) answerDatagrams();
       for (size_t i = 0; i < clients.size(); ++i) {
-        if ((fds[i + 2].revents & (POLLIN | POLLHUP | POLLERR)) && !receive(*clients[i])) {
-          ::close(clients[i]->fd);
-          clients[i]->fd = -1;
-        }
+        if ((fds[i + kFixedFds].revents & (POLLIN | POLLHUP | POLLERR)) && !receive(*clients[i])) closeConnection(*clients[i]);
       }
       // Before anything is sent: a client that got its AddNotification reply may make the scan
       // publish at once, and that publish must wake this thread.
@@ -147,10 +193,7 @@ void Server::run() {
           std::lock_guard lock(mutex_);
           c->session.sendDueNotifications(monotonicNowNs(), fileTimeNow(), c->tx);
         }
-        if (!flush(*c)) {
-          ::close(c->fd);
-          c->fd = -1;
-        }
+        if (!flush(*c)) closeConnection(*c);
       }
       std::erase_if(clients, [](const auto& c) { return c->fd < 0; });
       if (fds[1].revents & POLLIN) {

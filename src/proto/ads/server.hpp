@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "proto/ads/device.hpp"
+#include "proto/ads/discovery.hpp"
 #include "proto/ads/symbol_table.hpp"
 #include "proto/net/endpoint.hpp"
 #include "proto/net/server_thread.hpp"
@@ -34,6 +35,10 @@ struct ServerConfig {
   DeviceConfig device;
   size_t maxClients = 32;               // further connections are accepted and closed at once
   size_t maxFrameBytes = 1024 * 1024;   // a longer AMS/TCP frame closes its connection
+  // UDP discovery (identify, add route: discovery.hpp) on listen's address at this port
+  // (TwinCAT: kDiscoveryUdpPort; the CLI's default); 0: any free port, nullopt: off. A port that
+  // cannot be bound leaves the TCP server running without it (discoveryProblem()).
+  std::optional<uint16_t> discoveryPort;
 };
 
 // The scan thread's memory: the data area the symbol table describes, and the external input
@@ -54,6 +59,9 @@ class Server {
   Server& operator=(const Server&) = delete;
 
   net::Endpoint endpoint() const { return io_.bound(); }
+  // The UDP discovery endpoint, if it is served; else why not ("" when it is off).
+  std::optional<net::Endpoint> discoveryEndpoint() const { return discovery_; }
+  const std::string& discoveryProblem() const { return discoveryProblem_; }
 
   // Scan thread, before a scan: applies every queued write to `live`; returns how many edits.
   size_t applyPendingWrites(const LiveImage& live);
@@ -72,12 +80,20 @@ class Server {
  private:
   Server(const ServerConfig& config, const SymbolTable& table);
   void run();
+  void openDiscovery();
+  // I/O thread, once the UDP socket is readable: answers every datagram waiting.
+  void answerDatagrams();
 
   ServerConfig config_;
   std::mutex mutex_;  // guards device_ and every session
   Device device_;
   std::atomic<size_t> notifications_{0};
   std::atomic<size_t> connections_{0};
+  int udpFd_ = -1;
+  std::optional<net::Endpoint> discovery_;
+  std::string discoveryProblem_;
+  DiscoveryInfo discoveryInfo_;
+  std::vector<uint8_t> datagram_, reply_;  // sized once: answering allocates nothing
   net::ServerThread io_;  // runs run(); last, so its thread ends before the members it uses
 };
 

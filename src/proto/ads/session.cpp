@@ -33,6 +33,11 @@ void appendDeviceInfo(std::vector<uint8_t>& reply, const char* name) {
 Session::Session(Device& device, std::vector<AmsNetId> allowedNetIds)
     : device_(device), allowedNetIds_(std::move(allowedNetIds)) {}
 
+void Session::end() {
+  if (registered_) device_.handles().releaseRoute(*registered_);
+  registered_.reset();
+}
+
 bool Session::handleFrame(std::span<const uint8_t> frame, std::vector<uint8_t>& out) {
   LittleEndianReader in(frame);
   const auto tcpCommand = static_cast<AmsTcpCommand>(in.u16().value_or(0xFFFF));
@@ -43,11 +48,12 @@ bool Session::handleFrame(std::span<const uint8_t> frame, std::vector<uint8_t>& 
       // Reply: this router's NetId and the client's port (docs/ads.md, AMS/TCP and the AMS
       // header); 0 asks for any port.
       const uint16_t requested = in.u16().value_or(0);
+      registered_ = AmsAddress{device_.config().netId, requested ? requested : device_.assignPort()};
       LittleEndianWriter w(out);
       w.u16(static_cast<uint16_t>(AmsTcpCommand::PortConnect));
       w.u32(8);
-      w.bytes(device_.config().netId);
-      w.u16(requested ? requested : device_.assignPort());
+      w.bytes(registered_->netId);
+      w.u16(registered_->port);
       return true;
     }
     case AmsTcpCommand::PortClose: return false;

@@ -1,9 +1,10 @@
 #pragma once
-// One client connection's protocol state: its symbol handles and notifications, and the
-// answers to its frames. Pure (no sockets): the server feeds it frames and sends what it
+// One client connection's protocol state: its notifications (symbol handles belong to the
+// client's AMS route, kept by the device), and the answers to its frames. Pure (no sockets): the server feeds it frames and sends what it
 // appends; tests and the fuzz target drive it directly. Not thread-safe: the server calls it
 // with the device lock held.
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -11,6 +12,10 @@
 #include "proto/ads/device.hpp"
 
 namespace virtcom::proto::ads {
+
+// A new notification's first sample goes out this long after the AddDeviceNotification reply:
+// TwinCAT's default PLC task cycle (docs/ads.md, Device notifications).
+inline constexpr int64_t kFirstSampleDelayNs = 10'000'000;
 
 class Session {
  public:
@@ -21,22 +26,22 @@ class Session {
   // Returns false when the connection must close: AMS/TCP port close, or a source NetId that
   // is not allowed (TwinCAT drops a connection without a route the same way).
   bool handleFrame(std::span<const uint8_t> frame, std::vector<uint8_t>& out);
+  // The connection closed: an AMS port this router registered for it (AMS/TCP port connect, as
+  // ads-client does) dies with it, and so do that route's handles. Routes of clients with their
+  // own router (AdsLib, TwinCAT) keep theirs (handle_table.hpp).
+  void end();
 
   // Appends one DeviceNotification frame (docs/ads.md, Device notifications) per notification
-  // that is due at `nowNs` (monotonic): a new one (its initial sample), a cyclic one whose cycle
+  // that is due at `nowNs` (monotonic): a new one (its initial sample, kFirstSampleDelayNs after
+  // the first call that sees it), a cyclic one whose cycle
   // elapsed, an on-change one whose value differs from the last sent (checked at most once per
   // cycle).
   void sendDueNotifications(int64_t nowNs, uint64_t fileTime, std::vector<uint8_t>& out);
   // Monotonic time at which a cyclic notification is next due; INT64_MAX if none.
   int64_t nextCycleDueNs() const;
   size_t notificationCount() const { return notifications_.size(); }
-  size_t handleCount() const;
 
  private:
-  struct Handle {
-    bool used = false;
-    Symbol symbol;
-  };
   struct Notification {
     uint32_t handle = 0;
     AmsAddress client, server;  // DeviceNotification target / source (docs/ads.md, Device notifications)
@@ -45,6 +50,7 @@ class Session {
     int64_t cycleNs = 0;
     int64_t nextCheckNs = 0;
     bool sent = false;
+    bool firstDueSet = false;  // nextCheckNs holds the first sample's time
     std::vector<uint8_t> last;
   };
 
@@ -66,16 +72,15 @@ class Session {
   AdsError addNotification(std::span<const uint8_t> body, uint32_t& handle);
   AdsError deleteNotification(uint32_t handle);
 
-  const Handle* findHandle(uint32_t handle) const;
-  AdsError createHandle(const Symbol& s, uint32_t& handle);
-  AdsError releaseHandle(uint32_t handle);
+  // The symbol behind one of the current client route's handles (handle_table.hpp).
+  const Symbol* findHandle(uint32_t handle) const { return device_.handles().find(currentClient_, handle); }
 
   Device& device_;
   std::vector<AmsNetId> allowedNetIds_;
-  std::vector<Handle> handles_;  // handle h is handles_[h - 1]: never 0
   std::vector<Notification> notifications_;
   uint32_t nextNotificationHandle_ = 1;
   AmsAddress currentClient_, currentServer_;  // addresses of the request being answered
+  std::optional<AmsAddress> registered_;       // the AMS port registered by this connection
   std::vector<uint8_t> reply_, scratch_, value_;
 };
 

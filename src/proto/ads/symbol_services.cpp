@@ -20,55 +20,29 @@ std::string_view nameOf(std::span<const uint8_t> data) {
 
 }  // namespace
 
-const Session::Handle* Session::findHandle(uint32_t handle) const {
-  if (handle == 0 || handle > handles_.size() || !handles_[handle - 1].used) return nullptr;
-  return &handles_[handle - 1];
-}
-
-size_t Session::handleCount() const {
-  return static_cast<size_t>(std::count_if(handles_.begin(), handles_.end(), [](const Handle& h) { return h.used; }));
-}
-
-AdsError Session::createHandle(const Symbol& s, uint32_t& handle) {
-  auto free = std::find_if(handles_.begin(), handles_.end(), [](const Handle& h) { return !h.used; });
-  if (free == handles_.end()) {
-    if (handles_.size() >= device_.config().maxHandlesPerConnection) return AdsError::OutOfMemory;
-    free = handles_.insert(handles_.end(), Handle{});
-  }
-  *free = Handle{true, s};
-  handle = static_cast<uint32_t>(free - handles_.begin() + 1);
-  return AdsError::None;
-}
-
-AdsError Session::releaseHandle(uint32_t handle) {
-  if (!findHandle(handle)) return AdsError::SymbolNotFound;
-  handles_[handle - 1] = Handle{};
-  return AdsError::None;
-}
-
 AdsError Session::read(uint32_t ig, uint32_t io, uint32_t length, std::vector<uint8_t>& reply) {
   if (ig != static_cast<uint32_t>(IndexGroup::SymValueByHandle)) return device_.read(ig, io, length, reply);
-  const Handle* h = findHandle(io);
+  const Symbol* h = findHandle(io);
   if (!h) return AdsError::SymbolNotFound;
-  if (length == kAnyLength) length = h->symbol.size;
-  if (length > h->symbol.size) return AdsError::InvalidSize;
-  return device_.read(h->symbol.indexGroup, h->symbol.indexOffset, length, reply);
+  // A longer read (pyads reads every STRING with a 1024-byte buffer) gets the symbol's bytes and
+  // its actual length, as TwinCAT answers it (docs/ads.md, Read lengths).
+  return device_.read(h->indexGroup, h->indexOffset, std::min(length, h->size), reply);
 }
 
 AdsError Session::write(uint32_t ig, uint32_t io, std::span<const uint8_t> data) {
   switch (static_cast<IndexGroup>(ig)) {
     case IndexGroup::SymValueByHandle: {
-      const Handle* h = findHandle(io);
+      const Symbol* h = findHandle(io);
       if (!h) return AdsError::SymbolNotFound;
-      if (data.size() > h->symbol.size) return AdsError::InvalidSize;
-      if (h->symbol.flags & kSymbolFlagReadOnly) return AdsError::AccessDenied;
-      return device_.write(h->symbol.indexGroup, h->symbol.indexOffset, data);
+      if (data.size() > h->size) return AdsError::InvalidSize;
+      if (h->flags & kSymbolFlagReadOnly) return AdsError::AccessDenied;
+      return device_.write(h->indexGroup, h->indexOffset, data);
     }
     case IndexGroup::SymReleaseHandle: {
       LittleEndianReader in(data);
       auto handle = in.u32();
       if (!handle || in.remaining() != 0) return AdsError::InvalidSize;
-      return releaseHandle(*handle);
+      return device_.handles().release(currentClient_, *handle);
     }
     default: return device_.write(ig, io, data);
   }
@@ -124,11 +98,11 @@ AdsError Session::symbolService(uint32_t ig, uint32_t readLength, std::span<cons
       // readLength 4: the classic reply (AdsLib, pyads); more: the extended one (ads-client).
       if (readLength < 4) return AdsError::InvalidSize;
       uint32_t handle = 0;
-      if (AdsError e = createHandle(*symbol, handle); e != AdsError::None) return e;
+      if (AdsError e = device_.handles().create(currentClient_, *symbol, handle); e != AdsError::None) return e;
       if (readLength == 4) LittleEndianWriter(reply).u32(handle);
       else appendExtendedHandle(reply, handle, *symbol);
       if (fits()) return AdsError::None;
-      releaseHandle(handle);
+      device_.handles().release(currentClient_, handle);
       return AdsError::InvalidSize;
     }
     case IndexGroup::SymValueByName: {

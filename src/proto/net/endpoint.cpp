@@ -39,6 +39,23 @@ std::expected<Listener, std::string> listenTcp(const Endpoint& at, int backlog) 
   return Listener{fd, Endpoint{at.ipv4, ntohs(addr.sin_port)}};
 }
 
+std::expected<Listener, std::string> bindUdp(const Endpoint& at) {
+  int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+  if (fd < 0) return std::unexpected(errnoText("socket"));
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(at.port);
+  addr.sin_addr.s_addr = htonl(at.ipv4);
+  socklen_t len = sizeof addr;
+  if (::bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0 ||
+      ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) != 0) {
+    std::string text = errnoText(("cannot bind UDP " + formatEndpoint(at)).c_str());
+    ::close(fd);
+    return std::unexpected(std::move(text));
+  }
+  return Listener{fd, Endpoint{at.ipv4, ntohs(addr.sin_port)}};
+}
+
 int acceptPeer(int listenFd, uint32_t& peerIpv4) {
   sockaddr_in peer{};
   socklen_t len = sizeof peer;

@@ -24,6 +24,9 @@ struct Listener {
 };
 // Binds and listens on `at` (SO_REUSEADDR). Error text naming the endpoint on failure.
 std::expected<Listener, std::string> listenTcp(const Endpoint& at, int backlog = 16);
+// Binds a non-blocking, close-on-exec UDP socket to `at` (the ADS discovery service). Error
+// text naming the endpoint on failure.
+std::expected<Listener, std::string> bindUdp(const Endpoint& at);
 // Accepts one pending connection as a non-blocking socket and reports the peer's IPv4 address
 // (host byte order). -1 if none is pending or accept failed.
 int acceptPeer(int listenFd, uint32_t& peerIpv4);

@@ -40,12 +40,12 @@ inline SymbolTable makeTable() {
 
 inline constexpr AmsNetId kClientNetId{10, 1, 2, 3, 1, 1};
 
-// An AMS packet from the client (port 30000) to `port` on `target`.
+// An AMS packet from the client (port `sourcePort`) to `port` on `target`.
 inline Bytes amsRequest(uint16_t port, uint16_t command, const Bytes& data, uint32_t invokeId = 1,
-                        AmsNetId target = kLocalAliasNetId) {
+                        AmsNetId target = kLocalAliasNetId, uint16_t sourcePort = 30000) {
   AmsHeader h;
   h.target = {target, port};
-  h.source = {kClientNetId, 30000};
+  h.source = {kClientNetId, sourcePort};
   h.commandId = command;
   h.stateFlags = 0x0004;
   h.dataLength = static_cast<uint32_t>(data.size());

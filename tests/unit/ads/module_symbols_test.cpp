@@ -149,3 +149,46 @@ TEST(ModuleSymbolsSfc, StepFlagsAreAddressableAndBookkeepingIsHidden) {
 
 }  // namespace
 }  // namespace virtcom::proto::ads
+
+namespace virtcom::proto::ads {
+namespace {
+
+// Issue 16: bit-located globals were missing from the table, and %M was 256 bytes whatever the
+// program declared (Beckhoff's test project has ARRAY[0..1027] OF BYTE AT %MB0).
+const char* const kLocatedGlobals = R"(
+VAR_GLOBAL
+  gStart AT %IX0.2 : BOOL;
+  gLamp AT %QX1.7 : BOOL;
+  gFlags AT %MB0 : ARRAY[0..1027] OF BYTE;
+END_VAR
+PROGRAM MAIN
+VAR n : INT; END_VAR
+n := n + 1;
+END_PROGRAM
+)";
+
+TEST(ModuleSymbolsLocatedGlobals, BitGlobalsAreListedInTheirBitGroupAndTheMemoryAreaFitsTheProgram) {
+  SourceManager sources;
+  Diagnostics diags;
+  auto module = st::compileProgram({{"main.st", kLocatedGlobals}}, sources, diags);
+  ASSERT_TRUE(module) << diags.render(sources);
+  SymbolTable t = buildSymbolTable(*module);
+  auto start = t.find("gStart");
+  ASSERT_TRUE(start);
+  EXPECT_EQ(start->indexGroup, 0xF021u);
+  EXPECT_EQ(start->indexOffset, 2u);
+  EXPECT_EQ(start->size, 1u);
+  EXPECT_EQ(start->flags & kSymbolFlagBitValue, kSymbolFlagBitValue);
+  auto lamp = t.find("gLamp");
+  ASSERT_TRUE(lamp);
+  EXPECT_EQ(lamp->indexGroup, 0xF031u);
+  EXPECT_EQ(lamp->indexOffset, 15u);
+  auto flags = t.find("gFlags");
+  ASSERT_TRUE(flags);
+  EXPECT_EQ(flags->size, 1028u);
+  EXPECT_GE(t.layout().memory.size, 1028u);
+  EXPECT_EQ(t.layout().inputs.size, 256u);  // no larger need: the minimum
+}
+
+}  // namespace
+}  // namespace virtcom::proto::ads

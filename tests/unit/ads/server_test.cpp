@@ -104,5 +104,42 @@ TEST(AdsServerStart, BusyPortIsAnError) {
   EXPECT_NE(second.error().find("cannot bind 127.0.0.1:"), std::string::npos) << second.error();
 }
 
+// UDP discovery next to AMS/TCP; a port already taken leaves the TCP server serving without it.
+TEST(AdsServerStart, DiscoveryOnUdpOrABusyPortWithoutIt) {
+  SymbolTable table = makeTable();
+  ServerConfig config;
+  config.listen.port = 0;
+  config.discoveryPort = 0;
+  auto first = Server::start(config, table);
+  ASSERT_TRUE(first);
+  auto udp = (*first)->discoveryEndpoint();
+  ASSERT_TRUE(udp);
+  int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  timeval timeout{5, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(udp->port);
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  Bytes identify = u32s({0x71146603, 4, 1, 0, 0, 0});
+  ::sendto(fd, identify.data(), identify.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
+  Bytes reply(512);
+  ssize_t n = ::recv(fd, reply.data(), reply.size(), 0);
+  ::close(fd);
+  ASSERT_GE(n, 20);
+  EXPECT_EQ(hex(Bytes(reply.begin(), reply.begin() + 20)), "03 66 14 71 04 00 00 00 01 00 00 80 7f 00 00 01 01 01 10 27");
+
+  config.discoveryPort = udp->port;
+  auto second = Server::start(config, table);
+  ASSERT_TRUE(second);
+  EXPECT_FALSE((*second)->discoveryEndpoint());
+  EXPECT_NE((*second)->discoveryProblem().find("cannot bind UDP 127.0.0.1:"), std::string::npos) << (*second)->discoveryProblem();
+  config.discoveryPort.reset();
+  auto off = Server::start(config, table);
+  ASSERT_TRUE(off);
+  EXPECT_FALSE((*off)->discoveryEndpoint());
+  EXPECT_TRUE((*off)->discoveryProblem().empty());
+}
+
 }  // namespace
 }  // namespace virtcom::proto::ads

@@ -98,7 +98,8 @@ TEST_F(SessionTest, ReadAndItsErrorForm) {
   // Errors keep result + length (ads-client and AdsLib parse 8 bytes).
   EXPECT_EQ(hex(call(kPlcPort, Command::Read, u32s({0x1234, 0, 2}))), "02 07 00 00 00 00 00 00");
   EXPECT_EQ(hex(call(kPlcPort, Command::Read, u32s({0x4040, 65, 1}))), "03 07 00 00 00 00 00 00");
-  EXPECT_EQ(hex(call(kPlcPort, Command::Read, u32s({0x4040, 60, 8}))), "05 07 00 00 00 00 00 00");
+  // Past the area's end: what there is (docs/ads.md, Read lengths).
+  EXPECT_EQ(hex(call(kPlcPort, Command::Read, u32s({0x4040, 60, 8}))), "00 00 00 00 04 00 00 00 00 00 00 00");
   EXPECT_EQ(hex(call(kPlcPort, Command::Read, {0x40, 0x40})), "05 07 00 00 00 00 00 00");  // short request
 }
 
@@ -197,18 +198,21 @@ TEST_F(SessionTest, NotificationOnChangeSendsInitialSampleThenChanges) {
   EXPECT_EQ(hex(call(kPlcPort, Command::AddDeviceNotification, add)), "00 00 00 00 01 00 00 00");
   Bytes out;
   session.sendDueNotifications(1000, 0x01d9000000000001ull, out);
+  EXPECT_TRUE(out.empty());  // not in the reply's segment: one task cycle later
+  EXPECT_EQ(session.nextCycleDueNs(), 1000 + kFirstSampleDelayNs);
+  session.sendDueNotifications(1000 + kFirstSampleDelayNs, 0x01d9000000000001ull, out);
   EXPECT_EQ(hex(out),
             "00 00 3e 00 00 00 "
             "0a 01 02 03 01 01 30 75 7f 00 00 01 01 01 53 03 "
             "08 00 04 00 1e 00 00 00 00 00 00 00 00 00 00 00 "
             "1a 00 00 00 01 00 00 00 01 00 00 00 00 00 d9 01 01 00 00 00 01 00 00 00 02 00 00 00 2a 00");
   out.clear();
-  session.sendDueNotifications(2000, 0, out);
+  session.sendDueNotifications(2000 + kFirstSampleDelayNs, 0, out);
   EXPECT_TRUE(out.empty());  // unchanged
   Bytes image(64, 0);
   image[32] = 0x2b;
   device.publish(image, kAdsStateRun);
-  session.sendDueNotifications(3000, 0, out);
+  session.sendDueNotifications(3000 + kFirstSampleDelayNs, 0, out);
   ASSERT_EQ(out.size(), kFrameHeaderSize + 30);
   EXPECT_EQ(out.back(), 0x00);
   EXPECT_EQ(out[out.size() - 2], 0x2b);
@@ -220,12 +224,13 @@ TEST_F(SessionTest, CyclicNotificationFollowsItsCycle) {
             "00 00 00 00 01 00 00 00");
   Bytes out;
   session.sendDueNotifications(0, 0, out);
+  session.sendDueNotifications(kFirstSampleDelayNs, 0, out);
   EXPECT_EQ(out.size(), kFrameHeaderSize + 29);
-  EXPECT_EQ(session.nextCycleDueNs(), 10'000'000);
+  EXPECT_EQ(session.nextCycleDueNs(), kFirstSampleDelayNs + 10'000'000);
   out.clear();
-  session.sendDueNotifications(5'000'000, 0, out);
+  session.sendDueNotifications(kFirstSampleDelayNs + 5'000'000, 0, out);
   EXPECT_TRUE(out.empty());
-  session.sendDueNotifications(10'000'000, 0, out);
+  session.sendDueNotifications(kFirstSampleDelayNs + 10'000'000, 0, out);
   EXPECT_EQ(out.size(), kFrameHeaderSize + 29);  // the same value again: cyclic sends anyway
 }
 
@@ -247,7 +252,9 @@ TEST_F(SessionTest, NotificationOnAGroupAnsweringLessThanAskedSendsWhatItAnswers
             "00 00 00 00 01 00 00 00");
   Bytes out;
   session.sendDueNotifications(0, 0, out);
+  session.sendDueNotifications(kFirstSampleDelayNs, 0, out);
   EXPECT_EQ(out.size(), kFrameHeaderSize + 32);
+  EXPECT_EQ(hex(Bytes(out.begin() + kFrameHeaderSize + 24, out.begin() + kFrameHeaderSize + 28)), "04 00 00 00");
 }
 
 TEST_F(SessionTest, NotificationLimitPerConnection) {
@@ -271,7 +278,7 @@ TEST_F(SessionTest, HandleByNameBothForms) {
             "00 00 00 00 12 00 00 00 02 00 00 00 02 00 00 00 00 00 00 00 03 00 49 4e 54 00");
   EXPECT_EQ(hex(readWrite(0xF003, 0, 4, text("MAIN.nope"))), "10 07 00 00 00 00 00 00");
   EXPECT_EQ(hex(readWrite(0xF003, 0, 2, text("MAIN.count"))), "05 07 00 00 00 00 00 00");
-  EXPECT_EQ(session.handleCount(), 2u);
+  EXPECT_EQ(device.handles().count({kClientNetId, 30000}), 2u);
 }
 
 TEST_F(SessionTest, ValueByHandleAndRelease) {
@@ -279,7 +286,6 @@ TEST_F(SessionTest, ValueByHandleAndRelease) {
   EXPECT_EQ(hex(call(kPlcPort, Command::Read, u32s({0xF005, 1, 2}))), "00 00 00 00 02 00 00 00 ff ff");
   EXPECT_EQ(hex(call(kPlcPort, Command::Write, u32s({0xF005, 1, 2}, {0x10, 0x00}))), "00 00 00 00");
   EXPECT_EQ(hex(call(kPlcPort, Command::Read, u32s({0x4040, 42, 2}))), "00 00 00 00 02 00 00 00 10 00");
-  EXPECT_EQ(hex(call(kPlcPort, Command::Read, u32s({0xF005, 1, 4}))), "05 07 00 00 00 00 00 00");
   EXPECT_EQ(hex(call(kPlcPort, Command::Write, u32s({0xF006, 0, 4}, u32s({1})))), "00 00 00 00");
   EXPECT_EQ(hex(call(kPlcPort, Command::Read, u32s({0xF005, 1, 2}))), "10 07 00 00 00 00 00 00");
   EXPECT_EQ(hex(call(kPlcPort, Command::Write, u32s({0xF006, 0, 4}, u32s({1})))), "10 07 00 00");

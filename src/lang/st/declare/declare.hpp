@@ -73,6 +73,7 @@ class Declarer {
 
  private:
   void placeLocated(VarInfo& v, const std::string& address);
+  uint32_t locatedSizeEstimate(const TypeSpec& t);
   const std::vector<uint8_t>& defaultBytes(TypeId type);
   void applyInit(TypeId type, uint8_t* dst, const Expr& init, const PouSym* pou);
   void applyMemberInits(TypeId type, uint8_t* dst, const std::vector<CallArg>& args, const PouSym* pou);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/iec_value.hpp"
 #include "lang/st/declare/declare.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 #include "lang/st/parse/lexer.hpp"
@@ -12,19 +13,45 @@ namespace virtcom::st {
 
 namespace {
 // Each process image area is as large as its located variables need, and at least this large
-// (room for direct addresses used in code and for protocol access), at most kMaxArea.
+// (room for direct addresses used in code and for protocol access), at most kMaxArea (TwinCAT's
+// %M offsets run to 0xFFFF: docs/ads.md, Process image areas).
 constexpr uint32_t kMinAreaSize = 256;
 constexpr uint32_t kMaxAreaSize = 65536;
-
-// Size of the largest type a located declaration could have: arrays and structs need their
-// resolved size, which is not known yet; the address's own width is a lower bound, and the
-// area is rounded up generously (placeLocated checks the real extent later).
-uint32_t areaExtent(const VarDecl& decl) {
-  auto a = parseDirectAddress(decl.location);
-  if (!a) return 0;
-  return a->byteOffset + 64;  // room for a struct or array at the address
-}
+// Room left for a located struct or FB, whose size is not known before types are laid out.
+constexpr uint32_t kUnknownTypeRoom = 64;
 }  // namespace
+
+// The bytes a located declaration's type takes, as far as it can be known before types are laid
+// out: elementary types, strings and arrays of them with constant bounds exactly (Beckhoff's test
+// project declares `ARRAY[0..1027] OF BYTE AT %MB0`), other types kUnknownTypeRoom; placeLocated
+// checks the real extent later.
+uint32_t Declarer::locatedSizeEstimate(const TypeSpec& t) {
+  switch (t.kind) {
+    case TypeSpecKind::Named: {
+      ElemType e;
+      return elemTypeByName(t.name, e) && elemTypeInfo(e).sizeBytes ? elemTypeInfo(e).sizeBytes : kUnknownTypeRoom;
+    }
+    case TypeSpecKind::String: {
+      uint64_t length = 80;
+      if (t.length)
+        if (auto v = constant(*t.length, nullptr, true); v && v->kind == ConstValue::Kind::Int && v->i > 0) length = static_cast<uint64_t>(v->i);
+      return static_cast<uint32_t>(std::min<uint64_t>((length + 1) * (t.wide ? 2 : 1), kMaxAreaSize));
+    }
+    case TypeSpecKind::Array: {
+      uint64_t count = 1;
+      for (const ArrayRange& d : t.dims) {
+        auto lo = d.lo ? constant(*d.lo, nullptr, true) : std::nullopt;
+        auto hi = d.hi ? constant(*d.hi, nullptr, true) : std::nullopt;
+        if (!lo || !hi || lo->kind != ConstValue::Kind::Int || hi->kind != ConstValue::Kind::Int || hi->i < lo->i)
+          return kUnknownTypeRoom;
+        count = std::min<uint64_t>(count * static_cast<uint64_t>(hi->i - lo->i + 1), kMaxAreaSize);
+      }
+      const uint64_t element = t.element ? locatedSizeEstimate(*t.element) : kUnknownTypeRoom;
+      return static_cast<uint32_t>(std::min<uint64_t>(count * element, kMaxAreaSize));
+    }
+    default: return 8;  // pointers, references, subranges and enums of elementary bases
+  }
+}
 
 std::optional<DirectAddress> parseDirectAddress(std::string_view text) {
   std::string t = upper(text);
@@ -109,7 +136,7 @@ void Declarer::allocateProcessAreas() {
         auto a = parseDirectAddress(decl.location);
         if (!a) continue;
         int area = a->area == 'I' ? 0 : a->area == 'Q' ? 1 : 2;
-        extent[area] = std::max(extent[area], areaExtent(decl));
+        extent[area] = std::max(extent[area], a->byteOffset + locatedSizeEstimate(decl.type));
       }
   };
   for (const auto& unit : units_) {

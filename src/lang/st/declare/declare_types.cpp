@@ -16,8 +16,8 @@ Declarer::Declarer(const std::vector<CompilationUnit>& units, Diagnostics& diags
 
 void Declarer::run() {
   registerNames();
+  collectGlobalConstants();  // first: array bounds of located variables may name constants
   allocateProcessAreas();
-  collectGlobalConstants();
   declareInterfaces();
   linkInheritance();
   layoutStarted_ = true;  // inheritance is known: FB layouts may now be computed on demand

@@ -181,7 +181,7 @@ bool isProgramInstance(const bc::Module& m, const bc::Symbol& s) {
 SymbolTable buildSymbolTable(const bc::Module& m) {
   Builder b(m);
   for (const bc::Symbol& s : m.symbols)
-    if (!isProgramInstance(m, s)) b.variable(s.name, s.type, s.address, -1, s.readOnly);
+    if (!isProgramInstance(m, s)) b.variable(s.name, s.type, s.address, s.bit, s.readOnly);
   for (const bc::ProgramInstance& p : m.programs) {
     if (p.pou >= m.pous.size() || m.pous[p.pou].instanceType >= m.types.size()) continue;
     for (const bc::Field& f : m.types[m.pous[p.pou].instanceType].fields) {

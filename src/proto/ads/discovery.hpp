@@ -1,0 +1,28 @@
+#pragma once
+// The TwinCAT UDP service on port 48899 that engineering tools use before they open AMS/TCP:
+// "identify" (AdsLib's GetRemoteAddress behind `adstool HOST netid`, pyads
+// adsGetNetIdForPLC) and "add route" (AdsLib's AddRemoteRoute, pyads add_route_to_plc).
+// Pure codec (no sockets): the server feeds it datagrams (docs/ads.md, UDP discovery).
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "proto/ads/ams.hpp"
+
+namespace virtcom::proto::ads {
+
+inline constexpr uint16_t kDiscoveryUdpPort = 48899;
+
+struct DiscoveryInfo {
+  AmsNetId netId{};
+  std::string hostName;                // the "computer name" tag of the identify reply
+  std::vector<AmsNetId> allowedNetIds;  // the server's NetId allow-list; empty: any
+};
+
+// Appends the reply to one datagram to `out`. False (nothing appended) when there is nothing to
+// answer: not the UDP cookie, too short, a reply, or a service other than identify / add route.
+// Allocates only if `out` has to grow.
+bool answerDiscovery(std::span<const uint8_t> request, const DiscoveryInfo& info, std::vector<uint8_t>& out);
+
+}  // namespace virtcom::proto::ads

@@ -93,6 +93,7 @@ table.events td:nth-child(2),table.events td:nth-child(3){width:1%}
 footer{color:var(--muted);font-size:12px;margin-top:6px}
 td.code{font-family:ui-monospace,"DejaVu Sans Mono",monospace;font-size:12.5px;text-align:left;white-space:normal}
 td.muted{color:var(--muted)}
+table.rules th:first-child,table.rules td:first-child{width:1%}
 @media (max-width:1000px){.two{grid-template-columns:1fr}}
 @media print{body{background:#fff}.panel,.card{break-inside:avoid}}
 )css";

@@ -1,12 +1,10 @@
 // `virtcom ad convert` (the .ad text and AD-XML, both ways) and `virtcom ad export` (the lowered
 // program as ST, or as a PLCopen TC6 project with one LD rung per rule), subcommands of `ad`.
-#include <fstream>
 #include <iostream>
 
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "lang/ad/lower.hpp"
-#include "lang/ad/reader.hpp"
 #include "lang/ad/writer.hpp"
 #include "lang/syntax/printer.hpp"
 
@@ -14,26 +12,8 @@ namespace virtcom::cli {
 
 namespace {
 
-// Reads a diagram file in either form; prints its diagnostics. Nullopt on a read or diagram error.
-std::optional<ad::Program> readDiagramFile(const std::string& path) {
-  auto inputs = readSources({path});
-  if (!inputs) return std::nullopt;
-  SourceManager sources;
-  Diagnostics diags;
-  uint32_t fileId = sources.addFile(path, inputs->front().text);
-  ad::Program program = ad::readProgramFile(fileId, path, sources.text(fileId), diags);
-  std::cerr << diags.render(sources);
-  if (diags.hasErrors()) return std::nullopt;
-  return program;
-}
-
-ExitCode writeFile(const std::string& path, const std::string& text) {
-  std::ofstream file(path, std::ios::binary);
-  file << text;
-  if (file.flush()) return ExitCode::Ok;
-  std::cerr << path << ": error: cannot write the file\n";
-  return ExitCode::InputError;
-}
+// What `ad convert` and `ad export` give back after writing a file.
+ExitCode written(bool ok) { return ok ? ExitCode::Ok : ExitCode::InputError; }
 
 ExitCode convert(const std::string& path, const std::string& xmlOut, const std::string& adOut) {
   if (xmlOut.empty() == adOut.empty()) {
@@ -42,7 +22,7 @@ ExitCode convert(const std::string& path, const std::string& xmlOut, const std::
   }
   auto program = readDiagramFile(path);
   if (!program) return ExitCode::InputError;
-  return xmlOut.empty() ? writeFile(adOut, ad::formatText(*program)) : writeFile(xmlOut, ad::formatXml(*program));
+  return written(xmlOut.empty() ? writeFile(adOut, ad::formatText(*program)) : writeFile(xmlOut, ad::formatXml(*program)));
 }
 
 // The program as the compiler sees it: the lowered PROGRAM and its ACTIONs, printed.
@@ -51,8 +31,8 @@ ExitCode exportSt(const std::string& path, const std::string& out) {
   if (!program) return ExitCode::InputError;
   st::NodeId nextId = 0;
   st::CompilationUnit unit = ad::lowerProgram(*program, 0, nextId);
-  return writeFile(out, "(* " + program->name + ": lowered from " + path + " by virtcom ad export *)\n" +
-                            st::printPou(*unit.pous.front()));
+  return written(writeFile(out, "(* " + program->name + ": lowered from " + path + " by virtcom ad export *)\n" +
+                                    st::printPou(*unit.pous.front())));
 }
 
 ExitCode exportDiagrams(const std::string& path, const std::string& stOut, const std::string& plcopenOut) {

@@ -7,7 +7,6 @@
 #include "cli/common.hpp"
 #include "cli/graphviz_svg.hpp"
 #include "lang/ad/dot.hpp"
-#include "lang/ad/reader.hpp"
 
 namespace virtcom::cli {
 
@@ -34,17 +33,11 @@ ExitCode render(const RenderOptions& o) {
     std::cerr << "virtcom ad render: nothing to write: give --svg and/or --dot\n";
     return ExitCode::Usage;
   }
-  auto inputs = readSources({o.file});
-  if (!inputs) return ExitCode::InputError;
-  SourceManager sources;
-  Diagnostics diags;
-  uint32_t fileId = sources.addFile(o.file, inputs->front().text);
-  ad::Program program = ad::readProgram(fileId, sources.text(fileId), diags);
-  std::cerr << diags.render(sources);
-  if (diags.hasErrors()) return ExitCode::InputError;
-  std::vector<const ad::Diagram*> diagrams = selectDiagrams(program, o.diagram);
+  std::optional<ad::Program> program = readDiagramFile(o.file);
+  if (!program) return ExitCode::InputError;
+  std::vector<const ad::Diagram*> diagrams = selectDiagrams(*program, o.diagram);
   if (diagrams.empty()) return ExitCode::Usage;
-  const std::string dot = ad::toDot(program, diagrams);
+  const std::string dot = ad::toDot(*program, diagrams);
   if (!o.dot.empty() && !writeFile(o.dot, dot)) return ExitCode::Usage;
   if (o.svg.empty()) return ExitCode::Ok;
   std::optional<std::string> svg = renderSvg(dot);
@@ -61,7 +54,7 @@ void addAdRenderCommand(CLI::App& ad, std::function<void(ExitCode)> setExit) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* cmd = ad.add_subcommand(
       "render", "Draw the diagrams of FILE with the symbols of seed 002 (top to bottom, laid out by Graphviz dot)");
-  cmd->add_option("file", o->file, "an activity-diagram file (.ad)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("file", o->file, "an activity-diagram file (.ad or .adxml)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--svg", o->svg, "the SVG file to write: every diagram side by side, one frame each");
   cmd->add_option("--dot", o->dot, "also (or only) write the Graphviz DOT text the picture is laid out from");
   cmd->add_option("--diagram", o->diagram, "draw only this diagram (its name as written after `diagram`)");

@@ -307,7 +307,7 @@ ExitCode monitorCell(const MonitorOptions& o) {
     printShadow(trace, *simulation.recogniser());
     std::cout << report::productionTable(produced);
   }
-  if (!o.json.empty() && !writeFile(o.json, report::jsonReport(trace, kpis, &produced))) return ExitCode::Usage;
+  if (!o.json.empty() && !writeFile(o.json, report::jsonReport(trace, kpis, {}, &produced))) return ExitCode::Usage;
   // A failure is kept in the recorder's error(), which reportRecording() prints.
   if (*recorder && !cell->plan.shifts.empty()) (*recorder)->recordProduction(productionRows(produced));
   if (*recorder && !reportRecording(o.history, **recorder)) return ExitCode::HistoryError;

@@ -151,7 +151,7 @@ const char* resetRefusal(const cell::Cell& cell, bool streamedFiles) {
 
 // The run's summary and report files, after it ended. False if a file could not be written.
 bool writeRunOutputs(const RunOptions& o, const cell::Cell& cell, const std::vector<std::string>& timeline,
-                     std::vector<std::unique_ptr<StreamedFile>>& files) {
+                     const std::optional<RuleCounter>& ruleCounter, std::vector<std::unique_ptr<StreamedFile>>& files) {
   const Trace& trace = cell.trace;
   report::Kpis kpis = report::computeKpis(trace);
   // --quiet drops the table, never the reason a run failed.
@@ -161,9 +161,10 @@ bool writeRunOutputs(const RunOptions& o, const cell::Cell& cell, const std::vec
   html.title = cell.name;
   // Without --signal the timeline shows what the cell file asked to record.
   html.signals = timeline;
+  if (ruleCounter) html.diagrams = ruleCounter->sections();
   bool ok = closeStreamedFiles(files);
   if (!o.html.empty()) ok = writeFile(o.html, report::htmlReport(trace, kpis, html)) && ok;
-  if (!o.json.empty()) ok = writeFile(o.json, report::jsonReport(trace, kpis)) && ok;
+  if (!o.json.empty()) ok = writeFile(o.json, report::jsonReport(trace, kpis, html.diagrams)) && ok;
   return ok;
 }
 
@@ -203,15 +204,23 @@ ExitCode runCell(const RunOptions& o) {
     }
   }
   sim::SimOptions options;
+  std::vector<std::string> plcSources;  // the cell's files: its diagram files are among them
+  for (uint32_t file = 0; file < sources.fileCount(); ++file) plcSources.push_back(sources.path(file));
   std::optional<RuleTracer> ruleTracer;
-  uint64_t scans = 0;
-  if (o.traceRules) {
-    std::vector<std::string> plcSources;
-    for (uint32_t file = 0; file < sources.fileCount(); ++file) plcSources.push_back(sources.path(file));
-    if (!(ruleTracer = RuleTracer::load(plcSources, *cell->module))) return ExitCode::Usage;
-    // Debug output the user asked for: printing may allocate, unlike the rest of the scan path.
-    options.afterScan = [&](plc::Runtime& plc) { ruleTracer->print(scans++, plc.machine().memory(), std::cout); };
+  if (o.traceRules && !(ruleTracer = RuleTracer::load(plcSources, *cell->module))) return ExitCode::Usage;
+  // The reports show how often each diagram rule fired: counted after every scan.
+  std::optional<RuleCounter> ruleCounter;
+  if (cell->module && (!o.html.empty() || !o.json.empty())) {
+    if (!(ruleCounter = RuleCounter::load(plcSources, *cell->module))) return ExitCode::InputError;
+    if (ruleCounter->empty()) ruleCounter.reset();
   }
+  uint64_t scans = 0;
+  if (ruleTracer || ruleCounter)
+    options.afterScan = [&](plc::Runtime& plc) {
+      // Debug output the user asked for: printing may allocate, unlike the rest of the scan path.
+      if (ruleTracer) ruleTracer->print(scans++, plc.machine().memory(), std::cout);
+      if (ruleCounter) ruleCounter->count(plc);
+    };
   options.speed = o.speed;
   options.interrupt = &gStop;
   if (cell->module) options.compiled = compiledBackend(o.backend, *cell->module);
@@ -290,7 +299,7 @@ ExitCode runCell(const RunOptions& o) {
     }
     bool reset = hmi && hmi->resetRequested();
     if (!reset) {
-      ok = writeRunOutputs(o, *cell, timeline, files);
+      ok = writeRunOutputs(o, *cell, timeline, ruleCounter, files);
       if (hmi) reset = lingerForViewers(*hmi);
     }
     if (!reset) break;
@@ -323,7 +332,7 @@ void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Simulate a cell file (PLC program + devices) and report cycle time, Gantt chart and energy");
   cmd->add_option("cell", o->cellFile, "the cell file (YAML)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--report", o->html, "write the HTML report (Gantt chart, KPIs, signals) to this file");
+  cmd->add_option("--report", o->html, "write the HTML report (Gantt chart, KPIs, signals; the rule tables of activity diagrams with their rule firings) to this file");
   cmd->add_option("--json", o->json, "write the JSON report (docs/report.md) to this file");
   cmd->add_option("--vcd", o->vcd, "write every signal change as VCD (GTKWave) to this file");
   cmd->add_option("--csv", o->csv, "write every signal change as CSV to this file");

@@ -12,6 +12,7 @@
 #include "cli/commands.hpp"
 #include "core/ascii.hpp"
 #include "core/duration_units.hpp"
+#include "lang/ad/reader.hpp"
 #include "lang/plcopen/importer.hpp"
 #include "lang/st/compiler.hpp"
 #include "plc/variable_text.hpp"
@@ -71,6 +72,18 @@ std::string presetVariable(const bc::Module& m, const std::string& assignment, u
   std::string problem = plc::writeVariableText(m, *ref, value, memory, inputImage);
   if (!problem.empty()) return name + ": " + problem;
   return {};
+}
+
+std::optional<ad::Program> readDiagramFile(const std::string& path) {
+  auto inputs = readSources({path});
+  if (!inputs) return std::nullopt;
+  SourceManager sources;
+  Diagnostics diags;
+  uint32_t fileId = sources.addFile(path, inputs->front().text);
+  ad::Program program = ad::readProgramFile(fileId, path, sources.text(fileId), diags);
+  std::cerr << diags.render(sources);
+  if (diags.hasErrors()) return std::nullopt;
+  return program;
 }
 
 bool writeFile(const std::string& path, const std::string& content) {

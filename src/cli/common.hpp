@@ -9,6 +9,7 @@
 #include "cell/cell.hpp"
 #include "core/diagnostics.hpp"
 #include "core/source.hpp"
+#include "lang/ad/diagram.hpp"
 #include "lang/st/compiler.hpp"
 #include "vm/compiled.hpp"
 
@@ -25,6 +26,10 @@ inline constexpr const char* kSourceFilesHelp =
 // Reads the files as compiler inputs, each with its front end (plcopen::sourceInput).
 // Prints an error and returns nullopt if a file cannot be read.
 std::optional<std::vector<st::SourceInput>> readSources(const std::vector<std::string>& paths);
+
+// Reads and checks an activity-diagram file (.ad text, or AD-XML for .adxml); prints its
+// diagnostics to stderr. Nullopt on a read or diagram error. `ad tables|convert|export|render`.
+std::optional<ad::Program> readDiagramFile(const std::string& path);
 
 // Loads a cell file and prints its diagnostics to stderr. Null on any error.
 std::unique_ptr<cell::Cell> loadCellFile(const std::string& path, SourceManager& sources);

@@ -4,9 +4,12 @@
 #include <iostream>
 
 #include "cli/common.hpp"
+#include "core/ascii.hpp"
 #include "core/diagnostics.hpp"
 #include "lang/ad/lower.hpp"
 #include "lang/ad/reader.hpp"
+#include "lang/ad/rule_trace.hpp"
+#include "lang/ad/tables.hpp"
 
 namespace virtcom::cli {
 
@@ -14,23 +17,46 @@ namespace {
 
 bool isDiagramFile(const std::string& path) { return ad::isDiagramPath(path) || ad::isXmlDiagramPath(path); }
 
+// An instance of a diagram file's PROGRAM that a task runs (the PROGRAM itself without a
+// CONFIGURATION; `name WITH task : Program` with one), and that task.
+struct RunningInstance {
+  std::string name;
+  uint32_t task = 0;
+};
+
+// The first instance of `program` in task order; nullopt if no task runs it (a configuration
+// that runs other programs).
+std::optional<RunningInstance> runningInstance(const bc::Module& module, const std::string& program) {
+  for (uint32_t t = 0; t < module.tasks.size(); ++t)
+    for (uint32_t p : module.tasks[t].programs) {
+      const bc::ProgramInstance& instance = module.programs.at(p);
+      if (instance.pou < module.pous.size() && iequalsAscii(module.pous[instance.pou].name, program)) return RunningInstance{instance.name, t};
+    }
+  return std::nullopt;
+}
+
+// The fired flag of the k-th rule (from 1) of the instance.
+std::optional<bc::VarRef> firedFlag(const bc::Module& module, const RunningInstance& instance, size_t k) {
+  return bc::resolveVariable(module, instance.name + "." + std::string(ad::kFiredVariable) + "[" + std::to_string(k) + "]");
+}
+
+bool flagSet(const bc::VarRef& flag, const uint8_t* memory) {
+  return flag.bit < 0 ? memory[flag.address] != 0 : (memory[flag.address] >> flag.bit) & 1;
+}
+
 }  // namespace
 
 std::optional<std::vector<WatchedRule>> findWatchedRules(const std::vector<std::string>& files, const bc::Module& module) {
   std::vector<WatchedRule> found;
   for (const std::string& path : files) {
     if (!isDiagramFile(path)) continue;
-    auto text = readSources({path});
-    if (!text) return std::nullopt;
-    Diagnostics diags;  // the file compiled, so it reads cleanly
-    ad::Program program = ad::readProgramFile(0, path, text->front().text, diags);
-    std::vector<ad::TracedRule> rules = ad::tracedRules(program);
-    for (size_t k = 0; k < rules.size(); ++k) {
-      std::string flag = program.name + "." + std::string(ad::kFiredVariable) + "[" + std::to_string(k + 1) + "]";
-      auto ref = bc::resolveVariable(module, flag);
-      if (!ref) continue;  // a PROGRAM never instantiated (a configuration that runs others)
-      found.push_back({std::move(rules[k]), *ref});
-    }
+    std::optional<ad::Program> program = readDiagramFile(path);
+    if (!program) return std::nullopt;
+    std::optional<RunningInstance> instance = runningInstance(module, program->name);
+    if (!instance) continue;  // a PROGRAM no task runs (a configuration that runs others)
+    std::vector<ad::TracedRule> rules = ad::tracedRules(*program);
+    for (size_t k = 0; k < rules.size(); ++k)
+      if (auto flag = firedFlag(module, *instance, k + 1)) found.push_back({std::move(rules[k]), *flag});
   }
   return found;
 }
@@ -50,7 +76,44 @@ std::optional<RuleTracer> RuleTracer::load(const std::vector<std::string>& files
 
 void RuleTracer::print(uint64_t scan, const uint8_t* memory, std::ostream& out) const {
   for (const Watched& rule : rules_)
-    if (rule.flag.bit < 0 ? memory[rule.flag.address] != 0 : (memory[rule.flag.address] >> rule.flag.bit) & 1) out << "scan " << scan << "  " << rule.prefix << '\n';
+    if (flagSet(rule.flag, memory)) out << "scan " << scan << "  " << rule.prefix << '\n';
+}
+
+std::optional<RuleCounter> RuleCounter::load(const std::vector<std::string>& files, const bc::Module& module) {
+  RuleCounter counter;
+  counter.scansSeen_.assign(module.tasks.size(), 0);
+  for (const std::string& path : files) {
+    if (!isDiagramFile(path)) continue;
+    std::optional<ad::Program> program = readDiagramFile(path);
+    if (!program) return std::nullopt;
+    std::optional<RunningInstance> instance = runningInstance(module, program->name);
+    size_t k = 0;  // fired flags run over the file's rules, diagram after diagram
+    for (const ad::Diagram& d : program->diagrams) {
+      ad::DiagramTables tables = ad::decompose(d);
+      auto section = static_cast<uint32_t>(counter.sections_.size());
+      counter.sections_.push_back({program->name, d.name, ad::luTable(tables), ad::ruleTable(tables), {}});
+      counter.sections_.back().firings.resize(tables.rules.size());
+      for (uint32_t row = 0; row < tables.rules.size(); ++row) {
+        ++k;
+        if (!instance) continue;  // never scanned: its rules keep their zero counts
+        if (auto flag = firedFlag(module, *instance, k)) counter.rules_.push_back({*flag, instance->task, section, row});
+      }
+    }
+  }
+  return counter;
+}
+
+void RuleCounter::count(const plc::Runtime& plc) {
+  // The tick that just ran started at the time before the next one.
+  const int64_t nowNs = plc.nextTickNs() - plc.baseTickNs();
+  const uint8_t* memory = plc.machine().memory();
+  for (const Counted& rule : rules_) {
+    if (plc.stats(rule.task).scans == scansSeen_[rule.task] || !flagSet(rule.flag, memory)) continue;
+    report::RuleFiring& f = sections_[rule.section].firings[rule.row];
+    if (f.scans++ == 0) f.firstNs = nowNs;
+    f.lastNs = nowNs;
+  }
+  for (uint32_t t = 0; t < scansSeen_.size(); ++t) scansSeen_[t] = plc.stats(t).scans;
 }
 
 }  // namespace virtcom::cli

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/ascii.hpp"
 #include "report/text_util.hpp"
 
 namespace virtcom::report {
@@ -120,9 +121,44 @@ Json productionJson(const ProductionReport& p) {
   return Json{{"shifts", shifts}, {"days", days}, {"stations", stations}};
 }
 
+// "output activity" -> "output_activity", "IF" -> "if": the header as a JSON key.
+std::string columnKey(const std::string& header) {
+  std::string key;
+  for (char c : header) key += c == ' ' ? '_' : asciiLower(c);
+  return key;
+}
+
+// The rows of a table as objects keyed by its columns; rule rows get their firing counts.
+Json tableJson(const TextTable& table, const std::vector<RuleFiring>* firings) {
+  Json out = Json::array();
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    Json row = Json::object();
+    for (size_t c = 0; c < table.header.size() && c < table.rows[r].size(); ++c) row[columnKey(table.header[c])] = table.rows[r][c];
+    if (firings && r < firings->size()) {
+      const RuleFiring& f = (*firings)[r];
+      row["fired_scans"] = f.scans;
+      row["first_fired_s"] = f.scans ? Json(seconds(f.firstNs)) : Json(nullptr);
+      row["last_fired_s"] = f.scans ? Json(seconds(f.lastNs)) : Json(nullptr);
+    }
+    out.push_back(std::move(row));
+  }
+  return out;
+}
+
+Json diagramsJson(const std::vector<DiagramTablesSection>& diagrams) {
+  Json out = Json::array();
+  for (const DiagramTablesSection& d : diagrams)
+    out.push_back(Json{{"program", d.program},
+                       {"diagram", d.diagram},
+                       {"lu_table", tableJson(d.lus, nullptr)},
+                       {"rule_table", tableJson(d.rules, &d.firings)}});
+  return out;
+}
+
 }  // namespace
 
-std::string jsonReport(const Trace& trace, const Kpis& kpis, const ProductionReport* production) {
+std::string jsonReport(const Trace& trace, const Kpis& kpis, const std::vector<DiagramTablesSection>& diagrams,
+                       const ProductionReport* production) {
   Json doc{{"schema", "virtcom.report"},
            {"schema_version", kJsonSchemaVersion},
            {"run", runJson(kpis)},
@@ -136,6 +172,7 @@ std::string jsonReport(const Trace& trace, const Kpis& kpis, const ProductionRep
            {"activities", activitiesJson(trace)},
            {"collisions", collisionsJson(trace)},
            {"faults", faultsJson(trace)}};
+  if (!diagrams.empty()) doc["diagrams"] = diagramsJson(diagrams);
   if (production) doc["production"] = productionJson(*production);
   // `replace` turns invalid UTF-8 into U+FFFD instead of throwing: names come from user files.
   return doc.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";

@@ -44,8 +44,6 @@ TEST(AdCli, TablesAsMarkdownAndCsv) {
   out.clear();
   ASSERT_EQ(shell(inExample("ad tables tank.ad --format csv"), out), 0) << out;
   EXPECT_NE(out.find("Supply,1,2,Start=on AND Full=off AND Busy=off,Valve=on"), std::string::npos) << out;
-  out.clear();
-  EXPECT_EQ(shell(inExample("ad tables tank.ad --format html"), out), 64) << out;
 }
 
 // With the operator's start held, tank.ad and its plant model (plant.st) cycle through supply

@@ -8,12 +8,6 @@ namespace virtcom::ad {
 
 namespace {
 
-struct Table {
-  std::string title;
-  std::vector<std::string> header;
-  std::vector<std::vector<std::string>> rows;
-};
-
 // The seed's spelling of a bar: "OR-join", "AND-join", "AND-split".
 std::string barName(NodeKind kind) {
   std::string name(nodeKeyword(kind));
@@ -42,8 +36,11 @@ std::string transitionText(const Diagram& d, const LogicUnit& unit) {
   return out;
 }
 
-Table luTable(const Diagram& d, const DiagramTables& t) {
-  Table table{"LU table", {"index", "input activity", "transition", "output activity"}, {}};
+}  // namespace
+
+TextTable luTable(const DiagramTables& t) {
+  const Diagram& d = *t.diagram;
+  TextTable table{"LU table", {"index", "input activity", "transition", "output activity"}, {}};
   for (size_t u = 0; u < t.units.size(); ++u) {
     const LogicUnit& unit = t.units[u];
     table.rows.push_back({std::to_string(u + 1), joinNames(d, unit.inputs), transitionText(d, unit), joinNames(d, unit.outputs)});
@@ -51,14 +48,17 @@ Table luTable(const Diagram& d, const DiagramTables& t) {
   return table;
 }
 
-Table ruleTable(const Diagram& d, const DiagramTables& t) {
-  Table table{"Rule table", {"index", "LU type", "IF", "THEN"}, {}};
+TextTable ruleTable(const DiagramTables& t) {
+  const Diagram& d = *t.diagram;
+  TextTable table{"Rule table", {"index", "LU type", "IF", "THEN"}, {}};
   for (const Rule& rule : t.rules)
     table.rows.push_back({rule.index, std::string(luTypeLabel(t.units[rule.unit].type)), formatIf(d, rule), formatThen(d, rule)});
   return table;
 }
 
-void renderText(const Table& table, std::string& out) {
+namespace {
+
+void renderText(const TextTable& table, std::string& out) {
   std::vector<size_t> width(table.header.size());
   for (size_t c = 0; c < width.size(); ++c) {
     width[c] = table.header[c].size();
@@ -80,7 +80,7 @@ void renderText(const Table& table, std::string& out) {
   for (const auto& row : table.rows) line(row);
 }
 
-void renderMarkdown(const Table& table, std::string& out) {
+void renderMarkdown(const TextTable& table, std::string& out) {
   out += "### " + table.title + "\n\n";
   auto line = [&](const std::vector<std::string>& cells) {
     out += "|";
@@ -99,7 +99,7 @@ std::string csvField(const std::string& text) {
   return quoted + "\"";
 }
 
-void renderCsv(const std::string& diagram, const Table& table, std::string& out) {
+void renderCsv(const std::string& diagram, const TextTable& table, std::string& out) {
   auto line = [&](const std::string& first, const std::vector<std::string>& cells) {
     out += csvField(first);
     for (const std::string& cell : cells) {
@@ -161,7 +161,7 @@ std::string formatTables(const Program& program, const std::vector<DiagramTables
   std::string out;
   for (const DiagramTables& t : tables) {
     const Diagram& d = *t.diagram;
-    Table lus = luTable(d, t), rules = ruleTable(d, t);
+    TextTable lus = luTable(t), rules = ruleTable(t);
     if (!out.empty()) out += "\n";
     switch (format) {
       case TableFormat::Text:

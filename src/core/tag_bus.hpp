@@ -3,6 +3,7 @@
 // recorders lives here in a typed 64-bit slot addressed by an integer id resolved at load time.
 // Writes that change a value set its bit in the change set, so recorders and bridges only look
 // at what changed. Nothing on the per-tick path allocates or looks anything up by name.
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -56,7 +57,8 @@ class TagBus {
       }
     }
   }
-  void clearChanges() { std::memset(changed_.data(), 0, changed_.size() * sizeof(uint64_t)); }
+  // (std::fill, not memset: an empty bus has a null data() that memset must not get)
+  void clearChanges() { std::fill(changed_.begin(), changed_.end(), uint64_t{0}); }
   // Finds a tag by exact name; kNoTag if none. Load time only.
   TagId find(const std::string& name) const;
 

@@ -43,6 +43,8 @@ struct BeltParts {
 struct RuleFlag {
   uint32_t address = 0;
   int8_t bit = -1;
+};
+
 // Production against the plan in the current shift (virtcom monitor with a `plan:`).
 struct ShiftProgress {
   std::string shift;   // empty: between shifts

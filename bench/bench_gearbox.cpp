@@ -24,7 +24,9 @@ std::unique_ptr<cell::Cell> loadGearbox(int64_t cycleNs, SourceManager& sources,
 }
 
 // `historyPath`: also record the run there (--history), from a new file each iteration.
-void runGearbox(benchmark::State& state, int64_t cycleNs, bool skipRepeatedScans, const std::string& historyPath = {}) {
+// `eventTime` false steps every tick (--time-mode tick), the reference for event-driven time.
+void runGearbox(benchmark::State& state, int64_t cycleNs, bool skipRepeatedScans, const std::string& historyPath = {},
+                bool eventTime = true) {
   double simulatedS = 0;
   for (auto _ : state) {
     state.PauseTiming();
@@ -37,6 +39,7 @@ void runGearbox(benchmark::State& state, int64_t cycleNs, bool skipRepeatedScans
     }
     sim::SimOptions options;
     options.skipRepeatedScans = skipRepeatedScans;
+    options.eventTime = eventTime;
     options.preset = [](plc::Runtime& plc) {
       auto ref = bc::resolveVariable(plc.module(), "MAIN.sequence");
       bc::writeValueFromText(plc.module(), *ref, "1", plc.machine().memory());
@@ -71,6 +74,7 @@ void runGearbox(benchmark::State& state, int64_t cycleNs, bool skipRepeatedScans
 
 void BM_GearboxCycle1ms(benchmark::State& state) { runGearbox(state, 1'000'000, true); }
 void BM_GearboxCycle1msNoSkip(benchmark::State& state) { runGearbox(state, 1'000'000, false); }
+void BM_GearboxCycle1msTick(benchmark::State& state) { runGearbox(state, 1'000'000, true, {}, false); }
 void BM_GearboxCycle10ms(benchmark::State& state) { runGearbox(state, 10'000'000, true); }
 void BM_GearboxCycle1msHistory(benchmark::State& state) {
   runGearbox(state, 1'000'000, true, (std::filesystem::temp_directory_path() / "virtcom_bench_gearbox.sqlite").string());
@@ -78,6 +82,7 @@ void BM_GearboxCycle1msHistory(benchmark::State& state) {
 
 BENCHMARK(BM_GearboxCycle1ms)->Name("gearbox/cycle_1ms")->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK(BM_GearboxCycle1msNoSkip)->Name("gearbox/cycle_1ms_no_skip")->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK(BM_GearboxCycle1msTick)->Name("gearbox/cycle_1ms_tick")->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK(BM_GearboxCycle10ms)->Name("gearbox/cycle_10ms")->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK(BM_GearboxCycle1msHistory)->Name("gearbox/cycle_1ms_history")->Unit(benchmark::kMillisecond)->MinTime(1.0);
 

@@ -46,6 +46,7 @@ struct RunOptions {
   bool step = false;
   bool traceRules = false;  // print the activity-diagram rules that fired after every PLC tick
   std::string backend = "interp";
+  std::string timeMode = "event";  // --time-mode: jump over idle ticks, or step every tick
   HmiServeOptions hmi;  // --hmi: watch and steer the run in a browser
   HistoryRecordOptions history;
 };
@@ -222,6 +223,7 @@ ExitCode runCell(const RunOptions& o) {
       if (ruleCounter) ruleCounter->count(plc);
     };
   options.speed = o.speed;
+  options.eventTime = o.timeMode == "event";
   options.interrupt = &gStop;
   if (cell->module) options.compiled = compiledBackend(o.backend, *cell->module);
   if (!o.timeLimit.empty()) {
@@ -343,6 +345,10 @@ void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_option("--speed", o->speed, "pace to the wall clock (1 = real time); default: as fast as possible (1 with 'plc: modbus', 'plc: ads' or --hmi)")
       ->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);
+  cmd->add_option("--time-mode", o->timeMode,
+                  "event (default): jump over ticks in which nothing can change; tick: step every base tick. "
+                  "Results are identical (docs/report.md)")
+      ->check(CLI::IsMember({"event", "tick"}));
   addHistoryOptions(cmd, o->history);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table (the faults and how the run ended still go to stderr)");
   cmd->add_flag("--step", o->step, "single step: advance one PLC tick per line read from stdin, printing changed signals");

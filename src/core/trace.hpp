@@ -92,6 +92,15 @@ class TraceSink {
 enum class RunEnd { Completed, TimeLimit, PlcFault, DeviceError, Collision, Interrupted };
 const char* runEndName(RunEnd e);
 
+// How the simulation's clock went: base ticks in all, and those passed without stepping by
+// event-driven time (sim::SimOptions::eventTime) in how many jumps.
+struct TimeSteps {
+  bool eventDriven = false;
+  uint64_t ticks = 0;
+  uint64_t ticksSkipped = 0;
+  uint64_t jumps = 0;
+};
+
 struct Trace {
   std::vector<SignalInfo> signals;        // indexed by TagId
   std::vector<SignalChange> changes;      // in time order; all, or only the kept signals'
@@ -108,6 +117,7 @@ struct Trace {
   std::vector<CycleRecord> cycles;        // every completed cycle in order; the last is the measured one
   RunEnd end = RunEnd::Completed;
   std::string endMessage;
+  TimeSteps time;
 
   // Load time: label ids for operation, procedure and zone names.
   uint32_t internLabel(const std::string& label);

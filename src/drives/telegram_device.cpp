@@ -131,8 +131,10 @@ int64_t TelegramDevice::nextEventNs() const {
     if (!inj.raised) next = std::min(next, inj.atNs);
     else if (!inj.causeGone && inj.durationNs >= 0) next = std::min(next, inj.raisedNs + inj.durationNs);
   }
-  for (const CommLossWindow& w : common_.commLoss)
+  for (const CommLossWindow& w : common_.commLoss) {
     if (w.fromNs > lastNs_) next = std::min(next, w.fromNs);
+    else if (w.toNs > lastNs_) return 0;  // frames are missing: counted every tick
+  }
   return next;
 }
 

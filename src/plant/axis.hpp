@@ -41,7 +41,7 @@ class Axis final : public SequencedDevice {
   int32_t beginCommand(double command, int64_t startNs, const StepContext& ctx) override;
   Progress advance(const StepContext& ctx, int64_t& atNs, int32_t& error) override;
   double commandEnergyJ() const override { return commandEnergyJ_; }
-  int64_t modelNextEventNs() const override { return endNs_; }
+  int64_t modelNextEventNs() const override { return moving_ ? 0 : endNs_; }  // position ramps
   void writeOutputs(const StepContext& ctx) override;
   void prepareLabels(World& world, Trace& trace) override;
 

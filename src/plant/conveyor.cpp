@@ -103,17 +103,29 @@ void Conveyor::advance(int64_t dtNs) {
   }
 }
 
+// Motion over dtNs as the base ticks in it would have moved the belt one by one: after ticks
+// skipped by event-driven time the positions are the same integers, roundings included.
+void Conveyor::advanceTicks(int64_t dtNs, int64_t tickNs) {
+  if (tickNs <= 0) tickNs = dtNs;
+  while (dtNs > 0) {
+    const int64_t chunk = std::min(dtNs, tickNs);
+    advance(chunk);
+    dtNs -= chunk;
+  }
+}
+
 void Conveyor::step(const StepContext& ctx) {
   const int64_t dtNs = started_ ? ctx.nowNs - lastNs_ : 0;
   started_ = true;
   lastNs_ = ctx.nowNs;
+  tickNs_ = ctx.dtNs;
   // A part taken from the end (its fact cleared by another device) leaves the belt.
   if (p_.endFact >= 0 && endPublished_ && !ctx.world.hasFact(static_cast<uint32_t>(p_.endFact)) && atEnd()) {
     parts_.pop_back();
     partKinds_.pop_back();
   }
   // Motion since the previous tick, under the inputs of the previous tick.
-  if (moving_) advance(dtNs);
+  if (moving_) advanceTicks(dtNs, ctx.dtNs);
   const bool run = ctx.bus.getBool(tag(runPort_));
   reverse_ = ctx.bus.getBool(tag(reversePort_));
   if (run && !moving_) {
@@ -142,8 +154,10 @@ void Conveyor::step(const StepContext& ctx) {
 
 // Every pusher whose command is on pushes the parts covering its position into its bin.
 void Conveyor::push(const TagBus& bus) {
+  pushing_ = false;
   for (size_t b = 0; b < p_.pushers.size(); ++b) {
     if (!bus.getBool(tag(p_.pushers[b].port))) continue;
+    pushing_ = true;
     for (size_t i = parts_.size(); i-- > 0;)
       if (covers(parts_[i], p_.pushers[b].positionNm)) drop(i, b);
   }
@@ -155,8 +169,13 @@ void Conveyor::publishCounts(TagBus& bus) const {
     for (size_t k = 0; k < produced_.size(); ++k) bus.setInt(tag(firstProducedPort_ + k), produced_[k]);
 }
 
+// The first tick at which a part can reach a sensor edge, the end, the part ahead, or free the
+// start for a waiting spawn; the next spawn. A tick moves a part by at most round(speed x tick)
+// + 1 nm (a tick split at a spawn rounds twice), so the count of ticks is a lower bound.
 int64_t Conveyor::nextEventNs() const {
+  if (!started_) return 0;
   if (!moving_ || p_.speed <= 0) return INT64_MAX;
+  if (pushing_) return 0;
   int64_t best = INT64_MAX;  // nm still to travel until something visible changes
   auto consider = [&](int64_t d) {
     if (d > 0 && d < best) best = d;
@@ -178,10 +197,14 @@ int64_t Conveyor::nextEventNs() const {
     if (!reverse_) consider((i + 1 < parts_.size() ? parts_[i + 1] - len : endNm) - p);
     else consider(p - (i > 0 ? parts_[i - 1] + len : 0));
   }
+  const bool spawning = p_.spawnIntervalNs > 0 && !reverse_ && lotLeft();
+  if (spawning && !parts_.empty()) consider(len - parts_.front());  // a spawn waits for a free start
   int64_t next = INT64_MAX;
-  if (best != INT64_MAX) next = lastNs_ + static_cast<int64_t>(std::ceil(static_cast<double>(best) / p_.speed));
-  if (p_.spawnIntervalNs > 0 && !reverse_ && lotLeft())
-    next = std::min(next, lastNs_ + std::max<int64_t>(p_.spawnIntervalNs - spawnTimerNs_, 1));
+  if (best != INT64_MAX) {
+    const int64_t maxStepNm = std::llround(p_.speed * static_cast<double>(tickNs_)) + 1;
+    next = lastNs_ + (best + maxStepNm - 1) / maxStepNm * tickNs_;
+  }
+  if (spawning) next = std::min(next, lastNs_ + std::max<int64_t>(p_.spawnIntervalNs - spawnTimerNs_, 1));
   return next;
 }
 

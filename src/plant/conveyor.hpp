@@ -74,6 +74,7 @@ class Conveyor final : public Device {
 
  private:
   void advance(int64_t dtNs);
+  void advanceTicks(int64_t dtNs, int64_t tickNs);
   void move(int64_t dsNm);
   void spawn(int64_t dtNs);
   bool atEnd() const;
@@ -97,7 +98,9 @@ class Conveyor final : public Device {
   bool moving_ = false;
   bool reverse_ = false;
   bool endPublished_ = false;
+  bool pushing_ = false;  // a pusher's command is on: parts may reach it any tick
   int64_t lastNs_ = 0;
+  int64_t tickNs_ = 0;    // the simulation's base tick, from the last step
   int64_t spawnTimerNs_ = 0;
   uint32_t runLabel_ = 0;
   uint32_t activity_ = 0;

@@ -66,10 +66,14 @@ class Device {
   // Every tick after the PLC scan: read inputs from the bus, advance the model to ctx.nowNs,
   // write outputs. Never allocates (amortised trace appends excepted), never throws.
   virtual void step(const StepContext& ctx) = 0;
-  // The earliest future time at which the device changes something on its own (end of a
-  // motion, a procedure step, a timer); INT64_MAX if it only reacts to inputs. Lets the
-  // simulation skip idle intervals without changing results.
-  virtual int64_t nextEventNs() const { return INT64_MAX; }
+  // After step(): the earliest time at which the device, its inputs and the world staying as they
+  // are, would change anything (an output, the trace, the world, its energy) on its own: the end
+  // of a motion, a procedure step, a timer; INT64_MAX if it only reacts to inputs; a time not
+  // after its last step (0) while it varies every tick (ramping outputs, per-tick integration).
+  // Event-driven time (sim::SimOptions::eventTime) skips the ticks before it, so a time later than
+  // the real change breaks the equivalence with stepping every tick; an earlier one only costs
+  // speed. The default steps every tick: a device type skips only once it is shown exact.
+  virtual int64_t nextEventNs() const { return 0; }
   // Once at the end: energy and busy-time totals into trace.totals[traceIndex()].
   virtual void finish(int64_t endNs, Trace& trace);
   // Non-zero while the device reports an error to the controller.

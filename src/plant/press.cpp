@@ -43,13 +43,25 @@ int32_t Press::beginCommand(double command, int64_t startNs, const StepContext& 
   return 0;
 }
 
-int64_t Press::modelNextEventNs() const {
-  if (!running_) return INT64_MAX;
+int64_t Press::endNs() const {
   return startNs_ + prog_->approachNs + prog_->pressNs + prog_->holdNs + prog_->returnNs;
 }
 
+// The next phase boundary, or 0 inside a phase whose output ramps (position during approach and
+// return, force during press): writeOutputs gives those a new value every tick.
+int64_t Press::modelNextEventNs() const {
+  if (!running_) return INT64_MAX;
+  const int64_t pressStart = startNs_ + prog_->approachNs, holdStart = pressStart + prog_->pressNs;
+  const int64_t returnStart = holdStart + prog_->holdNs;
+  const bool stroke = p_.strokeM != 0;
+  if (outputsNs_ < pressStart) return stroke ? 0 : pressStart;
+  if (outputsNs_ < holdStart) return prog_->forceN != 0 ? 0 : holdStart;
+  if (outputsNs_ < returnStart) return returnStart;
+  return stroke ? 0 : endNs();
+}
+
 SequencedDevice::Progress Press::advance(const StepContext& ctx, int64_t& atNs, int32_t&) {
-  const int64_t end = modelNextEventNs();
+  const int64_t end = endNs();
   if (ctx.nowNs < end) return Progress::Running;
   for (uint32_t f : prog_->sets) ctx.world.setFact(f, true);
   for (uint32_t f : prog_->clears) ctx.world.setFact(f, false);
@@ -59,6 +71,7 @@ SequencedDevice::Progress Press::advance(const StepContext& ctx, int64_t& atNs, 
 }
 
 void Press::writeOutputs(const StepContext& ctx) {
+  outputsNs_ = ctx.nowNs;
   double force = 0, position = 0;
   if (running_) {
     const int64_t t = ctx.nowNs - startNs_;

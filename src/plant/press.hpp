@@ -46,10 +46,12 @@ class Press final : public SequencedDevice {
 
  private:
   const Program* find(double command) const;
+  int64_t endNs() const;
   Params p_;
   size_t forcePort_ = 0, positionPort_ = 0;
   const Program* prog_ = nullptr;
   int64_t startNs_ = 0;
+  int64_t outputsNs_ = 0;  // when writeOutputs last ran
   bool running_ = false;
   double commandEnergyJ_ = 0;
 };

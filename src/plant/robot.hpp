@@ -88,7 +88,10 @@ class Robot final : public SequencedDevice {
   int32_t beginCommand(double command, int64_t startNs, const StepContext& ctx) override;
   Progress advance(const StepContext& ctx, int64_t& atNs, int32_t& error) override;
   double commandEnergyJ() const override { return commandEnergyJ_; }
-  int64_t modelNextEventNs() const override { return stepEndNs_; }
+  // A move's position output changes every tick; other steps hold it until their end.
+  int64_t modelNextEventNs() const override {
+    return stepEndNs_ != INT64_MAX && p_.steps[stepIndex_].op == Op::Move ? 0 : stepEndNs_;
+  }
   void writeOutputs(const StepContext& ctx) override;
   void prepareLabels(World& world, Trace& trace) override;
 

@@ -72,7 +72,8 @@ class SequencedDevice : public Device {
   virtual Progress advance(const StepContext& ctx, int64_t& atNs, int32_t& error) = 0;
   // Energy (J) of the current/last command so far.
   virtual double commandEnergyJ() const = 0;
-  // End of the current step/motion of the running command.
+  // While a command runs: when the model next changes anything on its own (the end of its
+  // current step or motion), or 0 while its outputs change every tick (a ramp, a move).
   virtual int64_t modelNextEventNs() const = 0;
   // Writes the model's own outputs (positions, forces...) for ctx.nowNs.
   virtual void writeOutputs(const StepContext& ctx) = 0;

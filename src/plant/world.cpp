@@ -49,6 +49,7 @@ bool World::occupies(uint32_t zone, uint32_t device) const {
 
 bool World::enterZone(uint32_t zone, uint32_t device, uint32_t activityLabel, int64_t nowNs) {
   auto& occ = occupants_[zone];
+  ++changes_;
   for (auto& o : occ)
     if (o.device == device) {
       o.label = activityLabel;
@@ -75,6 +76,7 @@ void World::leaveZone(uint32_t zone, uint32_t device) {
   auto& occ = occupants_[zone];
   for (size_t i = 0; i < occ.size(); ++i)
     if (occ[i].device == device) {
+      ++changes_;
       occ[i] = occ.back();
       occ.pop_back();
       return;

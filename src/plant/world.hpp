@@ -19,7 +19,11 @@ class World {
   // ---- facts (load time: ids; run time: values) ----
   uint32_t fact(const std::string& name);       // creates it (false) if new
   bool hasFact(uint32_t id) const { return facts_[id] != 0; }
-  void setFact(uint32_t id, bool value) { facts_[id] = value ? 1 : 0; }
+  void setFact(uint32_t id, bool value) {
+    const uint8_t v = value ? 1 : 0;
+    changes_ += facts_[id] != v;
+    facts_[id] = v;
+  }
   const std::string& factName(uint32_t id) const { return factNames_[id]; }
   size_t factCount() const { return facts_.size(); }
   // Initial facts (set before the run, e.g. from the cell file's `world:` section).
@@ -37,6 +41,9 @@ class World {
   bool occupies(uint32_t zone, uint32_t device) const;
   // True once any collision happened (the simulation may stop on it).
   bool collided() const { return collided_; }
+  // Counts fact changes and zone entries/exits: a device stepped before the one that changed the
+  // world sees the change only at the next tick, so event-driven time never skips that tick.
+  uint64_t changes() const { return changes_; }
 
   // ---- vessels (tanks and the devices acting on or sensing them) ----
   // The vessel named `name`, created (undefined) if new; `use` is where a device names it.
@@ -63,6 +70,7 @@ class World {
   std::vector<std::vector<Occupant>> occupants_;  // per zone; reserved at load, at most #devices
   std::vector<Vessel> vessels_;
   bool collided_ = false;
+  uint64_t changes_ = 0;
 };
 
 }  // namespace virtcom::plant

@@ -60,6 +60,18 @@ class Runtime {
   // Tells the runtime that something outside the PLC wrote its memory (wired variables,
   // protocol writes), so the next scan must run.
   void inputsTouched() { quiescent_ = false; }
+  // True if the next scan would be skipped as a repeat (skipRepeatedScans) unless something
+  // writes the PLC's memory or input image before it.
+  bool scanWouldRepeat() const {
+    return state_ == PlcState::Run && !shadow_.empty() && quiescent_ && inputImageSettled();
+  }
+  // Passes `count` ticks as tick() would if every scan in them repeated (scanWouldRepeat(), with
+  // nothing written in between): the same tick count and statistics, nothing run.
+  void skipRepeatedTicks(uint64_t count) {
+    tickIndex_ += count;
+    stats_[0].scans += count;
+    stats_[0].skippedScans += count;
+  }
 
   // The external side of the process image: written by devices/protocols, copied into the
   // %I area at the start of each scan; the %Q area is copied out at its end.

@@ -17,12 +17,20 @@ using Json = nlohmann::ordered_json;
 // Seconds from ns: exact to the nanosecond for any run shorter than ~104 days.
 double seconds(int64_t ns) { return nsToSeconds(ns); }
 
-Json runJson(const Kpis& k) {
-  return Json{{"end", runEndKey(k.end)},
-              {"end_text", runEndName(k.end)},
-              {"end_message", k.endMessage},
-              {"duration_s", seconds(k.runNs)},
-              {"cycles_completed", k.cyclesCompleted}};
+Json runJson(const Trace& trace, const Kpis& k) {
+  Json run{{"end", runEndKey(k.end)},
+           {"end_text", runEndName(k.end)},
+           {"end_message", k.endMessage},
+           {"duration_s", seconds(k.runNs)},
+           {"cycles_completed", k.cyclesCompleted}};
+  // How the clock went, known only to the simulation that ran (a history export has no ticks).
+  const TimeSteps& t = trace.time;
+  if (t.ticks > 0)
+    run["time"] = Json{{"mode", t.eventDriven ? "event" : "tick"},
+                       {"ticks", t.ticks},
+                       {"ticks_skipped", t.ticksSkipped},
+                       {"jumps", t.jumps}};
+  return run;
 }
 
 Json cycleJson(const Trace& trace, const Kpis& k) {
@@ -161,7 +169,7 @@ std::string jsonReport(const Trace& trace, const Kpis& kpis, const std::vector<D
                        const ProductionReport* production) {
   Json doc{{"schema", "virtcom.report"},
            {"schema_version", kJsonSchemaVersion},
-           {"run", runJson(kpis)},
+           {"run", runJson(trace, kpis)},
            {"cycle", cycleJson(trace, kpis)},
            {"totals", Json{{"energy_j", kpis.totalEnergyJ},
                            {"operations", kpis.operations},

@@ -93,6 +93,9 @@ std::string summaryTable(const Trace& trace, const Kpis& kpis) {
   if (trace.cycles.size() > 1) out += cycleTable(trace, kpis);
   out += "Total energy  " + energyText(kpis.totalEnergyJ) + " J\n";
   out += "Run time      " + formatSeconds(kpis.runNs, 3) + " s\n";
+  if (trace.time.ticksSkipped > 0)
+    out += "Event time    " + std::to_string(trace.time.ticksSkipped) + " of " + std::to_string(trace.time.ticks) +
+           " ticks skipped in " + std::to_string(trace.time.jumps) + " jumps\n";
 
   out += "Collisions    " + std::to_string(trace.collisions.size()) + "\n";
   for (const CollisionRecord& c : trace.collisions) {

@@ -31,7 +31,10 @@ Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), opti
     runtime_->machine().useCompiled(options_.compiled);
   }
   timeLimitNs_ = options_.timeLimitNs >= 0 ? options_.timeLimitNs : cell_.run.timeLimitNs;
+  jumps_ = options_.eventTime && !paced_ && options_.bridges.empty() && !options_.control && !options_.watch.enabled &&
+           !options_.beforeScan && !options_.afterScan;
   Trace& trace = cell_.trace;
+  trace.time = {jumps_, 0, 0, 0};
   for (auto& d : cell_.devices) d->prepare(cell_.world, trace);
   if (options_.watch.enabled)
     recogniser_ = std::make_unique<OperationRecogniser>(cell_.devices, trace, options_.watch.model, options_.watch.threshold);
@@ -79,7 +82,10 @@ void Simulation::start() {
 
 void Simulation::recordChanges() {
   Trace& trace = cell_.trace;
+  tickChanged_ = cell_.world.changes() != worldChanges_;
+  worldChanges_ = cell_.world.changes();
   cell_.bus.forEachChanged([&](TagId id) {
+    tickChanged_ = true;
     SignalChange c{nowNs_, id, cell_.bus.raw(id)};
     for (TraceSink* sink : options_.traceSinks) sink->change(c);
     if (keepChange_[id]) trace.changes.push_back(c);
@@ -93,6 +99,7 @@ void Simulation::finish(RunEnd end, std::string message) {
   trace.end = end;
   trace.endMessage = std::move(message);
   trace.endNs = nowNs_;  // without a completed cycle the window stays empty: reports use the whole run
+  trace.time.ticks = ticks_;
   for (auto& d : cell_.devices) d->finish(nowNs_, trace);
   for (BusBridge* b : options_.bridges) b->simulationStopped();
   for (TraceSink* sink : options_.traceSinks) sink->end(trace);
@@ -226,9 +233,36 @@ bool Simulation::step() {
   return !checkStop();
 }
 
+// Event-driven time. After a tick that changed no signal and no world fact, with the PLC's next
+// scan a provable repeat, the ticks before the earliest device event (or the time limit) would
+// each repeat the scan, step devices that change nothing, record nothing and stop on nothing
+// (the stop conditions read the same PLC memory, world and device errors): they are counted as
+// passed, the PLC's skipped-scan statistics and the trace sinks' tick() included, and the next
+// tick runs normally at its own time. Nothing is allocated.
+void Simulation::skipIdleTicks() {
+  if (!jumps_ || tickChanged_ || (runtime_ && !runtime_->scanWouldRepeat())) return;
+  int64_t eventNs = timeLimitNs_;
+  for (const auto& d : cell_.devices) eventNs = std::min(eventNs, d->nextEventNs());
+  const int64_t baseTickNs = runtime_ ? runtime_->baseTickNs() : cell_.run.plcCycleNs;
+  if (baseTickNs <= 0) return;
+  eventNs = std::min(eventNs, INT64_MAX - baseTickNs);  // a run without end nor event: no overflow
+  if (eventNs <= nowNs_) return;
+  // The first tick at or after the event must run: ticks before it are skipped.
+  const uint64_t eventTick = static_cast<uint64_t>(eventNs / baseTickNs + (eventNs % baseTickNs != 0));
+  const uint64_t nextTick = runtime_ ? runtime_->ticks() : ticks_;
+  if (eventTick <= nextTick) return;
+  const uint64_t count = eventTick - nextTick;
+  if (!options_.traceSinks.empty())
+    for (uint64_t t = nextTick; t < eventTick; ++t)
+      for (TraceSink* sink : options_.traceSinks) sink->tick(cell_.trace, static_cast<int64_t>(t) * baseTickNs);
+  if (runtime_) runtime_->skipRepeatedTicks(count);
+  ticks_ += count;
+  cell_.trace.time.ticksSkipped += count;
+  ++cell_.trace.time.jumps;
+}
+
 RunEnd Simulation::run() {
-  while (step()) {
-  }
+  while (step()) skipIdleTicks();
   return cell_.trace.end;
 }
 

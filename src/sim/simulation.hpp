@@ -35,6 +35,10 @@ struct SimOptions {
   std::function<void(plc::Runtime& plc)> preset;
   // Skip PLC scans that provably repeat the previous one (exact: same results and trace).
   bool skipRepeatedScans = true;
+  // Event-driven time: run() jumps over the ticks in which nothing can change (see
+  // Simulation::skipIdleTicks), with the same results as stepping every tick. Only unpaced runs
+  // without bridges, RunControl, watch or scan hooks jump: those can change state from outside.
+  bool eventTime = true;
   // Links to external peers (Modbus/ADS), stepped in this order; they must outlive the run.
   // A failed pull() ends the run as a PLC fault (the external PLC is the controller).
   std::vector<BusBridge*> bridges;
@@ -74,7 +78,7 @@ class Simulation {
   // Cold-starts the PLC and runs until a stop condition; returns how the run ended (also in
   // the trace). Allocates nothing per tick except amortised trace appends.
   RunEnd run();
-  // Advances one base tick (for single stepping); false once the run has ended.
+  // Advances one base tick (for single stepping; never jumps); false once the run has ended.
   bool step();
 
   bool hasPlc() const { return runtime_ != nullptr; }
@@ -113,6 +117,7 @@ class Simulation {
   void readFromPlc(const uint8_t* mem);
   bool pullBridges();
   void recordChanges();
+  void skipIdleTicks();
   void finish(RunEnd end, std::string message);
 
   cell::Cell& cell_;
@@ -137,6 +142,9 @@ class Simulation {
   uint64_t ticks_ = 0;
   bool started_ = false;
   bool ended_ = false;
+  bool jumps_ = false;           // event-driven time allowed (SimOptions::eventTime and no outside writer)
+  bool tickChanged_ = false;     // the last tick changed a signal or the world
+  uint64_t worldChanges_ = 0;    // World::changes() after the previous tick
   int64_t timeLimitNs_ = 0;
 };
 

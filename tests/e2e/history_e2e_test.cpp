@@ -81,8 +81,12 @@ TEST_F(History, WholeRunExportIsByteIdenticalToTheRunsOwnFiles) {
             0)
       << output;
   for (const char* ext : {"csv", "vcd", "json", "html"}) {
-    const std::string ran = readFile(out(std::string("run.") + ext));
+    std::string ran = readFile(out(std::string("run.") + ext));
     EXPECT_GT(ran.size(), 500u) << ext;
+    // The run's JSON also says how its clock went (run.time, docs/report.md), which the
+    // historian does not record: everything else is the same.
+    if (const size_t time = ran.find(",\n    \"time\": {"); time != std::string::npos && std::string(ext) == "json")
+      ran.erase(time, ran.find('}', time) + 1 - time);
     EXPECT_TRUE(ran == readFile(out(std::string("h.") + ext))) << ext << " differs";
   }
 }

@@ -89,6 +89,25 @@ TEST_F(PressTest, ForceAndPositionFollowThePhases) {
   EXPECT_EQ(rig.getNumber("Press.position"), 0.0);
 }
 
+// Event-driven time may skip ticks only while no output changes: the stroke and force ramps vary
+// every tick (0: step the next one), the hold phase holds until the return starts.
+TEST_F(PressTest, NextEventIsEveryTickWhileRampingAndTheReturnWhileHolding) {
+  rig.setFact("insertLocked", true);
+  rig.setFact("bearing1Placed", true);
+  EXPECT_EQ(press->nextEventNs(), INT64_MAX);  // idle, execute low: only inputs wake it
+  rig.setNumber("Press.programNumber", 1);
+  rig.setBool("Press.execute", true);
+  rig.tick();
+  const int64_t start = rig.now;
+  EXPECT_EQ(press->nextEventNs(), 0);  // approach: the position ramps
+  rig.tick(1200 * kMs);
+  EXPECT_EQ(press->nextEventNs(), 0);  // press: the force ramps
+  rig.tick(400 * kMs);
+  EXPECT_EQ(press->nextEventNs(), start + 1750 * kMs);  // holding until the return
+  rig.tick(300 * kMs);
+  EXPECT_EQ(press->nextEventNs(), 0);  // returning
+}
+
 TEST_F(PressTest, OptionalPhasesDefaultToZeroAndClearsWork) {
   rig.setFact("insertLocked", true);
   rig.setFact("pinLoose", true);

@@ -1,7 +1,9 @@
 // The same cell gives the same trace, byte for byte (docs/cell-file.md "How a run steps"), and
 // skipping repeated PLC scans (SimOptions::skipRepeatedScans) is exact: the traces with and
 // without it are identical. Traces are compared as the JSON report (activities, collisions,
-// KPIs) and the CSV of every signal change.
+// KPIs) and the CSV of every signal change. Event-driven time (SimOptions::eventTime) is exact
+// too: jumping over idle ticks gives the traces of stepping every one (the e2e suite
+// event_time_e2e_tests compares every example cell's outputs the same way).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -20,6 +22,13 @@ namespace {
   auto lineOf = [&](const std::string& s) { return s.substr(lineStart, s.find('\n', lineStart) - lineStart); };
   return ::testing::AssertionFailure() << "texts differ (" << a.size() << " vs " << b.size()
                                        << " bytes) first at byte " << at << ":\n  " << lineOf(a) << "\n  " << lineOf(b);
+}
+
+// The JSON report without its `run.time` object, the one part that says how the clock went.
+std::string withoutTime(const std::string& json) {
+  const size_t from = json.find("\"time\": {");
+  if (from == std::string::npos) return json;
+  return json.substr(0, from) + json.substr(json.find('}', from) + 1);
 }
 
 TEST(GearboxDeterminism, TwoRunsGiveByteIdenticalTraces) {
@@ -42,7 +51,7 @@ TEST_P(ScanSkipping, IsExactOnTheGearbox) {
   ASSERT_NE(skipping, nullptr);
   ASSERT_NE(scanning, nullptr);
   EXPECT_EQ(skipping->trace().end, RunEnd::Completed);
-  EXPECT_TRUE(sameText(skipping->json(), scanning->json()));
+  EXPECT_TRUE(sameText(withoutTime(skipping->json()), withoutTime(scanning->json())));
   EXPECT_TRUE(sameText(skipping->csv(), scanning->csv()));
   // the comparison is not vacuous: scans were really skipped in one run and not in the other
   EXPECT_GT(skipping->simulation->plc().stats(0).skippedScans, 0u);
@@ -51,6 +60,33 @@ TEST_P(ScanSkipping, IsExactOnTheGearbox) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Gearbox, ScanSkipping, ::testing::Values(1, 3),
+                         [](const auto& info) { return "Sequence" + std::to_string(info.param); });
+
+class EventTime : public ::testing::TestWithParam<int> {};
+
+// Sequence 4 ends in a collision, 1 waits longest on single devices.
+TEST_P(EventTime, IsExactOnTheGearbox) {
+  auto jumping = runGearbox(GetParam(), true, true);
+  auto stepping = runGearbox(GetParam(), true, false);
+  ASSERT_NE(jumping, nullptr);
+  ASSERT_NE(stepping, nullptr);
+  EXPECT_TRUE(sameText(withoutTime(jumping->json()), withoutTime(stepping->json())));
+  EXPECT_TRUE(sameText(jumping->csv(), stepping->csv()));
+  const TimeSteps& jumped = jumping->trace().time;
+  const TimeSteps& stepped = stepping->trace().time;
+  EXPECT_TRUE(jumped.eventDriven);
+  EXPECT_FALSE(stepped.eventDriven);
+  EXPECT_GT(jumped.ticksSkipped, 0u);
+  EXPECT_GT(jumped.jumps, 0u);
+  EXPECT_EQ(stepped.ticksSkipped, 0u);
+  EXPECT_EQ(jumped.ticks, stepped.ticks);
+  EXPECT_EQ(jumping->simulation->ticks(), stepping->simulation->ticks());
+  // a skipped tick is a repeated scan the PLC would have skipped anyway: same statistics
+  EXPECT_EQ(jumping->simulation->plc().stats(0).scans, stepping->simulation->plc().stats(0).scans);
+  EXPECT_EQ(jumping->simulation->plc().stats(0).skippedScans, stepping->simulation->plc().stats(0).skippedScans);
+}
+
+INSTANTIATE_TEST_SUITE_P(Gearbox, EventTime, ::testing::Values(1, 2, 3, 4),
                          [](const auto& info) { return "Sequence" + std::to_string(info.param); });
 
 // A handshake with a 250 ms TON dwell between three 1 s commands. The timer reads the clock in
@@ -117,7 +153,7 @@ TEST_F(TonCell, ScanSkippingIsExactWithTimers) {
   off.skipRepeatedScans = false;
   EXPECT_EQ(skipping->run(on), RunEnd::Completed);
   EXPECT_EQ(scanning->run(off), RunEnd::Completed);
-  EXPECT_TRUE(sameText(skipping->json(), scanning->json()));
+  EXPECT_TRUE(sameText(withoutTime(skipping->json()), withoutTime(scanning->json())));
   EXPECT_TRUE(sameText(skipping->csv(), scanning->csv()));
   // scans were skipped while a command ran (the PLC only waits), never in the 2 x 26 scans
   // of the timer runs (1020..1270 ms, 2290..2540 ms)
@@ -125,6 +161,26 @@ TEST_F(TonCell, ScanSkippingIsExactWithTimers) {
   EXPECT_EQ(skipping->simulation->ticks(), 356u);
   EXPECT_GT(skipped, 200u);
   EXPECT_LE(skipped, 356u - 2 * 26);
+}
+
+// A running TON reads the clock every scan: no jump over a dwell, only over the clamp's commands
+// (the PLC waits on done), and the results are those of stepping every tick.
+TEST_F(TonCell, EventTimeJumpsOnlyWhileNoTimerRuns) {
+  auto jumping = loadCell(kTonCell, {{"main.st", kTonSt}});
+  auto stepping = loadCell(kTonCell, {{"main.st", kTonSt}});
+  ASSERT_NE(jumping, nullptr);
+  ASSERT_NE(stepping, nullptr);
+  SimOptions on, off;
+  off.eventTime = false;
+  EXPECT_EQ(jumping->run(on), RunEnd::Completed);
+  EXPECT_EQ(stepping->run(off), RunEnd::Completed);
+  EXPECT_TRUE(sameText(withoutTime(jumping->json()), withoutTime(stepping->json())));
+  EXPECT_TRUE(sameText(jumping->csv(), stepping->csv()));
+  const TimeSteps& t = jumping->trace().time;
+  EXPECT_EQ(t.ticks, 356u);
+  EXPECT_GT(t.ticksSkipped, 200u);
+  EXPECT_LE(t.ticksSkipped, 356u - 2 * 26);
+  EXPECT_GE(t.jumps, 3u);  // one per command at least
 }
 
 }  // namespace

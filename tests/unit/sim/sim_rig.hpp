@@ -65,7 +65,7 @@ struct CellRun {
 };
 
 // Loads and runs the gearbox example with MAIN.sequence preset; fails the test if it does not load.
-inline std::unique_ptr<CellRun> runGearbox(int sequence, bool skipRepeatedScans = true) {
+inline std::unique_ptr<CellRun> runGearbox(int sequence, bool skipRepeatedScans = true, bool eventTime = true) {
   auto run = std::make_unique<CellRun>();
   if (!run->load(gearboxCellPath())) {
     ADD_FAILURE() << run->problems();
@@ -73,6 +73,7 @@ inline std::unique_ptr<CellRun> runGearbox(int sequence, bool skipRepeatedScans 
   }
   SimOptions options;
   options.skipRepeatedScans = skipRepeatedScans;
+  options.eventTime = eventTime;
   options.preset = presets({{"MAIN.sequence", std::to_string(sequence)}});
   run->run(std::move(options));
   return run;

@@ -222,6 +222,7 @@ ExitCode runCell(const RunOptions& o) {
       if (ruleTracer) ruleTracer->print(scans++, plc.machine().memory(), std::cout);
       if (ruleCounter) ruleCounter->count(plc);
     };
+  options.afterScanSeesJumps = !ruleTracer;  // the counter counts the scans a jump passed over
   options.speed = o.speed;
   options.eventTime = o.timeMode == "event";
   options.interrupt = &gStop;

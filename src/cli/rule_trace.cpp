@@ -107,9 +107,18 @@ void RuleCounter::count(const plc::Runtime& plc) {
   // The tick that just ran started at the time before the next one.
   const int64_t nowNs = plc.nextTickNs() - plc.baseTickNs();
   const uint8_t* memory = plc.machine().memory();
-  for (const Counted& rule : rules_) {
-    if (plc.stats(rule.task).scans == scansSeen_[rule.task] || !flagSet(rule.flag, memory)) continue;
+  for (Counted& rule : rules_) {
+    const uint64_t scans = plc.stats(rule.task).scans - scansSeen_[rule.task];
+    if (scans == 0) continue;
+    // All but the last of these scans were repeats passed over by event-driven time: the flag
+    // stood as the last counted scan left it, until the tick before this one.
     report::RuleFiring& f = sections_[rule.section].firings[rule.row];
+    if (rule.lastSet && scans > 1) {
+      f.scans += scans - 1;
+      f.lastNs = nowNs - plc.baseTickNs();
+    }
+    rule.lastSet = flagSet(rule.flag, memory);
+    if (!rule.lastSet) continue;
     if (f.scans++ == 0) f.firstNs = nowNs;
     f.lastNs = nowNs;
   }

@@ -57,7 +57,9 @@ class RuleCounter {
 
   // Call after every tick of `plc`: for each task that scanned in this tick (a skipped repeat
   // scan counts, it is the previous scan again), counts the rules of its diagrams whose fired
-  // flag is set, at the tick's virtual time. Allocates nothing and looks nothing up.
+  // flag is set, at the tick's virtual time; scans that event-driven time jumped over since the
+  // last call (single-task programs only) count as repeats of the last counted one. Allocates
+  // nothing and looks nothing up.
   void count(const plc::Runtime& plc);
 
   // The tables with the counts so far, one section per diagram, in file and diagram order.
@@ -69,6 +71,7 @@ class RuleCounter {
     uint32_t task = 0;    // the task that runs the diagram's PROGRAM
     uint32_t section = 0;
     uint32_t row = 0;     // of the section's rule table
+    bool lastSet = false; // its flag after the last counted scan
   };
   std::vector<report::DiagramTablesSection> sections_;
   std::vector<Counted> rules_;

@@ -69,14 +69,19 @@ void totalsFromActivities(Trace& trace) {
   }
 }
 
+// The cycles wholly inside [from, to], in order, into trace.cycles.
+void readCycleList(Connection& db, int64_t run, int64_t from, int64_t to, Trace& trace) {
+  Statement inside(db, "SELECT start_ns, end_ns FROM cycles WHERE run = ?1 AND start_ns >= ?2 AND end_ns <= ?3 ORDER BY number");
+  inside.bind(1, run).bind(2, from).bind(3, to);
+  while (inside.step()) trace.cycles.push_back({inside.columnInt(0) - from, inside.columnInt(1) - from});
+}
+
 // The cycles completed inside [from, to]; the last one wholly inside is the measured cycle.
 void readCycles(Connection& db, int64_t run, int64_t from, int64_t to, Trace& trace) {
   Statement count(db, "SELECT COUNT(*) FROM cycles WHERE run = ?1 AND end_ns BETWEEN ?2 AND ?3");
   count.bind(1, run).bind(2, from).bind(3, to);
   if (count.step()) trace.cyclesCompleted = static_cast<uint32_t>(count.columnInt(0));
-  Statement inside(db, "SELECT start_ns, end_ns FROM cycles WHERE run = ?1 AND start_ns >= ?2 AND end_ns <= ?3 ORDER BY number");
-  inside.bind(1, run).bind(2, from).bind(3, to);
-  while (inside.step()) trace.cycles.push_back({inside.columnInt(0) - from, inside.columnInt(1) - from});
+  readCycleList(db, run, from, to, trace);
   if (trace.cycles.empty()) return;
   trace.cycleStartNs = trace.cycles.back().startNs;
   trace.cycleEndNs = trace.cycles.back().endNs;
@@ -235,6 +240,7 @@ Trace HistoryReader::trace(int64_t runId, TimeRange range, size_t* skipped) {
     trace.cyclesCompleted = static_cast<uint32_t>(summary->cyclesCompleted);
     trace.cycleStartNs = summary->cycleStartNs;
     trace.cycleEndNs = summary->cycleEndNs;
+    readCycleList(db_, runId, from, to, trace);
   } else {
     readCycles(db_, runId, from, to, trace);
   }

@@ -32,7 +32,7 @@ Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), opti
   }
   timeLimitNs_ = options_.timeLimitNs >= 0 ? options_.timeLimitNs : cell_.run.timeLimitNs;
   jumps_ = options_.eventTime && !paced_ && options_.bridges.empty() && !options_.control && !options_.watch.enabled &&
-           !options_.beforeScan && !options_.afterScan;
+           !options_.beforeScan && (!options_.afterScan || options_.afterScanSeesJumps);
   Trace& trace = cell_.trace;
   trace.time = {jumps_, 0, 0, 0};
   for (auto& d : cell_.devices) d->prepare(cell_.world, trace);

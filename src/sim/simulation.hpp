@@ -46,6 +46,10 @@ struct SimOptions {
   // queued writes and RUN/STOP before, the image snapshot after; its first snapshot is taken
   // in `preset`). Must not allocate.
   std::function<void(plc::Runtime& plc)> beforeScan, afterScan;
+  // afterScan is only an observer that accounts for the scans a jump of event-driven time
+  // passed over itself (from the task's scan count, as cli's RuleCounter does): it does not
+  // keep the clock from jumping.
+  bool afterScanSeesJumps = false;
   // Follow the run as it goes: every recorded signal change, every tick, the end (core/trace.hpp;
   // they must outlive the run). What a stop condition adds in the last tick (a fault) reaches end().
   std::vector<TraceSink*> traceSinks;

@@ -113,7 +113,7 @@ TEST_F(LoaderErrors, UnknownTopLevelKeyListsTheKnownOnes) {
                     "devices: []\n"
                     "devcies: []\n"),
               ElementsAre("cell.yaml:5:1: error[C011]: unknown key 'devcies' in the cell file "
-                          "(expected one of: name, plc, run, zones, world, devices, modbus, hmi, extends, replace_devices)"));
+                          "(expected one of: name, plc, run, zones, world, devices, modbus, hmi, plan, extends, replace_devices)"));
 }
 
 // A valve, pump, heater or tank sensor naming a tank no entry defines, at the name.
@@ -444,7 +444,7 @@ TEST_F(LoaderErrors, AllMistakesOfOneFileInOnePass) {
                           "cell.yaml:31:13: error[C030]: no port of 'Lock3' matches a variable under 'MAIN.nothing' "
                           "(expected e.g. MAIN.nothing.programNumber)",
                           "cell.yaml:32:1: error[C011]: unknown key 'extra' in the cell file (expected one of: name, plc, "
-                          "run, zones, world, devices, modbus, hmi, extends, replace_devices)"));
+                          "run, zones, world, devices, modbus, hmi, plan, extends, replace_devices)"));
 }
 
 // Regression test (found by the cell/sim test suite).

@@ -1,6 +1,4 @@
 // `virtcom exec`: run ST programs on the soft PLC in virtual time (or paced with --speed).
-#include <atomic>
-#include <csignal>
 #include <expected>
 #include <fstream>
 #include <iostream>
@@ -19,9 +17,6 @@
 namespace virtcom::cli {
 
 namespace {
-
-std::atomic<bool> gInterrupted{false};
-extern "C" void onSignal(int) { gInterrupted = true; }
 
 struct ExecOptions {
   std::vector<std::string> files;
@@ -182,10 +177,7 @@ ExitCode runExec(const ExecOptions& o) {
   }
   // Handlers first: a client may send SIGTERM as soon as the server announces itself.
   bool forever = o.cycles < 0 && speed > 0;
-  if (forever) {
-    std::signal(SIGINT, onSignal);
-    std::signal(SIGTERM, onSignal);
-  }
+  if (forever) stopOnSignals();
   std::unique_ptr<proto::modbus::Server> modbus;
   if (!o.modbus.empty()) {
     auto server = startModbus(o, runtime);
@@ -209,7 +201,7 @@ ExitCode runExec(const ExecOptions& o) {
   }
   int64_t cycles = o.cycles < 0 ? (forever ? INT64_MAX : 1) : o.cycles;
   ExitCode exitCode = ExitCode::Ok;
-  for (int64_t k = 0; k < cycles && !gInterrupted; ++k) {
+  for (int64_t k = 0; k < cycles && !gStopRequested; ++k) {
     int64_t now = runtime.nextTickNs();
     if (modbus && modbus->applyPendingWrites(modbusView(runtime)) > 0) runtime.inputsTouched();
     if (ads) ads->beforeScan(runtime);

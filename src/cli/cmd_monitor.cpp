@@ -6,9 +6,7 @@
 // as a simulated run's would be, so the HMI, the reports and the summary work unchanged. The
 // digital shadow: the cell model, run once in virtual time at start-up, predicts each
 // operation's duration; a completed operation beyond the deviation threshold is an alert.
-#include <atomic>
 #include <climits>
-#include <csignal>
 #include <cstdio>
 #include <ctime>
 #include <iostream>
@@ -30,9 +28,6 @@
 namespace virtcom::cli {
 
 namespace {
-
-std::atomic<bool> gMonitorStop{false};
-extern "C" void onMonitorSignal(int) { gMonitorStop = true; }
 
 struct MonitorOptions {
   std::string cellFile;
@@ -257,8 +252,7 @@ ExitCode monitorCell(const MonitorOptions& o) {
   cell->run.stopOnDeviceError = false;
   cell->run.stopOnCollision = false;
   cell->run.plcCycleNs = *pollNs;
-  std::signal(SIGINT, onMonitorSignal);
-  std::signal(SIGTERM, onMonitorSignal);
+  stopOnSignals();
   ExitCode linkFailure = ExitCode::Ok;
   auto bridge = openLink(*cell, sources, o, *pollNs, linkFailure);
   if (!bridge) return linkFailure;
@@ -271,7 +265,7 @@ ExitCode monitorCell(const MonitorOptions& o) {
   auto model = runModel(o.cellFile, sources);
   sim::SimOptions options;
   options.speed = 1;  // the plant's own time
-  options.interrupt = &gMonitorStop;
+  options.interrupt = &gStopRequested;
   options.timeLimitNs = INT64_MAX;
   options.keepAllChanges = false;  // watches for days: no signal history in memory
   options.bridges.push_back(bridge.get());
@@ -285,7 +279,7 @@ ExitCode monitorCell(const MonitorOptions& o) {
   if (*recorder) options.traceSinks.push_back(recorder->get());
   std::optional<LiveHmi> hmi;
   if (hmiBinding) {
-    hmi.emplace(*cell, &gMonitorStop, o.hmi.paused, options);
+    hmi.emplace(*cell, &gStopRequested, o.hmi.paused, options);
     hmi->refuseReset("reset is off in monitor: the plant is real and keeps its own state");
   }
   if (hmi && !cell->plan.shifts.empty()) hmi->watchShifts([&production](hmi::ShiftProgress& p) { production.progress(p); });

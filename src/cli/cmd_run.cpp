@@ -1,9 +1,7 @@
 // `virtcom run`: simulate a cell (PLC program + devices) and report cycle time, Gantt, energy.
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <chrono>
-#include <csignal>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -30,9 +28,6 @@
 namespace virtcom::cli {
 
 namespace {
-
-std::atomic<bool> gStop{false};
-extern "C" void onRunSignal(int) { gStop = true; }
 
 struct RunOptions {
   std::string cellFile;
@@ -134,7 +129,7 @@ ExitCode exitCodeFor(RunEnd end) {
 // command (false) or resets the run from the page (true).
 bool lingerForViewers(LiveHmi& hmi) {
   std::cerr << "hmi: the run has ended; the page stays up until Ctrl-C (or Reset on the page)\n";
-  while (!gStop.load()) {
+  while (!gStopRequested.load()) {
     if (hmi.takeReset()) return true;
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
@@ -225,7 +220,7 @@ ExitCode runCell(const RunOptions& o) {
   options.afterScanSeesJumps = !ruleTracer;  // the counter counts the scans a jump passed over
   options.speed = o.speed;
   options.eventTime = o.timeMode == "event";
-  options.interrupt = &gStop;
+  options.interrupt = &gStopRequested;
   if (cell->module) options.compiled = compiledBackend(o.backend, *cell->module);
   if (!o.timeLimit.empty()) {
     auto ns = parseDurationNs(o.timeLimit);
@@ -280,11 +275,10 @@ ExitCode runCell(const RunOptions& o) {
   if (o.step) options.traceSinks.push_back(&printer);
   std::optional<LiveHmi> hmi;
   if (hmiBinding) {
-    hmi.emplace(*cell, &gStop, o.hmi.paused, options);  // paced: speed 1 unless --speed
+    hmi.emplace(*cell, &gStopRequested, o.hmi.paused, options);  // paced: speed 1 unless --speed
     if (const char* why = resetRefusal(*cell, !files.empty())) hmi->refuseReset(why);
   }
-  std::signal(SIGINT, onRunSignal);
-  std::signal(SIGTERM, onRunSignal);
+  stopOnSignals();
   RunEnd end = RunEnd::Completed;
   bool ok = true, historyOk = true;
   // One run, or with the HMI one per reset: a reset (during the run, or after its end while the

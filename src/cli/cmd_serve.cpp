@@ -8,10 +8,8 @@
 //
 // A signal protocol plugs in with an option group in addServeCommand(), a start function
 // returning a BusBridge over the cell's tag bus, and one line in startServers().
-#include <atomic>
 #include <climits>
 #include <cstdint>
-#include <csignal>
 #include <expected>
 #include <iostream>
 #include <memory>
@@ -32,9 +30,6 @@
 namespace virtcom::cli {
 
 namespace {
-
-std::atomic<bool> gServeStop{false};
-extern "C" void onServeSignal(int) { gServeStop = true; }
 
 struct ServeOptions {
   std::string cellFile;
@@ -128,8 +123,7 @@ ExitCode serveCell(const ServeOptions& o) {
     return ExitCode::HistoryError;
   }
   // Handlers first: a client may send SIGTERM as soon as a server announces itself.
-  std::signal(SIGINT, onServeSignal);
-  std::signal(SIGTERM, onServeSignal);
+  stopOnSignals();
   auto bridges = startServers(o, *cell);
   if (!bridges) {
     std::cerr << "error: " << bridges.error() << "\n";
@@ -146,7 +140,7 @@ ExitCode serveCell(const ServeOptions& o) {
   }
   sim::SimOptions options;
   options.speed = o.speed;
-  options.interrupt = &gServeStop;
+  options.interrupt = &gStopRequested;
   options.timeLimitNs = INT64_MAX;
   options.keepAllChanges = false;  // serves for days: no signal history in memory
   for (auto& b : *bridges) options.bridges.push_back(b.get());
@@ -163,7 +157,7 @@ ExitCode serveCell(const ServeOptions& o) {
   }
   std::optional<LiveHmi> hmi;
   if (hmiBinding) {
-    hmi.emplace(*cell, &gServeStop, o.hmi.paused, options);
+    hmi.emplace(*cell, &gStopRequested, o.hmi.paused, options);
     if (!o.modbus.empty() || ads)
       hmi->refuseReset("reset is off while --modbus or --ads serve the run: their clients hold the state of the run; restart serve");
   }

@@ -2,6 +2,7 @@
 #include "cli/compile_library.hpp"
 
 #include <algorithm>
+#include <csignal>
 #include <cstring>
 #include <cstdio>
 #include <fstream>
@@ -139,6 +140,17 @@ std::shared_ptr<const vm::CompiledCode> compiledBackend(const std::string& backe
   aot::CompileResult r = aot::compileModule(m);
   if (!r.code) std::cerr << "notice: --backend aot unavailable, using the interpreter: " << r.error << "\n";
   return r.code;
+}
+
+std::atomic<bool> gStopRequested{false};
+
+namespace {
+extern "C" void requestStop(int) { gStopRequested = true; }
+}  // namespace
+
+void stopOnSignals() {
+  std::signal(SIGINT, requestStop);
+  std::signal(SIGTERM, requestStop);
 }
 
 }  // namespace virtcom::cli

@@ -1,5 +1,6 @@
 #pragma once
 // Shared pieces of the `virtcom` subcommands.
+#include <atomic>
 #include <memory>
 #include <optional>
 #include <string>
@@ -50,5 +51,10 @@ bool writeFile(const std::string& path, const std::string& content);
 
 // Parses a duration such as "10ms", "1.5s", "250us", "T#1s500ms", "100" (ms). Nullopt if invalid.
 std::optional<int64_t> parseDurationNs(const std::string& text);
+
+// Set by SIGINT/SIGTERM once stopOnSignals() installed their handlers: the command running in
+// this process (one per process) ends its run, writes its reports and exits.
+extern std::atomic<bool> gStopRequested;
+void stopOnSignals();
 
 }  // namespace virtcom::cli

@@ -81,7 +81,8 @@ INSTANTIATE_TEST_SUITE_P(
                       IlError{"LD x\nAND( x\nST x", "')' is missing"},
                       IlError{"LD TRUE\nIN t", "FB input operator IN"},
                       IlError{"LD\n", "LD needs an operand"},
-                      IlError{"LD x\nADD 1 ;\n", "E0"}));
+                      IlError{"LD x\nADD 1 ;\n", "E0"},
+                      IlError{"L: LD x\nAND( x\nOR( 1\n)\n)\nJMPCN L\nCAL x(\nST x", "error"}));
 
 }  // namespace
 }  // namespace virtcom::plcopen::testing

@@ -36,6 +36,15 @@ constexpr bool iendsWithAscii(std::string_view text, std::string_view suffix) {
   return text.size() >= suffix.size() && iequalsAscii(text.substr(text.size() - suffix.size()), suffix);
 }
 
+constexpr bool isAsciiSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+
+// `text` without leading and trailing blanks (space, tab, CR, LF).
+constexpr std::string_view trimAscii(std::string_view text) {
+  while (!text.empty() && isAsciiSpace(text.front())) text.remove_prefix(1);
+  while (!text.empty() && isAsciiSpace(text.back())) text.remove_suffix(1);
+  return text;
+}
+
 // Copies with every letter folded; allocates.
 inline std::string asciiUpper(std::string_view s) {
   std::string out(s);

@@ -1,5 +1,6 @@
 // POU, action and method bodies; see import_internal.hpp.
 #include "lang/plcopen/diagnostic_codes.hpp"
+#include "lang/plcopen/il_translate.hpp"
 #include "lang/plcopen/import_internal.hpp"
 #include "lang/plcopen/network_translate.hpp"
 
@@ -17,7 +18,8 @@ st::StmtList Importer::importBody(pugi::xml_node body, st::Pou& owner, std::stri
       Network net = readNetwork(*this, lang, name == "LD");
       for (st::StmtPtr& s : translateNetwork(*this, net, owner, prefix)) out.push_back(std::move(s));
     } else if (name == "IL") {
-      unsupported(lang, "an IL (Instruction List) body");
+      if (pugi::xml_node text = firstText(lang))
+        for (st::StmtPtr& s : translateIl(*this, text, owner, prefix)) out.push_back(std::move(s));
     } else if (name == "SFC") {
       if (!prefix.empty() || owner.kind == st::PouKind::Method) unsupported(lang, "an SFC body of an action or method");
       else importChart(lang, currentPou_, owner);

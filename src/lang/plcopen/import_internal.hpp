@@ -42,12 +42,16 @@ class Importer {
   XmlFile& xml() { return xml_; }
   AstBuilder& build() { return build_; }
   st::NodeId& nextNodeId() { return nextNodeId_; }
+  Diagnostics& diags() { return diags_; }
+  const st::CompilationUnit& unit() const { return unit_; }
 
  private:
   // ---- project (import_project.cpp) ----
   void importTypes(pugi::xml_node types);
   void importInstances(pugi::xml_node instances);
   void importProjectVendorData(pugi::xml_node addData);
+  void importGlobalVarList(pugi::xml_node globalVars);
+  st::Interface importInterfaceObject(pugi::xml_node interface);
   std::unique_ptr<st::Pou> importPou(pugi::xml_node pou);
   void importPouVendorData(pugi::xml_node addData, st::Pou& pou);
   std::unique_ptr<st::Pou> importMethod(pugi::xml_node method);
@@ -59,6 +63,12 @@ class Importer {
   void reportUnknownVendorData(pugi::xml_node data);
   // `{attribute ...}` pragmas stored as CODESYS `.../plcopenxml/attributes` data of `owner`.
   std::vector<st::Attribute> attributesIn(pugi::xml_node owner);
+  // CODESYS EXTENDS/IMPLEMENTS of a POU, interface or STRUCT (vendor data of `owner`).
+  struct Inheritance {
+    std::string extends;
+    std::vector<std::string> implements;
+  };
+  Inheritance inheritanceIn(pugi::xml_node owner);
 
   // ---- types and variables (import_types.cpp) ----
   st::TypeDecl importDataType(pugi::xml_node dataType);

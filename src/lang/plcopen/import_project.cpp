@@ -1,6 +1,7 @@
 // The project level: types, POUs, global variables, configurations and vendor data; see
 // import_internal.hpp.
 #include <algorithm>
+#include <optional>
 
 #include "core/ascii.hpp"
 #include "lang/ad/lower.hpp"
@@ -19,7 +20,7 @@ namespace {
 
 // What the importer does with a vendor <data name="..."> block (CODESYS writes most of a
 // project's non-standard parts this way).
-enum class VendorData { Ignore, GlobalVars, Method, Unsupported };
+enum class VendorData { Ignore, GlobalVars, Method, Inheritance, Pou, DataType, Interface, Unsupported };
 
 struct VendorDataEntry {
   std::string_view name;
@@ -39,11 +40,16 @@ constexpr VendorDataEntry kVendorData[] = {
     {"projectinformation", VendorData::Ignore, ""},
     {"buildproperties", VendorData::Ignore, ""},
     {"folder", VendorData::Ignore, ""},
+    {"tasksettings", VendorData::Ignore, ""},
+    {"pouinheritance", VendorData::Inheritance, ""},
+    {"datatypeinheritance", VendorData::Inheritance, ""},
+    // The objects of an application: CODESYS writes them into its resource's <addData>.
+    {"pou", VendorData::Pou, ""},
+    {"datatype", VendorData::DataType, ""},
+    {"interface", VendorData::Interface, ""},
     {"property", VendorData::Unsupported, "CODESYS PROPERTY"},
     {"action", VendorData::Unsupported, "CODESYS action of this form"},
     {"transition", VendorData::Unsupported, "CODESYS transition of this form"},
-    {"interface", VendorData::Unsupported, "CODESYS INTERFACE"},
-    {"pouinheritance", VendorData::Unsupported, "CODESYS EXTENDS/IMPLEMENTS"},
 };
 
 const VendorDataEntry* findVendorData(std::string_view name) {
@@ -52,6 +58,46 @@ const VendorDataEntry* findVendorData(std::string_view name) {
   for (const auto& entry : kVendorData)
     if (entry.name == name) return &entry;
   return nullptr;
+}
+
+// TC6 leaves a task interval's notation open ("a constant duration as defined in the IEC or a
+// variable name"); CODESYS writes ISO 8601 durations (`PT0.02S`, `P0DT0H0M0.02S`) and TC6 1.0
+// typed it xsd:time (`00:00:00.020`). Those two become the IEC literal; anything else is ST.
+std::optional<std::string> intervalAsIecLiteral(std::string_view text) {
+  auto number = [&](size_t& i) {
+    size_t start = i;
+    while (i < text.size() && (isAsciiDigit(text[i]) || text[i] == '.')) ++i;
+    return text.substr(start, i - start);
+  };
+  std::string out = "T#";
+  size_t i = 0;
+  if (!text.empty() && text[0] == 'P') {
+    bool inTime = false;
+    for (i = 1; i < text.size();) {
+      if (text[i] == 'T' && !inTime) {
+        inTime = true;
+        ++i;
+        continue;
+      }
+      std::string_view value = number(i);
+      if (value.empty() || i == text.size()) return std::nullopt;
+      char unit = text[i++];
+      // Years and months have no fixed length: not an interval.
+      const char* iecUnit = !inTime ? (unit == 'D' ? "d" : nullptr)
+                                    : unit == 'H' ? "h" : unit == 'M' ? "m" : unit == 'S' ? "s" : nullptr;
+      if (!iecUnit) return std::nullopt;
+      out.append(value).append(iecUnit);
+    }
+    return out.size() > 2 ? std::optional<std::string>(out) : std::nullopt;
+  }
+  static constexpr const char* kTimeUnits[] = {"h", "m", "s"};
+  for (const char* unit : kTimeUnits) {
+    std::string_view value = number(i);
+    if (value.empty()) return std::nullopt;
+    out.append(value).append(unit);
+    if (*unit != 's' && (i == text.size() || text[i++] != ':')) return std::nullopt;
+  }
+  return i == text.size() ? std::optional<std::string>(out) : std::nullopt;
 }
 
 bool pouKindOf(std::string_view pouType, st::PouKind& kind) {
@@ -138,7 +184,14 @@ std::unique_ptr<st::Pou> Importer::importPou(pugi::xml_node node) {
                                 "' is not one of program, function, functionBlock");
     return nullptr;
   }
-  if (pugi::xml_node interface = child(node, "interface")) importInterface(interface, *pou);
+  pugi::xml_node interface = child(node, "interface");
+  if (interface) importInterface(interface, *pou);
+  // CODESYS writes EXTENDS/IMPLEMENTS as vendor data of the interface (or of the POU).
+  for (pugi::xml_node owner : {interface, node}) {
+    Inheritance inherited = inheritanceIn(owner);
+    if (!inherited.extends.empty()) pou->extends = std::move(inherited.extends);
+    for (std::string& i : inherited.implements) pou->implements.push_back(std::move(i));
+  }
   pou->attributes = attributesIn(node);
   if (pou->kind == st::PouKind::Function && !pou->hasReturnType)
     error(diag::X003, node, describe(node) + " is a function without <returnType> in its <interface>");
@@ -195,6 +248,20 @@ std::vector<st::Attribute> Importer::attributesIn(pugi::xml_node owner) {
   return out;
 }
 
+Importer::Inheritance Importer::inheritanceIn(pugi::xml_node owner) {
+  Inheritance out;
+  for (pugi::xml_node data : children(child(owner, "addData"), "data")) {
+    const VendorDataEntry* entry = findVendorData(data.attribute("name").value());
+    if (!entry || entry->handling != VendorData::Inheritance) continue;
+    pugi::xml_node inheritance = child(data, "Inheritance");
+    if (pugi::xml_node extends = child(inheritance, "Extends"); extends && firstText(extends))
+      out.extends = std::string(trimAscii(firstText(extends).value()));
+    for (pugi::xml_node implements : children(inheritance, "Implements"))
+      if (firstText(implements)) out.implements.emplace_back(trimAscii(firstText(implements).value()));
+  }
+  return out;
+}
+
 void Importer::reportUnknownVendorData(pugi::xml_node data) {
   // handleUnknown="discard"/"preserve" declares the data optional for other tools (TC6 §2.2).
   if (std::string_view(data.attribute("handleUnknown").value()) != "implementation") return;
@@ -211,10 +278,26 @@ void Importer::importPouVendorData(pugi::xml_node addData, st::Pou& pou) {
       for (pugi::xml_node m : children(data, "Method")) pou.methods.push_back(importMethod(m));
     } else if (entry->handling == VendorData::Unsupported || entry->handling == VendorData::Method) {
       unsupported(data, entry->handling == VendorData::Method ? "a METHOD of a FUNCTION" : entry->what);
-    } else if (entry->handling == VendorData::GlobalVars) {
-      unsupported(data, "global variables inside a POU");
+    } else if (entry->handling != VendorData::Ignore && entry->handling != VendorData::Inheritance) {
+      unsupported(data, "this vendor data inside a POU");
     }
   }
+}
+
+void Importer::importGlobalVarList(pugi::xml_node list) {
+  // One list may come as several <globalVars> of the same name (e.g. its CONSTANT part).
+  std::string name = list.attribute("name").value();
+  auto same = std::find_if(unit_.globals.begin(), unit_.globals.end(),
+                           [&](const st::GlobalVarList& g) { return g.name == name; });
+  if (same == unit_.globals.end()) {
+    st::GlobalVarList gvl;
+    gvl.name = name;
+    gvl.loc = xml_.at(list, "name");
+    unit_.globals.push_back(std::move(gvl));
+    same = unit_.globals.end() - 1;
+  }
+  same->blocks.push_back(varList(list, st::VarSection::Global));
+  for (st::Attribute& a : attributesIn(list)) same->attributes.push_back(std::move(a));
 }
 
 void Importer::importProjectVendorData(pugi::xml_node addData) {
@@ -222,26 +305,52 @@ void Importer::importProjectVendorData(pugi::xml_node addData) {
     const VendorDataEntry* entry = findVendorData(data.attribute("name").value());
     if (!entry) {
       reportUnknownVendorData(data);
-    } else if (entry->handling == VendorData::GlobalVars) {
-      for (pugi::xml_node list : children(data, "globalVars")) {
-        // One list may come as several <globalVars> of the same name (e.g. its CONSTANT part).
-        std::string name = list.attribute("name").value();
-        auto same = std::find_if(unit_.globals.begin(), unit_.globals.end(),
-                                 [&](const st::GlobalVarList& g) { return g.name == name; });
-        if (same == unit_.globals.end()) {
-          st::GlobalVarList gvl;
-          gvl.name = name;
-          gvl.loc = xml_.at(list, "name");
-          unit_.globals.push_back(std::move(gvl));
-          same = unit_.globals.end() - 1;
-        }
-        same->blocks.push_back(varList(list, st::VarSection::Global));
-        for (st::Attribute& a : attributesIn(list)) same->attributes.push_back(std::move(a));
-      }
-    } else if (entry->handling != VendorData::Ignore) {
-      unsupported(data, entry->handling == VendorData::Method ? "a METHOD outside a POU" : entry->what);
+      continue;
+    }
+    switch (entry->handling) {
+      case VendorData::GlobalVars:
+        for (pugi::xml_node list : children(data, "globalVars")) importGlobalVarList(list);
+        break;
+      case VendorData::Pou:
+        for (pugi::xml_node p : children(data, "pou"))
+          if (auto pou = importPou(p)) unit_.pous.push_back(std::move(pou));
+        break;
+      case VendorData::DataType:
+        for (pugi::xml_node t : children(data, "dataType")) unit_.types.push_back(importDataType(t));
+        break;
+      case VendorData::Interface:
+        for (pugi::xml_node i : children(data, "Interface")) unit_.interfaces.push_back(importInterfaceObject(i));
+        break;
+      case VendorData::Ignore: break;
+      default: unsupported(data, entry->handling == VendorData::Method ? "a METHOD outside a POU" : entry->what);
     }
   }
+}
+
+// A CODESYS/TwinCAT INTERFACE: method prototypes (<Methods><Method>, or method vendor data as
+// a POU carries it) and the interfaces it extends.
+st::Interface Importer::importInterfaceObject(pugi::xml_node node) {
+  st::Interface itf;
+  itf.name = node.attribute("name").value();
+  itf.loc = xml_.at(node, "name");
+  if (itf.name.empty()) error(diag::X003, node, "<Interface> has no 'name' attribute");
+  std::vector<pugi::xml_node> methods = children(child(node, "Methods"), "Method");
+  for (pugi::xml_node data : children(child(node, "addData"), "data")) {
+    const VendorDataEntry* entry = findVendorData(data.attribute("name").value());
+    if (entry && entry->handling == VendorData::Method)
+      for (pugi::xml_node m : children(data, "Method")) methods.push_back(m);
+    else if (entry && entry->handling == VendorData::Unsupported) unsupported(data, entry->what);
+  }
+  for (pugi::xml_node m : methods) {
+    auto method = importMethod(m);
+    method->hasBody = false;  // a prototype: an implementing FB's METHOD has the body
+    method->body.clear();
+    itf.methods.push_back(std::move(method));
+  }
+  Inheritance inherited = inheritanceIn(node);
+  if (!inherited.extends.empty()) itf.extends.push_back(inherited.extends);
+  for (std::string& base : inherited.implements) itf.extends.push_back(std::move(base));
+  return itf;
 }
 
 void Importer::importInstances(pugi::xml_node instances) {
@@ -257,8 +366,10 @@ st::Configuration Importer::importConfiguration(pugi::xml_node node) {
     if (part.type() != pugi::node_element) continue;
     std::string_view name = localName(part);
     if (name == "resource") cfg.resources.push_back(importResource(part));
+    else if (name == "globalVars" && part.attribute("name")) importGlobalVarList(part);
     else if (name == "globalVars") cfg.globals.push_back(varList(part, st::VarSection::Global));
-    else if (name != "addData" && name != "documentation")
+    else if (name == "addData") importProjectVendorData(part);
+    else if (name != "documentation")
       unsupported(part, "configuration element <" + std::string(name) + ">");
   }
   return cfg;
@@ -277,9 +388,13 @@ st::Resource Importer::importResource(pugi::xml_node node) {
         res.programs.push_back(importPouInstance(inst, res.tasks.back().name));
     } else if (name == "pouInstance") {
       res.programs.push_back(importPouInstance(part, ""));
+    } else if (name == "globalVars" && part.attribute("name")) {
+      importGlobalVarList(part);
     } else if (name == "globalVars") {
       res.globals.push_back(varList(part, st::VarSection::Global));
-    } else if (name != "addData" && name != "documentation") {
+    } else if (name == "addData") {
+      importProjectVendorData(part);
+    } else if (name != "documentation") {
       unsupported(part, "resource element <" + std::string(name) + ">");
     }
   }
@@ -298,7 +413,10 @@ st::TaskDecl Importer::importTask(pugi::xml_node node) {
     st::CallArg arg;
     arg.name = setting;
     arg.loc = xml_.at(node, attribute);
-    arg.value = expressionAt(node, attribute);
+    std::optional<std::string> literal;
+    if (setting == std::string_view("INTERVAL")) literal = intervalAsIecLiteral(node.attribute(attribute).value());
+    arg.value = literal ? st::parseExpression(xml_.fileId(), arg.loc, *literal, diags_, nextNodeId_)
+                        : expressionAt(node, attribute);
     task.settings.push_back(std::move(arg));
   }
   return task;
@@ -307,9 +425,12 @@ st::TaskDecl Importer::importTask(pugi::xml_node node) {
 st::ProgramConfig Importer::importPouInstance(pugi::xml_node node, std::string taskName) {
   st::ProgramConfig prog;
   prog.instanceName = node.attribute("name").value();
-  prog.typeName = node.attribute("typeName").value();
+  // TC6 1.0 named the attribute `type`.
+  prog.typeName = node.attribute(node.attribute("typeName") ? "typeName" : "type").value();
   prog.taskName = std::move(taskName);
   prog.loc = xml_.at(node);
+  // CODESYS writes typeName="" for a program called by its own name.
+  if (prog.typeName.empty() && node.attribute("typeName")) prog.typeName = prog.instanceName;
   if (prog.instanceName.empty() || prog.typeName.empty())
     error(diag::X003, node, "<pouInstance> needs both 'name' and 'typeName' attributes");
   return prog;

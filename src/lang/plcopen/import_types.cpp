@@ -102,6 +102,10 @@ st::TypeDecl Importer::importDataType(pugi::xml_node dataType) {
   decl.loc = xml_.at(dataType, "name");
   if (decl.name.empty()) error(diag::X003, dataType, "<dataType> has no 'name' attribute");
   decl.spec = typeIn(child(dataType, "baseType"));
+  if (std::string base = inheritanceIn(dataType).extends; !base.empty()) {
+    if (decl.spec.kind == st::TypeSpecKind::Struct) decl.spec.name = std::move(base);  // STRUCT EXTENDS base
+    else unsupported(dataType, "EXTENDS on a type that is not a STRUCT");
+  }
   if (pugi::xml_node init = child(dataType, "initialValue")) decl.init = initialValue(init);
   decl.attributes = attributesIn(dataType);
   return decl;

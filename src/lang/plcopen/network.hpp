@@ -51,7 +51,8 @@ struct Element {
   double x = 0, y = 0;
   std::vector<Pin> inputs;       // block: inputs then in-outs; others: their connectionPointIn(s)
   std::vector<BlockOutput> outputs;  // blocks only
-  bool negated = false;
+  bool negated = false;           // inOutVariable: its input (negatedIn)
+  bool negatedOut = false;        // inOutVariable: its output
   Edge edge = Edge::None;
   Storage storage = Storage::None;
   std::string name;          // label/jump target, connector/continuation name, block typeName

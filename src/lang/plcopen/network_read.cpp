@@ -78,7 +78,8 @@ class NetworkReader {
       e.y = std::strtod(pos.attribute("y").value(), nullptr);
       if (!std::isfinite(e.x) || !std::isfinite(e.y)) e.x = e.y = 0;  // keeps the execution-order sort well defined
     }
-    e.negated = isTrue(node.attribute("negated"));
+    e.negated = isTrue(node.attribute(kind == ElementKind::InOutVariable ? "negatedIn" : "negated"));
+    e.negatedOut = isTrue(node.attribute("negatedOut"));
     e.edge = edgeOf(node);
     std::string_view storage = node.attribute("storage").value();
     e.storage = storage == "set" ? Storage::Set : storage == "reset" ? Storage::Reset : Storage::None;

@@ -6,6 +6,7 @@
 
 #include "core/ascii.hpp"
 #include "lang/plcopen/diagnostic_codes.hpp"
+#include "lang/plcopen/jump_sections.hpp"
 
 namespace virtcom::plcopen::detail {
 
@@ -41,6 +42,7 @@ class Translator {
   st::ExprPtr blockOutput(size_t i, const Connection& conn);
   st::ExprPtr functionCall(size_t i);
   st::ExprPtr variableOf(size_t i);
+  st::ExprPtr inOutOutput(size_t i);
   st::ExprPtr edgeDetect(st::ExprPtr signal, Edge edge, const std::string& memoryName, SourceLocation loc);
   st::ExprPtr shared(st::ExprPtr value, uint32_t localId, size_t consumers);
   st::ExprPtr loopError(const Element& e);
@@ -99,7 +101,7 @@ void Translator::emit(st::StmtPtr stmt) {
 
 st::ExprPtr Translator::loopError(const Element& e) {
   imp_.error(diag::X009, e.node, describe(e.node) + " is part of a loop of connections; only a loop through a "
-                                                    "function block instance (feedback) is allowed");
+                                                    "function block instance or an in-out variable (feedback) is allowed");
   return b_.boolLit(false, imp_.xml().at(e.node));
 }
 
@@ -197,7 +199,13 @@ st::ExprPtr Translator::valueOf(const Connection& conn, const Element& consumer)
       st::ExprPtr v = variableOf(i);
       return e.negated ? b_.notOf(std::move(v)) : std::move(v);
     }
-    case ElementKind::Coil: case ElementKind::InOutVariable:
+    case ElementKind::InOutVariable:
+      // A loop through a variable (Beremiz's counters: Cnt feeds ADD, which feeds Cnt) reads
+      // the variable as the previous statements left it, as IEC feedback does.
+      if (state_[i] == State::InProgress) return inOutOutput(i);
+      execute(i);
+      return cached_[i] ? b_.clone(*cached_[i]) : b_.boolLit(false, imp_.xml().at(e.node));
+    case ElementKind::Coil:
       if (state_[i] == State::InProgress) return loopError(e);
       execute(i);
       return cached_[i] ? b_.clone(*cached_[i]) : b_.boolLit(false, imp_.xml().at(e.node));
@@ -371,7 +379,12 @@ void Translator::executeAssignment(size_t i) {
   st::ExprPtr value = requiredInput(e, 0, "the variable's input");
   if (e.negated) value = b_.notOf(std::move(value));
   emit(b_.assign(variableOf(i), std::move(value)));
-  if (e.kind == ElementKind::InOutVariable) cached_[i] = variableOf(i);
+  if (e.kind == ElementKind::InOutVariable) cached_[i] = inOutOutput(i);
+}
+
+st::ExprPtr Translator::inOutOutput(size_t i) {
+  st::ExprPtr v = variableOf(i);
+  return net_.elements[i].negatedOut ? b_.notOf(std::move(v)) : std::move(v);
 }
 
 void Translator::executeCoil(size_t i) {
@@ -406,8 +419,7 @@ void Translator::executeJump(size_t i) {
       return;
     }
     if (jumpVar_.empty()) jumpVar_ = hidden("jump", 0, "INT", true, loc);
-    body.push_back(b_.assign(b_.name(jumpVar_, loc), b_.intLit(static_cast<uint64_t>(label - labels_.begin()) + 1, loc)));
-    body.push_back(b_.simple(st::StmtKind::Continue, loc));
+    body = jumpToSection(b_, jumpVar_, static_cast<size_t>(label - labels_.begin()) + 1, loc);
   }
   if (isTrueLiteral(*cond)) {
     for (auto& s : body) emit(std::move(s));
@@ -456,22 +468,7 @@ st::StmtList Translator::run() {
     out_ = &sections.back();
     execute(i);
   }
-  st::StmtList body;
-  if (jumpVar_.empty()) {
-    for (auto& section : sections)
-      for (auto& s : section) body.push_back(std::move(s));
-  } else {
-    // jump := 0; WHILE TRUE DO IF jump <= 0 THEN <section 0> END_IF; ... EXIT; END_WHILE
-    SourceLocation loc = owner_.loc;
-    body.push_back(b_.assign(b_.name(jumpVar_, loc), b_.intLit(0, loc)));
-    st::StmtList loop;
-    for (size_t k = 0; k < sections.size(); ++k) {
-      st::ExprPtr reached = b_.binary(st::BinaryOp::Le, b_.name(jumpVar_, loc), b_.intLit(k, loc));
-      loop.push_back(b_.ifThen(std::move(reached), std::move(sections[k])));
-    }
-    loop.push_back(b_.simple(st::StmtKind::Exit, loc));
-    body.push_back(b_.whileLoop(b_.boolLit(true, loc), std::move(loop)));
-  }
+  st::StmtList body = joinSections(b_, std::move(sections), jumpVar_, owner_.loc);
   if (!memories_.vars.empty()) owner_.varBlocks.push_back(std::move(memories_));
   if (!temps_.vars.empty()) owner_.varBlocks.push_back(std::move(temps_));
   return body;

@@ -29,19 +29,13 @@ std::string transitionLabel(const Transition& t) {
   return "the transition FROM " + steps(t.from) + " TO " + steps(t.to);
 }
 
-void checkSteps(const Chart& chart, std::map<std::string, size_t>& index, ResolvedChart& r, Diagnostics& diags) {
-  std::optional<size_t> initial;
+void checkSteps(const Chart& chart, std::map<std::string, size_t>& index, Diagnostics& diags) {
   for (size_t i = 0; i < chart.steps.size(); ++i) {
     const Step& step = chart.steps[i];
     auto [it, fresh] = index.emplace(nameKey(step.name), i);
     if (!fresh)
       diags.error(diag::E403, step.loc, "step '" + step.name + "' is already declared at " +
                                             lineOf(chart.steps[it->second].loc) + "; step names must be unique");
-    if (step.initial && initial)
-      diags.error(diag::E401, step.loc, "a second INITIAL_STEP '" + step.name + "'; the chart already starts at '" +
-                                            chart.steps[*initial].name + "' (" + lineOf(chart.steps[*initial].loc) +
-                                            "); exactly one step is initial");
-    if (step.initial && !initial) initial = i;
     for (const ActionAssociation& a : step.actions) {
       bool needsTime = qualifierNeedsTime(a.qualifier);
       std::string q(qualifierSpelling(a.qualifier));
@@ -54,10 +48,45 @@ void checkSteps(const Chart& chart, std::map<std::string, size_t>& index, Resolv
                                                  "set the variable in the action instead");
     }
   }
-  if (!initial)
-    diags.error(diag::E401, chart.loc, chart.steps.empty() ? "the chart has no steps; declare an INITIAL_STEP"
-                                                           : "the chart has no INITIAL_STEP; exactly one step is initial");
-  r.initial = initial.value_or(0);
+  if (chart.steps.empty()) diags.error(diag::E401, chart.loc, "the chart has no steps; declare an INITIAL_STEP");
+}
+
+// Each network (steps connected by transitions, whatever their direction) starts at exactly one
+// INITIAL_STEP; a body may hold several networks, which then evolve side by side.
+void checkNetworks(const Chart& chart, const std::map<std::string, size_t>& index, ResolvedChart& r,
+                   Diagnostics& diags) {
+  // A step declared twice (E403) is the first declaration for the transitions: skip the copy.
+  auto duplicate = [&](size_t k) { return index.at(nameKey(chart.steps[k].name)) != k; };
+  std::vector<size_t> network(chart.steps.size());
+  for (size_t k = 0; k < network.size(); ++k) network[k] = k;
+  auto root = [&](size_t k) {
+    while (network[k] != k) k = network[k] = network[network[k]];
+    return k;
+  };
+  for (size_t t = 0; t < chart.transitions.size(); ++t) {
+    std::vector<size_t> ends = r.from[t];
+    ends.insert(ends.end(), r.to[t].begin(), r.to[t].end());
+    for (size_t k = 1; k < ends.size(); ++k) network[root(ends[k])] = root(ends[0]);
+  }
+  std::map<size_t, size_t> initialOf;  // network root -> its initial step
+  for (size_t k = 0; k < chart.steps.size(); ++k) {
+    if (!chart.steps[k].initial || duplicate(k)) continue;
+    auto [it, fresh] = initialOf.emplace(root(k), k);
+    if (fresh) {
+      r.initials.push_back(k);
+      continue;
+    }
+    const Step& first = chart.steps[it->second];
+    diags.error(diag::E401, chart.steps[k].loc,
+                "a second INITIAL_STEP '" + chart.steps[k].name + "' in the network that starts at '" + first.name +
+                    "' (" + lineOf(first.loc) + "); each network of connected steps has exactly one initial step");
+  }
+  std::set<size_t> reported;
+  for (size_t k = 0; k < chart.steps.size(); ++k)
+    if (!duplicate(k) && !initialOf.count(root(k)) && reported.insert(root(k)).second)
+      diags.error(diag::E401, chart.steps[k].loc,
+                  "step '" + chart.steps[k].name + "' belongs to a network of steps without an INITIAL_STEP; "
+                  "each network of connected steps has exactly one initial step");
 }
 
 void resolveSteps(const std::vector<NamedRef>& names, const Transition& t, std::string_view side,
@@ -132,8 +161,9 @@ std::optional<ResolvedChart> resolveChart(const Chart& chart, const std::vector<
   size_t errorsBefore = diags.errorCount();
   ResolvedChart r;
   std::map<std::string, size_t> index;
-  checkSteps(chart, index, r, diags);
+  checkSteps(chart, index, diags);
   checkTransitions(chart, index, r, diags);
+  checkNetworks(chart, index, r, diags);
   checkActions(chart, pouActionNames, diags);
   if (diags.errorCount() != errorsBefore) return std::nullopt;
   return r;
@@ -142,7 +172,7 @@ std::optional<ResolvedChart> resolveChart(const Chart& chart, const std::vector<
 bool analyseChart(const Chart& chart, const ResolvedChart& r, Diagnostics& diags) {
   size_t words = (chart.steps.size() + 63) / 64;
   Situation start(words, 0);
-  put(start, r.initial, true);
+  for (size_t k : r.initials) put(start, k, true);
   std::set<Situation> seen{start};
   std::deque<Situation> queue{start};
   std::vector<bool> stepReached(chart.steps.size(), false), transitionEnabled(chart.transitions.size(), false);
@@ -180,7 +210,7 @@ bool analyseChart(const Chart& chart, const ResolvedChart& r, Diagnostics& diags
     ok = false;
     diags.error(diag::E406, chart.steps[k].loc, "step '" + chart.steps[k].name +
                                                     "' can never become active: no sequence of transitions "
-                                                    "from the initial step reaches it");
+                                                    "from the initial steps reaches it");
   }
   for (size_t t = 0; t < chart.transitions.size(); ++t) {
     if (transitionEnabled[t]) continue;

@@ -15,13 +15,13 @@ namespace virtcom::sfc::detail {
 std::string nameKey(std::string_view name);
 
 struct ResolvedChart {
-  size_t initial = 0;                           // index into Chart::steps
+  std::vector<size_t> initials;                 // index into Chart::steps; one per network
   std::vector<std::vector<size_t>> from, to;    // per transition: step indices
   std::vector<size_t> priorityOrder;            // transition indices, highest priority first
 };
 
-// Checks names and element forms (E401-E404, E407): duplicate or unknown steps, the initial
-// step, qualifiers and their durations, transition conditions. `pouActionNames` are the names
+// Checks names and element forms (E401-E404, E407): duplicate or unknown steps, one initial
+// step per network (the steps connected by transitions; a body may hold several), qualifiers and their durations, transition conditions. `pouActionNames` are the names
 // of the POU's ACTIONs (to detect clashes with chart actions). Returns nullopt after any error.
 std::optional<ResolvedChart> resolveChart(const Chart& chart, const std::vector<std::string>& pouActionNames,
                                           Diagnostics& diags);

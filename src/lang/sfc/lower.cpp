@@ -132,10 +132,10 @@ class Lowering {
   }
 
   st::StmtList firstCall() {
-    b_.at(chart_.steps[r_.initial].loc);
+    b_.at(chart_.steps[r_.initials.front()].loc);
     st::StmtList out;
     out.push_back(b_.assign(b_.name("__sfc_init"), b_.boolLit(true)));
-    activate(r_.initial, out);
+    for (size_t k : r_.initials) activate(k, out);
     return out;
   }
 

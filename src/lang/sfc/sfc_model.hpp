@@ -7,7 +7,8 @@
 // How a producer fills it:
 // - one Step per step (jumps are transitions whose `to` names an earlier step; a graphical
 //   divergence or convergence becomes a transition with several `from` or `to` steps);
-//   exactly one step has initial = true;
+//   exactly one step of each network has initial = true (a network: the steps connected by
+//   transitions; IEC 61131-3 allows several in one body, and they evolve side by side);
 // - one Transition per transition: `from` / `to` list the steps it deactivates / activates
 //   (several = simultaneous convergence / divergence); selective branches are several
 //   transitions with the same source step, ordered by `priority` (lower value first; unset

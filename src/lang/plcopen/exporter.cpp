@@ -185,6 +185,7 @@ void Exporter::value(pugi::xml_node holder, const st::Expr& init) {
 
 void Exporter::variable(pugi::xml_node list, const st::VarDecl& decl) {
   if (!decl.fbInitArgs.empty()) unsupported(decl.loc, "FB_init arguments of an instance");
+  if (decl.edge != st::EdgeKind::None) unsupported(decl.edgeLoc, "R_EDGE / F_EDGE on an input");
   for (const auto& name : decl.names) {
     pugi::xml_node v = list.append_child("variable");
     v.append_attribute("name") = name.name.c_str();

@@ -26,7 +26,7 @@ class StepWriteCheck {
  private:
   void statement(const st::Stmt& s) {
     switch (s.kind) {
-      case st::StmtKind::Assign: case st::StmtKind::RefAssign:
+      case st::StmtKind::Assign: case st::StmtKind::RefAssign: case st::StmtKind::AttemptAssign:
       case st::StmtKind::SetAssign: case st::StmtKind::ResetAssign: case st::StmtKind::For:
         target(s.lhs.get());
         break;

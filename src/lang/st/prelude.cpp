@@ -14,50 +14,6 @@ STRUCT
 END_STRUCT
 END_TYPE
 
-FUNCTION_BLOCK TON
-VAR_INPUT IN : BOOL; PT : TIME; END_VAR
-VAR_OUTPUT Q : BOOL; ET : TIME; END_VAR
-VAR {attribute 'hide'} startNs : LTIME; {attribute 'hide'} running : BOOL; END_VAR
-VAR_TEMP elapsed : TIME; END_VAR
-IF IN THEN
-  IF NOT running THEN running := TRUE; startNs := __SYSTIME_NS(); END_IF
-  elapsed := LTIME_TO_TIME(__SYSTIME_NS() - startNs);
-  IF elapsed >= PT THEN Q := TRUE; ET := PT; ELSE Q := FALSE; ET := elapsed; END_IF
-ELSE
-  running := FALSE; Q := FALSE; ET := T#0ms;
-END_IF
-END_FUNCTION_BLOCK
-
-FUNCTION_BLOCK TOF
-VAR_INPUT IN : BOOL; PT : TIME; END_VAR
-VAR_OUTPUT Q : BOOL; ET : TIME; END_VAR
-VAR {attribute 'hide'} startNs : LTIME; {attribute 'hide'} running : BOOL; END_VAR
-VAR_TEMP elapsed : TIME; END_VAR
-IF IN THEN
-  Q := TRUE; ET := T#0ms; running := FALSE;
-ELSIF Q THEN
-  IF NOT running THEN running := TRUE; startNs := __SYSTIME_NS(); END_IF
-  elapsed := LTIME_TO_TIME(__SYSTIME_NS() - startNs);
-  IF elapsed >= PT THEN Q := FALSE; ET := PT; running := FALSE; ELSE ET := elapsed; END_IF
-END_IF
-END_FUNCTION_BLOCK
-
-FUNCTION_BLOCK TP
-VAR_INPUT IN : BOOL; PT : TIME; END_VAR
-VAR_OUTPUT Q : BOOL; ET : TIME; END_VAR
-VAR {attribute 'hide'} startNs : LTIME; {attribute 'hide'} running : BOOL; {attribute 'hide'} prevIn : BOOL; END_VAR
-VAR_TEMP elapsed : TIME; END_VAR
-IF NOT running AND IN AND NOT prevIn THEN
-  running := TRUE; startNs := __SYSTIME_NS(); Q := TRUE;
-END_IF
-IF running THEN
-  elapsed := LTIME_TO_TIME(__SYSTIME_NS() - startNs);
-  IF elapsed >= PT THEN Q := FALSE; ET := PT; running := FALSE; ELSE ET := elapsed; END_IF
-END_IF
-IF NOT running AND NOT IN THEN ET := T#0ms; END_IF
-prevIn := IN;
-END_FUNCTION_BLOCK
-
 FUNCTION_BLOCK R_TRIG
 VAR_INPUT CLK : BOOL; END_VAR
 VAR_OUTPUT Q : BOOL; END_VAR
@@ -161,6 +117,74 @@ std::string counters() {
   return out;
 }
 
+// TON/TOF/TP, and the LTIME timers LTON/LTOF/LTP of IEC 61131-3 ed. 3 (CODESYS, Tc2_Standard):
+// one text, so they cannot drift apart. @N is the name's prefix, @T the time type, @ELAPSED the
+// time since startNs in @T, @ZERO its zero.
+constexpr std::string_view kTimers = R"ST(
+FUNCTION_BLOCK @NTON
+VAR_INPUT IN : BOOL; PT : @T; END_VAR
+VAR_OUTPUT Q : BOOL; ET : @T; END_VAR
+VAR {attribute 'hide'} startNs : LTIME; {attribute 'hide'} running : BOOL; END_VAR
+VAR_TEMP elapsed : @T; END_VAR
+IF IN THEN
+  IF NOT running THEN running := TRUE; startNs := __SYSTIME_NS(); END_IF
+  elapsed := @ELAPSED;
+  IF elapsed >= PT THEN Q := TRUE; ET := PT; ELSE Q := FALSE; ET := elapsed; END_IF
+ELSE
+  running := FALSE; Q := FALSE; ET := @ZERO;
+END_IF
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK @NTOF
+VAR_INPUT IN : BOOL; PT : @T; END_VAR
+VAR_OUTPUT Q : BOOL; ET : @T; END_VAR
+VAR {attribute 'hide'} startNs : LTIME; {attribute 'hide'} running : BOOL; END_VAR
+VAR_TEMP elapsed : @T; END_VAR
+IF IN THEN
+  Q := TRUE; ET := @ZERO; running := FALSE;
+ELSIF Q THEN
+  IF NOT running THEN running := TRUE; startNs := __SYSTIME_NS(); END_IF
+  elapsed := @ELAPSED;
+  IF elapsed >= PT THEN Q := FALSE; ET := PT; running := FALSE; ELSE ET := elapsed; END_IF
+END_IF
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK @NTP
+VAR_INPUT IN : BOOL; PT : @T; END_VAR
+VAR_OUTPUT Q : BOOL; ET : @T; END_VAR
+VAR {attribute 'hide'} startNs : LTIME; {attribute 'hide'} running : BOOL; {attribute 'hide'} prevIn : BOOL; END_VAR
+VAR_TEMP elapsed : @T; END_VAR
+IF NOT running AND IN AND NOT prevIn THEN
+  running := TRUE; startNs := __SYSTIME_NS(); Q := TRUE;
+END_IF
+IF running THEN
+  elapsed := @ELAPSED;
+  IF elapsed >= PT THEN Q := FALSE; ET := PT; running := FALSE; ELSE ET := elapsed; END_IF
+END_IF
+IF NOT running AND NOT IN THEN ET := @ZERO; END_IF
+prevIn := IN;
+END_FUNCTION_BLOCK
+
+)ST";
+
+std::string timers() {
+  struct Variant {
+    std::string_view prefix, type, elapsed, zero;
+  };
+  static constexpr Variant kVariants[] = {
+      {"", "TIME", "LTIME_TO_TIME(__SYSTIME_NS() - startNs)", "T#0ms"},
+      {"L", "LTIME", "(__SYSTIME_NS() - startNs)", "LTIME#0ns"},
+  };
+  std::string out;
+  for (const Variant& v : kVariants) {
+    std::string text = replaceAll(std::string(kTimers), "@N", v.prefix);
+    text = replaceAll(std::move(text), "@T", v.type);
+    text = replaceAll(std::move(text), "@ELAPSED", v.elapsed);
+    out += replaceAll(std::move(text), "@ZERO", v.zero);
+  }
+  return out;
+}
+
 // BCD conversions of IEC 61131-3 ed. 3 (WORD_BCD_TO_UINT, UINT_TO_BCD_WORD, ...), one text for
 // the four widths. A nibble above 9 is taken at its value (no error); digits that do not fit
 // the bit string are dropped.
@@ -237,7 +261,7 @@ END_FUNCTION
 }  // namespace
 
 std::string_view standardLibrarySource() {
-  static const std::string source = std::string(kSource) + counters() + bcdConversions() + timeFunctions();
+  static const std::string source = std::string(kSource) + timers() + counters() + bcdConversions() + timeFunctions();
   return source;
 }
 

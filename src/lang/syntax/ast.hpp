@@ -132,6 +132,7 @@ struct Expr {
 enum class StmtKind : uint8_t {
   Assign,     // lhs := rhs
   RefAssign,  // lhs REF= rhs
+  AttemptAssign,  // lhs ?= rhs (IEC 61131-3 ed. 3 assignment attempt)
   SetAssign,  // lhs S= rhs (CODESYS)
   ResetAssign,// lhs R= rhs (CODESYS)
   Call,       // expr (a Call expression used as a statement)
@@ -183,6 +184,10 @@ struct DeclName {
   SourceLocation loc;
 };
 
+// `start : BOOL R_EDGE;` (IEC 61131-3 edge-detecting input): inside the FB the input reads
+// TRUE only on the call where it rose (fell).
+enum class EdgeKind : uint8_t { None, Rising, Falling };
+
 struct VarDecl {
   std::vector<DeclName> names;   // a, b, c : T;
   TypeSpec type;
@@ -191,6 +196,8 @@ struct VarDecl {
   std::vector<CallArg> fbInitArgs;  // inst : FB_T(a := 1) -- FB_init-style arguments
   std::vector<Attribute> attributes;
   SourceLocation loc;
+  EdgeKind edge = EdgeKind::None;  // R_EDGE / F_EDGE after the type
+  SourceLocation edgeLoc;
 };
 
 struct VarBlock {

@@ -48,6 +48,7 @@ void printVarBlock(const VarBlock& block, std::string& out) {
     out += '\t' + names;
     if (!v.location.empty()) out += " AT " + v.location;
     out += " : " + printType(v.type);
+    if (v.edge != EdgeKind::None) out += v.edge == EdgeKind::Rising ? " R_EDGE" : " F_EDGE";
     if (v.init) out += " := " + printExpr(*v.init);
     out += ";\n";
   }

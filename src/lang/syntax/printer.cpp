@@ -135,6 +135,7 @@ void printStatement(const Stmt& s, int indent, std::string& out) {
   switch (s.kind) {
     case StmtKind::Assign: line(out, indent, e(s.lhs) + " := " + e(s.rhs) + ";"); break;
     case StmtKind::RefAssign: line(out, indent, e(s.lhs) + " REF= " + e(s.rhs) + ";"); break;
+    case StmtKind::AttemptAssign: line(out, indent, e(s.lhs) + " ?= " + e(s.rhs) + ";"); break;
     case StmtKind::SetAssign: line(out, indent, e(s.lhs) + " S= " + e(s.rhs) + ";"); break;
     case StmtKind::ResetAssign: line(out, indent, e(s.lhs) + " R= " + e(s.rhs) + ";"); break;
     case StmtKind::Call: line(out, indent, e(s.expr) + ";"); break;

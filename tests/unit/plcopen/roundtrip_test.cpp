@@ -91,7 +91,8 @@ TEST(ExportLimits, ConstructsTc6CannotHoldAreReportedAtTheirLocation) {
       "INTERFACE I_Run\nMETHOD Run : BOOL\nEND_METHOD\nEND_INTERFACE\n"
       "FUNCTION_BLOCK FB_A IMPLEMENTS I_Run\nVAR r : REFERENCE TO INT; END_VAR\n"
       "METHOD Run : BOOL\nRun := TRUE;\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
-      "PROGRAM MAIN\nVAR a : FB_A; END_VAR\na.Run();\nEND_PROGRAM\n";
+      "PROGRAM MAIN\nVAR a : FB_A; END_VAR\na.Run();\nEND_PROGRAM\n"
+      "FUNCTION_BLOCK FB_E\nVAR_INPUT go : BOOL R_EDGE; END_VAR\nEND_FUNCTION_BLOCK\n";
   SourceManager sources;
   Diagnostics diags;
   st::NodeId next = 0;
@@ -103,6 +104,9 @@ TEST(ExportLimits, ConstructsTc6CannotHoldAreReportedAtTheirLocation) {
   EXPECT_NE(rendered.find("main.st:1:11: error[X004]: INTERFACE 'I_Run' cannot be written"), std::string::npos) << rendered;
   EXPECT_NE(rendered.find("main.st:5:16: error[X004]: EXTENDS / IMPLEMENTS cannot be written"), std::string::npos) << rendered;
   EXPECT_NE(rendered.find("main.st:6:9: error[X004]: REFERENCE TO cannot be written"), std::string::npos) << rendered;
+  // TC6 has no edge qualifier on variables.
+  EXPECT_NE(rendered.find("main.st:16:21: error[X004]: R_EDGE / F_EDGE on an input cannot be written"), std::string::npos)
+      << rendered;
 }
 
 }  // namespace

@@ -74,6 +74,15 @@ TEST(Lexer, RefAssignOperator) {
   EXPECT_EQ(kinds("ref = x"), "identifier = identifier");
 }
 
+TEST(Lexer, AssignmentAttemptOperator) {
+  EXPECT_EQ(kinds("r ?= itf;"), "identifier ?= identifier ;");
+  EXPECT_EQ(kinds("r?=itf"), "identifier ?= identifier");
+}
+
+TEST(Lexer, LoneQuestionMarkIsAnInvalidCharacter) {
+  EXPECT_EQ(firstDiag("a ? b"), "1:3 E001 invalid character '?'");
+}
+
 TEST(Lexer, CommentsNestAndAreSkipped) {
   EXPECT_EQ(kinds("a (* one (* nested *) still *) b"), "identifier identifier");
   EXPECT_EQ(kinds("a /* x /* y */ z */ b // to end\nc"), "identifier identifier identifier");

@@ -89,6 +89,7 @@ std::string show(const Stmt& s) {
   switch (s.kind) {
     case StmtKind::Assign: return bin(":=");
     case StmtKind::RefAssign: return bin("REF=");
+    case StmtKind::AttemptAssign: return bin("?=");
     case StmtKind::SetAssign: return bin("S=");
     case StmtKind::ResetAssign: return bin("R=");
     case StmtKind::Call: return show(s.expr.get());
@@ -171,6 +172,7 @@ std::string show(const VarDecl& d) {
   if (!d.location.empty()) out += " AT " + d.location;
   out += " : " + show(d.type);
   if (!d.fbInitArgs.empty()) out += "(" + showArgs(d.fbInitArgs).substr(1) + ")";
+  if (d.edge != EdgeKind::None) out += d.edge == EdgeKind::Rising ? " R_EDGE" : " F_EDGE";
   if (d.init) out += " := " + show(d.init.get());
   return out;
 }
@@ -363,6 +365,7 @@ TEST(ParserStmt, Assignments) {
   EXPECT_EQ(body("a := 1; r REF= x; q S= go; q R= stop; %QX0.0 := TRUE;"),
             "{(:= a 1) (REF= r x) (S= q go) (R= q stop) (:= %QX0.0 TRUE)}");
   EXPECT_EQ(body("THIS^.x := 1;"), "{(:= (. (^ THIS) x) 1)}");
+  EXPECT_EQ(body("r ?= itf; pFb ?= THIS^;"), "{(?= r itf) (?= pFb (^ THIS))}");
   EXPECT_EQ(body("IF S = 1 THEN ; END_IF"), "{(if ((= S 1) {EMPTY}))}");
 }
 
@@ -415,6 +418,8 @@ TEST(ParserDecl, Variables) {
             "p : POINTER TO INT; r : REF INT; q : POINTER TO INT");  // IEC REF_TO is pointer-like
   EXPECT_EQ(vars("state : (Idle, Run := 5) := Idle;"), "state : (Idle, Run := 5) := Idle");
   EXPECT_EQ(vars("x : INT(0..10) := 5;"), "x : INT(0..10) := 5");
+  EXPECT_EQ(vars("go : BOOL R_EDGE; stop : bool f_edge := TRUE; r_edge : BOOL;"),
+            "go : BOOL R_EDGE; stop : bool F_EDGE := TRUE; r_edge : BOOL");
   EXPECT_EQ(vars("m : ARRAY[*] OF INT; t : Lib.TON;"), "m : ARRAY[*] OF INT; t : Lib.TON");
   EXPECT_EQ(vars("a : ARRAY[1..2] OF ARRAY[1..2] OF POINTER TO BYTE;"),
             "a : ARRAY[1..2] OF ARRAY[1..2] OF POINTER TO BYTE");

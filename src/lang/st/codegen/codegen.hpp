@@ -54,6 +54,8 @@ struct Value {
   // zero-extended from the IEC width (the result of + - * NOT). Stores and further + - *
   // AND OR XOR only need the low bits; toReg() extends it for everything else.
   bool wrapped = false;
+  // ADR's result (and pointer arithmetic on it): an address CODESYS lets any POINTER TO take.
+  bool untypedAddress = false;
   bool ok() const { return kind != Kind::Error; }
   static Value error() { return Value{}; }
 };
@@ -146,6 +148,7 @@ class PouCompiler {
 
  private:
   // Statements (codegen_stmt.cpp)
+  void edgeInputs();
   void statements(const StmtList& list);
   void statement(const Stmt& s);
   void assignment(const Stmt& s);
@@ -163,6 +166,7 @@ class PouCompiler {
   Value binary(const Expr& e, TypeId expected);
   Value shortCircuit(const Expr& e);
   Value dateArithmetic(const Expr& e, Value a, Value b);
+  Value pointerArithmetic(const Expr& e, Value a, Value b);
   std::optional<Place> memberPlace(const Expr& e, bool forWrite);
   std::optional<Place> indexPlace(const Expr& e, bool forWrite);
   std::optional<Place> valuePlace(const Value& v);
@@ -183,6 +187,7 @@ class PouCompiler {
   void readOutputs(uint16_t base, const std::vector<Binding>& bindings, const std::vector<const VarInfo*>& params);
   Value returnValue(PouSym& callee, uint16_t frameReg);
   Value callFunction(PouSym& fn, const Expr& e);
+  Value libraryCall(const std::string& upperName, const Expr& e, TypeId expected);
   Value callFbInstance(const Place& inst, PouSym& fb, const Expr& e);
   Value callMethod(const std::string& name, const Receiver& recv, const Expr& e);
   Value callAction(PouSym& action, uint16_t thisReg);
@@ -203,6 +208,10 @@ class PouCompiler {
   Value isValidRef(const Expr& e);
   Value queryInterface(const Expr& e);
   Value queryPointer(const Expr& e);
+  // Compares the class id at `address` with classIds: {found (BOOL), address or 0}.
+  std::pair<uint16_t, uint16_t> classTest(uint16_t address, const std::vector<uint32_t>& classIds);
+  std::optional<InstanceOperand> attemptSource(const Expr& operand);
+  void attemptAssignment(const Stmt& s);
   Value memoryFunction(const std::string& upperName, const Expr& e);
 
   struct Loop {

@@ -122,7 +122,9 @@ Value emitAddress(BuiltinCall& c) {
   uint16_t a = pc.addressOf(*p);
   uint16_t r = pc.allocReg();
   pc.emit(Op::MOV, r, a, 0);
-  return pc.regValue(c.types().pointerTo(p->type), r);
+  Value v = pc.regValue(c.types().pointerTo(p->type), r);
+  v.untypedAddress = c.fn.id == StandardFunctionId::ADR;  // REF stays typed (IEC)
+  return v;
 }
 
 // SIZEOF(T) of a type name (unless a variable has that name) or SIZEOF(x) of a variable.

@@ -5,6 +5,7 @@
 
 #include "lang/st/codegen/check.hpp"
 #include "lang/st/codegen/codegen.hpp"
+#include "lang/st/declare/standard_functions.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 
 namespace virtcom::st {
@@ -498,6 +499,19 @@ bool PouCompiler::propertySet(const Expr& target, const Expr& valueExpr, SourceL
   return true;
 }
 
+// `Standard.CONCAT(...)`, `Tc2_Standard.LEFT(...)`: a standard function or a function of the
+// built-in library under its library's namespace (a user's FUNCTION is in no library).
+Value PouCompiler::libraryCall(const std::string& upperName, const Expr& e, TypeId expected) {
+  if (auto b = builtin(upperName, e, expected)) return *b;
+  if (auto fn = model().pouByName.find(upperName); fn != model().pouByName.end() && fn->second->isLibrary &&
+                                                   fn->second->kind == PouKind::Function)
+    return callFunction(*fn->second, e);
+  diags().error(diag::E201, e.lhs->loc, "'" + e.lhs->lhs->text + "." + e.lhs->text +
+                                            "' is not a function of the standard library; standard functions and "
+                                            "library FBs may be qualified, a program's own FUNCTIONs may not");
+  return Value::error();
+}
+
 Value PouCompiler::call(const Expr& e, TypeId expected) {
   const Expr& callee = *e.lhs;
   if (callee.kind == ExprKind::Name) {
@@ -546,6 +560,8 @@ Value PouCompiler::call(const Expr& e, TypeId expected) {
   }
   if (callee.kind == ExprKind::Member) {
     std::string key = upper(callee.text);
+    if (callee.lhs->kind == ExprKind::Name && isLibraryNamespace(upper(callee.lhs->text)) && !namePlace(*callee.lhs, false))
+      return libraryCall(key, e, expected);
     // program action: MAIN.Act()
     if (callee.lhs->kind == ExprKind::Name)
       for (const auto& inst : model().programInstances)

@@ -476,6 +476,12 @@ Value PouCompiler::coerce(Value v, TypeId to, SourceLocation loc) {
     Value out = regValue(TypeTable::elem(ElemType::Lword), toReg(v));
     return convert(out, to, loc);
   }
+  if (t.isPointer(to) && t.isPointer(v.type) && v.untypedAddress) {
+    // CODESYS: ADR gives an untyped address, which any POINTER TO takes.
+    Value out = v;
+    out.type = to;
+    return out;
+  }
   if ((t.isPointer(to) || t.isReference(to)) && (t.isPointer(v.type) || t.isReference(v.type))) {
     TypeId a = t[to].element, b = t[v.type].element;
     // ADR(buffer) for a POINTER TO its element type, as CODESYS code walks arrays (`p[i]`).

@@ -115,12 +115,16 @@ static PouSym* instanceOwner(PouSym& pou) {
 }
 
 std::optional<Place> PouCompiler::namePlace(const Expr& e, bool forWrite) {
-  (void)forWrite;
   std::string key = upper(e.text);
   if (auto it = pou_.localIndex.find(key); it != pou_.localIndex.end()) return varPlace(pou_.locals[it->second], kThis);
   if (PouSym* owner = instanceOwner(pou_)) {
-    if (auto it = owner->memberIndex.find(key); it != owner->memberIndex.end())
-      return varPlace(owner->members[it->second], kThis);
+    if (auto it = owner->memberIndex.find(key); it != owner->memberIndex.end()) {
+      const VarInfo& member = owner->members[it->second];
+      // Inside its POU an R_EDGE/F_EDGE input reads the edge of this call; writes (and the
+      // callers, through inst.x) reach the input itself.
+      if (member.edge != EdgeKind::None && !forWrite) return varPlace(owner->members[member.edgeMember], kThis);
+      return varPlace(member, kThis);
+    }
     // VAR_INST of the running method
     if (pou_.kind == PouKind::Method)
       if (auto it = owner->memberIndex.find(upper(pou_.name) + "." + key); it != owner->memberIndex.end())
@@ -767,6 +771,35 @@ Value PouCompiler::dateArithmetic(const Expr& e, Value a, Value b) {
   return Value::error();
 }
 
+// Pointer arithmetic as CODESYS has it (OSCAT depends on it): `p + n`, `n + p`, `p - n` move
+// the address by n bytes, not n elements (`p + SIZEOF(x)`), and keep p's type. Nothing is
+// checked here: dereferencing outside the PLC's memory is the `invalid pointer access` fault.
+Value PouCompiler::pointerArithmetic(const Expr& e, Value a, Value b) {
+  TypeTable& t = types();
+  const BinaryOp op = e.binaryOp;
+  // An untyped literal took the other operand's type when it was evaluated: `1 + p`.
+  const bool pointerFirst = t.isPointer(a.type) && !a.untyped;
+  const Value& pointer = pointerFirst ? a : b;
+  Value offset = pointerFirst ? b : a;
+  if (offset.untyped && offset.kind == Value::Kind::Const && offset.c.kind == ConstValue::Kind::Int)
+    offset.type = TypeTable::elem(ElemType::Lint);
+  if (!t.isInteger(offset.type) || (op != BinaryOp::Add && !(op == BinaryOp::Sub && pointerFirst))) {
+    auto what = [&](const Value& v) {
+      return v.untyped && v.kind == Value::Kind::Const ? std::string("a literal") : describe(t, v.type);
+    };
+    diags().error(diag::E210, e.loc, "pointer arithmetic takes a pointer and an integer number of bytes (p + n, n + p, "
+                                     "p - n); found " + what(a) + " and " + what(b));
+    return Value::error();
+  }
+  uint16_t base = toReg(pointer);
+  uint16_t bytes = toReg(convert(offset, TypeTable::elem(ElemType::Lint), e.loc));
+  uint16_t out = allocReg();
+  emit(op == BinaryOp::Add ? Op::ADD : Op::SUB, out, base, bytes);
+  Value v = regValue(pointer.type, out);
+  v.untypedAddress = pointer.untypedAddress;
+  return v;
+}
+
 Value PouCompiler::arithmetic(const Expr& e, Value a, Value b) {
   TypeTable& t = types();
   BinaryOp op = e.binaryOp;
@@ -785,6 +818,7 @@ Value PouCompiler::arithmetic(const Expr& e, Value a, Value b) {
   }
   if ((t.isDateLike(a.type) || t.isDateLike(b.type)) && (op == BinaryOp::Add || op == BinaryOp::Sub))
     return dateArithmetic(e, a, b);
+  if (t.isPointer(a.type) || t.isPointer(b.type)) return pointerArithmetic(e, a, b);
   if (op == BinaryOp::Power) {
     TypeId rt = t.isElem(a.type, ElemType::Lreal) || t.isElem(b.type, ElemType::Lreal) ? TypeTable::elem(ElemType::Lreal)
                                                                                       : TypeTable::elem(ElemType::Real);

@@ -112,24 +112,82 @@ Value PouCompiler::queryInterface(const Expr& e) {
     for (const PouSym* c : model().classes)
       if (!c->isAbstract && implementsInterface(model(), c, upper(itf->second->name))) classIds.push_back(c->classId);
   // As in CODESYS the destination is set to 0 when the instance does not implement it.
+  auto [found, instance] = classTest(source->address, classIds);
+  store(*dest, instance);
+  return regValue(TypeTable::elem(ElemType::Bool), found);
+}
+
+std::pair<uint16_t, uint16_t> PouCompiler::classTest(uint16_t address, const std::vector<uint32_t>& classIds) {
   uint16_t found = loadConstInt(0);
   uint16_t instance = loadConstInt(0);
   if (!classIds.empty()) {
-    uint32_t isNull = emitJump(Op::JZ, source->address);
+    uint32_t isNull = emitJump(Op::JZ, address);
     uint16_t cls = allocReg();
-    emit(Op::LD_U32, cls, source->address, 0);
+    emit(Op::LD_U32, cls, address, 0);
     for (uint32_t id : classIds) {
       uint16_t same = allocReg();
       emit(Op::EQ, same, cls, loadConstInt(id));
       emit(Op::BOR, found, found, same);
     }
     uint32_t notFound = emitJump(Op::JZ, found);
-    emit(Op::MOV, instance, source->address, 0);
+    emit(Op::MOV, instance, address, 0);
     patchJump(isNull, here());
     patchJump(notFound, here());
   }
-  store(*dest, instance);
-  return regValue(TypeTable::elem(ElemType::Bool), found);
+  return {found, instance};
+}
+
+// `dest ?= source` (IEC 61131-3 ed. 3 assignment attempt). dest is an interface or a REF_TO
+// (POINTER TO) a function block; source an interface, an FB instance or a REF_TO/POINTER TO an
+// FB. dest gets the instance when its class (the dynamic one, read from the class header) is
+// dest's FB or derives from it, or implements dest's interface; NULL otherwise.
+void PouCompiler::attemptAssignment(const Stmt& s) {
+  auto dest = place(*s.lhs, true);
+  if (!dest) return;
+  if (!checkAssignable(diags(), *dest, pou_, s.lhs->loc)) return;
+  const InterfaceSym* itf = nullptr;
+  const PouSym* fb = nullptr;
+  if (auto i = model().interfaceByType.find(dest->type); i != model().interfaceByType.end()) itf = i->second;
+  if (types().isPointer(dest->type))
+    if (auto f = model().fbByType.find(types()[dest->type].element); f != model().fbByType.end() &&
+                                                                     f->second->kind == PouKind::FunctionBlock)
+      fb = f->second;
+  if (!itf && !fb) {
+    diags().error(diag::E202, s.lhs->loc, "?= needs an interface or a REF_TO a function block on the left, found " +
+                                              describe(types(), dest->type));
+    return;
+  }
+  auto source = attemptSource(*s.rhs);
+  if (!source) return;
+  auto fits = [&](const PouSym* c) { return itf ? implementsInterface(model(), c, upper(itf->name)) : derivesFrom(c, fb); };
+  std::vector<uint32_t> classIds;
+  if (source->fb && !source->fb->hasClassHeader) {
+    // No class header: the instance is exactly of its declared FB, decided here.
+    if (fits(source->fb)) {
+      store(*dest, source->address);
+      return;
+    }
+  } else {
+    for (const PouSym* c : model().classes)
+      if (!c->isAbstract && fits(c)) classIds.push_back(c->classId);
+  }
+  store(*dest, classTest(source->address, classIds).second);
+}
+
+// The right side of ?=: an instance address and its declared FB (null behind an interface).
+std::optional<PouCompiler::InstanceOperand> PouCompiler::attemptSource(const Expr& operand) {
+  auto p = place(operand, false);
+  if (!p) return std::nullopt;
+  if (types().isPointer(p->type))
+    if (auto f = model().fbByType.find(types()[p->type].element); f != model().fbByType.end() &&
+                                                                 f->second->kind == PouKind::FunctionBlock)
+      return InstanceOperand{load(*p), f->second->hasClassHeader ? nullptr : f->second};
+  if (model().interfaceByType.count(p->type)) return InstanceOperand{load(*p), nullptr};
+  if (auto f = model().fbByType.find(p->type); f != model().fbByType.end() && f->second->kind == PouKind::FunctionBlock)
+    return InstanceOperand{addressOf(*p), f->second};
+  diags().error(diag::E202, operand.loc, "?= needs an interface, a function block instance or a REF_TO a function block "
+                                         "on the right, found " + describe(types(), p->type));
+  return std::nullopt;
 }
 
 Value PouCompiler::queryPointer(const Expr& e) {

@@ -10,6 +10,13 @@ namespace virtcom::st {
 
 using bc::Op;
 
+static bool declaredIn(const Pou& ast, const VarDecl& decl) {
+  for (const auto& block : ast.varBlocks)
+    for (const auto& d : block.vars)
+      if (&d == &decl) return true;
+  return false;
+}
+
 void PouCompiler::compile() {
   codeStart_ = here();
   tempTop_ = 0;
@@ -17,6 +24,7 @@ void PouCompiler::compile() {
   if (pou_.ast->hasBody || !pou_.ast->body.empty()) {
     const StmtList frameInits = buildFrameInitCalls(model(), types(), pou_);
     statements(frameInits);
+    edgeInputs();
     statements(pou_.ast->body);
   }
   uint32_t end = here();
@@ -28,6 +36,30 @@ void PouCompiler::compile() {
   info.numRegs = maxReg_;
   pou_.frameSize = (pou_.frameSize + tempMax_ + 7) / 8 * 8;
   info.frameSize = pou_.frameSize;
+}
+
+// The implicit R_TRIG/F_TRIG of each R_EDGE/F_EDGE input this POU declares (IEC 61131-3),
+// before the body: edge := input rose (fell) since the last call; previous := input. On BOOLs
+// (0/1) a rise is previous < input, a fall input < previous. A derived FB's body does not
+// repeat it: the base body (SUPER^()) owns its inputs' edges.
+void PouCompiler::edgeInputs() {
+  if (pou_.kind != PouKind::FunctionBlock && pou_.kind != PouKind::Program) return;
+  for (const VarInfo& input : pou_.members) {
+    if (input.edge == EdgeKind::None || !input.decl || !declaredIn(*pou_.ast, *input.decl)) continue;
+    const uint16_t mark = regMark();
+    const uint16_t now = load(varPlace(input, kThis));
+    const Place edge = varPlace(pou_.members[input.edgeMember], kThis);
+    const Place previous = varPlace(pou_.members[input.edgeMember + 1], kThis);
+    const uint16_t before = load(previous);
+    const uint16_t result = allocReg();
+    if (input.edge == EdgeKind::Rising)
+      emit(Op::LT_U, result, before, now);
+    else
+      emit(Op::LT_U, result, now, before);
+    store(edge, result);
+    store(previous, now);
+    freeRegs(mark);
+  }
 }
 
 void PouCompiler::statements(const StmtList& list) {
@@ -43,6 +75,7 @@ void PouCompiler::statement(const Stmt& s) {
     case StmtKind::SetAssign:
     case StmtKind::ResetAssign:
     case StmtKind::RefAssign: assignment(s); break;
+    case StmtKind::AttemptAssign: attemptAssignment(s); break;
     case StmtKind::Call: {
       if (s.expr && s.expr->kind == ExprKind::Call) {
         (void)call(*s.expr, kNoType);

@@ -58,6 +58,9 @@ class Declarer {
   bool layoutFbOf(const TypeSpec& spec, VarSection section);
   void layoutFrame(PouSym& pou);
   void addMembers(PouSym& pou, const Pou& ast, bool methodInst);
+  bool edgeAllowed(const PouSym& pou, const VarBlock& block, const VarDecl& decl) const;
+  void checkEdgeDeclarations(const PouSym& pou);  // E108 for R_EDGE/F_EDGE where they cannot be
+  void addEdgeState(PouSym& pou, size_t inputIndex);
   void declareMethods(PouSym& owner);
   void linkInheritance();
   void declareInterfaces();

@@ -148,10 +148,61 @@ void Declarer::addMembers(PouSym& pou, const Pou& ast, bool methodInst) {
         if (block.constant && types_.isScalar(type) && decl.init)
           if (auto c = constant(*decl.init, scope, true)) v.constValue = *c;
         checkVariable(v);
+        const bool edge = !methodInst && decl.edge != EdgeKind::None && edgeAllowed(target, block, decl);
+        if (edge) v.edge = decl.edge;
         target.memberIndex[key] = target.members.size();
         target.members.push_back(std::move(v));
+        if (edge) addEdgeState(target, target.members.size() - 1);
       }
     }
+  }
+}
+
+bool Declarer::edgeAllowed(const PouSym& pou, const VarBlock& block, const VarDecl& decl) const {
+  bool instance = pou.kind == PouKind::FunctionBlock || pou.kind == PouKind::Program;
+  return instance && block.section == VarSection::Input && decl.type.kind == TypeSpecKind::Named &&
+         upper(decl.type.name) == "BOOL";
+}
+
+void Declarer::checkEdgeDeclarations(const PouSym& pou) {
+  for (const auto& block : pou.ast->varBlocks)
+    for (const auto& decl : block.vars)
+      if (decl.edge != EdgeKind::None && !edgeAllowed(pou, block, decl))
+        diags_.error(diag::E108, decl.edgeLoc, std::string(decl.edge == EdgeKind::Rising ? "R_EDGE" : "F_EDGE") +
+                                                   " is only allowed on a BOOL VAR_INPUT of a FUNCTION_BLOCK or PROGRAM; "
+                                                   "elsewhere use an R_TRIG/F_TRIG instance");
+}
+
+// The hidden state of an edge input (IEC 61131-3: an implicit R_TRIG/F_TRIG): the edge the POU's
+// code reads, then the input's previous value. Both start FALSE, so a FALSE input on the first
+// call is no falling edge (as F_TRIG, whose memory starts TRUE, decides).
+void Declarer::addEdgeState(PouSym& pou, size_t inputIndex) {
+  const std::string base = pou.members[inputIndex].name;
+  pou.members[inputIndex].edgeMember = static_cast<uint32_t>(pou.members.size());
+  for (const char* suffix : {"__EDGE", "__PREV"}) {
+    VarInfo v = pou.members[inputIndex];
+    v.name = "__" + base + suffix;
+    v.section = VarSection::Var;
+    v.edge = EdgeKind::None;
+    v.hidden = true;
+    v.readOnly = true;
+    v.retain = false;
+    v.decl = nullptr;
+    v.storage = Storage::Instance;
+    v.bit = -1;
+    bc::TypeDesc& inst = types_.mut(pou.instanceType);
+    v.offset = inst.size;
+    inst.size += 1;
+    bc::Field f;
+    f.name = v.name;
+    f.type = v.type;
+    f.offset = v.offset;
+    f.hidden = true;
+    f.readOnly = true;
+    f.section = "VAR";
+    inst.fields.push_back(std::move(f));
+    pou.memberIndex[upper(v.name)] = pou.members.size();
+    pou.members.push_back(std::move(v));
   }
 }
 
@@ -361,6 +412,8 @@ void Declarer::declarePous() {
   std::vector<PouSym*> topLevel;
   for (auto& sym : model_.pous)
     if (!sym->owner && !sym->isInterfaceMethod) topLevel.push_back(sym.get());
+  for (auto& sym : model_.pous)
+    if (sym->ast && !sym->isInterfaceMethod) checkEdgeDeclarations(*sym);
   for (PouSym* sym : topLevel) {
     switch (sym->kind) {
       case PouKind::FunctionBlock:

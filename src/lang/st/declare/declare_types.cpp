@@ -132,19 +132,8 @@ void Declarer::fillTypeDecl(const TypeDecl& decl, TypeId id) {
   if (decl.init) typeInits_[id] = decl.init.get();
 }
 
-namespace {
-// CODESYS and TwinCAT may qualify a library's names by the library's namespace; the standard
-// FBs and types here belong to no namespace, so `Standard.TON` means `TON`.
-std::string withoutLibraryNamespace(std::string key) {
-  static constexpr std::string_view kNamespaces[] = {"STANDARD.", "TC2_STANDARD.", "IEC61131_STANDARD."};
-  for (std::string_view ns : kNamespaces)
-    if (key.size() > ns.size() && key.compare(0, ns.size(), ns) == 0) return key.substr(ns.size());
-  return key;
-}
-}  // namespace
-
 TypeId Declarer::resolveNamed(const TypeSpec& spec, const PouSym* pou) {
-  std::string key = withoutLibraryNamespace(upper(spec.name));
+  std::string key(withoutLibraryNamespace(upper(spec.name)));
   ElemType elem;
   if (elemTypeByName(key, elem)) return TypeTable::elem(elem);
   if (auto it = model_.namedTypes.find(key); it != model_.namedTypes.end()) {

@@ -49,6 +49,10 @@ struct VarInfo {
   bool hidden = false;          // internal state of a library FB
   bool retain = false;          // declared in a RETAIN or PERSISTENT block
   const VarDecl* decl = nullptr;
+  // An R_EDGE/F_EDGE input: members[edgeMember] is the hidden BOOL the POU's own code reads
+  // in its place (the edge of this call), members[edgeMember + 1] the input's previous value.
+  EdgeKind edge = EdgeKind::None;
+  uint32_t edgeMember = 0;
   ConstValue constValue;        // CONSTANT of a scalar type: the folded value (kind != None)
 };
 

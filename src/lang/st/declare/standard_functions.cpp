@@ -53,6 +53,17 @@ std::optional<StandardFunction> findStandardFunction(std::string_view upperName)
 
 bool isStandardFunctionName(std::string_view upperName) { return findStandardFunction(upperName).has_value(); }
 
+bool isLibraryNamespace(std::string_view upperName) {
+  return upperName == "STANDARD" || upperName == "TC2_STANDARD" || upperName == "IEC61131_STANDARD";
+}
+
+std::string_view withoutLibraryNamespace(std::string_view upperName) {
+  size_t dot = upperName.find('.');
+  if (dot == std::string_view::npos || dot + 1 == upperName.size() || !isLibraryNamespace(upperName.substr(0, dot)))
+    return upperName;
+  return upperName.substr(dot + 1);
+}
+
 std::string_view listedParameter(std::string_view listed, size_t index) {
   for (; index > 0; --index) {
     size_t space = listed.find(' ');

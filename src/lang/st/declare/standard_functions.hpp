@@ -70,6 +70,13 @@ std::optional<StandardFunction> findStandardFunction(std::string_view upperName)
 // cannot name a variable or POU (IEC 61131-3; CODESYS rejects them too).
 bool isStandardFunctionName(std::string_view upperName);
 
+// CODESYS and TwinCAT may qualify a standard library's names by the library's namespace
+// (`Standard.TON`, `Tc2_Standard.LEFT`); the standard FBs, types and functions here belong to
+// no namespace. True for those namespaces (upper case, without the dot).
+bool isLibraryNamespace(std::string_view upperName);
+// `upperName` without such a namespace (`STANDARD.TON` -> `TON`); unchanged otherwise.
+std::string_view withoutLibraryNamespace(std::string_view upperName);
+
 // The name of input `index` of a Listed function ("" past the end).
 std::string_view listedParameter(std::string_view listed, size_t index);
 

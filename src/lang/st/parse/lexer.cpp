@@ -412,10 +412,14 @@ class Lexer {
       case '&': kind = Tok::Amp; break;
       case '<': kind = next == '=' ? Tok::Le : next == '>' ? Tok::Ne : Tok::Lt; break;
       case '>': kind = next == '=' ? Tok::Ge : Tok::Gt; break;
+      case '?':
+        if (next != '=') return invalidCharacter(loc);
+        kind = Tok::AttemptAssignOp;
+        break;
       default: return invalidCharacter(loc);
     }
     bool twoChars = (kind == Tok::Assign || kind == Tok::OutAssign || kind == Tok::DotDot || kind == Tok::Power ||
-                     kind == Tok::Le || kind == Tok::Ne || kind == Tok::Ge);
+                     kind == Tok::Le || kind == Tok::Ne || kind == Tok::Ge || kind == Tok::AttemptAssignOp);
     if (twoChars) length = 2;
     bump(length);
     emit(kind, start, loc);

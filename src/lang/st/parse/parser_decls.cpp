@@ -1,4 +1,5 @@
 // Declarations: VAR blocks, variable declarations, type specifications and TYPE blocks.
+#include "core/ascii.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 #include "lang/st/parse/parser_internal.hpp"
 
@@ -77,6 +78,11 @@ bool Parser::parseVarDecl(VarDecl& decl, bool allowLocation) {
     return true;
   }
   decl.type = parseTypeSpec(false, &decl.fbInitArgs);
+  if (atName() && (iequalsAscii(cur().text, "R_EDGE") || iequalsAscii(cur().text, "F_EDGE"))) {
+    decl.edge = iequalsAscii(cur().text, "R_EDGE") ? EdgeKind::Rising : EdgeKind::Falling;
+    decl.edgeLoc = cur().loc;
+    advance();
+  }
   if (accept(Tok::Assign)) decl.init = parseExpr();
   if (accept(Tok::Semicolon)) return true;
   errorExpected("';'", "after variable declaration");

@@ -105,6 +105,9 @@ StmtPtr Parser::parseAssignmentOrCall() {
   } else if (at(Tok::RefAssignOp)) {
     kind = StmtKind::RefAssign;
     advance();
+  } else if (at(Tok::AttemptAssignOp)) {
+    kind = StmtKind::AttemptAssign;
+    advance();
   } else if (atSetResetOperator()) {
     kind = (cur().text[0] == 'S' || cur().text[0] == 's') ? StmtKind::SetAssign : StmtKind::ResetAssign;
     advance();

@@ -6,7 +6,8 @@
 # Prints, per case, the CPU time of virtcom and every compiler process it ran (user + sys, GNU
 # time, Debian package `time`), the wall time and the peak resident memory of the largest single
 # process (the C compiler's cc1 in practice). VIRTCOM=path measures another build of virtcom on
-# the same programs (before/after comparisons in one run).
+# the same programs (before/after comparisons in one run); COMPILE_MODULE=path measures
+# aot_compile_module (bench/aot_compile/compile_module.cpp) instead of virtcom (the same load, without the rest of a run).
 set -eu
 build=${1:-build/release}
 [ $# -gt 0 ] && shift
@@ -19,16 +20,20 @@ printf '%-12s %8s %10s %8s %10s\n' case lines cpu_s wall_s peak_MB
 for c in $cases; do
   rm -rf "$dir/cache"
   if [ "$c" = gearbox ]; then
-    lines=$(cat "$root"/examples/gearbox-cell/plc/*.st | wc -l)
-    set -- run "$root/examples/gearbox-cell/cell.yaml" --quiet
+    cell=$root/examples/gearbox-cell
+    files=$(sed -n 's/^ *sources: \[\(.*\)\]/\1/p' "$cell/cell.yaml" | tr -d ' ' | tr ',' '\n' | sed "s|^|$cell/|")
+    lines=$(cat $files | wc -l)
+    set -- run "$cell/cell.yaml" --quiet --backend aot
   else
     "$build/bench/make_aot_program" "${c%%:*}" "${c#*:}" >"$dir/program.st"
-    lines=$(wc -l <"$dir/program.st")
-    set -- exec "$dir/program.st" --cycles 1
+    files=$dir/program.st
+    lines=$(wc -l <"$files")
+    set -- exec "$files" --cycles 1 --backend aot
   fi
-  VIRTCOM_AOT_CACHE="$dir/cache" /usr/bin/time -f '%U %S %e %M' -o "$dir/time" "$virtcom" "$@" --backend aot \
+  [ -n "${COMPILE_MODULE:-}" ] && set -- $files
+  VIRTCOM_AOT_CACHE="$dir/cache" /usr/bin/time -f '%U %S %e %M' -o "$dir/time" ${COMPILE_MODULE:-$virtcom} "$@" \
     >/dev/null 2>"$dir/err" || true
-  if grep -q 'notice' "$dir/err"; then
+  if grep -q 'notice\|aot_compile_module:' "$dir/err"; then
     echo "$c: the AOT compile failed: $(cat "$dir/err")" >&2
     exit 1
   fi

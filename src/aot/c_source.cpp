@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <cstdio>
+#include <set>
 #include <string_view>
 #include <vector>
 
@@ -94,8 +97,7 @@ std::string numbered(const char* prefix, uint64_t n) {
   return s;
 }
 std::string reg(unsigned i) { return numbered("r", i); }
-std::string label(uint32_t pc) { return numbered("L", pc); }
-std::string pouFunction(uint32_t pou) { return numbered("pou_", pou); }
+std::string label(uint32_t offset) { return numbered("L", offset); }
 std::string i64Literal(int64_t v) {
   // INT64_MIN has no literal form.
   return v == INT64_MIN ? "INT64_MIN" : "((int64_t)" + std::to_string(v) + "LL)";
@@ -111,9 +113,12 @@ int trapKind(uint32_t bx) {
                                                                                : static_cast<int>(FaultKind::InvalidEnumValue);
 }
 
+// POUs bigger than this are cut into functions of about this many instructions (chunkStarts).
+constexpr uint32_t kChunkInstructions = 1000;
+
 // Leaves up to this many instructions are inlined into their callers by the C compiler
 // (always_inline): a user FB call then costs no C call, and the register stores around it
-// become plain copies the compiler can forward.
+// become plain copies the compiler can forward. Every unit that calls one carries a copy.
 constexpr uint32_t kInlineLeafInstructions = 64;
 
 bool isSmallLeaf(const bc::Module& m, const bc::PouInfo& p) {
@@ -122,40 +127,92 @@ bool isSmallLeaf(const bc::Module& m, const bc::PouInfo& p) {
   return std::none_of(begin, begin + p.codeSize, [](const Instr& ins) { return ins.op == Op::CALL; });
 }
 
-// `restrict`: the context is reached only through `c` while a POU runs, so the C compiler may
-// keep its fields in registers across stores to the memory image.
-std::string pouSignature(const bc::Module& m, uint32_t pou) {
-  const char* linkage = isSmallLeaf(m, m.pous[pou]) ? "static inline __attribute__((always_inline)) int " : "static int ";
-  return linkage + pouFunction(pou) + "(struct AotContext* restrict c, uint32_t base, uint32_t depth)";
-}
+// What every unit knows about every POU. C names come from the POU's name, not its index
+// (which a POU added in front shifts), so an edit elsewhere leaves a unit's text alone. Every
+// character but letters and digits is written as _XX (hex), so distinct names stay distinct.
+struct PouTable {
+  // p_NAME: the POU's exported function (a wrapper), s_NAME: its static body in its own unit,
+  // i_NAME: a small leaf's inline copy in every unit that calls it
+  std::vector<std::string> names;
+  std::vector<bool> smallLeaf;
+  RegisterPlan plan;
+
+  explicit PouTable(const bc::Module& m) : plan(planRegisters(m)) {
+    std::set<std::string> seen;
+    for (uint32_t p = 0; p < m.pous.size(); ++p) {
+      std::string name;
+      for (unsigned char ch : m.pous[p].name) {
+        if (std::isalnum(ch)) {
+          name += static_cast<char>(ch);
+          continue;
+        }
+        char hex[4];
+        std::snprintf(hex, sizeof hex, "_%02x", ch);
+        name += hex;
+      }
+      if (!seen.insert(name).second) name += "__" + std::to_string(p);  // hand-built modules may repeat names
+      names.push_back(std::move(name));
+      smallLeaf.push_back(isSmallLeaf(m, m.pous[p]));
+    }
+  }
+  // What a CALL of `pou` calls in a unit that holds the POUs `own`: the inline copy of a
+  // small leaf, the static body of a POU of the unit (which the C compiler may inline, as in a
+  // single unit), else the exported function of the POU's unit.
+  std::string callee(uint32_t pou, const std::set<uint32_t>& own) const {
+    return (smallLeaf[pou] ? "i_" : own.count(pou) ? "s_" : "p_") + names[pou];
+  }
+};
+
+// The parameters of every POU function. `restrict`: the context is reached only through `c`
+// while a POU runs, so the C compiler may keep its fields in registers across stores to the
+// memory image.
+constexpr std::string_view kParams = "(struct AotContext* restrict c, uint32_t base, uint32_t depth)";
+// Functions and constants shared between the units of one shared object, not exported from it.
+constexpr std::string_view kHidden = "__attribute__((visibility(\"hidden\"))) ";
 
 class PouWriter {
  public:
-  PouWriter(const bc::Module& m, uint32_t pou, const RegisterPlan& plan, std::string& out)
-      : m_(m), pou_(m.pous[pou]), index_(pou), plan_(plan), regs_(plan.pous[pou]), out_(out) {}
+  PouWriter(const bc::Module& m, uint32_t pou, const PouTable& table, const std::set<uint32_t>& unit, std::string& out)
+      : m_(m), pou_(m.pous[pou]), index_(pou), table_(table), unit_(unit), plan_(table.plan), regs_(table.plan.pous[pou]),
+        out_(out) {}
 
-  void write() {
+  // The function for the instructions [from, to) of the POU (all of them by default), headed
+  // by `head` (linkage and name). A piece that starts later loads every register from the
+  // register stack and one that ends early stores them all there and returns 0 (the driver
+  // calls the next piece), or -1 after a RET (the POU has returned).
+  void write(const std::string& head, uint32_t from = 0, uint32_t to = UINT32_MAX) {
     const uint32_t begin = pou_.codeStart, end = pou_.codeStart + pou_.codeSize;
+    from = std::max(from, begin);
+    to = std::min(to, end);
     std::vector<bool> targets(pou_.codeSize, false);
-    for (uint32_t pc = begin; pc < end; ++pc)
+    for (uint32_t pc = from; pc < to; ++pc)
       if (isJump(m_.code[pc].op)) targets[jumpTarget(pc, m_.code[pc]) - begin] = true;
 
-    out_ += pouSignature(m_, index_) + " {\n";
+    out_ += head;
+    out_ += kParams;
+    out_ += " {\n";
     out_ += "  uint8_t* const mem = c->mem;\n  uint64_t* const w = c->regs + base;\n";
     out_ += "  uint64_t remaining = c->remaining, ad;\n  int result;\n  (void)depth; (void)ad;\n";
     for (unsigned r = 0; r < pou_.numRegs; ++r)
-      out_ += "  uint64_t " + reg(r) + (regs_.loadOnEntry[r] ? " = w[" + std::to_string(r) + "];\n" : " = 0;\n");
-    for (uint32_t pc = begin; pc < end; ++pc) {
-      if (targets[pc - begin]) out_ += label(pc) + ":;\n";
+      out_ += "  uint64_t " + reg(r) + (from > begin || regs_.loadOnEntry[r] ? " = w[" + std::to_string(r) + "];\n" : " = 0;\n");
+    for (uint32_t pc = from; pc < to; ++pc) {
+      if (targets[pc - begin]) out_ += label(pc - begin) + ":;\n";
       out_ += "  ";
       expand(pc, m_.code[pc]);
       out_ += "\n";
+    }
+    if (to < end) {
+      out_ += "  ";
+      for (unsigned r = 0; r < pou_.numRegs; ++r) out_ += "w[" + std::to_string(r) + "] = " + reg(r) + "; ";
+      out_ += "\n  c->remaining = remaining;\n  return 0;\n";
     }
     // A fault leaves without the write-back: no bytecode reads those registers afterwards.
     out_ += "finish:\n  ";
     for (unsigned r = 0; r < pou_.numRegs; ++r)
       if (regs_.writeBack[r]) out_ += "w[" + std::to_string(r) + "] = " + reg(r) + "; ";
-    out_ += "\n  c->remaining = remaining;\n  return 0;\nfail:\n  return result;\n}\n\n";
+    out_ += "\n  c->remaining = remaining;\n  return ";
+    out_ += to < end ? "-1" : "0";
+    out_ += ";\nfail:\n  return result;\n}\n\n";
   }
 
  private:
@@ -186,6 +243,13 @@ class PouWriter {
     else callRegs(pc, ins, load);
   }
 
+  // Fault pcs are relative to the POU's first instruction, whose index is a constant of the
+  // table unit (read on the fault path only): code added to a POU in front leaves this POU's
+  // text alone.
+  std::string pcText(uint32_t pc) const {
+    return "(pc0_" + table_.names[index_] + " + " + std::to_string(pc - pou_.codeStart) + "u)";
+  }
+
   void expand(uint32_t pc, const Instr& ins) {
     const std::string_view text = opcodeSnippet(ins.op);
     for (size_t i = 0; i < text.size(); ++i) {
@@ -208,9 +272,9 @@ class PouWriter {
       case 'k': out_ += i64Literal(static_cast<int16_t>(ins.c)); break;
       case 'x': out_ += u64Literal(ins.bx()); break;
       case 'S': out_ += i64Literal(ins.sbx()); break;
-      case 'p': out_ += std::to_string(pc) + "u"; break;
-      case 'T': out_ += label(jumpTarget(pc, ins)); break;
-      case 'J': if (ins.sbx() < 0) out_ += "BUDGET(" + std::to_string(pc) + "u);"; break;
+      case 'p': out_ += pcText(pc); break;
+      case 'T': out_ += label(jumpTarget(pc, ins) - pou_.codeStart); break;
+      case 'J': if (ins.sbx() < 0) out_ += "BUDGET(" + pcText(pc) + ");"; break;
       case 'K': out_ += u64Literal(m_.constants[ins.bx()]); break;
       case 'L': out_ += i64Literal(m_.indexes[ins.c].lo); break;
       case 'N': out_ += i64Literal(m_.indexes[ins.c].count); break;
@@ -218,7 +282,7 @@ class PouWriter {
       case 'F': out_ += u64Literal(m_.pous[ins.bx()].frameSize); break;
       case 'G': out_ += u64Literal(m_.pous[ins.bx()].frameTemplate); break;
       case 'R': out_ += u64Literal(m_.pous[ins.bx()].numRegs); break;
-      case 'P': out_ += pouFunction(ins.bx()); break;
+      case 'P': out_ += table_.callee(ins.bx(), unit_); break;
       case 'W': out_ += u64Literal(vm::kNativeFbSizes[ins.bx()]); break;
       case 'f': out_ += "fbStep_" + std::string(kNativeFbNames[ins.bx()]); break;
       case 'n': out_ += std::to_string(nativeArity(ins)); break;
@@ -232,6 +296,8 @@ class PouWriter {
   const bc::Module& m_;
   const bc::PouInfo& pou_;
   const uint32_t index_;
+  const PouTable& table_;
+  const std::set<uint32_t>& unit_;
   const RegisterPlan& plan_;
   const PouRegisters& regs_;
   std::string& out_;
@@ -247,9 +313,10 @@ void writeFaultKinds(std::string& out) {
     out += std::string("#define ") + name + " " + std::to_string(static_cast<int>(kind)) + "\n";
 }
 
-}  // namespace
 
-std::string generateCSource(const bc::Module& m) {
+// The definitions every unit starts with: the ABI, the module's memory constants, the helpers
+// and the native FBs (static inline: a unit compiles only those it uses).
+std::string prelude(const bc::Module& m) {
   std::string out = "/* generated by virtcom from bytecode; do not edit */\n#include <stdbool.h>\n#include <stdint.h>\n";
   out += kAbiText;
   out += "\n#define MSZ " + u64Literal(m.memorySize()) + "\n#define GUARD " + u64Literal(bc::Module::kNullGuard) +
@@ -259,17 +326,190 @@ std::string generateCSource(const bc::Module& m) {
   out += kNativeFbAccessors;
   out += kNativeFbCode;
   out += "\n";
-  const auto count = static_cast<uint32_t>(m.pous.size());
-  for (uint32_t p = 0; p < count; ++p) out += pouSignature(m, p) + ";\n";
+  return out;
+}
+
+// POUs in module order, cut into units. A unit ends once it holds `limit` instructions or,
+// past a quarter of that, after a POU whose name hashes to 0 mod 4; a POU of `limit` or more
+// starts a unit of its own. The cuts depend only on the POUs around them, so a POU that grows
+// or shrinks moves at most the cuts up to the next name-chosen one.
+std::vector<std::vector<uint32_t>> groupPous(const bc::Module& m, uint32_t limit) {
+  std::vector<std::vector<uint32_t>> groups(1);
+  uint64_t size = 0;
+  for (uint32_t p = 0; p < m.pous.size(); ++p) {
+    const bc::PouInfo& pou = m.pous[p];
+    if (pou.codeSize >= limit && !groups.back().empty()) {
+      groups.emplace_back();
+      size = 0;
+    }
+    groups.back().push_back(p);
+    size += pou.codeSize;
+    const bool nameCut = size >= limit / 4 && hashText(pou.name) % 4 == 0;
+    if ((size >= limit || nameCut) && p + 1 < m.pous.size()) {
+      groups.emplace_back();
+      size = 0;
+    }
+  }
+  return groups;
+}
+
+void declarePou(const PouTable& t, uint32_t p, std::string& out) {
+  out += std::string(kHidden) + "int p_" + t.names[p] + std::string(kParams) + ";\n";
+}
+
+void declarePc0(const PouTable& t, uint32_t p, std::string& out) {
+  out += "extern " + std::string(kHidden) + "const uint32_t pc0_" + t.names[p] + ";\n";
+}
+
+// A run of a POU's instructions [from, to) that becomes one C function: the whole POU
+// (chunk < 0), or one of the `chunks` chunks of a huge one.
+struct Piece {
+  uint32_t pou, from, to;
+  int chunk = -1;
+  int chunks = 0;
+};
+
+std::string chunkName(const PouTable& t, uint32_t pou, int chunk) {
+  return "c_" + t.names[pou] + "_" + std::to_string(chunk);
+}
+
+// Where a huge POU is cut into chunks of about `size` instructions: before an instruction no
+// jump crosses (ST's top-level statements), so every jump stays inside its chunk. GCC's time
+// and memory grow faster than a function's size (docs/performance.md), a chain of chunks of
+// bounded size costs time proportional to the POU's.
+std::vector<uint32_t> chunkStarts(const bc::Module& m, const bc::PouInfo& p, uint32_t size) {
+  std::vector<int> crossing(p.codeSize + 1, 0);  // jumps over the cut before each instruction, as differences
+  for (uint32_t pc = p.codeStart; pc < p.codeStart + p.codeSize; ++pc) {
+    if (!isJump(m.code[pc].op)) continue;
+    const uint32_t target = jumpTarget(pc, m.code[pc]);
+    ++crossing[std::min(pc, target) - p.codeStart + 1];
+    --crossing[std::max(pc, target) - p.codeStart + 1];
+  }
+  std::vector<uint32_t> starts{p.codeStart};
+  int open = crossing[0];
+  for (uint32_t i = 1; i < p.codeSize; ++i) {
+    open += crossing[i];
+    if (open == 0 && p.codeStart + i - starts.back() >= size && p.codeSize - i >= size / 2) starts.push_back(p.codeStart + i);
+  }
+  return starts;
+}
+
+// The pieces of a group of POUs, in units of at most `limit` instructions: the POUs whole, or
+// a huge POU (alone in its group) in chunks spread over several units.
+std::vector<std::vector<Piece>> piecesOf(const bc::Module& m, const std::vector<uint32_t>& group, uint32_t limit) {
+  const bc::PouInfo& first = m.pous[group.front()];
+  std::vector<uint32_t> starts;
+  if (group.size() == 1 && first.codeSize > kChunkInstructions) starts = chunkStarts(m, first, kChunkInstructions);
+  if (starts.size() < 2) {
+    std::vector<Piece> whole;
+    for (uint32_t p : group) whole.push_back({p, m.pous[p].codeStart, m.pous[p].codeStart + m.pous[p].codeSize});
+    return {whole};
+  }
+  std::vector<std::vector<Piece>> units(1);
+  uint32_t size = 0;
+  const auto chunks = static_cast<int>(starts.size());
+  for (int k = 0; k < chunks; ++k) {
+    const uint32_t to = k + 1 < chunks ? starts[k + 1] : first.codeStart + first.codeSize;
+    if (size >= limit) {
+      units.emplace_back();
+      size = 0;
+    }
+    units.back().push_back({group.front(), starts[k], to, k, chunks});
+    size += to - starts[k];
+  }
+  return units;
+}
+
+// One unit: its pieces, preceded by inline copies of the small leaves they call (a leaf of the
+// unit is such a copy too). A whole POU is a static function behind an exported wrapper, so
+// within the unit the C compiler sees what it saw when the module was one unit; chunks are
+// exported and called in turn by their POU's driver, in the unit of the first chunk.
+CUnit writeUnit(const bc::Module& m, const PouTable& t, const std::vector<Piece>& pieces) {
+  CUnit unit;
+  std::set<uint32_t> own, leaves, external, bodies;
+  for (const Piece& piece : pieces) {
+    if (piece.chunk <= 0) own.insert(piece.pou);
+    bodies.insert(piece.pou);
+    unit.largestPou = std::max(unit.largestPou, piece.to - piece.from);
+  }
+  for (const Piece& piece : pieces) {
+    if (t.smallLeaf[piece.pou]) leaves.insert(piece.pou);
+    for (uint32_t pc = piece.from; pc < piece.to; ++pc) {
+      if (m.code[pc].op != Op::CALL) continue;
+      const uint32_t callee = m.code[pc].bx();
+      if (t.smallLeaf[callee]) leaves.insert(callee);
+      else if (!own.count(callee)) external.insert(callee);
+    }
+  }
+  bodies.insert(leaves.begin(), leaves.end());
+  std::string& out = unit.source;
+  out = prelude(m);
+  for (uint32_t p : external) declarePou(t, p, out);
+  for (uint32_t p : own)
+    if (!t.smallLeaf[p]) out += "static int s_" + t.names[p] + std::string(kParams) + ";\n";
+  for (const Piece& piece : pieces)
+    for (int k = 0; piece.chunk == 0 && k < piece.chunks; ++k)
+      out += std::string(kHidden) + "int " + chunkName(t, piece.pou, k) + std::string(kParams) + ";\n";
+  for (uint32_t p : bodies) declarePc0(t, p, out);
   out += "\n";
-  const RegisterPlan plan = planRegisters(m);
-  for (uint32_t p = 0; p < count; ++p) PouWriter(m, p, plan, out).write();
+  for (uint32_t p : leaves)
+    PouWriter(m, p, t, own, out).write("static inline __attribute__((always_inline)) int i_" + t.names[p]);
+  for (const Piece& piece : pieces) {
+    if (t.smallLeaf[piece.pou]) continue;
+    PouWriter writer(m, piece.pou, t, own, out);
+    if (piece.chunk < 0) writer.write("static int s_" + t.names[piece.pou]);
+    else writer.write(std::string(kHidden) + "__attribute__((noinline)) int " + chunkName(t, piece.pou, piece.chunk),
+                      piece.from, piece.to);
+  }
+  for (const Piece& piece : pieces) {
+    if (piece.chunk != 0) continue;
+    out += "static int s_" + t.names[piece.pou] + std::string(kParams) + " {\n  int r_;\n";
+    for (int k = 0; k + 1 < piece.chunks; ++k)
+      out += "  if ((r_ = " + chunkName(t, piece.pou, k) + "(c, base, depth))) return r_ < 0 ? 0 : r_;\n";
+    out += "  return " + chunkName(t, piece.pou, piece.chunks - 1) + "(c, base, depth);\n}\n";
+  }
+  for (uint32_t p : own)
+    out += std::string(kHidden) + "int p_" + t.names[p] + std::string(kParams) + " { return " +
+           (t.smallLeaf[p] ? "i_" : "s_") + t.names[p] + "(c, base, depth); }\n";
+  return unit;
+}
+
+// The last unit: where each POU starts in the code (for fault pcs) and the exported entry table.
+CUnit writeTable(const bc::Module& m, const PouTable& t) {
+  CUnit unit;
+  std::string& out = unit.source;
+  out = "/* generated by virtcom from bytecode; do not edit */\n#include <stdint.h>\n";
+  out += kAbiText;
+  out += "\n";
+  const auto count = static_cast<uint32_t>(m.pous.size());
+  for (uint32_t p = 0; p < count; ++p) {
+    declarePou(t, p, out);
+    out += std::string(kHidden) + "const uint32_t pc0_" + t.names[p] + " = " + std::to_string(m.pous[p].codeStart) + "u;\n";
+  }
   out += std::string("const AotEntry ") + kEntriesSymbol + "[] = {";
-  for (uint32_t p = 0; p < count; ++p) out += (p ? ", " : "") + pouFunction(p);
+  for (uint32_t p = 0; p < count; ++p) out += (p ? ", p_" : "p_") + t.names[p];
   out += "};\n";
   out += std::string("const uint32_t ") + kCountSymbol + " = " + std::to_string(count) + "u;\n";
   out += std::string("const uint32_t ") + kAbiSymbol + " = " + std::to_string(vm::kAotAbiVersion) + "u;\n";
-  return out;
+  return unit;
+}
+
+}  // namespace
+
+uint64_t hashText(std::string_view text) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char ch : text) h = (h ^ ch) * 0x100000001b3ull;
+  return h;
+}
+
+std::vector<CUnit> generateCUnits(const bc::Module& m, uint32_t unitInstructions) {
+  const PouTable table(m);
+  std::vector<CUnit> units;
+  const uint32_t limit = std::max(unitInstructions, 1u);
+  for (const auto& group : groupPous(m, limit))
+    for (const auto& pieces : piecesOf(m, group, limit)) units.push_back(writeUnit(m, table, pieces));
+  units.push_back(writeTable(m, table));
+  return units;
 }
 
 }  // namespace virtcom::aot

@@ -6,14 +6,17 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
+#include <thread>
 #include <vector>
 
-#include "aot/c_source.hpp"
 #include "bytecode/verifier.hpp"
 
 extern char** environ;
@@ -24,11 +27,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Flags every compiler command gets. No FMA contraction: REAL and LREAL results must round
-// exactly like the interpreter's.
-const std::vector<std::string> kFlags = {"-O2", "-shared", "-fPIC", "-ffp-contract=off", "-w", "-x", "c"};
+// Flags of every unit's compile. No FMA contraction: REAL and LREAL results must round exactly
+// like the interpreter's. Optimisation levels never change results otherwise (no fast-math).
+const std::vector<std::string> kCompileFlags = {"-O2", "-c", "-fPIC", "-ffp-contract=off", "-w", "-x", "c"};
+const std::vector<std::string> kLinkFlags = {"-shared"};
 
-std::vector<std::string> compilerCommand(const CompileOptions& o) {
+// The compiler command, split at spaces ("ccache gcc" works), followed by `flags`.
+std::vector<std::string> compilerCommand(const CompileOptions& o, const std::vector<std::string>& flags) {
   std::string text = o.compiler;
   if (text.empty()) {
     const char* cc = std::getenv("CC");
@@ -37,8 +42,14 @@ std::vector<std::string> compilerCommand(const CompileOptions& o) {
   std::vector<std::string> words;
   std::istringstream in(text);
   for (std::string w; in >> w;) words.push_back(w);
-  words.insert(words.end(), kFlags.begin(), kFlags.end());
+  words.insert(words.end(), flags.begin(), flags.end());
   return words;
+}
+
+std::string joined(const std::vector<std::string>& words) {
+  std::string text;
+  for (const auto& w : words) text += w + " ";
+  return text;
 }
 
 fs::path cacheDirectory(const CompileOptions& o) {
@@ -49,13 +60,16 @@ fs::path cacheDirectory(const CompileOptions& o) {
   return fs::temp_directory_path() / ("virtcom-aot-" + std::to_string(getuid()));
 }
 
-// FNV-1a, 64 bits: stable across builds and platforms, unlike std::hash.
 std::string hashHex(std::string_view text) {
-  uint64_t h = 0xcbf29ce484222325ull;
-  for (unsigned char ch : text) h = (h ^ ch) * 0x100000001b3ull;
   char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hashText(text)));
   return buf;
+}
+
+// A prefix for temporary files no other process or thread uses at the same time: concurrent
+// loads (of one module too) never see a half-written file, and renames put finished ones in place.
+std::string temporaryName(const std::string& key) {
+  return key + "." + std::to_string(getpid()) + "." + std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()));
 }
 
 std::string firstLine(const fs::path& file) {
@@ -84,6 +98,66 @@ std::string runCompiler(std::vector<std::string> argv, const fs::path& log) {
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return {};
   if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return "no C compiler '" + argv[0] + "' found";
   return "the C compiler failed: " + firstLine(log);
+}
+
+// Runs `command` (which gets "-o OUTPUT [INPUTS]") to produce `target` under a temporary name,
+// then renames it into place. `source`, if not empty, is written first and kept next to the
+// target as KEY.c, for reading and debugging. Empty on success, else why not.
+std::string produce(std::vector<std::string> command, const fs::path& target, const std::string& source,
+                    const std::vector<std::string>& inputs) {
+  const fs::path dir = target.parent_path();
+  const std::string key = target.stem().string(), tmp = temporaryName(key);
+  const fs::path tmpOut = dir / (tmp + target.extension().string()), tmpC = dir / (tmp + ".c"), log = dir / (tmp + ".log");
+  command.insert(command.end(), {"-o", tmpOut.string()});
+  if (!source.empty()) {
+    if (!(std::ofstream(tmpC, std::ios::binary) << source)) return "cannot write " + tmpC.string();
+    command.push_back(tmpC.string());
+  }
+  command.insert(command.end(), inputs.begin(), inputs.end());
+  std::string error = runCompiler(command, log);
+  std::error_code ec;
+  if (error.empty()) {
+    if (!source.empty()) fs::rename(tmpC, dir / (key + ".c"), ec);
+    fs::rename(tmpOut, target, ec);
+    if (ec) error = "cannot store " + target.string() + ": " + ec.message();
+  }
+  fs::remove(tmpC, ec);
+  fs::remove(tmpOut, ec);
+  fs::remove(log, ec);
+  return error;
+}
+
+// One unit's object in the cache and how to make it.
+struct UnitJob {
+  const CUnit* unit;
+  fs::path object;
+  bool cached;
+  std::string error;
+};
+
+// Compiles the units not in the cache, up to `jobs` at once. The first failure, in unit
+// order, or empty.
+std::string compileUnits(std::vector<UnitJob>& work, const std::vector<std::string>& command, unsigned jobs) {
+  std::vector<UnitJob*> todo;
+  for (auto& w : work)
+    if (!w.cached) todo.push_back(&w);
+  std::atomic<size_t> next{0};
+  auto worker = [&] {
+    for (size_t i; (i = next++) < todo.size();) todo[i]->error = produce(command, todo[i]->object, todo[i]->unit->source, {});
+  };
+  std::vector<std::thread> threads;
+  const size_t count = std::min<size_t>(jobs, todo.size());
+  for (size_t t = 1; t < count; ++t) threads.emplace_back(worker);
+  worker();
+  for (auto& t : threads) t.join();
+  for (const auto& w : work)
+    if (!w.error.empty()) return w.error;
+  return {};
+}
+
+unsigned jobCount(const CompileOptions& o) {
+  if (o.jobs != 0) return o.jobs;
+  return std::clamp(std::thread::hardware_concurrency(), 1u, kMaxJobs);
 }
 
 CompileResult load(const bc::Module& m, const fs::path& object) {
@@ -117,45 +191,43 @@ CompileResult compileModule(const bc::Module& m, const CompileOptions& options) 
     r.error = "the module does not verify: " + problem;
     return r;
   }
-  const std::string source = generateCSource(m);
-  std::vector<std::string> command = compilerCommand(options);
-  std::string commandText;
-  for (const auto& w : command) commandText += w + " ";
+  const std::vector<CUnit> units = generateCUnits(m, options.unitInstructions);
+  const std::vector<std::string> compile = compilerCommand(options, kCompileFlags),
+                                 link = compilerCommand(options, kLinkFlags);
   const fs::path dir = cacheDirectory(options);
-  const std::string key = hashHex(source + '\0' + commandText);
-  const fs::path object = dir / (key + ".so");
+  std::vector<UnitJob> work;
+  std::string moduleKey = joined(link);
   std::error_code ec;
-  if (fs::exists(object, ec)) {
-    r = load(m, object);
-    r.fromCache = r.code != nullptr;
-    if (r.code) return r;
+  for (const CUnit& unit : units) {
+    const std::string key = hashHex(unit.source + '\0' + joined(compile));
+    moduleKey += key;
+    const fs::path object = dir / (key + ".o");
+    work.push_back({&unit, object, fs::exists(object, ec), {}});
+  }
+  r.units = units.size();
+  const fs::path library = dir / (hashHex(moduleKey) + ".so");
+  if (fs::exists(library, ec)) {
+    CompileResult cached = load(m, library);
+    cached.units = r.units;
+    cached.fromCache = cached.code != nullptr;
+    if (cached.code) return cached;
   }
   fs::create_directories(dir, ec);
   if (ec) {
     r.error = "cannot create the cache folder " + dir.string() + ": " + ec.message();
     return r;
   }
-  // Unique temporary names, renamed into place: concurrent loads of one module never see a
-  // half-written object.
-  const std::string tmp = key + "." + std::to_string(getpid());
-  const fs::path cFile = dir / (key + ".c"), tmpC = dir / (tmp + ".c"), tmpSo = dir / (tmp + ".so"),
-                 log = dir / (tmp + ".log");
-  if (!(std::ofstream(tmpC, std::ios::binary) << source)) {
-    r.error = "cannot write " + tmpC.string();
-    return r;
-  }
-  command.insert(command.end(), {"-o", tmpSo.string(), tmpC.string()});
-  r.error = runCompiler(command, log);
-  if (r.error.empty()) {
-    fs::rename(tmpC, cFile, ec);  // kept next to the object for reading and debugging
-    fs::rename(tmpSo, object, ec);
-    if (!ec) r = load(m, object);
-    else r.error = "cannot store " + object.string() + ": " + ec.message();
-  }
-  fs::remove(tmpC, ec);
-  fs::remove(tmpSo, ec);
-  fs::remove(log, ec);
-  return r;
+  r.unitsCompiled = static_cast<size_t>(std::count_if(work.begin(), work.end(), [](const UnitJob& w) { return !w.cached; }));
+  r.error = compileUnits(work, compile, jobCount(options));
+  if (!r.error.empty()) return r;
+  std::vector<std::string> objects;
+  for (const auto& w : work) objects.push_back(w.object.string());
+  r.error = produce(link, library, {}, objects);
+  if (!r.error.empty()) return r;
+  CompileResult loaded = load(m, library);
+  loaded.units = r.units;
+  loaded.unitsCompiled = r.unitsCompiled;
+  return loaded;
 }
 
 }  // namespace virtcom::aot

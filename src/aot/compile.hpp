@@ -1,10 +1,14 @@
 #pragma once
-// Ahead-of-time backend: generates C for a module (aot/c_source.hpp), compiles it with the
-// system C compiler into a cached shared object and loads it for vm::Machine::useCompiled.
-// Load time only: runs a compiler, touches files, allocates.
+// Ahead-of-time backend: generates C for a module in several translation units
+// (aot/c_source.hpp), compiles them in parallel with the system C compiler into cached objects,
+// links those into a cached shared object and loads it for vm::Machine::useCompiled.
+// Load time only: runs compilers, touches files, allocates. Thread-safe: no shared mutable
+// state, and every temporary file has a name of its own.
+#include <cstddef>
 #include <memory>
 #include <string>
 
+#include "aot/c_source.hpp"
 #include "bytecode/module.hpp"
 #include "vm/compiled.hpp"
 
@@ -16,16 +20,26 @@ struct CompileOptions {
   // Where shared objects are cached. Empty: $VIRTCOM_AOT_CACHE, else $XDG_CACHE_HOME/virtcom/aot,
   // else $HOME/.cache/virtcom/aot, else a folder under the temporary directory.
   std::string cacheDir;
+  // Instructions per C translation unit (c_source.hpp); tests set it low to split small modules.
+  uint32_t unitInstructions = kUnitInstructions;
+  // Compilers run at once; 0: one per hardware thread, at most kMaxJobs.
+  unsigned jobs = 0;
 };
+
+inline constexpr unsigned kMaxJobs = 8;
 
 struct CompileResult {
   std::shared_ptr<const vm::CompiledCode> code;  // null on failure
   std::string error;                              // why there is no code (one line)
-  bool fromCache = false;
+  bool fromCache = false;       // the linked shared object came from the cache
+  size_t units = 0;             // translation units of the module (the entry table's included)
+  size_t unitsCompiled = 0;     // of those, compiled now; the others' objects came from the cache
 };
 
-// The cache key is a hash of the generated source and the compiler command, so a changed
-// module, generator or compiler never reuses a stale object.
+// Every cache key is a hash of the generated source and the compiler command (a unit's object)
+// or of its parts' keys and the link command (the shared object), so a changed module,
+// generator or compiler never reuses a stale file, and an edit of one POU recompiles its unit
+// and the entry table only.
 CompileResult compileModule(const bc::Module& m, const CompileOptions& options = {});
 
 }  // namespace virtcom::aot

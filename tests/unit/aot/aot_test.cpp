@@ -74,11 +74,16 @@ void expectSameRun(vm::Machine& interp, vm::Machine& compiled, const bc::Module&
   ASSERT_EQ(diff.first, a + interp.memorySize()) << "P" << pou << " memory differs at " << (diff.first - a);
 }
 
+// Split into units of about 200 instructions (some 15 units), so that calls also cross units
+// and recursion runs through the exported functions; the other tests cover single units.
 TEST(Aot, RandomBytecodeRunsAsOnTheInterpreter) {
   std::mt19937 rng(20261201);
   const bc::Module m = randomModule(rng, 200);
-  const aot::CompileResult compiled = aot::compileModule(m, testOptions());
+  aot::CompileOptions options = testOptions();
+  options.unitInstructions = 200;
+  const aot::CompileResult compiled = aot::compileModule(m, options);
   ASSERT_TRUE(compiled.code) << compiled.error;
+  EXPECT_GT(compiled.units, 5u);
   vm::Machine interp(m), native(m);
   native.useCompiled(compiled.code);
   for (vm::Machine* vm : {&interp, &native}) {
@@ -100,13 +105,15 @@ struct BothBackends {
   std::unique_ptr<vm::Machine> interp, native;
 };
 
-void prepare(const char* source, BothBackends& b, uint64_t budget = 50'000'000) {
+void prepare(const std::string& source, BothBackends& b, uint64_t budget = 50'000'000,
+             const aot::CompileOptions& options = testOptions(), aot::CompileResult* result = nullptr) {
   SourceManager sources;
   Diagnostics diags;
   b.m = st::compileProgram({{"main.st", source}}, sources, diags);
   ASSERT_NE(b.m, nullptr) << diags.render(sources);
-  const aot::CompileResult compiled = aot::compileModule(*b.m, testOptions());
+  const aot::CompileResult compiled = aot::compileModule(*b.m, options);
   ASSERT_TRUE(compiled.code) << compiled.error;
+  if (result) *result = compiled;
   b.interp = std::make_unique<vm::Machine>(*b.m);
   b.native = std::make_unique<vm::Machine>(*b.m);
   b.native->useCompiled(compiled.code);
@@ -274,6 +281,89 @@ TEST(Aot, RegisterPlanMovesOnlyTheRegistersReadAfterACall) {
   uint32_t stored = 0;
   std::memcpy(&stored, native.memory() + 32, sizeof stored);
   EXPECT_EQ(stored, 7u + 32u + 9u);
+}
+
+// FB_k adds k and calls Twice (a small leaf, copied into every unit that calls it), FB_Chain
+// calls all of them and a division that faults on the 7th scan, MAIN calls FB_Chain: `edit`
+// replaces FB_3's body.
+std::string manyFbs(const std::string& edit = "") {
+  std::string s = "FUNCTION Twice : DINT\nVAR_INPUT x : DINT; END_VAR\nTwice := x + x;\nEND_FUNCTION\n"
+                  "FUNCTION Ratio : DINT\nVAR_INPUT a, b : DINT; END_VAR\nRatio := a / b;\nEND_FUNCTION\n";
+  for (int k = 0; k < 8; ++k) {
+    s += "FUNCTION_BLOCK FB_" + std::to_string(k) + "\nVAR_INPUT x : DINT; END_VAR\nVAR_OUTPUT q : DINT; END_VAR\n";
+    s += k == 3 && !edit.empty() ? edit : "q := (Twice(x) + " + std::to_string(k) + ") MOD 1000;\n";
+    s += "END_FUNCTION_BLOCK\n";
+  }
+  s += "FUNCTION_BLOCK FB_Chain\nVAR_INPUT n : DINT; END_VAR\nVAR_OUTPUT q : DINT; END_VAR\nVAR\n";
+  for (int k = 0; k < 8; ++k) s += "  f" + std::to_string(k) + " : FB_" + std::to_string(k) + ";\n";
+  s += "END_VAR\nf0(x := n);\n";
+  for (int k = 1; k < 8; ++k) s += "f" + std::to_string(k) + "(x := f" + std::to_string(k - 1) + ".q);\n";
+  s += "q := f7.q + Ratio(100, 7 - n);\nEND_FUNCTION_BLOCK\n";
+  return s + "PROGRAM MAIN\nVAR c : FB_Chain; n : DINT; END_VAR\nn := n + 1;\nc(n := n);\nEND_PROGRAM\n";
+}
+
+// A module of many POUs in units of one POU each, compiled four at a time: same memory after
+// every scan as the interpreter, and the same fault (division in Ratio, called from FB_Chain
+// in another unit) with the same location and call stack.
+TEST(Aot, ManyPousSplitIntoUnitsRunAsOnTheInterpreter) {
+  aot::CompileOptions options = testOptions();
+  options.unitInstructions = 1;
+  options.jobs = 4;
+  BothBackends b;
+  aot::CompileResult compiled;
+  ASSERT_NO_FATAL_FAILURE(prepare(manyFbs(), b, 50'000'000, options, &compiled));
+  EXPECT_EQ(compiled.units, b.m->pous.size() + 1);  // one per POU and the entry table
+  EXPECT_EQ(runMainOnBoth(b, 20), 1);
+  const std::string report = b.native->fault().describe(*b.m);
+  EXPECT_NE(report.find("division by zero at main.st:7:"), std::string::npos) << report;
+  EXPECT_EQ(b.native->fault().callStack.size(), 2u) << report;
+}
+
+// Editing one FB recompiles its unit only (a new constant), or its unit and the entry table
+// (which holds where each POU starts) when the edit moves the code of every POU after it; the
+// edited module still runs as on the interpreter.
+TEST(Aot, AnEditRecompilesOnlyItsUnit) {
+  aot::CompileOptions options;
+  options.cacheDir = (fs::path(VIRTCOM_AOT_TEST_CACHE) / ("edit-test-" + std::to_string(getpid()))).string();
+  options.unitInstructions = 1;
+  fs::remove_all(options.cacheDir);
+  const std::string edits[] = {"", "q := (Twice(x) + 30) MOD 1000;\n", "q := (Twice(x) + 30) MOD 1000;\nq := q + 1;\n"};
+  for (int round = 0; round < 3; ++round) {
+    SCOPED_TRACE(round);
+    BothBackends b;
+    aot::CompileResult compiled;
+    ASSERT_NO_FATAL_FAILURE(prepare(manyFbs(edits[round]), b, 50'000'000, options, &compiled));
+    EXPECT_FALSE(compiled.fromCache);
+    EXPECT_EQ(compiled.unitsCompiled, round == 0 ? compiled.units : static_cast<size_t>(round));
+    EXPECT_EQ(runMainOnBoth(b, 3), 0);
+  }
+  fs::remove_all(options.cacheDir);
+}
+
+// MAIN of some 5,000 instructions, cut into chunks (functions) spread over units: an early
+// RETURN from the first chunk on every third scan, a division by zero in a later chunk on the
+// 5th scan and the watchdog in a loop of the last chunk from the 7th scan on.
+TEST(Aot, AHugePouIsCutIntoChunksThatRunAsOnTheInterpreter) {
+  std::string source = "PROGRAM MAIN\nVAR a : ARRAY[0..15] OF DINT; i, n, d : DINT; x : REAL; END_VAR\nn := n + 1;\n";
+  auto statements = [&source](int from, int to) {
+    for (int k = from; k < to; ++k)
+      source += "a[" + std::to_string(k % 16) + "] := (a[" + std::to_string(k * 7 % 16) + "] + n * " + std::to_string(k) +
+                ") MOD 1000; x := x * 0.5 + DINT_TO_REAL(a[" + std::to_string(k % 16) + "]);\n";
+  };
+  statements(0, 150);
+  source += "IF n MOD 3 = 0 THEN RETURN; END_IF;\n";
+  statements(150, 300);
+  source += "d := 100 / (5 - n);\n";
+  statements(300, 450);
+  source += "i := 0;\nWHILE i < n * 1000 DO i := i + 1; END_WHILE;\nEND_PROGRAM\n";
+  aot::CompileOptions options = testOptions();
+  options.unitInstructions = 2000;
+  BothBackends b;
+  aot::CompileResult compiled;
+  ASSERT_NO_FATAL_FAILURE(prepare(source, b, 6500, options, &compiled));
+  ASSERT_GT(b.m->pous.at(b.m->programs.at(0).pou).codeSize, 4000u);
+  EXPECT_GE(compiled.units, 3u);  // MAIN in two units or more, and the table
+  EXPECT_EQ(runMainOnBoth(b, 10), 4);  // 5: division, 7, 8, 10: watchdog
 }
 
 bc::Module tinyModule() {

@@ -332,6 +332,26 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
       ip += INS->sbx();
     }
     VM_NEXT();
+  // Fused compare-and-branch: register forms jump by C, constant forms by B (the constant is C).
+#define VM_BRANCH_IF(cond, offset)          \
+  if (cond) {                               \
+    const int32_t off = (offset);           \
+    VM_BACKWARD_CHECK(off);                 \
+    ip += off;                              \
+  }                                         \
+  VM_NEXT()
+  VM_CASE(JEQ) VM_BRANCH_IF(r[INS->a] == r[INS->b], static_cast<int16_t>(INS->c));
+  VM_CASE(JNE) VM_BRANCH_IF(r[INS->a] != r[INS->b], static_cast<int16_t>(INS->c));
+  VM_CASE(JLT_I) VM_BRANCH_IF(asI(r[INS->a]) < asI(r[INS->b]), static_cast<int16_t>(INS->c));
+  VM_CASE(JLE_I) VM_BRANCH_IF(asI(r[INS->a]) <= asI(r[INS->b]), static_cast<int16_t>(INS->c));
+  VM_CASE(JLT_U) VM_BRANCH_IF(r[INS->a] < r[INS->b], static_cast<int16_t>(INS->c));
+  VM_CASE(JLE_U) VM_BRANCH_IF(r[INS->a] <= r[INS->b], static_cast<int16_t>(INS->c));
+  VM_CASE(JEQK) VM_BRANCH_IF(asI(r[INS->a]) == immC(), static_cast<int16_t>(INS->b));
+  VM_CASE(JNEK) VM_BRANCH_IF(asI(r[INS->a]) != immC(), static_cast<int16_t>(INS->b));
+  VM_CASE(JLTK) VM_BRANCH_IF(asI(r[INS->a]) < immC(), static_cast<int16_t>(INS->b));
+  VM_CASE(JLEK) VM_BRANCH_IF(asI(r[INS->a]) <= immC(), static_cast<int16_t>(INS->b));
+  VM_CASE(JGTK) VM_BRANCH_IF(asI(r[INS->a]) > immC(), static_cast<int16_t>(INS->b));
+  VM_CASE(JGEK) VM_BRANCH_IF(asI(r[INS->a]) >= immC(), static_cast<int16_t>(INS->b));
   VM_CASE(ENTER) {
     const bc::PouInfo& p = pous[INS->bx()];
     if (sp + p.frameSize > memSize) VM_FAULT(StackOverflow);
@@ -407,6 +427,7 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
 #undef VM_BIN
 #undef VM_BINF
 #undef VM_BACKWARD_CHECK
+#undef VM_BRANCH_IF
 #undef VM_NEXT
 #undef VM_CASE
 }

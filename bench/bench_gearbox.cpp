@@ -28,6 +28,7 @@ std::unique_ptr<cell::Cell> loadGearbox(int64_t cycleNs, SourceManager& sources,
 void runGearbox(benchmark::State& state, int64_t cycleNs, bool skipRepeatedScans, const std::string& historyPath = {},
                 bool eventTime = true) {
   double simulatedS = 0;
+  double vmInstructions = 0;  // interpreter instructions over all cycles (bench/interp_counts.sh)
   for (auto _ : state) {
     state.PauseTiming();
     SourceManager sources;
@@ -63,11 +64,13 @@ void runGearbox(benchmark::State& state, int64_t cycleNs, bool skipRepeatedScans
     state.PauseTiming();
     if (end != RunEnd::Completed) state.SkipWithError("the gearbox cycle did not complete");
     simulatedS = static_cast<double>(simulation.trace().cycleEndNs) * 1e-9;
+    vmInstructions += static_cast<double>(simulation.plc().machine().instructionsExecuted());
     state.ResumeTiming();
   }
   for (const char* suffix : {"", "-wal", "-shm"})
     if (!historyPath.empty()) std::filesystem::remove(historyPath + suffix);
   state.counters["simulated_s"] = simulatedS;
+  state.counters["vm_instr"] = benchmark::Counter(vmInstructions, benchmark::Counter::kAvgIterations);
   state.counters["realtime_factor"] =
       benchmark::Counter(simulatedS * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }

@@ -104,8 +104,8 @@ std::string i64Literal(int64_t v) {
 }
 std::string u64Literal(uint64_t v) { return std::to_string(v) + "ull"; }
 
-uint32_t jumpTarget(uint32_t pc, const Instr& ins) { return static_cast<uint32_t>(int64_t{pc} + 1 + ins.sbx()); }
-bool isJump(Op op) { return op == Op::JMP || op == Op::JZ || op == Op::JNZ; }
+uint32_t jumpTarget(uint32_t pc, const Instr& ins) { return static_cast<uint32_t>(bc::branchTarget(pc, ins)); }
+bool isJump(Op op) { return bc::isBranch(op); }
 
 // The fault kind TRAP raises for its Bx, as Machine::execute maps it.
 int trapKind(uint32_t bx) {
@@ -274,7 +274,7 @@ class PouWriter {
       case 'S': out_ += i64Literal(ins.sbx()); break;
       case 'p': out_ += pcText(pc); break;
       case 'T': out_ += label(jumpTarget(pc, ins) - pou_.codeStart); break;
-      case 'J': if (ins.sbx() < 0) out_ += "BUDGET(" + pcText(pc) + ");"; break;
+      case 'J': if (bc::branchOffset(ins) < 0) out_ += "BUDGET(" + pcText(pc) + ");"; break;
       case 'K': out_ += u64Literal(m_.constants[ins.bx()]); break;
       case 'L': out_ += i64Literal(m_.indexes[ins.c].lo); break;
       case 'N': out_ += i64Literal(m_.indexes[ins.c].count); break;

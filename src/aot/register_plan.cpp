@@ -67,7 +67,7 @@ class PouLiveness {
 
  private:
   const Instr& at(uint32_t k) const { return m_.code[pou_.codeStart + k]; }
-  uint32_t target(uint32_t k) const { return static_cast<uint32_t>(int64_t{k} + 1 + at(k).sbx()); }
+  uint32_t target(uint32_t k) const { return static_cast<uint32_t>(bc::branchTarget(k, at(k))); }
 
   // Live after instruction k: the union over its successors; RET hands on the registers its
   // callers read back, TRAP (a fault) nothing.
@@ -77,12 +77,10 @@ class PouLiveness {
       case Op::RET: addShifted(out, visible_, 0, true); break;
       case Op::TRAP: break;
       case Op::JMP: out = live_[target(k)]; break;
-      case Op::JZ:
-      case Op::JNZ:
-        out = live_[k + 1];
-        addShifted(out, live_[target(k)], 0, true);
+      default:
+        out = live_[k + 1];  // the verifier lets no POU fall off its end
+        if (bc::isBranch(at(k).op)) addShifted(out, live_[target(k)], 0, true);
         break;
-      default: out = live_[k + 1]; break;  // the verifier lets no POU fall off its end
     }
     return out;
   }

@@ -29,8 +29,9 @@ std::string pcText(int64_t pc) {
   return buf;
 }
 
-std::string smallOperand(Operand role, uint16_t v) {
+std::string smallOperand(Operand role, uint16_t v, uint32_t pc) {
   switch (role) {
+    case Operand::Branch: return pcText(int64_t{pc} + 1 + static_cast<int16_t>(v));
     case Operand::None: return {};
     case Operand::Reg: return "r" + std::to_string(v);
     case Operand::SImm: return std::to_string(static_cast<int16_t>(v));
@@ -54,7 +55,7 @@ std::string wideOperand(const Module& m, uint32_t pc, const Instr& ins, WideOper
     case WideOperand::NativeFb:
       return bx < static_cast<uint32_t>(NativeFb::Count_) ? std::string(nativeFbName(static_cast<NativeFb>(bx)))
                                                           : "fb#" + std::to_string(bx);
-    case WideOperand::Jump: return pcText(int64_t{pc} + 1 + ins.sbx());
+    case WideOperand::Jump: return pcText(branchTarget(pc, ins));
     case WideOperand::Fault:
       return std::to_string(bx) + " (" +
              std::string(bx <= static_cast<uint32_t>(FaultKind::SubrangeViolation) ? faultText(static_cast<FaultKind>(bx))
@@ -83,10 +84,12 @@ std::string disassembleInstruction(const Module& m, uint32_t pc) {
     if (!ops.empty()) ops += ", ";
     ops += s;
   };
-  add(smallOperand(roles.a, ins.a));
+  add(smallOperand(roles.a, ins.a, pc));
   if (opFormat(ins.op) == Format::ABC) {
-    add(smallOperand(roles.b, ins.b));
-    add(smallOperand(roles.c, ins.c));
+    // A jump target reads best last ("JLTK r2, 100, 0012"), wherever the encoding keeps it.
+    const bool targetInB = roles.b == Operand::Branch;
+    add(smallOperand(targetInB ? roles.c : roles.b, targetInB ? ins.c : ins.b, pc));
+    add(smallOperand(targetInB ? roles.b : roles.c, targetInB ? ins.b : ins.c, pc));
   } else {
     add(wideOperand(m, pc, ins, roles.bx));
   }

@@ -67,6 +67,35 @@ static_assert(std::size(kNativeNames) == static_cast<size_t>(Native::Count_));
 
 }  // namespace
 
+namespace {
+// The fused forms whose offset is in B (the constant is in C); the register forms keep it in C.
+bool offsetInB(Op op) {
+  return op == Op::JEQK || op == Op::JNEK || op == Op::JLTK || op == Op::JLEK || op == Op::JGTK || op == Op::JGEK;
+}
+bool fusedBranch(Op op) {
+  return offsetInB(op) || op == Op::JEQ || op == Op::JNE || op == Op::JLT_I || op == Op::JLE_I || op == Op::JLT_U ||
+         op == Op::JLE_U;
+}
+}  // namespace
+
+bool isBranch(Op op) { return op == Op::JMP || op == Op::JZ || op == Op::JNZ || fusedBranch(op); }
+
+int32_t branchOffset(const Instr& ins) {
+  if (offsetInB(ins.op)) return static_cast<int16_t>(ins.b);
+  if (fusedBranch(ins.op)) return static_cast<int16_t>(ins.c);
+  return isBranch(ins.op) ? ins.sbx() : 0;
+}
+
+Instr withBranchOffset(const Instr& ins, int32_t offset) {
+  Instr out = ins;
+  if (offsetInB(ins.op)) out.b = static_cast<uint16_t>(offset);
+  else if (fusedBranch(ins.op)) out.c = static_cast<uint16_t>(offset);
+  else if (isBranch(ins.op)) out = Instr::asbx(ins.op, ins.a, offset);
+  return out;
+}
+
+int32_t maxBranchOffset(Op op) { return fusedBranch(op) ? INT16_MAX : isBranch(op) ? INT32_MAX : 0; }
+
 std::string_view opName(Op op) {
   auto i = static_cast<size_t>(op);
   return i < std::size(kOpNames) ? kOpNames[i] : std::string_view("?");

@@ -32,6 +32,17 @@ struct Instr {
 };
 static_assert(sizeof(Instr) == 8);
 
+// Branches: JMP, JZ, JNZ and the fused compare-and-branch family (JEQ .. JGEK).
+bool isBranch(Op op);
+// The jump offset of a branch `ins`, relative to the next instruction (0 for other opcodes).
+int32_t branchOffset(const Instr& ins);
+inline int64_t branchTarget(uint32_t pc, const Instr& ins) { return int64_t{pc} + 1 + branchOffset(ins); }
+// A copy of branch `ins` that jumps by `offset` instead (the caller checks that it fits: a
+// signed 32-bit for JMP/JZ/JNZ, a signed 16-bit for the fused forms).
+Instr withBranchOffset(const Instr& ins, int32_t offset);
+// The largest offset magnitude `op`'s encoding holds (0 for non-branches).
+int32_t maxBranchOffset(Op op);
+
 enum class Native : uint16_t {
 #define X(name, arity, meaning) name,
 #include "bytecode/natives.def"

@@ -53,6 +53,10 @@ OperandRoles operandRoles(Op op) {
     case Op::I2F: case Op::U2F: case Op::F2I: case Op::F2I_TRUNC: case Op::F2U: return kRR;
     case Op::JMP: return wide(O::None, W::Jump);
     case Op::JZ: case Op::JNZ: return wide(O::Reg, W::Jump);
+    case Op::JEQ: case Op::JNE: case Op::JLT_I: case Op::JLE_I: case Op::JLT_U: case Op::JLE_U:
+      return abc3(O::Reg, O::Reg, O::Branch);
+    case Op::JEQK: case Op::JNEK: case Op::JLTK: case Op::JLEK: case Op::JGTK: case Op::JGEK:
+      return abc3(O::Reg, O::Branch, O::SImm);
     case Op::ENTER: case Op::CALL: return wide(O::Reg, W::Pou);
     case Op::CALLN: return wide(O::Reg, W::Native);
     case Op::CALLFB: return wide(O::Reg, W::NativeFb);
@@ -60,6 +64,15 @@ OperandRoles operandRoles(Op op) {
     case Op::Count_: break;
   }
   return {};
+}
+
+bool writesOnlyA(Op op) {
+  switch (op) {
+    case Op::ST_8: case Op::ST_16: case Op::ST_32: case Op::ST_64: case Op::ST_F32: case Op::ST_BIT:
+    case Op::STA_8: case Op::STA_16: case Op::STA_32: case Op::STA_64: case Op::STA_F32:
+    case Op::COPY: case Op::CALL: case Op::CALLN: case Op::CALLFB: return false;
+    default: return operandRoles(op).a == Operand::Reg && !isBranch(op);
+  }
 }
 
 namespace {
@@ -209,6 +222,12 @@ class Verifier {
     return failAt(pou, pc, "register " + std::to_string(reg + count - 1) + " outside window of " + std::to_string(window));
   }
 
+  bool targetOk(uint32_t pou, uint32_t pc, int64_t target) {
+    const PouInfo& p = m_.pous[pou];
+    if (target >= p.codeStart && target < int64_t{p.codeStart} + p.codeSize) return true;
+    return failAt(pou, pc, "jump target " + std::to_string(target) + " outside the pou");
+  }
+
   bool smallOk(uint32_t pou, uint32_t pc, Operand role, uint16_t v) {
     switch (role) {
       case Operand::Reg: return regOk(pou, pc, v);
@@ -218,13 +237,13 @@ class Verifier {
       case Operand::Divisor: return v != 0 || failAt(pou, pc, "divisor 0");
       case Operand::Index:
         return v < m_.indexes.size() || failAt(pou, pc, "index descriptor " + std::to_string(v) + " out of range");
+      case Operand::Branch: return targetOk(pou, pc, int64_t{pc} + 1 + static_cast<int16_t>(v));
       default: return true;
     }
   }
 
   bool wideOk(uint32_t pou, uint32_t pc, const Instr& ins, const OperandRoles& roles) {
     const uint32_t bx = ins.bx();
-    const PouInfo& p = m_.pous[pou];
     switch (roles.bx) {
       case W::Const:
         return bx < m_.constants.size() || failAt(pou, pc, "constant " + std::to_string(bx) + " out of range");
@@ -242,12 +261,7 @@ class Verifier {
       case W::NativeFb:
         return bx < static_cast<uint32_t>(NativeFb::Count_) ||
                failAt(pou, pc, "native FB index " + std::to_string(bx) + " out of range");
-      case W::Jump: {
-        const int64_t target = int64_t{pc} + 1 + ins.sbx();
-        if (target < p.codeStart || target >= int64_t{p.codeStart} + p.codeSize)
-          return failAt(pou, pc, "jump target " + std::to_string(target) + " outside the pou");
-        return true;
-      }
+      case W::Jump: return targetOk(pou, pc, branchTarget(pc, ins));
       case W::Fault:
         return (bx >= 1 && bx <= static_cast<uint32_t>(FaultKind::SubrangeViolation)) ||
                failAt(pou, pc, "trap kind " + std::to_string(bx) + " unknown");

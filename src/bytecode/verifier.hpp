@@ -18,6 +18,7 @@ enum class Operand : uint8_t {
   BitCount,  // 1..64 (SEXT / ZEXT)
   Divisor,   // 1..65535 (DIVK / MODK)
   Index,     // an index into Module::indexes (INDEX)
+  Branch,    // a signed 16-bit jump offset whose target lies inside the POU (fused compare-and-branch)
 };
 enum class WideOperand : uint8_t { None, SImm, Imm, Const, Abs, Pou, Native, NativeFb, Jump, Fault };
 
@@ -27,10 +28,13 @@ struct OperandRoles {
   uint8_t width = 0;                   // access width in bytes of absolute loads/stores
 };
 OperandRoles operandRoles(Op op);
+// True when `op` only writes its register A (a load, an arithmetic result, ENTER); false when it
+// reads A (stores, branches, CALL, CALLN, CALLFB, COPY) or A is no register.
+bool writesOnlyA(Op op);
 
 // Checks the whole module: POU code ranges, frame templates, every instruction's operands
 // (registers inside the window, constant/POU/native indices, absolute addresses inside
-// [kNullGuard, staticSize), jump targets inside the POU, last instruction of a POU is RET, JMP
+// [kNullGuard, staticSize), jump targets inside the POU (also of the fused branches), last instruction of a POU is RET, JMP
 // or TRAP), line table, types, symbols, programs, tasks and process areas.
 // Returns "" if the module is fine, else the first problem, e.g.
 // "pou 'MAIN' pc 12: register 40 outside window of 16". Allocates only for the message.

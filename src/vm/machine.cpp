@@ -27,7 +27,8 @@ Machine::Machine(const bc::Module& m)
       scratch_(m.memorySize() + 1, 0),
       regs_(std::max<uint32_t>(m.registerStackSize, 2), 0),
       frames_(m.maxCallDepth),
-      compiledCallStack_(m.maxCallDepth) {
+      compiledCallStack_(m.maxCallDepth),
+      quick_(quicken(m, memory_.size())) {
   fault_.callStack.reserve(m.maxCallDepth);
   sp_ = m.staticSize;
 }
@@ -63,7 +64,8 @@ bool Machine::run(uint32_t pou, uint32_t thisAddress) {
   regs_[0] = sp_;
   regs_[1] = thisAddress;
   sp_ += p.frameSize;
-  return compiled_ ? executeCompiled(pou, startSp) : execute(p.codeStart, startSp);
+  if (compiled_) return executeCompiled(pou, startSp);
+  return execute(pou, startSp);
 }
 
 bool Machine::executeCompiled(uint32_t pou, uint32_t startSp) {
@@ -90,8 +92,13 @@ bool Machine::executeCompiled(uint32_t pou, uint32_t startSp) {
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpedantic"  // labels as values
 #endif
-bool Machine::execute(uint32_t pc, const uint32_t startSp) {
-  const Instr* const code = m_.code.data();
+bool Machine::execute(uint32_t pou, const uint32_t startSp) {
+  // Two copies of the code with the same pcs: each activation runs the quickened one if its
+  // POU's entry check admits its fp and this, else the module's own (vm/quicken.hpp).
+  const Instr* const quick = quick_.code.data();
+  const Instr* const plain = m_.code.data();
+  const EntryCheck* const entry = quick_.entry.data();
+  const Instr* code = entry[pou].admits(regs_[0], regs_[1]) ? quick : plain;
   const bc::PouInfo* const pous = m_.pous.data();
   const uint64_t* const constants = m_.constants.data();
   const bc::IndexDesc* const indexes = m_.indexes.data();
@@ -112,9 +119,9 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
   uint64_t executed = 0;
   // ip points past the instruction being executed (`INS`); operands are read where a handler
   // needs them (decoding all three eagerly costs every dispatch several loads).
-  const Instr* ip = code + pc;
+  const Instr* ip = code + pous[pou].codeStart;
 #define INS (ip - 1)
-  const auto pcOf = [code](const Instr* at) { return static_cast<uint32_t>(at - code); };
+  const auto pcOf = [&code](const Instr* at) { return static_cast<uint32_t>(at - code); };
   // The signed 16-bit immediates of ADDI, the K comparisons (C) and STK_* (A).
   const auto immA = [&ip] { return int64_t{static_cast<int16_t>(INS->a)}; };
   const auto immC = [&ip] { return int64_t{static_cast<int16_t>(INS->c)}; };
@@ -127,17 +134,24 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
   } while (0)
 #define VM_ADDR(width) \
   if (!checkedAddress(r[INS->b], INS->c, width, memSize, guard, ad)) VM_FAULT(InvalidPointer)
-#define VM_LOAD(T, expr)                     \
-  VM_ADDR(sizeof(T));                        \
+#define VM_LOAD_AT(T, expr)                  \
   {                                          \
     T v = loadLe<T>(mem + ad);               \
     r[INS->a] = (expr);                      \
   }                                          \
   VM_NEXT()
-#define VM_STORE(T, expr)        \
-  VM_ADDR(sizeof(T));            \
+#define VM_STORE_AT(T, expr)     \
   storeLe<T>(mem + ad, (expr));  \
   VM_NEXT()
+// Every register-relative load and store twice: checked, and quickened (no check: the entry
+// check of the activation proved it inside memory).
+#define VM_QUICK_ADDR() ad = r[INS->b] + INS->c
+#define VM_LOAD(name, T, expr) \
+  VM_CASE(name) VM_ADDR(sizeof(T)); VM_LOAD_AT(T, expr); \
+  VM_QCASE(name) VM_QUICK_ADDR(); VM_LOAD_AT(T, expr)
+#define VM_STORE(name, T, expr) \
+  VM_CASE(name) VM_ADDR(sizeof(T)); VM_STORE_AT(T, expr); \
+  VM_QCASE(name) VM_QUICK_ADDR(); VM_STORE_AT(T, expr)
 #define VM_LOADA(T, expr)                \
   {                                      \
     T v = loadLe<T>(mem + INS->bx());    \
@@ -158,6 +172,9 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
 #define X(name, fmt, meaning) &&op_##name,
 #include "bytecode/opcodes.def"
 #undef X
+#define Q(name) &&quick_##name,
+      VIRTCOM_VM_QUICK_OPS(Q)
+#undef Q
   };
 #define VM_NEXT()                                  \
   do {                                             \
@@ -165,10 +182,12 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
     goto* kLabels[static_cast<uint8_t>((ip++)->op)]; \
   } while (0)
 #define VM_CASE(name) op_##name:
+#define VM_QCASE(name) quick_##name:
   VM_NEXT();
 #else
 #define VM_NEXT() continue
 #define VM_CASE(name) case Op::name:
+#define VM_QCASE(name) case quickOpcode(QuickOp::name):
   for (;;) {
     ++executed;
     switch ((ip++)->op) {
@@ -180,36 +199,38 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
   VM_CASE(LDK) r[INS->a] = constants[INS->bx()]; VM_NEXT();
   VM_CASE(SYSTIME) r[INS->a] = fromI(taskTimeNs_); ++timeReads_; VM_NEXT();
 
-  VM_CASE(LD_I8) VM_LOAD(int8_t, fromI(v));
-  VM_CASE(LD_U8) VM_LOAD(uint8_t, uint64_t{v});
-  VM_CASE(LD_I16) VM_LOAD(int16_t, fromI(v));
-  VM_CASE(LD_U16) VM_LOAD(uint16_t, uint64_t{v});
-  VM_CASE(LD_I32) VM_LOAD(int32_t, fromI(v));
-  VM_CASE(LD_U32) VM_LOAD(uint32_t, uint64_t{v});
-  VM_CASE(LD_64) VM_LOAD(uint64_t, v);
-  VM_CASE(LD_F32) VM_LOAD(float, fromF(static_cast<double>(v)));
+  VM_LOAD(LD_I8, int8_t, fromI(v));
+  VM_LOAD(LD_U8, uint8_t, uint64_t{v});
+  VM_LOAD(LD_I16, int16_t, fromI(v));
+  VM_LOAD(LD_U16, uint16_t, uint64_t{v});
+  VM_LOAD(LD_I32, int32_t, fromI(v));
+  VM_LOAD(LD_U32, uint32_t, uint64_t{v});
+  VM_LOAD(LD_64, uint64_t, v);
+  VM_LOAD(LD_F32, float, fromF(static_cast<double>(v)));
   VM_CASE(LD_BIT)
     if (!checkedAddress(r[INS->b], 0, 1, memSize, guard, ad)) VM_FAULT(InvalidPointer);
-    r[INS->a] = (mem[ad] >> (INS->c & 7u)) & 1u;
+  VM_QCASE(LD_BIT)
+    r[INS->a] = (mem[r[INS->b]] >> (INS->c & 7u)) & 1u;
     VM_NEXT();
 
-  VM_CASE(ST_8) VM_STORE(uint8_t, static_cast<uint8_t>(r[INS->a]));
-  VM_CASE(ST_16) VM_STORE(uint16_t, static_cast<uint16_t>(r[INS->a]));
-  VM_CASE(ST_32) VM_STORE(uint32_t, static_cast<uint32_t>(r[INS->a]));
-  VM_CASE(ST_64) VM_STORE(uint64_t, r[INS->a]);
-  VM_CASE(ST_F32) VM_STORE(float, static_cast<float>(asF(r[INS->a])));
+  VM_STORE(ST_8, uint8_t, static_cast<uint8_t>(r[INS->a]));
+  VM_STORE(ST_16, uint16_t, static_cast<uint16_t>(r[INS->a]));
+  VM_STORE(ST_32, uint32_t, static_cast<uint32_t>(r[INS->a]));
+  VM_STORE(ST_64, uint64_t, r[INS->a]);
+  VM_STORE(ST_F32, float, static_cast<float>(asF(r[INS->a])));
   VM_CASE(ST_BIT)
     if (!checkedAddress(r[INS->b], 0, 1, memSize, guard, ad)) VM_FAULT(InvalidPointer);
-    {
-      const uint8_t mask = static_cast<uint8_t>(1u << (INS->c & 7u));
-      mem[ad] = r[INS->a] != 0 ? (mem[ad] | mask) : (mem[ad] & ~mask);
-    }
+  VM_QCASE(ST_BIT) {
+    uint8_t& byte = mem[r[INS->b]];
+    const uint8_t mask = static_cast<uint8_t>(1u << (INS->c & 7u));
+    byte = r[INS->a] != 0 ? (byte | mask) : (byte & ~mask);
+  }
     VM_NEXT();
 
-  VM_CASE(STK_8) VM_STORE(uint8_t, static_cast<uint8_t>(immA()));
-  VM_CASE(STK_16) VM_STORE(uint16_t, static_cast<uint16_t>(immA()));
-  VM_CASE(STK_32) VM_STORE(uint32_t, static_cast<uint32_t>(immA()));
-  VM_CASE(STK_64) VM_STORE(uint64_t, fromI(immA()));
+  VM_STORE(STK_8, uint8_t, static_cast<uint8_t>(immA()));
+  VM_STORE(STK_16, uint16_t, static_cast<uint16_t>(immA()));
+  VM_STORE(STK_32, uint32_t, static_cast<uint32_t>(immA()));
+  VM_STORE(STK_64, uint64_t, fromI(immA()));
 
   VM_CASE(LDA_I8) VM_LOADA(int8_t, fromI(v));
   VM_CASE(LDA_U8) VM_LOADA(uint8_t, uint64_t{v});
@@ -332,6 +353,26 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
       ip += INS->sbx();
     }
     VM_NEXT();
+  // Fused compare-and-branch: register forms jump by C, constant forms by B (the constant is C).
+#define VM_BRANCH_IF(cond, offset)          \
+  if (cond) {                               \
+    const int32_t off = (offset);           \
+    VM_BACKWARD_CHECK(off);                 \
+    ip += off;                              \
+  }                                         \
+  VM_NEXT()
+  VM_CASE(JEQ) VM_BRANCH_IF(r[INS->a] == r[INS->b], static_cast<int16_t>(INS->c));
+  VM_CASE(JNE) VM_BRANCH_IF(r[INS->a] != r[INS->b], static_cast<int16_t>(INS->c));
+  VM_CASE(JLT_I) VM_BRANCH_IF(asI(r[INS->a]) < asI(r[INS->b]), static_cast<int16_t>(INS->c));
+  VM_CASE(JLE_I) VM_BRANCH_IF(asI(r[INS->a]) <= asI(r[INS->b]), static_cast<int16_t>(INS->c));
+  VM_CASE(JLT_U) VM_BRANCH_IF(r[INS->a] < r[INS->b], static_cast<int16_t>(INS->c));
+  VM_CASE(JLE_U) VM_BRANCH_IF(r[INS->a] <= r[INS->b], static_cast<int16_t>(INS->c));
+  VM_CASE(JEQK) VM_BRANCH_IF(asI(r[INS->a]) == immC(), static_cast<int16_t>(INS->b));
+  VM_CASE(JNEK) VM_BRANCH_IF(asI(r[INS->a]) != immC(), static_cast<int16_t>(INS->b));
+  VM_CASE(JLTK) VM_BRANCH_IF(asI(r[INS->a]) < immC(), static_cast<int16_t>(INS->b));
+  VM_CASE(JLEK) VM_BRANCH_IF(asI(r[INS->a]) <= immC(), static_cast<int16_t>(INS->b));
+  VM_CASE(JGTK) VM_BRANCH_IF(asI(r[INS->a]) > immC(), static_cast<int16_t>(INS->b));
+  VM_CASE(JGEK) VM_BRANCH_IF(asI(r[INS->a]) >= immC(), static_cast<int16_t>(INS->b));
   VM_CASE(ENTER) {
     const bc::PouInfo& p = pous[INS->bx()];
     if (sp + p.frameSize > memSize) VM_FAULT(StackOverflow);
@@ -346,7 +387,8 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
     --remaining;
     const uint64_t newBase = uint64_t{base} + INS->a;
     if (depth >= maxDepth || newBase + p.numRegs > regCount) VM_FAULT(StackOverflow);
-    frames_[depth++] = CallFrame{pcOf(ip), base, r[INS->a]};
+    frames_[depth++] = CallFrame{pcOf(ip), base, r[INS->a], code};
+    code = entry[INS->bx()].admits(r[INS->a], r[INS->a + 1]) ? quick : plain;
     base = static_cast<uint32_t>(newBase);
     r = regs + base;
     ip = code + p.codeStart;
@@ -378,6 +420,7 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
       if (f.fp >= staticSize && f.fp <= sp) sp = f.fp;
       base = f.base;
       r = regs + base;
+      code = f.code;
       ip = code + f.returnPc;
     }
     VM_NEXT();
@@ -400,6 +443,9 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
 #undef INS
 #undef VM_FAULT
 #undef VM_ADDR
+#undef VM_LOAD_AT
+#undef VM_STORE_AT
+#undef VM_QUICK_ADDR
 #undef VM_LOAD
 #undef VM_STORE
 #undef VM_LOADA
@@ -407,8 +453,10 @@ bool Machine::execute(uint32_t pc, const uint32_t startSp) {
 #undef VM_BIN
 #undef VM_BINF
 #undef VM_BACKWARD_CHECK
+#undef VM_BRANCH_IF
 #undef VM_NEXT
 #undef VM_CASE
+#undef VM_QCASE
 }
 #if VIRTCOM_VM_COMPUTED_GOTO
 #pragma GCC diagnostic pop

@@ -9,6 +9,7 @@
 #include "bytecode/module.hpp"
 #include "core/source.hpp"
 #include "vm/compiled.hpp"
+#include "vm/quicken.hpp"
 
 namespace virtcom::vm {
 
@@ -64,11 +65,12 @@ class Machine {
  private:
   struct CallFrame {
     uint32_t returnPc;
-    uint32_t base;  // caller's register window base
-    uint64_t fp;    // callee frame base (restores sp on RET)
+    uint32_t base;          // caller's register window base
+    uint64_t fp;            // callee frame base (restores sp on RET)
+    const bc::Instr* code;  // the copy of the code the caller runs (quick_.code or the module's)
   };
 
-  bool execute(uint32_t pc, uint32_t startSp);
+  bool execute(uint32_t pou, uint32_t startSp);
   bool executeCompiled(uint32_t pou, uint32_t startSp);
   bool raise(bc::FaultKind kind, uint32_t pc, uint32_t depth, uint32_t startSp);
 
@@ -79,6 +81,7 @@ class Machine {
   std::vector<CallFrame> frames_;
   std::vector<uint32_t> compiledCallStack_;  // AotContext::callStack
   std::shared_ptr<const CompiledCode> compiled_;
+  QuickCode quick_;  // after memory_: quickened for its size
   FaultInfo fault_;
   uint32_t sp_ = 0;
   int64_t taskTimeNs_ = 0;

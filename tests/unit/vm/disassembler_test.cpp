@@ -59,6 +59,16 @@ TEST(Disassembler, ListsAPou) {
   EXPECT_EQ(bc::disassemble(b.m, 2), "");
 }
 
+TEST(Disassembler, FusedBranchesShowTheirTargetLast) {
+  ModuleBuilder b;
+  b.beginPou("MAIN", 8);
+  b.emit(abc(Op::JLT_I, 2, 3, 1));                                         // register form: offset in C
+  b.emit(abc(Op::JGEK, 4, static_cast<uint16_t>(-2), static_cast<uint16_t>(-100)));  // constant form: offset in B
+  b.emit(abc(Op::RET));
+  EXPECT_EQ(bc::disassembleInstruction(b.m, 0), "JLT_I    r2, r3, 0002");
+  EXPECT_EQ(bc::disassembleInstruction(b.m, 1), "JGEK     r4, -100, 0000");
+}
+
 TEST(Disassembler, ShowsBadOperandsWithoutFollowingThem) {
   ModuleBuilder b;
   b.beginPou("MAIN", 2);

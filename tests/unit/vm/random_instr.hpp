@@ -20,17 +20,27 @@ inline bc::Instr randomInstr(std::mt19937& rng, uint16_t numRegs, uint32_t pc, u
   const auto op = static_cast<Op>(pick(0, static_cast<uint32_t>(Op::Count_) - 1));
   const auto rare = [&] { return pick(0, 99) == 0; };  // occasionally an invalid operand
   const auto reg = [&] { return static_cast<uint16_t>(pick(0, numRegs - 1) + (rare() ? 1 : 0)); };
+  // A target in [start - 1, start + size) relative to the next instruction (one before the POU
+  // is invalid).
+  const auto jumpOffset = [&] { return static_cast<int32_t>(pick(start, start + size)) - 1 - static_cast<int32_t>(pc) - 1; };
   if (bc::opFormat(op) == bc::Format::ABC) {
-    uint16_t c = pick(0, 3) == 0 ? static_cast<uint16_t>(pick(0, 0xffff)) : static_cast<uint16_t>(pick(0, 70));
-    switch (bc::operandRoles(op).c) {
-      case bc::Operand::Reg: c = reg(); break;
-      case bc::Operand::BitIndex: c = static_cast<uint16_t>(pick(0, 7) + (rare() ? 8 : 0)); break;
-      case bc::Operand::BitCount: c = static_cast<uint16_t>(pick(1, 64) + (rare() ? 64 : 0)); break;
-      case bc::Operand::Divisor: c = static_cast<uint16_t>(rare() ? 0 : pick(1, 0xffff)); break;
-      case bc::Operand::Index: c = static_cast<uint16_t>(pick(0, 2) + (rare() ? 1 : 0)); break;
-      default: break;
-    }
-    return bc::Instr::abc(op, reg(), reg(), c);
+    const auto operand = [&](bc::Operand role) {
+      uint16_t v = pick(0, 3) == 0 ? static_cast<uint16_t>(pick(0, 0xffff)) : static_cast<uint16_t>(pick(0, 70));
+      switch (role) {
+        case bc::Operand::Reg: v = reg(); break;
+        case bc::Operand::BitIndex: v = static_cast<uint16_t>(pick(0, 7) + (rare() ? 8 : 0)); break;
+        case bc::Operand::BitCount: v = static_cast<uint16_t>(pick(1, 64) + (rare() ? 64 : 0)); break;
+        case bc::Operand::Divisor: v = static_cast<uint16_t>(rare() ? 0 : pick(1, 0xffff)); break;
+        case bc::Operand::Index: v = static_cast<uint16_t>(pick(0, 2) + (rare() ? 1 : 0)); break;
+        case bc::Operand::Branch: v = static_cast<uint16_t>(jumpOffset()); break;
+        default: break;
+      }
+      return v;
+    };
+    const bc::OperandRoles roles = bc::operandRoles(op);
+    const uint16_t a = reg();
+    const uint16_t b = roles.b == bc::Operand::Branch ? operand(roles.b) : reg();
+    return bc::Instr::abc(op, a, b, operand(roles.c));
   }
   uint32_t bx = 0;
   switch (bc::operandRoles(op).bx) {
@@ -39,10 +49,7 @@ inline bc::Instr randomInstr(std::mt19937& rng, uint16_t numRegs, uint32_t pc, u
     case WideOperand::Const: bx = pick(0, 2) + (rare() ? 1 : 0); break;
     case WideOperand::Native: bx = pick(0, static_cast<uint32_t>(bc::Native::Count_) - 1) + (rare() ? 1 : 0); break;
     case WideOperand::NativeFb: bx = pick(0, static_cast<uint32_t>(bc::NativeFb::Count_) - 1) + (rare() ? 1 : 0); break;
-    case WideOperand::Jump: {
-      const int32_t target = static_cast<int32_t>(pick(start, start + size)) - 1;
-      return bc::Instr::asbx(op, reg(), target - static_cast<int32_t>(pc) - 1);
-    }
+    case WideOperand::Jump: return bc::Instr::asbx(op, reg(), jumpOffset());
     case WideOperand::Fault: bx = pick(1, 8) + (rare() ? 1 : 0); break;
     default: bx = pick(0, 3) == 0 ? pick(0, 0xffffffffu) : pick(0, 300); break;
   }

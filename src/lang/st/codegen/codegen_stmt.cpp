@@ -5,6 +5,7 @@
 #include "lang/st/codegen/codegen.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 #include "lang/st/codegen/init_program.hpp"
+#include "lang/st/codegen/peephole.hpp"
 
 namespace virtcom::st {
 
@@ -19,6 +20,7 @@ static bool declaredIn(const Pou& ast, const VarDecl& decl) {
 
 void PouCompiler::compile() {
   codeStart_ = here();
+  const size_t firstLine = ctx_.module.lines.size();
   tempTop_ = 0;
   tempMax_ = 0;
   if (pou_.ast->hasBody || !pou_.ast->body.empty()) {
@@ -30,6 +32,7 @@ void PouCompiler::compile() {
   uint32_t end = here();
   for (uint32_t r : returns_) patchJump(r, end);
   emit(Op::RET, 0, 0, 0);
+  if (!diags().hasErrors()) optimizePou(ctx_.module, codeStart_, firstLine, maxReg_);
   bc::PouInfo& info = ctx_.module.pous[pou_.bcIndex];
   info.codeStart = codeStart_;
   info.codeSize = here() - codeStart_;

@@ -1,0 +1,56 @@
+#pragma once
+// Load-time specialisation of a verified module's code for the interpreter ("quickening"):
+// loads and stores relative to a POU's frame (r0) or instance (r1) that cannot leave memory once
+// the POU's entry has checked fp and this, so their handlers skip checkedAddress.
+//
+// Why it is exact: a POU is quickened only if none of its instructions writes r0 or r1 (no
+// destination register below 2, no CALL or CALLN window starting below 2), so fp and this keep
+// their entry values for the whole activation. Its quickened accesses reach at most `extent`
+// bytes past their base (the largest offset + width among them). On entry (Machine::run, CALL)
+// the interpreter checks guard <= base <= memorySize - extent for both bases; then every such
+// access lies inside [guard, memorySize) and checkedAddress would pass. If the check fails,
+// that activation runs the module's own code, whose checked handlers fault exactly as before.
+#include <cstdint>
+#include <vector>
+
+#include "bytecode/module.hpp"
+
+namespace virtcom::vm {
+
+// The quickened opcodes: same operands and meaning as the bytecode opcode of the same name.
+#define VIRTCOM_VM_QUICK_OPS(Q)                                                                       \
+  Q(LD_I8) Q(LD_U8) Q(LD_I16) Q(LD_U16) Q(LD_I32) Q(LD_U32) Q(LD_64) Q(LD_F32) Q(LD_BIT) Q(ST_8)      \
+  Q(ST_16) Q(ST_32) Q(ST_64) Q(ST_F32) Q(ST_BIT) Q(STK_8) Q(STK_16) Q(STK_32) Q(STK_64)
+
+// Interpreter-only opcode numbers, right after the bytecode's (bc::Op::Count_).
+enum class QuickOp : uint8_t {
+#define Q(name) name,
+  VIRTCOM_VM_QUICK_OPS(Q)
+#undef Q
+  Count_
+};
+static_assert(static_cast<unsigned>(bc::Op::Count_) + static_cast<unsigned>(QuickOp::Count_) <= 256);
+
+constexpr bc::Op quickOpcode(QuickOp q) {
+  return static_cast<bc::Op>(static_cast<unsigned>(bc::Op::Count_) + static_cast<unsigned>(q));
+}
+
+// The entry condition of one POU: (fp - lo) <= fpSpan and (this - lo) <= thisSpan, unsigned
+// (so a base below lo wraps to a huge value and fails). Always true for a POU without
+// quickened accesses.
+struct EntryCheck {
+  uint64_t lo = 0;
+  uint64_t fpSpan = UINT64_MAX;
+  uint64_t thisSpan = UINT64_MAX;
+  bool admits(uint64_t fp, uint64_t self) const { return fp - lo <= fpSpan && self - lo <= thisSpan; }
+};
+
+struct QuickCode {
+  std::vector<bc::Instr> code;     // the module's code with quickened opcodes, same pcs
+  std::vector<EntryCheck> entry;   // one per POU
+};
+
+// `m` must have passed bc::verifyModule; `memorySize` is the machine's (m.memorySize()).
+QuickCode quicken(const bc::Module& m, uint64_t memorySize);
+
+}  // namespace virtcom::vm

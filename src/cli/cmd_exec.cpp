@@ -7,6 +7,7 @@
 #include "cli/ads_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "cli/plc_backend.hpp"
 #include "cli/modbus_options.hpp"
 #include "cli/rule_trace.hpp"
 #include "lang/sfc/step_monitor.hpp"
@@ -36,7 +37,7 @@ struct ExecOptions {
   bool modbusWritableInputs = false;  // %IW also as holding registers 8192.. (docs/modbus.md)
   AdsServeOptions ads;
   std::string retainFile;   // warm start: RETAIN/PERSISTENT variables loaded from and saved to it
-  std::string backend = "interp";
+  std::string backend = "auto";
 };
 
 bool resolveAll(const bc::Module& m, const std::vector<std::string>& names, std::vector<bc::VarRef>& out) {
@@ -139,7 +140,8 @@ ExitCode runExec(const ExecOptions& o) {
   plc::RuntimeOptions ropts;
   ropts.instructionBudget = o.budget;
   plc::Runtime runtime(*module, *clock, ropts);
-  runtime.machine().useCompiled(compiledBackend(o.backend, *module));
+  PlcBackend backend(o.backend, *module);
+  backend.attach(runtime);
   if (!runtime.coldStart()) {
     std::cerr << "runtime fault: " << runtime.faultText() << "\n";
     return ExitCode::PlcFault;
@@ -224,6 +226,7 @@ ExitCode runExec(const ExecOptions& o) {
   }
   if (modbus) modbus->stop();
   if (ads) ads->stop();
+  backend.logRun(runtime.tierStats());
   if (!o.retainFile.empty() && exitCode == ExitCode::Ok) {
     std::string problem = plc::saveRetainFile(o.retainFile, *module, runtime.machine().memory());
     if (!problem.empty()) {

@@ -11,6 +11,7 @@
 #include "cli/commands.hpp"
 #include "cli/ads_client.hpp"
 #include "cli/common.hpp"
+#include "cli/plc_backend.hpp"
 #include "cli/hmi_options.hpp"
 #include "cli/history_options.hpp"
 #include "cli/modbus_options.hpp"
@@ -40,7 +41,7 @@ struct RunOptions {
   bool quiet = false;
   bool step = false;
   bool traceRules = false;  // print the activity-diagram rules that fired after every PLC tick
-  std::string backend = "interp";
+  std::string backend = "auto";
   std::string timeMode = "event";  // --time-mode: jump over idle ticks, or step every tick
   HmiServeOptions hmi;  // --hmi: watch and steer the run in a browser
   HistoryRecordOptions history;
@@ -221,7 +222,12 @@ ExitCode runCell(const RunOptions& o) {
   options.speed = o.speed;
   options.eventTime = o.timeMode == "event";
   options.interrupt = &gStopRequested;
-  if (cell->module) options.compiled = compiledBackend(o.backend, *cell->module);
+  std::optional<PlcBackend> backend;
+  if (cell->module) {
+    backend.emplace(o.backend, *cell->module);
+    options.compiled = backend->compiled();
+    options.tierUp = backend->tierUp();
+  }
   if (!o.timeLimit.empty()) {
     auto ns = parseDurationNs(o.timeLimit);
     if (!ns) {
@@ -293,6 +299,7 @@ ExitCode runCell(const RunOptions& o) {
         }
       }
       end = o.step ? stepInteractively(simulation, simulation.trace()) : simulation.run();
+      if (backend) backend->logRun(simulation.plc().tierStats());
     }
     bool reset = hmi && hmi->resetRequested();
     if (!reset) {

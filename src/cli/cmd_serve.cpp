@@ -18,6 +18,7 @@
 #include "cli/ads_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "cli/plc_backend.hpp"
 #include "cli/hmi_options.hpp"
 #include "cli/history_options.hpp"
 #include "cli/modbus_options.hpp"
@@ -40,7 +41,7 @@ struct ServeOptions {
   std::string modbusAllow;  // comma-separated peer addresses; empty: any
   AdsServeOptions ads;      // the soft PLC over ADS
   HmiServeOptions hmi;      // the web HMI (--http)
-  std::string backend = "interp";
+  std::string backend = "auto";
   HistoryRecordOptions history;
 };
 
@@ -144,7 +145,12 @@ ExitCode serveCell(const ServeOptions& o) {
   options.timeLimitNs = INT64_MAX;
   options.keepAllChanges = false;  // serves for days: no signal history in memory
   for (auto& b : *bridges) options.bridges.push_back(b.get());
-  if (cell->module) options.compiled = compiledBackend(o.backend, *cell->module);
+  std::optional<PlcBackend> backend;
+  if (cell->module) {
+    backend.emplace(o.backend, *cell->module);
+    options.compiled = backend->compiled();
+    options.tierUp = backend->tierUp();
+  }
   if (ads) {
     // The first snapshot right after the cold start, then the announcement: a client that
     // connects at once reads the initial values, never an empty image.
@@ -175,6 +181,7 @@ ExitCode serveCell(const ServeOptions& o) {
         }
       }
       end = simulation.run();
+      if (backend) backend->logRun(simulation.plc().tierStats());
     }
     if (!hmi || !hmi->resetRequested()) break;
     auto fresh = reloadForReset(*cell, sources);

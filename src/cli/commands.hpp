@@ -8,7 +8,7 @@
 #include "cli/exit_code.hpp"
 
 namespace virtcom::cli {
-// `--backend interp|aot` (see compiledBackend in common.hpp), stored into `backend`.
+// `--backend auto|interp|aot` (cli/plc_backend.hpp), stored into `backend`.
 void addBackendOption(CLI::App& cmd, std::string& backend);
 
 // Each subcommand registers itself and reports its exit status through `setExit`.

@@ -9,7 +9,6 @@
 #include <iostream>
 #include <sstream>
 
-#include "aot/compile.hpp"
 #include "cli/commands.hpp"
 #include "core/ascii.hpp"
 #include "core/duration_units.hpp"
@@ -126,20 +125,6 @@ std::optional<int64_t> parseDurationNs(const std::string& raw) {
   int64_t ns = static_cast<int64_t>(total + 0.5);
   if (ns <= 0) return std::nullopt;
   return ns;
-}
-
-void addBackendOption(CLI::App& cmd, std::string& backend) {
-  cmd.add_option("--backend", backend,
-                 "run the PLC on the bytecode interpreter (interp, default) or as machine code compiled with the "
-                 "system C compiler at load (aot; falls back to interp with a notice), see docs/performance.md")
-      ->check(CLI::IsMember({"interp", "aot"}));
-}
-
-std::shared_ptr<const vm::CompiledCode> compiledBackend(const std::string& backend, const bc::Module& m) {
-  if (backend != "aot") return nullptr;
-  aot::CompileResult r = aot::compileModule(m);
-  if (!r.code) std::cerr << "notice: --backend aot unavailable, using the interpreter: " << r.error << "\n";
-  return r.code;
 }
 
 std::atomic<bool> gStopRequested{false};

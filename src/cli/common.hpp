@@ -12,7 +12,6 @@
 #include "core/source.hpp"
 #include "lang/ad/diagram.hpp"
 #include "lang/st/compiler.hpp"
-#include "vm/compiled.hpp"
 
 namespace virtcom::cli {
 
@@ -39,11 +38,6 @@ std::unique_ptr<cell::Cell> loadCellFile(const std::string& path, SourceManager&
 // the external input image (when given) so the next scan's input copy keeps the value.
 // Returns the error text, empty on success. CONSTANTs are refused.
 std::string presetVariable(const bc::Module& m, const std::string& assignment, uint8_t* memory, uint8_t* inputImage);
-
-// The machine code `--backend` selects for `m`: null for "interp"; for "aot" the module
-// compiled by src/aot, or null after a one-line notice on stderr if that is impossible (no C
-// compiler, compile error), so that the interpreter runs instead.
-std::shared_ptr<const vm::CompiledCode> compiledBackend(const std::string& backend, const bc::Module& m);
 
 // Writes `content` to `path` (binary); prints "error: cannot write PATH" and returns false if
 // the file cannot be written.

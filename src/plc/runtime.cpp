@@ -85,6 +85,9 @@ bool Runtime::tick() {
     ++stats_[0].skippedScans;
     return true;
   }
+  // The tier switch: one null test (and one relaxed load while a compile is pending) per scan.
+  if (tierUp_ && tierUp_->readyAfter(tier_.interpScans)) switchToCompiled(now);
+  ++(machine_.usesCompiled() ? tier_.compiledScans : tier_.interpScans);
   uint64_t timeReads = machine_.timeReads();
   if (tracking) std::memcpy(shadow_.data(), machine_.memory(), shadow_.size());
   for (size_t t : taskOrder_) {
@@ -95,6 +98,12 @@ bool Runtime::tick() {
   if (tracking)
     quiescent_ = machine_.timeReads() == timeReads && std::memcmp(shadow_.data(), machine_.memory(), shadow_.size()) == 0;
   return true;
+}
+
+void Runtime::switchToCompiled(int64_t nowNs) {
+  machine_.useCompiled(tierUp_->code());
+  tierUp_.reset();
+  tier_.switchedAtNs = nowNs;
 }
 
 bool Runtime::inputImageSettled() const {

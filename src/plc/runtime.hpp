@@ -8,6 +8,7 @@
 
 #include "bytecode/module.hpp"
 #include "core/clock.hpp"
+#include "vm/compiled_handoff.hpp"
 #include "vm/machine.hpp"
 
 namespace virtcom::plc {
@@ -30,6 +31,13 @@ struct RuntimeOptions {
   // no memory, and neither the input image nor any variable (see inputsTouched) changed since.
   // Results are identical; only the executed-scan statistics differ. Single-task programs only.
   bool skipRepeatedScans = false;
+};
+
+// Which backend executed the scans (skipped repeats are not counted) and when it switched.
+struct TierStats {
+  uint64_t interpScans = 0;
+  uint64_t compiledScans = 0;
+  int64_t switchedAtNs = -1;  // virtual time of the first scan on machine code; -1: no switch
 };
 
 class Runtime {
@@ -78,6 +86,12 @@ class Runtime {
   uint8_t* inputImage() { return inputs_.data(); }
   const uint8_t* outputImage() const { return outputs_.data(); }
 
+  // Tiered execution: once `handoff` is published, the runtime runs on its machine code from the
+  // start of the next executed scan on (never inside a scan). Memory, time and the repeated-scan
+  // state carry over unchanged: both backends give the same results. Set before the run.
+  void switchToCompiledWhenReady(std::shared_ptr<const vm::CompiledHandoff> handoff) { tierUp_ = std::move(handoff); }
+  const TierStats& tierStats() const { return tier_; }
+
   const bc::Module& module() const { return module_; }
   vm::Machine& machine() { return machine_; }
   const vm::Machine& machine() const { return machine_; }
@@ -88,6 +102,7 @@ class Runtime {
  private:
   bool runTask(size_t task, int64_t nowNs);
   bool inputImageSettled() const;
+  void switchToCompiled(int64_t nowNs);
 
   const bc::Module& module_;
   Clock& clock_;
@@ -104,6 +119,8 @@ class Runtime {
   std::string faultTask_;
   bool quiescent_ = false;          // the last executed scan was a provable no-op
   std::vector<uint8_t> shadow_;     // static memory before the last executed scan
+  std::shared_ptr<const vm::CompiledHandoff> tierUp_;  // null once switched (or never tiering)
+  TierStats tier_;
 };
 
 }  // namespace virtcom::plc

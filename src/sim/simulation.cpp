@@ -29,6 +29,7 @@ Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), opti
     ropts.skipRepeatedScans = options_.skipRepeatedScans;
     runtime_ = std::make_unique<plc::Runtime>(*cell_.module, *clock_, ropts);
     runtime_->machine().useCompiled(options_.compiled);
+    runtime_->switchToCompiledWhenReady(options_.tierUp);
   }
   timeLimitNs_ = options_.timeLimitNs >= 0 ? options_.timeLimitNs : cell_.run.timeLimitNs;
   jumps_ = options_.eventTime && !paced_ && options_.bridges.empty() && !options_.control && !options_.watch.enabled &&

@@ -60,6 +60,9 @@ struct SimOptions {
   std::vector<std::string> keptSignals;
   // Machine code for the soft PLC's module (src/aot); null runs the interpreter.
   std::shared_ptr<const vm::CompiledCode> compiled;
+  // Tiered execution (`--backend auto`): machine code compiled while the run goes, switched to
+  // between two scans once published (plc::Runtime::switchToCompiledWhenReady); null: none.
+  std::shared_ptr<const vm::CompiledHandoff> tierUp;
   // Steers the run before every tick (pause, step, speed; must outlive the run). A controlled
   // run is always paced (speed 0 means 1), so that its speed can change while it runs.
   RunControl* control = nullptr;

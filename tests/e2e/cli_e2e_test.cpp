@@ -149,7 +149,16 @@ class CliBackend : public CliTest {
   void TearDown() override {
     ::unsetenv("VIRTCOM_AOT_CACHE");
     ::unsetenv("CC");
+    ::unsetenv("VIRTCOM_TIER_SWITCH_AT_SCAN");
+    ::unsetenv("VIRTCOM_TIER_LOG");
     CliTest::TearDown();
+  }
+  // The files left in the AOT cache folder (compiled objects and their C source, or leftovers).
+  std::vector<std::string> cacheFiles() {
+    std::vector<std::string> names;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(work_ / "aot", ec)) names.push_back(e.path().filename().string());
+    return names;
   }
 };
 
@@ -181,6 +190,70 @@ TEST_F(CliBackend, WithoutACompilerFallsBackToTheInterpreter) {
   EXPECT_EQ(r.out, "MAIN.count = 5\n");
   EXPECT_TRUE(contains(r.err, "notice: --backend aot unavailable, using the interpreter")) << show(r);
   EXPECT_TRUE(contains(r.err, "virtcom-no-such-compiler")) << show(r);
+}
+
+// --backend auto (the default) switches between two scans: forced after scan 7 of 40 (the test
+// hook), the output is the interpreter's and the log line shows where it switched.
+TEST_F(CliBackend, AutoSwitchingMidRunPrintsWhatTheInterpreterPrints) {
+  const std::vector<std::string> args{"exec", "ton.st", "--cycles", "40", "--trace", "MAIN.q,MAIN.et"};
+  std::vector<std::string> tiered = args, interp = args;
+  tiered.insert(tiered.end(), {"--backend", "auto"});
+  interp.insert(interp.end(), {"--backend", "interp"});
+  RunResult reference = run(interp);
+  ::setenv("VIRTCOM_TIER_SWITCH_AT_SCAN", "7", 1);
+  ::setenv("VIRTCOM_TIER_LOG", "1", 1);
+  RunResult r = run(tiered);
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, reference.out) << show(r);
+  EXPECT_TRUE(contains(r.err, "tier: --backend auto: 7 scans interpreted, 33 on machine code, switched at 0.07 s"))
+      << show(r);
+  EXPECT_TRUE(contains(reference.err, "tier: --backend interp: 40 scans interpreted, 0 on machine code")) << show(reference);
+}
+
+// The default is auto; the same fault report as the interpreter after a switch before the faulting scan.
+TEST_F(CliBackend, AutoIsTheDefaultAndReportsTheSameFault) {
+  RunResult interp = run({"exec", "divzero.st", "--cycles", "5", "--backend", "interp"});
+  ::setenv("VIRTCOM_TIER_SWITCH_AT_SCAN", "1", 1);
+  ::setenv("VIRTCOM_TIER_LOG", "1", 1);
+  RunResult tiered = run({"exec", "divzero.st", "--cycles", "5"});
+  EXPECT_EQ(tiered.exitCode, 2) << show(tiered);
+  EXPECT_TRUE(contains(tiered.err, "division by zero at divzero.st:8:")) << show(tiered);
+  EXPECT_TRUE(contains(tiered.err, "tier: --backend auto: ")) << show(tiered);
+  EXPECT_EQ(tiered.out, interp.out);
+}
+
+// Without a C compiler auto stays on the interpreter and says nothing.
+TEST_F(CliBackend, AutoWithoutACompilerStaysQuietlyOnTheInterpreter) {
+  ::setenv("CC", "virtcom-no-such-compiler", 1);
+  ::setenv("VIRTCOM_TIER_SWITCH_AT_SCAN", "2", 1);  // compiled (and failed) before the first scan
+  RunResult r = run({"exec", "counter.st", "--cycles", "5", "--print", "MAIN.count", "--backend", "auto"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, "MAIN.count = 5\n");
+  EXPECT_EQ(r.err, "");
+}
+
+// A run that ends before the background compile does not wait for it: the compiler (here a
+// script that would sleep for ten minutes) is terminated, and no temporary file stays in the
+// cache. Were the exit to wait for the compiler, this test would hang until its time-out.
+TEST_F(CliBackend, AutoDoesNotWaitForTheCompilerAndLeavesNoTemporaryFiles) {
+  const fs::path compiler = work_ / "slow-cc.sh";
+  const fs::path pidFile = work_ / "cc.pid";
+  std::ofstream(compiler) << "#!/bin/sh\necho $$ > " << pidFile.string() << "\nexec sleep 600\n";
+  fs::permissions(compiler, fs::perms::owner_all);
+  ::setenv("CC", compiler.c_str(), 1);
+  ::setenv("VIRTCOM_TIER_LOG", "1", 1);
+  RunResult r = run({"exec", "counter.st", "--cycles", "200000"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(contains(r.err, "machine code not ready when the run ended")) << show(r);
+  EXPECT_EQ(cacheFiles(), std::vector<std::string>{}) << "temporary files left in the cache";
+  // The compiler (if it got as far as writing its pid) no longer runs: gone, or a zombie.
+  std::ifstream pid(pidFile);
+  std::string id;
+  if (pid >> id) {
+    const std::string stat = readFile(fs::path("/proc") / id / "stat");
+    const size_t close = stat.rfind(')');
+    EXPECT_TRUE(stat.empty() || (close != std::string::npos && stat.substr(close + 2, 1) == "Z")) << stat;
+  }
 }
 
 TEST_F(CliBackend, UnknownBackendIsAUsageError) {

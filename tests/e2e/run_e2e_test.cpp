@@ -199,6 +199,34 @@ TEST_F(RunExit, AotBackendWritesTheSameReport) {
   EXPECT_EQ(readFile(out("aot.vcd")), readFile(out("interp.vcd")));
 }
 
+// --backend auto (the default) switches to machine code between two scans: forced after scan 100
+// and after scan 1000 (the test hook), in event-driven and in tick-stepped time, the JSON report
+// and the VCD are the interpreter's, byte for byte. The log line shows the switch happened.
+TEST_F(RunExit, AutoBackendSwitchingMidRunWritesTheSameReport) {
+  ::setenv("VIRTCOM_AOT_CACHE", out("aot").c_str(), 1);
+  ::setenv("VIRTCOM_TIER_LOG", "1", 1);
+  for (const std::string mode : {"event", "tick"}) {
+    RunResult interp = run({"run", kGearbox, "--set", "MAIN.sequence=3", "--time-mode", mode, "--json",
+                            out(mode + "-interp.json"), "--vcd", out(mode + "-interp.vcd"), "--backend", "interp"});
+    ASSERT_EQ(interp.exitCode, 0) << show(interp);
+    for (const std::string at : {"100", "1000"}) {
+      SCOPED_TRACE(mode + " time, switch after scan " + at);
+      ::setenv("VIRTCOM_TIER_SWITCH_AT_SCAN", at.c_str(), 1);
+      const std::string name = mode + "-" + at;
+      RunResult r = run({"run", kGearbox, "--set", "MAIN.sequence=3", "--time-mode", mode, "--json",
+                         out(name + ".json"), "--vcd", out(name + ".vcd")});
+      ::unsetenv("VIRTCOM_TIER_SWITCH_AT_SCAN");
+      ASSERT_EQ(r.exitCode, 0) << show(r);
+      EXPECT_TRUE(contains(r.err, "tier: --backend auto: " + at + " scans interpreted, ")) << show(r);
+      EXPECT_TRUE(contains(r.err, ", switched at ")) << show(r);
+      EXPECT_EQ(readFile(out(name + ".json")), readFile(out(mode + "-interp.json")));
+      EXPECT_EQ(readFile(out(name + ".vcd")), readFile(out(mode + "-interp.vcd")));
+    }
+  }
+  ::unsetenv("VIRTCOM_TIER_LOG");
+  ::unsetenv("VIRTCOM_AOT_CACHE");
+}
+
 // Also shows that --set is applied before the first scan: the program loads its job list in
 // the first scan, and the run is sequence 4's (the golden file), not the default sequence 3.
 TEST_F(RunExit, CollisionIsExit3) {

@@ -7,8 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "aot/compile.hpp"
 #include "bytecode/module.hpp"
@@ -191,6 +193,13 @@ void setCycleTime(bc::Module& module, const Header& h) {
     if (t.isDefault) t.intervalNs = parseCycleTimeNs(h.cycleTime);
 }
 
+// The case's module compiled by src/aot, cached in the build tree.
+aot::CompileResult compileAot(const bc::Module& module) {
+  aot::CompileOptions aotOptions;
+  aotOptions.cacheDir = VIRTCOM_AOT_TEST_CACHE;
+  return aot::compileModule(module, aotOptions);
+}
+
 plc::RuntimeOptions runtimeOptions() {
   plc::RuntimeOptions options;
   options.instructionBudget = 2'000'000;
@@ -290,9 +299,7 @@ TEST_P(Golden, AotMatchesInterpreter) {
   auto module = compileCase(c, h, sources, diags);
   ASSERT_NE(module, nullptr) << diags.render(sources);
   setCycleTime(*module, h);
-  aot::CompileOptions aotOptions;
-  aotOptions.cacheDir = VIRTCOM_AOT_TEST_CACHE;
-  const aot::CompileResult compiled = aot::compileModule(*module, aotOptions);
+  const aot::CompileResult compiled = compileAot(*module);
   ASSERT_TRUE(compiled.code) << compiled.error;
 
   VirtualClock interpClock, aotClock;
@@ -319,6 +326,81 @@ TEST_P(Golden, AotMatchesInterpreter) {
   }
   EXPECT_EQ(native.faultText(), interp.faultText());
   EXPECT_EQ(native.machine().timeReads(), interp.machine().timeReads());
+}
+
+// Runs `module` on a runtime that stays on the interpreter and, side by side, on one that
+// tiers up through `handoff` (published by the caller, before or while it runs): the whole
+// memory image must be identical after every scan, the fault report and time reads at the end,
+// and both skip the same repeated scans (the switch never makes a repeat look changed).
+// Returns the tiered runtime's statistics.
+plc::TierStats expectTieringInvisible(const bc::Module& module, const Header& h,
+                                      std::shared_ptr<vm::CompiledHandoff> handoff) {
+  plc::RuntimeOptions options = runtimeOptions();
+  options.skipRepeatedScans = true;
+  VirtualClock interpClock, tieredClock;
+  plc::Runtime interp(module, interpClock, options), tiered(module, tieredClock, options);
+  tiered.switchToCompiledWhenReady(std::move(handoff));
+  const bool started = interp.coldStart();
+  EXPECT_EQ(tiered.coldStart(), started);
+  applySets(module, h, interp.machine().memory());
+  applySets(module, h, tiered.machine().memory());
+  const uint32_t size = interp.machine().memorySize();
+  for (int64_t k = 1; started && k <= h.cycles; ++k) {
+    const bool ran = interp.tick();
+    EXPECT_EQ(tiered.tick(), ran) << "scan " << k;
+    const uint8_t* a = interp.machine().memory();
+    const auto diff = std::mismatch(a, a + size, tiered.machine().memory());
+    if (diff.first != a + size) {
+      ADD_FAILURE() << "memory differs at address " << (diff.first - a) << " after scan " << k << " (switched after "
+                    << tiered.tierStats().interpScans << " interpreted scans)";
+      break;
+    }
+    if (!ran) break;
+  }
+  EXPECT_EQ(tiered.faultText(), interp.faultText());
+  EXPECT_EQ(tiered.machine().timeReads(), interp.machine().timeReads());
+  for (size_t t = 0; t < module.tasks.size(); ++t) {
+    EXPECT_EQ(tiered.stats(t).scans, interp.stats(t).scans);
+    EXPECT_EQ(tiered.stats(t).skippedScans, interp.stats(t).skippedScans);
+  }
+  return tiered.tierStats();
+}
+
+// Tiered execution (`--backend auto`, docs/performance.md): the switch from the interpreter to
+// the AOT code between two scans is invisible, at whatever scan it happens. Each case switches
+// at scan 0 (before the first), at two scans drawn from a generator seeded with the case's name
+// (reproducible, different per case) and once at whatever scan a real background thread's
+// publication lands on.
+TEST_P(Golden, TierSwitchIsInvisible) {
+  const GoldenCase& c = GetParam();
+  Header h = parseHeader(readFile(c.headerFile));
+  if (h.expectErrors) GTEST_SKIP() << "does not compile";
+  SourceManager sources;
+  Diagnostics diags;
+  auto module = compileCase(c, h, sources, diags);
+  ASSERT_NE(module, nullptr) << diags.render(sources);
+  setCycleTime(*module, h);
+  const aot::CompileResult compiled = compileAot(*module);
+  ASSERT_TRUE(compiled.code) << compiled.error;
+
+  std::mt19937 rng(static_cast<uint32_t>(std::hash<std::string>{}(c.name)));
+  const uint64_t cycles = static_cast<uint64_t>(std::max<int64_t>(h.cycles, 1));
+  for (uint64_t at : {uint64_t{0}, rng() % cycles, rng() % cycles}) {
+    SCOPED_TRACE("switch after " + std::to_string(at) + " interpreted scans");
+    auto handoff = std::make_shared<vm::CompiledHandoff>();
+    handoff->holdUntilScan(at);
+    handoff->publish(compiled.code);
+    const plc::TierStats stats = expectTieringInvisible(*module, h, handoff);
+    // Scans run only until a fault; the switch is exactly where it was asked whenever the run got there.
+    if (stats.interpScans + stats.compiledScans > at) {
+      EXPECT_EQ(stats.interpScans, at);
+      EXPECT_GE(stats.switchedAtNs, 0);
+    }
+  }
+  auto handoff = std::make_shared<vm::CompiledHandoff>();
+  std::thread publisher([&] { handoff->publish(compiled.code); });
+  expectTieringInvisible(*module, h, handoff);
+  publisher.join();
 }
 
 std::string caseName(const ::testing::TestParamInfo<GoldenCase>& info) {

@@ -13,6 +13,7 @@
 #include "cli/commands.hpp"
 #include "core/ascii.hpp"
 #include "core/duration_units.hpp"
+#include "core/head_tail_log.hpp"
 #include "lang/ad/reader.hpp"
 #include "lang/plcopen/importer.hpp"
 #include "lang/st/compiler.hpp"
@@ -133,6 +134,14 @@ void addBackendOption(CLI::App& cmd, std::string& backend) {
                  "run the PLC on the bytecode interpreter (interp, default) or as machine code compiled with the "
                  "system C compiler at load (aot; falls back to interp with a notice), see docs/performance.md")
       ->check(CLI::IsMember({"interp", "aot"}));
+}
+
+void addTraceWindowOption(CLI::App& cmd, size_t& window) {
+  cmd.add_option("--trace-window", window,
+                 "keep every activity and cycle of a run while there are at most N of each (default " +
+                     std::to_string(kDefaultTraceWindow) +
+                     "); a longer run keeps the first and last N/2 for the Gantt chart and sums of the middle (docs/report.md)")
+      ->check(CLI::Range(size_t{2}, size_t{1} << 30));
 }
 
 std::shared_ptr<const vm::CompiledCode> compiledBackend(const std::string& backend, const bc::Module& m) {

@@ -38,6 +38,7 @@ struct MonitorOptions {
   double deviationPercent = 20;
   std::string json;
   bool quiet = false;
+  size_t traceWindow = kDefaultTraceWindow;
   HmiServeOptions hmi;
   HistoryRecordOptions history;
 };
@@ -268,6 +269,7 @@ ExitCode monitorCell(const MonitorOptions& o) {
   options.interrupt = &gStopRequested;
   options.timeLimitNs = INT64_MAX;
   options.keepAllChanges = false;  // watches for days: no signal history in memory
+  options.traceWindow = o.traceWindow;
   options.bridges.push_back(bridge.get());
   options.watch.enabled = true;
   options.watch.threshold = o.deviationPercent / 100;
@@ -331,6 +333,7 @@ void addMonitorCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--json", o->json, "write the JSON report (docs/report.md) of what was watched to this file when stopped");
   cmd->add_flag("--quiet", o->quiet, "do not print the summary and the model comparison when stopped");
+  addTraceWindowOption(*cmd, o->traceWindow);
   addHmiOptions(cmd, o->hmi, "--http");  // always read-only here (--hmi-readonly is implied)
   addHistoryOptions(cmd, o->history);
   cmd->callback([o, setExit] { setExit(monitorCell(*o)); });

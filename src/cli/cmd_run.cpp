@@ -43,6 +43,7 @@ struct RunOptions {
   bool traceRules = false;  // print the activity-diagram rules that fired after every PLC tick
   std::string backend = "auto";
   std::string timeMode = "event";  // --time-mode: jump over idle ticks, or step every tick
+  size_t traceWindow = kDefaultTraceWindow;
   HmiServeOptions hmi;  // --hmi: watch and steer the run in a browser
   HistoryRecordOptions history;
 };
@@ -268,6 +269,7 @@ ExitCode runCell(const RunOptions& o) {
   std::vector<std::string> timeline = o.signals.empty() ? cell->run.recordVars : o.signals;
   options.keepAllChanges = false;
   options.keptSignals = timeline;
+  options.traceWindow = o.traceWindow;
   std::vector<std::unique_ptr<StreamedFile>> files;
   if (!openStreamedFile<report::VcdWriter>(o.vcd, files) || !openStreamedFile<report::CsvWriter>(o.csv, files)) return ExitCode::Usage;
   for (auto& f : files) options.traceSinks.push_back(f->writer.get());
@@ -351,6 +353,7 @@ void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
                   "event (default): jump over ticks in which nothing can change; tick: step every base tick. "
                   "Results are identical (docs/report.md)")
       ->check(CLI::IsMember({"event", "tick"}));
+  addTraceWindowOption(*cmd, o->traceWindow);
   addHistoryOptions(cmd, o->history);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table (the faults and how the run ended still go to stderr)");
   cmd->add_flag("--step", o->step, "single step: advance one PLC tick per line read from stdin, printing changed signals");

@@ -42,6 +42,7 @@ struct ServeOptions {
   AdsServeOptions ads;      // the soft PLC over ADS
   HmiServeOptions hmi;      // the web HMI (--http)
   std::string backend = "auto";
+  size_t traceWindow = kDefaultTraceWindow;
   HistoryRecordOptions history;
 };
 
@@ -144,6 +145,7 @@ ExitCode serveCell(const ServeOptions& o) {
   options.interrupt = &gStopRequested;
   options.timeLimitNs = INT64_MAX;
   options.keepAllChanges = false;  // serves for days: no signal history in memory
+  options.traceWindow = o.traceWindow;
   for (auto& b : *bridges) options.bridges.push_back(b.get());
   std::optional<PlcBackend> backend;
   if (cell->module) {
@@ -228,6 +230,7 @@ void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   addHmiOptions(cmd, o->hmi, "--http");
   cmd->add_option("--speed", o->speed, "pace factor against the wall clock (default 1 = real time)")->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);
+  addTraceWindowOption(*cmd, o->traceWindow);
   addHistoryOptions(cmd, o->history);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table when stopped (the faults and how the run ended still go to stderr)");
   cmd->add_option("--json", o->json, "write the JSON report (docs/report.md) of the served run to this file when stopped");

@@ -10,6 +10,8 @@
 namespace virtcom::cli {
 // `--backend auto|interp|aot` (cli/plc_backend.hpp), stored into `backend`.
 void addBackendOption(CLI::App& cmd, std::string& backend);
+// `--trace-window N`: how many activities and cycles a run keeps (sim::SimOptions::traceWindow).
+void addTraceWindowOption(CLI::App& cmd, size_t& window);
 
 // Each subcommand registers itself and reports its exit status through `setExit`.
 void addCheckCommand(CLI::App& app, std::function<void(ExitCode)> setExit);

@@ -12,6 +12,7 @@
 #include "cli/commands.hpp"
 #include "core/ascii.hpp"
 #include "core/duration_units.hpp"
+#include "core/head_tail_log.hpp"
 #include "lang/ad/reader.hpp"
 #include "lang/plcopen/importer.hpp"
 #include "lang/st/compiler.hpp"
@@ -125,6 +126,14 @@ std::optional<int64_t> parseDurationNs(const std::string& raw) {
   int64_t ns = static_cast<int64_t>(total + 0.5);
   if (ns <= 0) return std::nullopt;
   return ns;
+}
+
+void addTraceWindowOption(CLI::App& cmd, size_t& window) {
+  cmd.add_option("--trace-window", window,
+                 "keep every activity and cycle of a run while there are at most N of each (default " +
+                     std::to_string(kDefaultTraceWindow) +
+                     "); a longer run keeps the first and last N/2 for the Gantt chart and sums of the middle (docs/report.md)")
+      ->check(CLI::Range(size_t{2}, size_t{1} << 30));
 }
 
 std::atomic<bool> gStopRequested{false};

@@ -27,13 +27,17 @@ uint32_t Trace::addDevice(std::string name, std::string type, std::string group)
   return static_cast<uint32_t>(devices.size() - 1);
 }
 
+void Trace::setWindow(size_t limit) {
+  activities.setLimit(limit);
+  cycles.setLimit(limit);
+}
+
 uint32_t Trace::beginActivity(uint32_t device, uint32_t label, int64_t nowNs) {
   ActivityRecord a;
   a.device = device;
   a.label = label;
   a.startNs = nowNs;
-  activities.push_back(a);
-  return static_cast<uint32_t>(activities.size() - 1);
+  return activities.push_back(a);
 }
 
 void Trace::endActivity(uint32_t activity, int64_t nowNs, double energyJ, int32_t errorCode) {

@@ -3,16 +3,18 @@
 // collisions, faults and per-device totals. The simulation and the devices append to it; reports
 // read only this. Appends are amortised O(1); labels are interned at load time so recording an
 // activity on the per-tick path never builds a string.
-// Signal changes are the one part that grows with simulated time at the rate signals toggle:
-// every change also streams to TraceSinks (VCD/CSV files, live views) as the run goes, and a run
-// may keep in `Trace::changes` only the signals a report needs (sim::SimOptions::keptSignals), so
-// its memory does not grow with the run's length.
+// Nothing in it grows without bound with simulated time: every signal change streams to
+// TraceSinks (VCD/CSV files, live views) as the run goes, and a run may keep in `Trace::changes`
+// only the signals a report needs (sim::SimOptions::keptSignals); activities and cycles keep the
+// first and last of a long run and aggregates of the middle (core/trace_logs.hpp, bounded by
+// setWindow). Collisions and faults end a run or are rare, so they are all kept.
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "core/iec_value.hpp"
 #include "core/tag_bus.hpp"
+#include "core/trace_logs.hpp"
 
 namespace virtcom {
 
@@ -34,27 +36,11 @@ struct DeviceInfo {
   std::string group;      // Gantt lane group, e.g. "Robots"; empty = by type
 };
 
-struct ActivityRecord {
-  uint32_t device = 0;
-  uint32_t label = 0;     // index into Trace::labels
-  int64_t startNs = 0;
-  int64_t endNs = -1;     // -1 while running
-  double energyJ = 0;
-  int32_t errorCode = 0;  // non-zero: the activity ended in this error
-};
-
 struct CollisionRecord {
   int64_t timeNs = 0;
   uint32_t zone = 0;      // index into Trace::labels (zone name)
   uint32_t deviceA = 0, deviceB = 0;
   uint32_t activityA = 0, activityB = 0;  // labels of what each was doing
-};
-
-// One completed cycle: from the end of the one before (the start of the run for the first, so it
-// includes the start-up) to the rising edge of the cycle marker.
-struct CycleRecord {
-  int64_t startNs = 0;
-  int64_t endNs = 0;
 };
 
 struct FaultRecord {
@@ -106,7 +92,7 @@ struct Trace {
   std::vector<SignalChange> changes;      // in time order; all, or only the kept signals'
   std::vector<DeviceInfo> devices;
   std::vector<std::string> labels;
-  std::vector<ActivityRecord> activities; // in start order
+  ActivityLog activities;                 // in start order; indices are beginActivity's
   std::vector<CollisionRecord> collisions;
   std::vector<FaultRecord> faults;
   std::vector<DeviceTotals> totals;       // per device, filled at the end of the run
@@ -114,11 +100,14 @@ struct Trace {
   int64_t cycleStartNs = 0;               // the measured cycle (whole run if no markers)
   int64_t cycleEndNs = 0;
   uint32_t cyclesCompleted = 0;
-  std::vector<CycleRecord> cycles;        // every completed cycle in order; the last is the measured one
+  CycleLog cycles;                        // completed cycles in order; the last is the measured one
   RunEnd end = RunEnd::Completed;
   std::string endMessage;
   TimeSteps time;
 
+  // Before the run: keep every activity and every cycle while there are at most `limit` of each,
+  // beyond that the first and the last limit/2 (kDefaultTraceWindow unless set).
+  void setWindow(size_t limit);
   // Load time: label ids for operation, procedure and zone names.
   uint32_t internLabel(const std::string& label);
   uint32_t addDevice(std::string name, std::string type, std::string group = {});

@@ -67,6 +67,11 @@ void totalsFromActivities(Trace& trace) {
     trace.totals[a.device].busyNs += std::max<int64_t>(0, end - a.startNs);
     trace.totals[a.device].energyJ += a.energyJ;
   }
+  const auto& elided = trace.activities.elidedByDevice();  // a long range: its middle as sums
+  for (size_t d = 0; d < elided.size() && d < trace.totals.size(); ++d) {
+    trace.totals[d].busyNs += elided[d].busyNs;
+    trace.totals[d].energyJ += elided[d].energyJ;
+  }
 }
 
 // The cycles wholly inside [from, to], in order, into trace.cycles.
@@ -88,12 +93,11 @@ void readCycles(Connection& db, int64_t run, int64_t from, int64_t to, Trace& tr
 }
 
 // Leaves out the rows that refer to a signal, device or label the trace does not have; their
-// number.
+// number. (Activities are checked as they are read: their log only appends.)
 size_t dropDanglingRows(Trace& t) {
   const size_t before = t.changes.size() + t.activities.size() + t.collisions.size();
   const size_t signals = t.signals.size(), devices = t.devices.size(), labels = t.labels.size();
   std::erase_if(t.changes, [&](const SignalChange& c) { return c.tag >= signals; });
-  std::erase_if(t.activities, [&](const ActivityRecord& a) { return a.device >= devices || a.label >= labels; });
   std::erase_if(t.collisions, [&](const CollisionRecord& c) {
     return c.zone >= labels || c.deviceA >= devices || c.deviceB >= devices || c.activityA >= labels || c.activityB >= labels;
   });
@@ -217,7 +221,12 @@ Trace HistoryReader::trace(int64_t runId, TimeRange range, size_t* skipped) {
     return true;
   });
   readDevicesAndLabels(db_, runId, trace);
+  size_t danglingActivities = 0;
   for (ActivityRecord a : activities(runId, {from, to})) {
+    if (a.device >= trace.devices.size() || a.label >= trace.labels.size()) {
+      ++danglingActivities;
+      continue;
+    }
     a.startNs = std::max(a.startNs, from) - from;
     if (a.endNs >= 0) a.endNs = std::min(a.endNs, to) - from;
     trace.activities.push_back(a);
@@ -245,7 +254,7 @@ Trace HistoryReader::trace(int64_t runId, TimeRange range, size_t* skipped) {
     readCycles(db_, runId, from, to, trace);
   }
   if (!range.whole()) totalsFromActivities(trace);
-  const size_t dangling = dropDanglingRows(trace);
+  const size_t dangling = dropDanglingRows(trace) + danglingActivities;
   if (skipped) *skipped = dangling;
   return trace;
 }

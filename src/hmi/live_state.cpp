@@ -34,6 +34,7 @@ void LiveState::begin(const Trace& trace) {
   snapshot_.tags.assign(cell_->bus.size(), 0);
   snapshot_.memory.assign(cell_->module ? cell_->module->staticSize : 0, 0);
   snapshot_.injected.assign(cell_->devices.size(), 0);
+  if (snapshot_.activities.empty()) snapshot_.activities.setLimit(trace.activities.limit());
   snapshot_.activities.reserve(trace.activities.capacity());
   snapshot_.rules.assign(fires_.size(), {});
   snapshot_.belts.resize(conveyors_.size());
@@ -137,7 +138,9 @@ void LiveState::mirrorTrace(const Trace& trace) {
     open_.pop_back();
   }
   for (size_t i = s.activities.size(); i < trace.activities.size(); ++i) {
-    const ActivityRecord& a = trace.activities[i];
+    // The snapshot's log has the trace's bound, so what the trace elided before this publication
+    // saw it is elided here too as the placeholder's turn passes (a viewer never reads it).
+    const ActivityRecord a = trace.activities.held(i) ? trace.activities[i] : ActivityRecord{.endNs = 0};
     s.activities.push_back(a);
     if (a.endNs < 0) open_.push_back(static_cast<uint32_t>(i));
     else s.energyJ += a.energyJ;

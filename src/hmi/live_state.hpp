@@ -64,7 +64,7 @@ struct Snapshot {
   double speed = 0;             // pace factor
   std::string endMessage;       // once ended
   std::vector<uint64_t> tags;   // raw value per TagId (TagBus representation)
-  std::vector<ActivityRecord> activities;
+  ActivityLog activities;       // bounded as the trace's (core/trace_logs.hpp)
   std::vector<FaultRecord> faults;
   std::vector<CollisionRecord> collisions;
   uint32_t cyclesCompleted = 0;

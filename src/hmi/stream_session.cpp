@@ -60,16 +60,18 @@ std::string StreamSession::nextFrame() {
     if (!signals.empty()) frame["signals"] = std::move(signals);
     Json activities = Json::array();
     for (size_t i = 0; i < open_.size();) {
-      const ActivityRecord& a = s.activities[open_[i]];
-      if (a.endNs < 0) {
+      // Running ones stay held (core/trace_logs.hpp); an ended one only while the window has it.
+      const bool held = s.activities.held(open_[i]);
+      if (held && s.activities[open_[i]].endNs < 0) {
         ++i;
         continue;
       }
-      activities.push_back(activityJson(open_[i], a));
+      if (held) activities.push_back(activityJson(open_[i], s.activities[open_[i]]));
       open_[i] = open_.back();
       open_.pop_back();
     }
     for (; activities_ < s.activities.size(); ++activities_) {
+      if (!s.activities.held(activities_)) continue;  // a viewer that fell a long run's window behind
       const ActivityRecord& a = s.activities[activities_];
       activities.push_back(activityJson(static_cast<uint32_t>(activities_), a));
       if (a.endNs < 0) open_.push_back(static_cast<uint32_t>(activities_));

@@ -87,7 +87,7 @@ TimeScale makeTimeScale(const Trace& trace, const Kpis& kpis, int chartWidthPx, 
     return s;
   }
   int64_t end = std::max({trace.endNs, kpis.windowEndNs, int64_t{0}});
-  for (const ActivityRecord& a : trace.activities) end = std::max(end, activityEndNs(trace, a));
+  for (uint32_t i : heldActivities(trace)) end = std::max(end, activityEndNs(trace, trace.activities[i]));
   for (const CollisionRecord& c : trace.collisions) end = std::max(end, c.timeNs);
   for (const FaultRecord& f : trace.faults) end = std::max(end, f.timeNs);
   if (!trace.changes.empty()) end = std::max(end, trace.changes.back().timeNs);
@@ -153,8 +153,8 @@ const char* textColorOn(Rgb c) {
 
 LabelColors::LabelColors(const Trace& trace) : byLabel_(trace.labels.size()) {
   std::vector<bool> seen(trace.labels.size());
-  for (const ActivityRecord& a : trace.activities)
-    if (a.label < seen.size() && !seen[a.label]) {
+  for (uint32_t i : heldActivities(trace))
+    if (const ActivityRecord& a = trace.activities[i]; a.label < seen.size() && !seen[a.label]) {
       seen[a.label] = true;
       used_.push_back(a.label);
     }

@@ -284,6 +284,18 @@ std::string cycleBracket(const Kpis& kpis, const TimeScale& s, double y) {
   return out + "</g>\n";
 }
 
+// A long run's elided activities (docs/report.md "Long runs"): their span is hatched and says how
+// many bars it stands for, so an empty stretch is never read as idle devices.
+std::string elidedSpan(const Trace& trace, const TimeScale& s, double top, double bottom) {
+  const ActivityLog& log = trace.activities;
+  if (log.elidedCount() == 0 || !s.overlaps(log.elidedFromNs(), log.elidedToNs())) return {};
+  const double x0 = s.clampedX(log.elidedFromNs()), x1 = s.clampedX(log.elidedToNs());
+  return "<g class=\"elided\"><rect x=\"" + px(x0) + "\" y=\"" + px(top) + "\" width=\"" + px(std::max(x1 - x0, 1.0)) +
+         "\" height=\"" + px(bottom - top) + "\" fill=\"#8882\"/><text x=\"" + px(x0 + 4) + "\" y=\"" + px(top + 12) +
+         "\" font-size=\"11\">" + std::to_string(log.elidedCount()) + " activities elided, " +
+         formatSeconds(log.elidedFromNs(), 3) + " s \u2013 " + formatSeconds(log.elidedToNs(), 3) + " s</text></g>\n";
+}
+
 }  // namespace
 
 std::string ganttSvg(const Trace& trace, const Kpis& kpis, const TimeScale& s, const LabelColors& colors) {
@@ -299,7 +311,7 @@ std::string ganttSvg(const Trace& trace, const Kpis& kpis, const TimeScale& s, c
   const double lanesTop = y;
 
   std::vector<std::vector<uint32_t>> byDevice(trace.devices.size());
-  for (uint32_t i = 0; i < trace.activities.size(); ++i)
+  for (uint32_t i : heldActivities(trace))
     if (trace.activities[i].device < byDevice.size() &&
         s.overlaps(trace.activities[i].startNs, activityEndNs(trace, trace.activities[i])))
       byDevice[trace.activities[i].device].push_back(i);
@@ -336,6 +348,7 @@ std::string ganttSvg(const Trace& trace, const Kpis& kpis, const TimeScale& s, c
                "\" height=\"" + px(plans[d].heightPx()) + "\"/>";
   }
   out += cycleShade(s, kpis, lanesTop, lanesBottom);
+  out += elidedSpan(trace, s, lanesTop, lanesBottom);
   out += timeGrid(s, lanesTop, lanesBottom);
   if (groups.empty())
     out += "<text class=\"empty\" x=\"" + px(s.leftPx + 8) + "\" y=\"" + px(lanesTop + 19) +

@@ -170,12 +170,22 @@ std::string cycleTable(const Trace& trace, const Kpis& k) {
                     formatSeconds(k.cycleMaxNs, 3) + " s \u00b7 the Cycle time card is the last cycle; cycle 1 "
                     "includes the start-up</span></h2>\n<div class=\"scroll\"><table><thead><tr><th>Cycle</th>"
                     "<th>Start s</th><th>End s</th><th>Time s</th></tr></thead><tbody>\n";
+  // A run longer than the trace's window kept only its first and last cycles (docs/report.md).
   const size_t n = trace.cycles.size();
+  size_t head = n, tail = n;  // the rows shown: [0, head) and [tail, n)
+  if (trace.cycles.elided() > 0) {
+    head = std::min(kEdgeRows, trace.cycles.headEnd());
+    tail = std::max(n - std::min(kEdgeRows, n), trace.cycles.tailBegin());
+  } else if (n > 2 * kEdgeRows) {
+    head = kEdgeRows;
+    tail = n - kEdgeRows;
+  }
   for (size_t i = 0; i < n; ++i) {
-    if (n > 2 * kEdgeRows && i == kEdgeRows) {
-      out += "<tr><td class=\"l\" colspan=\"4\">\u2026 " + std::to_string(n - 2 * kEdgeRows) +
-             " more cycles (all of them in the JSON report)</td></tr>\n";
-      i = n - kEdgeRows;
+    if (i == head && tail > head) {
+      out += "<tr><td class=\"l\" colspan=\"4\">\u2026 " + std::to_string(tail - head) + " more cycles (" +
+             (trace.cycles.elided() > 0 ? "the middle of a long run is not kept" : "all of them in the JSON report") +
+             ")</td></tr>\n";
+      i = tail;
     }
     const CycleRecord& c = trace.cycles[i];
     out += "<tr><td>" + std::to_string(i + 1) + "</td><td>" + formatSeconds(c.startNs, 3) + "</td><td>" +
@@ -225,6 +235,8 @@ std::string htmlReport(const Trace& trace, const Kpis& kpis, const HtmlOptions& 
   out += "virtcom run report \u00b7 " + std::to_string(trace.devices.size()) + " devices, " +
          std::to_string(trace.activities.size()) + " activities, " + std::to_string(trace.signals.size()) +
          " signals";
+  if (trace.activities.elidedCount() > 0)
+    out += " \u00b7 a long run: the chart shows its first and last activities";
   if (!kpis.endMessage.empty()) out += " \u00b7 " + escapeHtml(kpis.endMessage);
   out += "</p>\n";
   out += cards(kpis);

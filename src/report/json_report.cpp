@@ -37,7 +37,7 @@ Json cycleJson(const Trace& trace, const Kpis& k) {
   Json all = Json::array();
   for (const CycleRecord& c : trace.cycles)
     all.push_back(Json{{"start_s", seconds(c.startNs)}, {"end_s", seconds(c.endNs)}, {"time_s", seconds(c.endNs - c.startNs)}});
-  return Json{{"measured", k.cycleMeasured},
+  Json cycle{{"measured", k.cycleMeasured},
               {"start_s", seconds(k.windowStartNs)},
               {"end_s", seconds(k.windowEndNs)},
               {"time_s", seconds(k.cycleTimeNs)},
@@ -45,6 +45,10 @@ Json cycleJson(const Trace& trace, const Kpis& k) {
               {"mean_s", seconds(std::llround(k.cycleMeanNs))},  // whole ns: 94.6, not 94.60000000000001
               {"max_s", seconds(k.cycleMaxNs)},
               {"cycles", all}};
+  // A long run lists its first and last cycles: which ones are missing is said, never guessed.
+  if (trace.cycles.elided() > 0)
+    cycle["cycles_elided"] = Json{{"count", trace.cycles.elided()}, {"after_cycle", trace.cycles.headEnd()}};
+  return cycle;
 }
 
 Json devicesJson(const Trace& trace, const Kpis& k) {
@@ -69,7 +73,8 @@ Json devicesJson(const Trace& trace, const Kpis& k) {
 
 Json activitiesJson(const Trace& trace) {
   Json out = Json::array();
-  for (const ActivityRecord& a : trace.activities) {
+  for (uint32_t index : heldActivities(trace)) {
+    const ActivityRecord& a = trace.activities[index];
     Json end = a.endNs < 0 ? Json(nullptr) : Json(seconds(a.endNs));
     out.push_back(Json{{"device", deviceName(trace, a.device)},
                        {"device_index", a.device},
@@ -180,6 +185,10 @@ std::string jsonReport(const Trace& trace, const Kpis& kpis, const std::vector<D
            {"activities", activitiesJson(trace)},
            {"collisions", collisionsJson(trace)},
            {"faults", faultsJson(trace)}};
+  if (const ActivityLog& log = trace.activities; log.elidedCount() > 0)
+    doc["activities_elided"] = Json{{"count", log.elidedCount()},
+                                    {"from_s", seconds(log.elidedFromNs())},
+                                    {"to_s", seconds(log.elidedToNs())}};
   if (!diagrams.empty()) doc["diagrams"] = diagramsJson(diagrams);
   if (production) doc["production"] = productionJson(*production);
   // `replace` turns invalid UTF-8 into U+FFFD instead of throwing: names come from user files.

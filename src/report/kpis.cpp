@@ -31,6 +31,18 @@ int64_t unionLength(std::vector<Interval>& intervals) {
   return total;
 }
 
+// A long run's elided activities (all ended, all before the kept last ones) count in full when
+// the window is the whole run; against a measured cycle only their errors count, as the window
+// is the last cycle, which the kept tail covers. Their busy time is their own union, added to the
+// kept ones' (they overlap at most at the two edges of the elided span).
+void addElided(DeviceKpis& d, const ElidedActivities& e, const Kpis& k) {
+  d.errors += e.errors;
+  if (k.cycleMeasured) return;
+  d.operations += e.count;
+  d.activityEnergyJ += e.energyJ;
+  d.busyNs = std::min(d.busyNs + e.busyNs, k.cycleTimeNs);
+}
+
 }  // namespace
 
 Kpis computeKpis(const Trace& trace) {
@@ -42,15 +54,9 @@ Kpis computeKpis(const Trace& trace) {
   k.windowEndNs = k.cycleMeasured ? trace.cycleEndNs : std::max<int64_t>(trace.endNs, 0);
   k.cycleTimeNs = k.windowEndNs - k.windowStartNs;
   if (!trace.cycles.empty()) {
-    k.cycleMinNs = INT64_MAX;
-    double sum = 0;
-    for (const CycleRecord& c : trace.cycles) {
-      const int64_t ns = c.endNs - c.startNs;
-      k.cycleMinNs = std::min(k.cycleMinNs, ns);
-      k.cycleMaxNs = std::max(k.cycleMaxNs, ns);
-      sum += static_cast<double>(ns);
-    }
-    k.cycleMeanNs = sum / static_cast<double>(trace.cycles.size());
+    k.cycleMinNs = trace.cycles.minNs();
+    k.cycleMaxNs = trace.cycles.maxNs();
+    k.cycleMeanNs = trace.cycles.sumNs() / static_cast<double>(trace.cycles.size());
   }
   k.collisions = static_cast<uint32_t>(trace.collisions.size());
   k.faults = static_cast<uint32_t>(trace.faults.size());
@@ -60,7 +66,8 @@ Kpis computeKpis(const Trace& trace) {
   const size_t n = trace.devices.size();
   k.devices.resize(n);
   std::vector<std::vector<Interval>> busy(n);
-  for (const ActivityRecord& a : trace.activities) {
+  for (uint32_t index : heldActivities(trace)) {
+    const ActivityRecord& a = trace.activities[index];
     if (a.device >= n) continue;
     DeviceKpis& d = k.devices[a.device];
     if (a.errorCode != 0) ++d.errors;
@@ -74,10 +81,12 @@ Kpis computeKpis(const Trace& trace) {
     int64_t s = std::max(start, k.windowStartNs), e = std::min(end, k.windowEndNs);
     if (e > s) busy[a.device].emplace_back(s, e);
   }
+  const std::vector<ElidedActivities>& elided = trace.activities.elidedByDevice();
   for (uint32_t i = 0; i < n; ++i) {
     DeviceKpis& d = k.devices[i];
     d.device = i;
     d.busyNs = unionLength(busy[i]);
+    if (i < elided.size()) addElided(d, elided[i], k);
     d.idleNs = k.cycleTimeNs - d.busyNs;
     d.utilisationPct = k.cycleTimeNs > 0 ? 100.0 * static_cast<double>(d.busyNs) /
                                                static_cast<double>(k.cycleTimeNs)

@@ -48,7 +48,8 @@ struct Kpis {
 
 // Computes the KPIs. Pure and deterministic; tolerates inconsistent traces (out-of-range device
 // indices are skipped, activities still running end at Trace::endNs, totals missing for a
-// device read as 0). Allocates; O(activities log activities).
+// device read as 0). Allocates; O(activities log activities) over the activities the trace keeps
+// (a long run's elided middle counts through its aggregates: docs/report.md "Long runs").
 Kpis computeKpis(const Trace& trace);
 
 }  // namespace virtcom::report

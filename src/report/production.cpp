@@ -87,7 +87,9 @@ ProductionReport productionReport(const ProductionCounter& counter, int64_t loca
   }
   // Activities are in start order: each device's last one is its current one, if still running.
   std::vector<bool> seen(trace.devices.size(), false);
-  for (auto a = trace.activities.rbegin(); a != trace.activities.rend(); ++a) {
+  const std::vector<uint32_t> held = heldActivities(trace);
+  for (auto i = held.rbegin(); i != held.rend(); ++i) {
+    const ActivityRecord* a = &trace.activities[*i];
     if (a->device >= seen.size() || seen[a->device]) continue;
     seen[a->device] = true;
     if (a->endNs >= 0) continue;

@@ -68,13 +68,16 @@ std::string cycleTable(const Trace& trace, const Kpis& kpis) {
                     " cycles (cycle 1 includes the start-up)\n";
   const std::vector<Column> cols = {{"Cycle", 7, false}, {"Start s", 11, false}, {"End s", 11, false}, {"Time s", 11, false}};
   out += "  " + row(cols, {"Cycle", "Start s", "End s", "Time s"});
-  for (size_t i = 0; i < trace.cycles.size() && i < kMaxCycleRows; ++i) {
+  const size_t shown = std::min({trace.cycles.size(), kMaxCycleRows, trace.cycles.headEnd()});
+  for (size_t i = 0; i < shown; ++i) {
     const CycleRecord& c = trace.cycles[i];
     out += "  " + row(cols, {std::to_string(i + 1), formatSeconds(c.startNs, 3), formatSeconds(c.endNs, 3),
                              formatSeconds(c.endNs - c.startNs, 3)});
   }
-  if (trace.cycles.size() > kMaxCycleRows)
-    out += "  ... " + std::to_string(trace.cycles.size() - kMaxCycleRows) + " more (all of them in --json and --report)\n";
+  if (trace.cycles.size() > shown)
+    out += "  ... " + std::to_string(trace.cycles.size() - shown) +
+           (trace.cycles.elided() > 0 ? " more (the first and last in --json and --report)\n"
+                                      : " more (all of them in --json and --report)\n");
   return out;
 }
 

@@ -177,6 +177,16 @@ int64_t activityEndNs(const Trace& t, const ActivityRecord& a) {
   return end < a.startNs ? a.startNs : end;
 }
 
+std::vector<uint32_t> heldActivities(const Trace& t) {
+  const ActivityLog& log = t.activities;
+  std::vector<uint32_t> out;
+  out.reserve(log.headEnd() + log.passed().size() + (log.size() - log.tailBegin()));
+  for (size_t i = 0; i < log.headEnd(); ++i) out.push_back(static_cast<uint32_t>(i));
+  for (const ActivityLog::Passed& p : log.passed()) out.push_back(p.index);
+  for (size_t i = log.tailBegin(); i < log.size(); ++i) out.push_back(static_cast<uint32_t>(i));
+  return out;
+}
+
 double signalNumber(ElemType type, uint64_t raw) {
   if (type == ElemType::Bool) return raw != 0 ? 1.0 : 0.0;
   if (isFloat(type)) return std::bit_cast<double>(raw);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/trace.hpp"
 
@@ -41,6 +42,9 @@ const std::string& labelName(const Trace& t, uint32_t label);
 // End of an activity for reporting: still running at the end of the run (endNs == -1) -> the run's
 // end, never before its start.
 int64_t activityEndNs(const Trace& t, const ActivityRecord& a);
+// The indices of the activities a report shows, in start order: all of a short run; of a long one
+// the first and last it kept and those still running in between (docs/report.md "Long runs").
+std::vector<uint32_t> heldActivities(const Trace& t);
 
 // A signal's raw TagBus value as a number (BOOL 0/1, integers sign- or zero-extended by kind,
 // REAL/LREAL from their double bits) and as text for tables and CSV.

@@ -63,6 +63,7 @@ Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), opti
   for (TagId id = 0; id < cell_.bus.size(); ++id)
     if (std::ranges::find(options_.keptSignals, cell_.bus.name(id)) != options_.keptSignals.end()) keepChange_[id] = 1;
   if (options_.keepAllChanges) trace.changes.reserve(1 << 16);
+  trace.setWindow(options_.traceWindow);
   trace.activities.reserve(1024);
 }
 

@@ -58,6 +58,9 @@ struct SimOptions {
   // names are ignored here), so a long run's memory stays bounded.
   bool keepAllChanges = true;
   std::vector<std::string> keptSignals;
+  // How many activities and cycles Trace keeps: all while there are at most this many, beyond
+  // that the first and the last half (Trace::setWindow, docs/report.md "Long runs").
+  size_t traceWindow = kDefaultTraceWindow;
   // Machine code for the soft PLC's module (src/aot); null runs the interpreter.
   std::shared_ptr<const vm::CompiledCode> compiled;
   // Tiered execution (`--backend auto`): machine code compiled while the run goes, switched to

@@ -29,7 +29,7 @@ class Recorder_ : public HistoryTest {
   }
 };
 
-void expectSameActivities(const std::vector<ActivityRecord>& a, const std::vector<ActivityRecord>& b) {
+void expectSameActivities(const ActivityLog& a, const ActivityLog& b) {
   ASSERT_EQ(a.size(), b.size());
   for (size_t i = 0; i < a.size(); ++i) {
     EXPECT_EQ(a[i].device, b[i].device) << i;
@@ -174,6 +174,40 @@ TEST_F(Recorder_, WaitWhenFullRecordsEveryEvent) {
   EXPECT_EQ(recorder->drops(), 1u);
   recorder.reset();
   EXPECT_EQ(read("h.sqlite").changes(1, {}).size(), 2000u);
+}
+
+// A run longer than the trace's window (core/trace_logs.hpp) is recorded whole: the recorder
+// takes each activity as it begins and ends, never reads back past the window, and one that runs
+// while the window passes it is recorded with its end.
+TEST_F(Recorder_, ARunLongerThanTheTraceWindowIsRecordedWhole) {
+  RecorderOptions options;
+  options.waitWhenFull = true;
+  auto recorder = open("h.sqlite", options);
+  Trace t = sampleTrace();
+  t.setWindow(16);
+  recorder->begin(t);
+  const uint32_t axis = t.beginActivity(1, 1, 0);  // runs through the whole run
+  constexpr int kStrokes = 3000;
+  for (int k = 1; k <= kStrokes; ++k) {
+    const int64_t now = k * 1'000'000;
+    t.endActivity(t.beginActivity(0, 0, now), now + 500'000, 0.5, k % 1000 == 0 ? 3 : 0);
+    if (k == kStrokes) t.endActivity(axis, now, 99);
+    recorder->tick(t, now);
+  }
+  ASSERT_GT(t.activities.elidedCount(), 2900u);
+  t.endNs = (kStrokes + 1) * 1'000'000LL;
+  recorder->end(t);
+  EXPECT_EQ(recorder->drops(), 0u);
+  recorder.reset();
+  const auto recorded = read("h.sqlite").activities(1, {});
+  ASSERT_EQ(recorded.size(), kStrokes + 1u);
+  EXPECT_EQ(recorded[0].device, 1u);
+  EXPECT_EQ(recorded[0].endNs, kStrokes * 1'000'000LL);
+  EXPECT_EQ(recorded[0].energyJ, 99);
+  for (int k = 1; k <= kStrokes; ++k) {
+    EXPECT_EQ(recorded[k].startNs, k * 1'000'000LL) << k;
+    EXPECT_EQ(recorded[k].errorCode, k % 1000 == 0 ? 3 : 0) << k;
+  }
 }
 
 // The scan thread's side: no allocation per change or per tick, activities beginning and ending

@@ -128,10 +128,12 @@ inline Trace threeCycleTrace() {
 namespace virtcom::report::testing {
 
 // `cycles` copies of the example cycle back to back (75 s each): a long run for checking that
-// the HTML stays small (sub-pixel bars merged, signal points capped).
-inline Trace longRunTrace(int cycles) {
+// the HTML stays small (sub-pixel bars merged, signal points capped); `window` bounds its
+// activities as Trace::setWindow.
+inline Trace longRunTrace(int cycles, size_t window = kDefaultTraceWindow) {
   Trace one = exampleCellTrace();
   Trace t;
+  t.setWindow(window);
   t.devices = one.devices;
   t.labels = one.labels;
   t.signals = one.signals;

@@ -1,5 +1,7 @@
 #include "cell/modbus_settings.hpp"
 
+#include <optional>
+
 #include "cell/peer_settings.hpp"
 
 namespace virtcom::cell {
@@ -32,10 +34,24 @@ void readModbusSection(Cell& cell, const ConfigNode* node, Diagnostics& diags) {
   }
   ConfigReader r(*node, diags, "'modbus'");
   if (node->kind() != ConfigNode::Kind::Map) {
-    r.error(node->loc(), "'modbus' must be a map with 'map:' (a list of entries) and optional 'word_order:'");
+    r.error(node->loc(), "'modbus' must be a map with 'map:' (a list of entries) and optional 'word_order:' and 'cycle_done:'");
     return;
   }
-  cell.modbus = modbus_map::parseSignalMap(&r, signals, modbus_map::MapRole::Server);
+  // `cycle_done:` publishes the soft PLC's cycle marker (`run: cycle_done`), which a Modbus
+  // client cannot read by name: a tag of its own, which the simulation copies from the PLC.
+  std::optional<modbus_map::BusSignal> marker;
+  if (const ConfigNode* at = node->find("cycle_done")) {
+    if (cell.run.cycleDoneVar.empty()) {
+      r.child("cycle_done");  // reported here, not as an unknown key
+      r.error(at->loc(), "'cycle_done' publishes the PLC's cycle marker, but the cell names none: add 'run: cycle_done: VARIABLE' "
+                         "(a BOOL of the soft PLC)");
+    } else {
+      TagId tag = cell.bus.find(cell.run.cycleDoneVar);
+      if (tag == kNoTag) tag = cell.bus.add(cell.run.cycleDoneVar, ElemType::Bool);
+      marker = modbus_map::BusSignal{tag, cell.run.cycleDoneVar, ElemType::Bool, modbus_map::SignalDir::Status};
+    }
+  }
+  cell.modbus = modbus_map::parseSignalMap(&r, signals, modbus_map::MapRole::Server, marker ? &*marker : nullptr);
   r.rejectUnknownKeys();
 }
 

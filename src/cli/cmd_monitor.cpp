@@ -61,7 +61,8 @@ std::expected<void, std::string> watchOverAds(cell::Cell& cell, const MonitorOpt
   if (!cell.plcAds) {
     for (const cell::Wire& w : cell.wires) watch.wires.push_back({w.tag, w.dir, w.varName, cell.bus.name(w.tag), {}, false, -1});
     if (!cell.run.cycleDoneVar.empty()) {
-      cycleTag = cell.bus.add(cell.run.cycleDoneVar, ElemType::Bool);
+      cycleTag = cell.bus.find(cell.run.cycleDoneVar);  // a Modbus map's cycle_done has given it one
+      if (cycleTag == kNoTag) cycleTag = cell.bus.add(cell.run.cycleDoneVar, ElemType::Bool);
       watch.wires.push_back({cycleTag, plant::PortDir::In, cell.run.cycleDoneVar, {}, {}, false, -1});
     }
     for (const auto& name : cell.run.recordVars) watch.wires.push_back({kNoTag, plant::PortDir::In, name, {}, {}, false, -1});
@@ -77,7 +78,8 @@ std::expected<void, std::string> watchOverAds(cell::Cell& cell, const MonitorOpt
 // The cell's Modbus map as the PLC's tables to read: `plc: modbus:`'s (the PLC's own addresses),
 // else the `modbus:` one (the tables `serve --modbus` serves the cell as), every entry read each
 // poll, none written. Replaces the cell's controller by that read-only link. A Modbus PLC has
-// no variables by name, so no `cycle_done` or `record` either.
+// no variables by name, so no `record`; cycles are counted when the map places the PLC's cycle
+// marker (`modbus: cycle_done:`).
 std::expected<cell::ModbusClientSettings, std::string> watchOverModbus(cell::Cell& cell, const MonitorOptions& o, int64_t pollNs) {
   auto peer = parseEndpoint(o.modbus);
   if (!peer) return std::unexpected("--modbus: " + peer.error());
@@ -89,6 +91,7 @@ std::expected<cell::ModbusClientSettings, std::string> watchOverModbus(cell::Cel
   watch.faultOnLoss = true;
   for (auto& e : watch.map.entries) e.dir = modbus_map::SignalDir::Command;  // read by the bridge, never written
   cell::detachSoftPlc(cell);
+  cell.run.cycleDoneTag = watch.map.cycleDone;
   cell.plcModbus.reset();
   cell.plcAds.reset();
   return watch;
@@ -173,12 +176,22 @@ class LocalWallClock {
 };
 
 // Counts the completed cycles (parts) into the planned shift the wall clock is in, every poll.
+// With the historian, the current shift's row is handed to its writer thread when a part
+// completes, when a shift begins and at least every second (its pro-rated plan), so a killed
+// monitor loses at most the last second of production.
 class ProductionSink final : public TraceSink {
  public:
-  ProductionSink(const ProductionPlan& plan, const LocalWallClock& clock) : counter_(plan), clock_(clock) {}
+  static constexpr int64_t kRowPeriodNs = 1'000'000'000;
+
+  ProductionSink(const ProductionPlan& plan, const LocalWallClock& clock, history::Recorder* recorder)
+      : counter_(plan), clock_(clock), recorder_(recorder) {}
   void begin(const Trace&) override {}
   void change(const SignalChange&) override {}
-  void tick(const Trace& trace, int64_t) override { counter_.update(clock_.nowNs(), trace.cyclesCompleted); }
+  void tick(const Trace& trace, int64_t) override {
+    const int64_t now = clock_.nowNs();
+    counter_.update(now, trace.cyclesCompleted);
+    if (recorder_) recordCurrentShift(now);
+  }
   void end(const Trace& trace) override { counter_.update(clock_.nowNs(), trace.cyclesCompleted); }
   report::ProductionReport report(const Trace& trace) const {
     return report::productionReport(counter_, clock_.nowNs(), trace, trace.endNs);
@@ -197,8 +210,24 @@ class ProductionSink final : public TraceSink {
   }
 
  private:
+  // On the simulation thread: a few words into the recorder's queue, nothing allocated.
+  void recordCurrentShift(int64_t now) {
+    const report::ShiftCount* c = counter_.current();
+    if (!c) return;
+    if (c->actual == rowActual_ && c->startNs == rowStartNs_ && now - rowWallNs_ < kRowPeriodNs) return;
+    const PlannedShift& s = counter_.plan().shifts[c->shift];
+    recorder_->production(c->shift, {c->startNs, c->endNs, c->watchedFromNs, report::planNow(s, *c, now), s.parts, c->actual});
+    rowActual_ = c->actual;
+    rowStartNs_ = c->startNs;
+    rowWallNs_ = now;
+  }
+
   report::ProductionCounter counter_;
   const LocalWallClock& clock_;
+  history::Recorder* recorder_;  // null: no historian
+  // The row handed over last: its shift occurrence, parts and when.
+  int64_t rowStartNs_ = INT64_MIN, rowWallNs_ = 0;
+  uint32_t rowActual_ = 0;
 };
 
 // The shifts watched, as the historian's `production` rows.
@@ -276,7 +305,7 @@ ExitCode monitorCell(const MonitorOptions& o) {
   AlertPrinter alerts(model && model->trace.cyclesCompleted > 0 ? model->trace.cycleEndNs - model->trace.cycleStartNs : 0);
   options.traceSinks.push_back(&alerts);
   LocalWallClock wallClock;
-  ProductionSink production(cell->plan, wallClock);
+  ProductionSink production(cell->plan, wallClock, *recorder && !cell->plan.shifts.empty() ? recorder->get() : nullptr);
   options.traceSinks.push_back(&production);
   if (*recorder) options.traceSinks.push_back(recorder->get());
   std::optional<LiveHmi> hmi;

@@ -149,7 +149,7 @@ const char* resetRefusal(const cell::Cell& cell, bool streamedFiles) {
 
 // The run's summary and report files, after it ended. False if a file could not be written.
 bool writeRunOutputs(const RunOptions& o, const cell::Cell& cell, const std::vector<std::string>& timeline,
-                     const std::optional<RuleCounter>& ruleCounter, std::vector<std::unique_ptr<StreamedFile>>& files) {
+                     const std::optional<RuleTables>& ruleTables, std::vector<std::unique_ptr<StreamedFile>>& files) {
   const Trace& trace = cell.trace;
   report::Kpis kpis = report::computeKpis(trace);
   // --quiet drops the table, never the reason a run failed.
@@ -159,7 +159,7 @@ bool writeRunOutputs(const RunOptions& o, const cell::Cell& cell, const std::vec
   html.title = cell.name;
   // Without --signal the timeline shows what the cell file asked to record.
   html.signals = timeline;
-  if (ruleCounter) html.diagrams = ruleCounter->sections();
+  if (ruleTables) html.diagrams = ruleTables->sections();
   bool ok = closeStreamedFiles(files);
   if (!o.html.empty()) ok = writeFile(o.html, report::htmlReport(trace, kpis, html)) && ok;
   if (!o.json.empty()) ok = writeFile(o.json, report::jsonReport(trace, kpis, html.diagrams)) && ok;
@@ -207,17 +207,17 @@ ExitCode runCell(const RunOptions& o) {
   std::optional<RuleTracer> ruleTracer;
   if (o.traceRules && !(ruleTracer = RuleTracer::load(plcSources, *cell->module))) return ExitCode::Usage;
   // The reports show how often each diagram rule fired: counted after every scan.
-  std::optional<RuleCounter> ruleCounter;
+  std::optional<RuleTables> ruleTables;
   if (cell->module && (!o.html.empty() || !o.json.empty())) {
-    if (!(ruleCounter = RuleCounter::load(plcSources, *cell->module))) return ExitCode::InputError;
-    if (ruleCounter->empty()) ruleCounter.reset();
+    if (!(ruleTables = RuleTables::load(plcSources, *cell->module))) return ExitCode::InputError;
+    if (ruleTables->empty()) ruleTables.reset();
   }
   uint64_t scans = 0;
-  if (ruleTracer || ruleCounter)
+  if (ruleTracer || ruleTables)
     options.afterScan = [&](plc::Runtime& plc) {
       // Debug output the user asked for: printing may allocate, unlike the rest of the scan path.
       if (ruleTracer) ruleTracer->print(scans++, plc.machine().memory(), std::cout);
-      if (ruleCounter) ruleCounter->count(plc);
+      if (ruleTables) ruleTables->count(plc);
     };
   options.afterScanSeesJumps = !ruleTracer;  // the counter counts the scans a jump passed over
   options.speed = o.speed;
@@ -305,7 +305,7 @@ ExitCode runCell(const RunOptions& o) {
     }
     bool reset = hmi && hmi->resetRequested();
     if (!reset) {
-      ok = writeRunOutputs(o, *cell, timeline, ruleCounter, files);
+      ok = writeRunOutputs(o, *cell, timeline, ruleTables, files);
       if (hmi) reset = lingerForViewers(*hmi);
     }
     if (!reset) break;
@@ -322,6 +322,7 @@ ExitCode runCell(const RunOptions& o) {
     if (!fresh) break;
     historyOk = recordNextRun(o.history, *recorder, *fresh, o.cellFile, timeline, true, options.traceSinks) && historyOk;
     hmi->restart(*fresh);
+    if (ruleTables) ruleTables->restart();  // the fresh runtime's scans count from 0 again
     cell = std::move(fresh);
     std::cerr << "hmi: reset: the run starts again\n";
   }

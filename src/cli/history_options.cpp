@@ -29,6 +29,7 @@ std::expected<std::unique_ptr<history::Recorder>, std::string> openRecorder(cons
   auto absolute = std::filesystem::absolute(cellFile, ec);
   options.cellFile = ec ? cellFile : absolute.lexically_normal().string();
   options.timeline = std::move(timeline);
+  for (const PlannedShift& s : cell.plan.shifts) options.shiftNames.push_back(s.name);
   options.queueEvents = o.queueEvents;
   options.waitWhenFull = !paced;
   options.retention = {o.keepDays, o.maxMb * 1024 * 1024};

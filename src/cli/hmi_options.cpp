@@ -86,12 +86,12 @@ std::expected<void, std::string> LiveHmi::serve(const HmiBinding& binding, sim::
   if (cell_->module) {
     std::vector<std::string> files;
     for (uint32_t file = 0; file < sources.fileCount(); ++file) files.push_back(sources.path(file));
-    std::vector<hmi::RuleFlag> flags;
+    std::vector<plc::CountedRule> counted;
     for (WatchedRule& w : findWatchedRules(files, *cell_->module).value_or(std::vector<WatchedRule>{})) {
       rules.push_back({std::move(w.rule.diagram), std::move(w.rule.index), std::move(w.rule.luType), std::move(w.rule.then)});
-      flags.push_back({w.flag.address, w.flag.bit});
+      counted.push_back(w.counted);
     }
-    live_.watchRules(std::move(flags));
+    live_.watchRules(std::move(counted), cell_->module->tasks.size());
   }
   api_ = std::make_unique<hmi::Api>(*cell_, live_, baseTickNs, binding.access, std::move(rules));
   if (!resetRefusal_.empty()) api_->refuseReset(resetRefusal_);

@@ -35,13 +35,11 @@ std::optional<RunningInstance> runningInstance(const bc::Module& module, const s
   return std::nullopt;
 }
 
-// The fired flag of the k-th rule (from 1) of the instance.
-std::optional<bc::VarRef> firedFlag(const bc::Module& module, const RunningInstance& instance, size_t k) {
-  return bc::resolveVariable(module, instance.name + "." + std::string(ad::kFiredVariable) + "[" + std::to_string(k) + "]");
-}
-
-bool flagSet(const bc::VarRef& flag, const uint8_t* memory) {
-  return flag.bit < 0 ? memory[flag.address] != 0 : (memory[flag.address] >> flag.bit) & 1;
+// The fired flag of the k-th rule (from 1) of the instance, and its task.
+std::optional<plc::CountedRule> firedFlag(const bc::Module& module, const RunningInstance& instance, size_t k) {
+  auto flag = bc::resolveVariable(module, instance.name + "." + std::string(ad::kFiredVariable) + "[" + std::to_string(k) + "]");
+  if (!flag) return std::nullopt;
+  return plc::CountedRule{*flag, instance.task};
 }
 
 }  // namespace
@@ -70,18 +68,18 @@ std::optional<RuleTracer> RuleTracer::load(const std::vector<std::string>& files
   if (!rules) return std::nullopt;
   RuleTracer tracer;
   for (const WatchedRule& w : *rules)
-    tracer.rules_.push_back({w.rule.diagram + " rule " + w.rule.index + " fired: " + w.rule.then, w.flag});
+    tracer.rules_.push_back({w.rule.diagram + " rule " + w.rule.index + " fired: " + w.rule.then, w.counted.flag});
   return tracer;
 }
 
 void RuleTracer::print(uint64_t scan, const uint8_t* memory, std::ostream& out) const {
   for (const Watched& rule : rules_)
-    if (flagSet(rule.flag, memory)) out << "scan " << scan << "  " << rule.prefix << '\n';
+    if (plc::flagSet(rule.flag, memory)) out << "scan " << scan << "  " << rule.prefix << '\n';
 }
 
-std::optional<RuleCounter> RuleCounter::load(const std::vector<std::string>& files, const bc::Module& module) {
-  RuleCounter counter;
-  counter.scansSeen_.assign(module.tasks.size(), 0);
+std::optional<RuleTables> RuleTables::load(const std::vector<std::string>& files, const bc::Module& module) {
+  RuleTables tables;
+  std::vector<plc::CountedRule> counted;
   for (const std::string& path : files) {
     if (!isDiagramFile(path)) continue;
     std::optional<ad::Program> program = readDiagramFile(path);
@@ -89,40 +87,30 @@ std::optional<RuleCounter> RuleCounter::load(const std::vector<std::string>& fil
     std::optional<RunningInstance> instance = runningInstance(module, program->name);
     size_t k = 0;  // fired flags run over the file's rules, diagram after diagram
     for (const ad::Diagram& d : program->diagrams) {
-      ad::DiagramTables tables = ad::decompose(d);
-      auto section = static_cast<uint32_t>(counter.sections_.size());
-      counter.sections_.push_back({program->name, d.name, ad::luTable(tables), ad::ruleTable(tables), {}});
-      counter.sections_.back().firings.resize(tables.rules.size());
-      for (uint32_t row = 0; row < tables.rules.size(); ++row) {
+      ad::DiagramTables decomposed = ad::decompose(d);
+      auto section = static_cast<uint32_t>(tables.sections_.size());
+      tables.sections_.push_back({program->name, d.name, ad::luTable(decomposed), ad::ruleTable(decomposed), {}});
+      tables.sections_.back().firings.resize(decomposed.rules.size());
+      for (uint32_t row = 0; row < decomposed.rules.size(); ++row) {
         ++k;
         if (!instance) continue;  // never scanned: its rules keep their zero counts
-        if (auto flag = firedFlag(module, *instance, k)) counter.rules_.push_back({*flag, instance->task, section, row});
+        if (auto rule = firedFlag(module, *instance, k)) {
+          counted.push_back(*rule);
+          tables.rows_.push_back({section, row});
+        }
       }
     }
   }
-  return counter;
+  tables.counter_ = plc::RuleCounter(std::move(counted), module.tasks.size());
+  return tables;
 }
 
-void RuleCounter::count(const plc::Runtime& plc) {
-  // The tick that just ran started at the time before the next one.
-  const int64_t nowNs = plc.nextTickNs() - plc.baseTickNs();
-  const uint8_t* memory = plc.machine().memory();
-  for (Counted& rule : rules_) {
-    const uint64_t scans = plc.stats(rule.task).scans - scansSeen_[rule.task];
-    if (scans == 0) continue;
-    // All but the last of these scans were repeats passed over by event-driven time: the flag
-    // stood as the last counted scan left it, until the tick before this one.
-    report::RuleFiring& f = sections_[rule.section].firings[rule.row];
-    if (rule.lastSet && scans > 1) {
-      f.scans += scans - 1;
-      f.lastNs = nowNs - plc.baseTickNs();
-    }
-    rule.lastSet = flagSet(rule.flag, memory);
-    if (!rule.lastSet) continue;
-    if (f.scans++ == 0) f.firstNs = nowNs;
-    f.lastNs = nowNs;
-  }
-  for (uint32_t t = 0; t < scansSeen_.size(); ++t) scansSeen_[t] = plc.stats(t).scans;
+std::vector<report::DiagramTablesSection> RuleTables::sections() const {
+  std::vector<report::DiagramTablesSection> out = sections_;
+  const std::vector<plc::RuleFiring>& firings = counter_.firings();
+  for (size_t r = 0; r < rows_.size(); ++r)
+    out[rows_[r].section].firings[rows_[r].row] = {firings[r].scans, firings[r].firstNs, firings[r].lastNs};
+  return out;
 }
 
 }  // namespace virtcom::cli

@@ -4,8 +4,8 @@
 // the rules:
 // - `exec --trace-rules` and `run --trace-rules` print the rules that fired (RuleTracer);
 // - `run --report` and `--json` show each diagram's tables with how often each rule fired
-//   (RuleCounter);
-// - the web HMI's rule panel counts them (findWatchedRules).
+//   (RuleTables, counting with plc::RuleCounter);
+// - the web HMI's rule panel counts them with the same plc::RuleCounter (findWatchedRules).
 #include <cstdint>
 #include <optional>
 #include <ostream>
@@ -14,6 +14,7 @@
 
 #include "bytecode/module.hpp"
 #include "lang/ad/rule_trace.hpp"
+#include "plc/rule_counter.hpp"
 #include "plc/runtime.hpp"
 #include "report/diagram_tables.hpp"
 
@@ -21,7 +22,7 @@ namespace virtcom::cli {
 
 struct WatchedRule {
   ad::TracedRule rule;
-  bc::VarRef flag;  // its fired flag
+  plc::CountedRule counted;  // its fired flag and the task scanning it
 };
 
 // The rules of every diagram file (.ad, .adxml) among `files`, found in the compiled module,
@@ -46,36 +47,32 @@ class RuleTracer {
   std::vector<Watched> rules_;
 };
 
-class RuleCounter {
+// Each diagram's LU and rule tables with how often each rule fired, for the run's reports.
+class RuleTables {
  public:
   // The LU and rule tables of every diagram file (.ad, .adxml) among `files` (none: empty), and
   // the fired flag and task of each rule in the compiled module. Nullopt (after a message on
   // stderr) if a diagram file cannot be read.
-  static std::optional<RuleCounter> load(const std::vector<std::string>& files, const bc::Module& module);
+  static std::optional<RuleTables> load(const std::vector<std::string>& files, const bc::Module& module);
 
   bool empty() const { return sections_.empty(); }
 
-  // Call after every tick of `plc`: for each task that scanned in this tick (a skipped repeat
-  // scan counts, it is the previous scan again), counts the rules of its diagrams whose fired
-  // flag is set, at the tick's virtual time; scans that event-driven time jumped over since the
-  // last call (single-task programs only) count as repeats of the last counted one. Allocates
-  // nothing and looks nothing up.
-  void count(const plc::Runtime& plc);
+  // Call after every tick of `plc` (plc::RuleCounter::count: nothing allocated or looked up).
+  void count(const plc::Runtime& plc) { counter_.count(plc); }
+  // The counts start again at 0, for the next run of a reset (a cold-started runtime).
+  void restart() { counter_.restart(); }
 
   // The tables with the counts so far, one section per diagram, in file and diagram order.
-  const std::vector<report::DiagramTablesSection>& sections() const { return sections_; }
+  std::vector<report::DiagramTablesSection> sections() const;
 
  private:
-  struct Counted {
-    bc::VarRef flag;
-    uint32_t task = 0;    // the task that runs the diagram's PROGRAM
+  struct Row {
     uint32_t section = 0;
-    uint32_t row = 0;     // of the section's rule table
-    bool lastSet = false; // its flag after the last counted scan
+    uint32_t row = 0;  // of the section's rule table
   };
-  std::vector<report::DiagramTablesSection> sections_;
-  std::vector<Counted> rules_;
-  std::vector<uint64_t> scansSeen_;  // per task of the module: its scan count at the last count()
+  std::vector<report::DiagramTablesSection> sections_;  // counts all zero
+  plc::RuleCounter counter_;
+  std::vector<Row> rows_;  // parallel to the counter's rules
 };
 
 }  // namespace virtcom::cli

@@ -139,6 +139,30 @@ class MapParser {
       r.error(item.find("signal")->loc(), "no device signal '" + name + "' (signals are DEVICE.PORT, e.g. " + signalExamples(signals_) + ")");
       return std::nullopt;
     }
+    return readPlacement(r, item, *s, order);
+  }
+
+ public:
+  // `cycle_done: { table: discrete, address: 100 }`: the cycle marker `s`, placed as an entry.
+  void addCycleMarker(SignalMap& map, const ConfigNode& node, const BusSignal& s, WordOrder order) {
+    ConfigReader r(node, diags_, "'cycle_done'");
+    if (node.kind() != ConfigNode::Kind::Map) {
+      r.error(node.loc(), "'cycle_done' must be a map with optional 'table', 'address' and 'type', e.g. { table: discrete, address: 100 }");
+      return;
+    }
+    if (auto entry = readPlacement(r, node, s, order)) {
+      if (checkOverlap(*entry, map, node.loc(), r)) {
+        map.entries.push_back(*entry);
+        map.cycleDone = s.tag;
+      }
+    }
+    r.rejectUnknownKeys();
+  }
+
+ private:
+  // The table, address, type, word order, scale and access of the entry for `s` in `item`.
+  std::optional<MapEntry> readPlacement(ConfigReader& r, const ConfigNode& item, const BusSignal& signal, WordOrder order) {
+    const BusSignal* s = &signal;
     MapEntry e = defaults(*s, order);
     bool ok = true;
     if (const ConfigNode* t = r.child("table")) {
@@ -269,7 +293,7 @@ const char* tableName(Table t) {
 const char* valueTypeName(ValueType t) { return kValueTypes[static_cast<size_t>(t)].text; }
 uint32_t registerCount(ValueType t) { return kValueTypes[static_cast<size_t>(t)].registers; }
 
-SignalMap parseSignalMap(ConfigReader* section, std::span<const BusSignal> signals, MapRole role) {
+SignalMap parseSignalMap(ConfigReader* section, std::span<const BusSignal> signals, MapRole role, const BusSignal* cycleMarker) {
   WordOrder order = WordOrder::HighFirst;
   if (!section) {
     Diagnostics unused;
@@ -281,7 +305,10 @@ SignalMap parseSignalMap(ConfigReader* section, std::span<const BusSignal> signa
     else section->error(w->loc(), "'word_order' must be high_first or low_first, not '" + w->scalar() + "'");
   }
   const ConfigNode* list = section->child("map");
-  return list ? parser.explicitMap(*list, order) : parser.automatic(order);
+  SignalMap map = list ? parser.explicitMap(*list, order) : parser.automatic(order);
+  if (const ConfigNode* marker = cycleMarker ? section->child("cycle_done") : nullptr)
+    parser.addCycleMarker(map, *marker, *cycleMarker, order);
+  return map;
 }
 
 std::string formatMapCsv(const SignalMap& map) {

@@ -63,6 +63,7 @@ struct MapEntry {
 struct SignalMap {
   std::vector<MapEntry> entries;  // in file order (automatic: in signal order)
   bool automatic = false;
+  TagId cycleDone = kNoTag;       // the controller's cycle marker, when the section maps it (`cycle_done:`)
 };
 
 // Reads `word_order:` and `map:` through `section` (the caller rejects the section's other
@@ -71,7 +72,10 @@ struct SignalMap {
 // inputs / input registers (Server role) or to coils / holding registers after the commands
 // (Client role), each table from address 0 in signal order. Reports every problem at its
 // position through the section's reader.
-SignalMap parseSignalMap(ConfigReader* section, std::span<const BusSignal> signals, MapRole role);
+// With `cycleMarker` (the controller's cycle marker, a BOOL signal) the section's `cycle_done:`
+// (a map with optional table, address, type, as a map entry without `signal:`) maps it too,
+// after the other entries; without `cycleMarker` the key is left unread (an unknown key).
+SignalMap parseSignalMap(ConfigReader* section, std::span<const BusSignal> signals, MapRole role, const BusSignal* cycleMarker = nullptr);
 
 // The map as a table for the PLC programmer: CSV (RFC 4180, header line) or GitHub Markdown.
 std::string formatMapCsv(const SignalMap& map);

@@ -16,6 +16,7 @@ enum class EventKind : uint8_t {
   Fault,      // index = fault number; followed by text events holding source then message
   Text,       // kTextChunk bytes of a fault's text
   Cycle,      // index = number of cycles completed; the cycle's window
+  Production, // index = the shift in the plan; one shift occurrence's row as it stands (virtcom monitor)
 };
 
 inline constexpr size_t kTextChunk = 32;
@@ -35,6 +36,12 @@ struct FaultEvent {
 struct CycleEvent {
   int64_t startNs, endNs;
 };
+// Local wall times: ns since 1970-01-01 00:00 local (the `production` table of docs/history.md).
+struct ProductionEvent {
+  int64_t startWallNs, endWallNs, watchedFromWallNs;
+  double planNow;
+  uint32_t plan, actual;
+};
 
 struct Event {
   EventKind kind = EventKind::Change;
@@ -46,6 +53,7 @@ struct Event {
     CollisionEvent collision;
     FaultEvent fault;
     CycleEvent cycle;
+    ProductionEvent production;
     char text[kTextChunk];
   };
 };

@@ -35,7 +35,7 @@ Recorder::Recorder(Connection db, RecorderOptions options)
 Recorder::~Recorder() { stopWriter(); }
 
 void Recorder::begin(const Trace& trace) {
-  run_ = writer_.writeStart(trace, {options_.cellName, options_.cellFile, utcNowNs(), options_.timeline});
+  run_ = writer_.writeStart(trace, {options_.cellName, options_.cellFile, utcNowNs(), options_.timeline, options_.shiftNames});
   if (run_ < 0) {
     error_ = writer_.error();
     return;  // every event then counts as dropped: nothing takes them off the queue
@@ -144,6 +144,16 @@ void Recorder::end(const Trace& trace) {
   progressNs_.store(trace.endNs, std::memory_order_release);
   stopWriter();
   if (!writer_.writeEnd(trace, drops(), error_) && error_.empty()) error_ = writer_.error();
+}
+
+void Recorder::production(uint32_t shift, const ProductionEvent& row) {
+  if (run_ < 0 || !thread_.joinable()) return;  // not begun, or ended
+  push(1, false, [&](Event& e, size_t) {
+    e.kind = EventKind::Production;
+    e.index = shift;
+    e.timeNs = progressNs_.load(std::memory_order_relaxed);
+    e.production = row;
+  });
 }
 
 bool Recorder::recordProduction(const std::vector<ProductionRow>& rows) {

@@ -28,6 +28,7 @@ struct RecorderOptions {
   std::string cellName;
   std::string cellFile;
   std::vector<std::string> timeline;            // the report's timeline signals
+  std::vector<std::string> shiftNames;          // a monitored plant's planned shifts (production()), by index
   size_t queueEvents = 1 << 16;                  // 48 bytes each: 3 MiB
   int64_t flushPeriodNs = 200'000'000;           // longest wall time between commits
   bool waitWhenFull = false;                     // wait for the writer instead of dropping (unpaced runs only)
@@ -52,6 +53,11 @@ class Recorder final : public TraceSink {
   // After end(): the shifts a monitored plant worked, against its plan (blocks on I/O). False
   // (and error() says why) on a database failure.
   bool recordProduction(const std::vector<ProductionRow>& rows);
+  // While recording, on the simulation thread: the row of one occurrence of the plan's shift
+  // `shift` (RecorderOptions::shiftNames) as it stands, written (replacing the previous one of
+  // that occurrence) with the writer's next batch, so a killed monitor keeps its production up
+  // to the last commit. Never blocks nor allocates; a full queue drops it (counted).
+  void production(uint32_t shift, const ProductionEvent& row);
 
   int64_t runId() const { return run_; }
   // Events the full queue refused so far (a fault's text counts as one event with its fault).

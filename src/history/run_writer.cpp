@@ -38,7 +38,10 @@ RunWriter::RunWriter(Connection& db)
       fault_(db, "INSERT OR REPLACE INTO faults (run, id, t_ns, source, message) VALUES (?1, ?2, ?3, ?4, ?5)"),
       cycle_(db, "INSERT OR REPLACE INTO cycles (run, number, start_ns, end_ns) VALUES (?1, ?2, ?3, ?4)"),
       progress_(db, "UPDATE runs SET end_ns = ?2, drops = ?3 WHERE id = ?1"),
-      label_(db, "INSERT OR IGNORE INTO labels (run, id, text) VALUES (?1, ?2, ?3)") {}
+      label_(db, "INSERT OR IGNORE INTO labels (run, id, text) VALUES (?1, ?2, ?3)"),
+      // The day is the local date the shift started on: local wall ns read as if they were UTC.
+      production_(db, "INSERT OR REPLACE INTO production (run, start_wall_ns, end_wall_ns, watched_from_wall_ns, day, shift, plan, "
+                      "plan_now, actual) VALUES (?1, ?2, ?3, ?4, strftime('%Y-%m-%d', ?2 / 1000000000, 'unixepoch'), ?5, ?6, ?7, ?8)") {}
 
 bool RunWriter::fail() {
   if (error_.empty()) error_ = db_.errorText();
@@ -59,6 +62,7 @@ int64_t RunWriter::writeStart(const Trace& trace, const RunIdentity& identity) {
   if (!tx.began() || !run.bind(1, identity.cellName).bind(2, identity.cellFile).bind(3, identity.wallStartNs).bind(4, timeline).run())
     return fail(), -1;
   run_ = db_.lastInsertRowid();
+  shiftNames_ = identity.shiftNames;
   Statement signal(db_, "INSERT INTO signals (run, id, name, type, initial) VALUES (?1, ?2, ?3, ?4, ?5)");
   for (size_t i = 0; i < trace.signals.size(); ++i) {
     const SignalInfo& s = trace.signals[i];
@@ -108,6 +112,12 @@ bool RunWriter::writeEvent(const EventQueue& queue, size_t& i) {
       return fault_.run();
     case EventKind::Cycle:
       return cycle_.bind(1, run_).bind(2, index).bind(3, e.cycle.startNs).bind(4, e.cycle.endNs).run();
+    case EventKind::Production: {
+      const ProductionEvent& p = e.production;
+      if (e.index >= shiftNames_.size()) return true;  // not a shift of the plan the run was begun with
+      return production_.bind(1, run_).bind(2, p.startWallNs).bind(3, p.endWallNs).bind(4, p.watchedFromWallNs)
+          .bind(5, shiftNames_[e.index]).bind(6, int64_t{p.plan}).bind(7, p.planNow).bind(8, int64_t{p.actual}).run();
+    }
     case EventKind::Text:
       return true;  // only after a fault, which consumed it
   }

@@ -18,6 +18,7 @@ struct RunIdentity {
   std::string cellFile;
   int64_t wallStartNs = 0;  // UTC ns since 1970
   std::vector<std::string> timeline;  // the report's timeline signals, in order
+  std::vector<std::string> shiftNames;  // a monitored plant's planned shifts, by index (Production events)
 };
 
 // One planned shift as a monitored plant worked it (`virtcom monitor` with a `plan:`; the
@@ -57,7 +58,8 @@ class RunWriter {
 
   Connection& db_;
   int64_t run_ = -1;
-  Statement change_, activity_, collision_, fault_, cycle_, progress_, label_;
+  Statement change_, activity_, collision_, fault_, cycle_, progress_, label_, production_;
+  std::vector<std::string> shiftNames_;
   std::string error_;
   std::string faultText_;  // reused: the text of the fault being reassembled
 };

@@ -20,9 +20,8 @@ constexpr auto kPausedPoll = std::chrono::milliseconds(20);
 LiveState::LiveState(cell::Cell& cell, const std::atomic<bool>* interrupt, bool startPaused)
     : cell_(&cell), interrupt_(interrupt), paused_(startPaused) {}
 
-void LiveState::watchRules(std::vector<RuleFlag> flags) {
-  ruleFlags_ = std::move(flags);
-  fires_.assign(ruleFlags_.size(), {});
+void LiveState::watchRules(std::vector<plc::CountedRule> rules, size_t taskCount) {
+  rules_ = plc::RuleCounter(std::move(rules), taskCount);
 }
 
 void LiveState::begin(const Trace& trace) {
@@ -36,7 +35,8 @@ void LiveState::begin(const Trace& trace) {
   snapshot_.injected.assign(cell_->devices.size(), 0);
   if (snapshot_.activities.empty()) snapshot_.activities.setLimit(trace.activities.limit());
   snapshot_.activities.reserve(trace.activities.capacity());
-  snapshot_.rules.assign(fires_.size(), {});
+  snapshot_.stations.assign(trace.devices.size(), {});
+  snapshot_.rules.assign(rules_.firings().size(), {});
   snapshot_.belts.resize(conveyors_.size());
   for (size_t b = 0; b < conveyors_.size(); ++b)
     snapshot_.belts[b].device = static_cast<uint32_t>(
@@ -54,7 +54,7 @@ void LiveState::restart(cell::Cell& cell) {
   nowNs_ = 0;
   open_.clear();
   forced_.clear();  // the PLC starts from its initial values: nothing forced
-  fires_.assign(ruleFlags_.size(), {});
+  rules_.restart();
   std::lock_guard lock(snapshotMutex_);
   Snapshot& s = snapshot_;
   ++s.run;
@@ -63,6 +63,7 @@ void LiveState::restart(cell::Cell& cell) {
   s.ended = false;
   s.endMessage.clear();
   s.activities.clear();
+  std::ranges::fill(s.stations, Station{});
   s.faults.clear();
   s.collisions.clear();
   s.cyclesCompleted = 0;
@@ -114,7 +115,7 @@ bool LiveState::publish(const Trace& trace, bool wait) {
   mirrorTrace(trace);
   if (plc_ && !s.memory.empty()) std::memcpy(s.memory.data(), plc_->machine().memory(), s.memory.size());
   for (size_t d = 0; d < s.injected.size(); ++d) s.injected[d] = cell_->devices[d]->faults().errorCode;
-  std::ranges::copy(fires_, s.rules.begin());
+  std::ranges::copy(rules_.firings(), s.rules.begin());
   copyBelts();
   s.planned = static_cast<bool>(shiftProgress_);
   if (shiftProgress_) shiftProgress_(s.shift);
@@ -133,6 +134,7 @@ void LiveState::mirrorTrace(const Trace& trace) {
       ++i;
       continue;
     }
+    followStation(a);
     s.energyJ += a.energyJ;
     open_[i] = open_.back();
     open_.pop_back();
@@ -144,6 +146,7 @@ void LiveState::mirrorTrace(const Trace& trace) {
     s.activities.push_back(a);
     if (a.endNs < 0) open_.push_back(static_cast<uint32_t>(i));
     else s.energyJ += a.energyJ;
+    if (trace.activities.held(i)) followStation(a);
   }
   s.faults.insert(s.faults.end(), trace.faults.begin() + static_cast<ptrdiff_t>(std::min(s.faults.size(), trace.faults.size())),
                   trace.faults.end());
@@ -153,6 +156,15 @@ void LiveState::mirrorTrace(const Trace& trace) {
   s.cyclesCompleted = trace.cyclesCompleted;
   s.lastCycleNs = trace.cyclesCompleted ? trace.cycleEndNs - trace.cycleStartNs : 0;
   s.cycleStartNs = trace.cyclesCompleted ? trace.cycleEndNs : 0;
+}
+
+// The station of `a`'s device after `a` began or ended (activities come in start order, so a
+// device's later operation is never overwritten by the end of an earlier one).
+void LiveState::followStation(const ActivityRecord& a) {
+  if (a.device >= snapshot_.stations.size()) return;
+  Station& station = snapshot_.stations[a.device];
+  if (a.endNs < 0) station = {static_cast<int32_t>(a.label), a.startNs};
+  else if (station.sinceNs <= a.startNs) station = {-1, a.endNs};
 }
 
 // The parts' positions in whole millimetres: vectors keep their largest size, so this allocates
@@ -264,19 +276,6 @@ void LiveState::applyForces(plc::Runtime& plc) {
     plc::syncInputImage(plc.module(), f.ref, memory, plc.inputImage());
   }
   if (touched) plc.inputsTouched();
-}
-
-void LiveState::countFirings(const plc::Runtime& plc) {
-  if (ruleFlags_.empty()) return;
-  const uint8_t* memory = plc.machine().memory();
-  const int64_t scanNs = static_cast<int64_t>(plc.ticks() - 1) * plc.baseTickNs();  // tick() has counted this scan
-  for (size_t r = 0; r < ruleFlags_.size(); ++r) {
-    const RuleFlag& f = ruleFlags_[r];
-    const bool fired = f.bit < 0 ? memory[f.address] != 0 : ((memory[f.address] >> f.bit) & 1) != 0;
-    if (!fired) continue;
-    ++fires_[r].count;
-    fires_[r].lastNs = scanNs;
-  }
 }
 
 bool LiveState::writeBytes(const Forced& f, uint8_t* memory) {

@@ -21,16 +21,11 @@
 #include "cell/cell.hpp"
 #include "core/trace.hpp"
 #include "plant/conveyor.hpp"
+#include "plc/rule_counter.hpp"
 #include "plc/runtime.hpp"
 #include "sim/run_control.hpp"
 
 namespace virtcom::hmi {
-
-// An activity-diagram rule's firings (the scans whose IF held) so far.
-struct RuleFires {
-  uint64_t count = 0;
-  int64_t lastNs = -1;          // virtual time of the last one, -1 = never
-};
 
 // The parts on one conveyor's belt, as the layout draws them.
 struct BeltParts {
@@ -39,10 +34,12 @@ struct BeltParts {
   std::vector<uint8_t> kind;        // its kind (index into the conveyor's part kinds)
 };
 
-// Where an activity-diagram rule's fired flag is in the PLC memory (lang/ad/lower.hpp).
-struct RuleFlag {
-  uint32_t address = 0;
-  int8_t bit = -1;
+// Where a station (a device of the trace) stands: the operation it is in, or idle, and since
+// when (the elapsed times per station of docs/monitor.md, live).
+struct Station {
+  int32_t label = -1;           // its running operation (index into Trace::labels); -1: idle
+  int64_t sinceNs = 0;          // virtual time it started, or (idle) the last one ended
+  bool operator==(const Station&) const = default;
 };
 
 // Production against the plan in the current shift (virtcom monitor with a `plan:`).
@@ -65,6 +62,7 @@ struct Snapshot {
   std::string endMessage;       // once ended
   std::vector<uint64_t> tags;   // raw value per TagId (TagBus representation)
   ActivityLog activities;       // bounded as the trace's (core/trace_logs.hpp)
+  std::vector<Station> stations;    // per trace device, sized at begin()
   std::vector<FaultRecord> faults;
   std::vector<CollisionRecord> collisions;
   uint32_t cyclesCompleted = 0;
@@ -74,7 +72,7 @@ struct Snapshot {
   std::vector<uint8_t> memory;  // the soft PLC's variables (Module::staticSize bytes), empty without one
   std::vector<std::string> forced;  // names of the forced variables, in forcing order
   std::vector<int32_t> injected;    // per device: the injected error code, 0 = none
-  std::vector<RuleFires> rules;     // per watched rule (LiveState::watchRules), in its order
+  std::vector<plc::RuleFiring> rules;  // per watched rule (LiveState::watchRules), in its order
   std::vector<BeltParts> belts;     // per conveyor, in device order
   bool planned = false;             // a production plan is watched: `shift` is meaningful
   ShiftProgress shift;
@@ -103,8 +101,9 @@ class LiveState final : public TraceSink, public sim::RunControl {
   LiveState(cell::Cell& cell, const std::atomic<bool>* interrupt, bool startPaused = false);
 
   // Before the run: count the firings of these activity-diagram rules after every scan (their
-  // fired flags, addresses resolved once, so the scan looks nothing up).
-  void watchRules(std::vector<RuleFlag> flags);
+  // fired flags, addresses resolved once, so the scan looks nothing up), with the counter the
+  // reports use. `taskCount`: the module's tasks.
+  void watchRules(std::vector<plc::CountedRule> rules, size_t taskCount);
 
   // ---- the simulation's thread, between runs ----
   // After a run that ended on a reset (resetting()): the fresh `cell` (the same cell file, the
@@ -127,7 +126,7 @@ class LiveState final : public TraceSink, public sim::RunControl {
   void beforeScan(plc::Runtime& plc) { applyForces(plc); }
   void afterScan(plc::Runtime& plc) {
     applyForces(plc);
-    countFirings(plc);
+    rules_.count(plc);
   }
 
   // Before the run: `fill` updates the shift's progress in place at each publication, on the
@@ -152,10 +151,10 @@ class LiveState final : public TraceSink, public sim::RunControl {
   // True if the snapshot was updated (false: a reader held it; try again later).
   bool publish(const Trace& trace, bool wait);
   void mirrorTrace(const Trace& trace);
+  void followStation(const ActivityRecord& a);
   void applyCommands(sim::Simulation& sim);
   void apply(Command& c, sim::Simulation& sim);
   void applyForces(plc::Runtime& plc);
-  void countFirings(const plc::Runtime& plc);
   void copyBelts();
   static bool writeBytes(const Forced& f, uint8_t* memory);
 
@@ -176,8 +175,7 @@ class LiveState final : public TraceSink, public sim::RunControl {
   std::vector<uint32_t> open_;   // indices of activities still running in the snapshot
   bool resetting_ = false;       // a reset was applied: the run ends at this tick
   bool rebound_ = false;         // restart() since the last tick: the new simulation takes speed_
-  std::vector<RuleFlag> ruleFlags_;
-  std::vector<RuleFires> fires_;  // parallel to ruleFlags_
+  plc::RuleCounter rules_;
   std::vector<const plant::Conveyor*> conveyors_;  // parallel to snapshot_.belts
   std::function<void(ShiftProgress&)> shiftProgress_;
 

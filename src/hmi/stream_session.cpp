@@ -77,6 +77,7 @@ std::string StreamSession::nextFrame() {
       if (a.endNs < 0) open_.push_back(static_cast<uint32_t>(activities_));
     }
     if (!activities.empty()) frame["activities"] = std::move(activities);
+    if (Json stations = changedStations(s); !stations.empty()) frame["stations"] = std::move(stations);
     Json faults = Json::array();
     for (; faults_ < s.faults.size(); ++faults_)
       faults.push_back({{"t", s.faults[faults_].timeNs}, {"source", s.faults[faults_].source}, {"message", s.faults[faults_].message}});
@@ -129,6 +130,7 @@ void StreamSession::startOver() {
   ended_ = false;
   rules_.clear();
   belts_.clear();
+  stations_.clear();
   for (Watched& w : watched_) w.sent = false;
 }
 
@@ -150,9 +152,21 @@ Json StreamSession::changedRules(const Snapshot& s) {
   Json changed = Json::array();
   rules_.resize(s.rules.size());
   for (size_t i = 0; i < s.rules.size(); ++i) {
-    if (!first_ && s.rules[i].count == rules_[i].count) continue;
+    if (!first_ && s.rules[i].scans == rules_[i].scans) continue;
     rules_[i] = s.rules[i];
-    changed.push_back(Json::array({i, s.rules[i].count, s.rules[i].lastNs}));
+    changed.push_back(Json::array({i, s.rules[i].scans, s.rules[i].lastNs}));
+  }
+  return changed;
+}
+
+// [trace device, operation label or -1 when idle, since ns] of the stations that changed.
+Json StreamSession::changedStations(const Snapshot& s) {
+  Json changed = Json::array();
+  stations_.resize(s.stations.size());
+  for (size_t d = 0; d < s.stations.size(); ++d) {
+    if (!first_ && s.stations[d] == stations_[d]) continue;
+    stations_[d] = s.stations[d];
+    changed.push_back(Json::array({d, s.stations[d].label, s.stations[d].sinceNs}));
   }
   return changed;
 }

@@ -42,6 +42,7 @@ class StreamSession {
   nlohmann::json activeSteps(const Snapshot& s) const;
   nlohmann::json changedRules(const Snapshot& s);
   nlohmann::json changedBelts(const Snapshot& s);
+  nlohmann::json changedStations(const Snapshot& s);
 
   const std::vector<ElemType>& tagTypes_;
   const std::vector<sfc::StepVariable>& steps_;
@@ -58,8 +59,9 @@ class StreamSession {
   bool ended_ = false;
   uint32_t run_ = 0;                    // Snapshot::run of the frames sent
   nlohmann::json stepsSent_;            // the active steps sent last
-  std::vector<RuleFires> rules_;        // the firings sent last
+  std::vector<plc::RuleFiring> rules_;  // the firings sent last
   std::vector<BeltParts> belts_;        // the parts sent last
+  std::vector<Station> stations_;       // the stations sent last
 };
 
 }  // namespace virtcom::hmi

@@ -2,7 +2,7 @@
 // Activity diagrams in a report (seed 002): each diagram's LU table and rule table, in a run's
 // HTML and JSON reports with how often each rule fired, or as a page of their own
 // (`virtcom ad tables --format html`). The tables come as text cells from the front end
-// (lang/ad/tables.hpp); the counts from cli/rule_trace.hpp, which reads them after every scan.
+// (lang/ad/tables.hpp); the counts from plc/rule_counter.hpp, which reads them after every scan.
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -56,6 +56,9 @@ Simulation::Simulation(cell::Cell& cell, SimOptions options) : cell_(cell), opti
     cycleWire_.bit = ref->bit;
     cycleWire_.varType = ElemType::Bool;
     hasCycleWire_ = true;
+    // Published on the bus (a Modbus map's `cycle_done:`, docs/modbus.md): its tag follows the variable.
+    if (TagId tag = cell_.bus.find(cell_.run.cycleDoneVar); tag != kNoTag)
+      fromPlc_.push_back(slotOf(cell::makeWire(tag, plant::PortDir::In, *ref, ElemType::Bool, cell_.run.cycleDoneVar)));
   }
   trace.signals.clear();
   for (TagId id = 0; id < cell_.bus.size(); ++id) trace.signals.push_back({cell_.bus.name(id), cell_.bus.type(id), 0});

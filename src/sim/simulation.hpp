@@ -47,7 +47,7 @@ struct SimOptions {
   // in `preset`). Must not allocate.
   std::function<void(plc::Runtime& plc)> beforeScan, afterScan;
   // afterScan is only an observer that accounts for the scans a jump of event-driven time
-  // passed over itself (from the task's scan count, as cli's RuleCounter does): it does not
+  // passed over itself (from the task's scan count, as plc::RuleCounter does): it does not
   // keep the clock from jumping.
   bool afterScanSeesJumps = false;
   // Follow the run as it goes: every recorded signal change, every tick, the end (core/trace.hpp;

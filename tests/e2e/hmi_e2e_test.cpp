@@ -7,6 +7,8 @@
 //  - Reset (served, and after a run's end; refused with --modbus), the SFC step panel
 //    (cell-sfc.yaml), the fired-rule panel (activity/tank-cell.yaml) and parts on a conveyor
 //    (activity/conveyor-cell.yaml): tests/e2e/hmi/check_run_panels.js;
+//  - the Stations panel (tests/e2e/hmi/check_stations.js) on `run --hmi` and on `monitor --http`
+//    watching a served cell;
 //  - the start-up checks of the HMI options.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -141,6 +143,35 @@ TEST(Hmi, EveryResetStartsANewRecordedRun) {
   ASSERT_EQ(shell(kExe + " history '" + db + "'", out), 0) << out;
   EXPECT_NE(out.find("\n2 "), std::string::npos) << "two runs listed: " << out;
   fs::remove(db);
+}
+
+// The Stations panel (each station's state, operation and elapsed time, tests/e2e/hmi/
+// check_stations.js) agrees with the Gantt chart on a paced run and on a monitor of a served cell.
+TEST(Hmi, TheStationsPanelShowsEachStationsOperationAndElapsedTimeInARun) {
+  if (browserMissing()) GTEST_SKIP() << "no browser";
+  ServerProcess run(kExe, {"run", kGearbox + "/cell.yaml", "--hmi", "127.0.0.1:0", "--speed", "2", "--quiet"}, kGearbox, kAnnounce);
+  ASSERT_GT(run.port(), 0) << run.errorOutput();
+  std::string out;
+  EXPECT_EQ(runCheck("live", run.port(), out, "check_stations.js"), 0) << out << run.errorOutput();
+  EXPECT_NE(out.find("hmi checks passed"), std::string::npos) << out;
+  EXPECT_EQ(run.stop(), 0) << run.errorOutput();
+}
+
+TEST(Hmi, TheStationsPanelShowsTheWatchedPlantsStationsInAMonitor) {
+  if (browserMissing()) GTEST_SKIP() << "no browser";
+  const std::string adsCell = std::string(VIRTCOM_SOURCE_DIR) + "/examples/ads-cell";
+  ServerProcess plant(kExe, {"serve", adsCell + "/cell.yaml", "--ads", "127.0.0.1:0", "--quiet"}, adsCell, "ads: serving on ");
+  ASSERT_GT(plant.port(), 0) << plant.errorOutput();
+  ServerProcess monitor(kExe,
+                        {"monitor", adsCell + "/cell.yaml", "--ads", "127.0.0.1:" + std::to_string(plant.port()), "--poll", "5ms",
+                         "--http", "127.0.0.1:0", "--quiet"},
+                        adsCell, kAnnounce);
+  ASSERT_GT(monitor.port(), 0) << monitor.errorOutput();
+  std::string out;
+  EXPECT_EQ(runCheck("live", monitor.port(), out, "check_stations.js"), 0) << out << monitor.errorOutput();
+  EXPECT_NE(out.find("hmi checks passed"), std::string::npos) << out;
+  EXPECT_EQ(monitor.stop(), 0) << monitor.errorOutput();
+  EXPECT_EQ(plant.stop(), 0) << plant.errorOutput();
 }
 
 TEST(Hmi, BindingBeyondLoopbackNeedsAnAllowList) {

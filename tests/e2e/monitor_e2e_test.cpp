@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -223,6 +224,56 @@ std::string httpGet(int port, const std::string& target) {
   return std::string(response.begin(), response.end());
 }
 
+// One HTTP/1.0 POST of a JSON body on a fresh connection: the whole response.
+std::string httpPost(int port, const std::string& target, const std::string& body) {
+  LoopbackClient c(port);
+  const std::string request = "POST " + target + " HTTP/1.0\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: " +
+                              std::to_string(body.size()) + "\r\n\r\n" + body;
+  if (!c.connected() || !c.send(std::vector<uint8_t>(request.begin(), request.end()))) return {};
+  std::vector<uint8_t> response = c.receive(1 << 20);
+  return std::string(response.begin(), response.end());
+}
+
+// The port a process announced after `prefix` ("hmi: serving http://127.0.0.1:PORT/"), 0 if none.
+int announcedPort(ServerProcess& p, const std::string& prefix) {
+  if (!p.waitFor(prefix)) return 0;
+  const std::string& err = p.errorOutput();
+  const size_t colon = err.find(':', err.find(prefix) + prefix.size());
+  return colon == std::string::npos ? 0 : std::atoi(err.c_str() + colon + 1);
+}
+
+// Over Modbus the PLC's cycle marker is read where the cell's `modbus: cycle_done:` puts it
+// (served there by `serve --modbus` from the soft PLC it runs with --ads): the monitor counts
+// the plant's cycles. The plant starts paused (its HMI) until the monitor watches, and is paused
+// again before either stops, so both count the same cycles.
+TEST_F(Monitor, CountsThePlantsCyclesOverModbusWhereTheMapPutsCycleDone) {
+  std::ofstream(path("marked.yaml")) << cellCopy({}, "modbus:\n  cycle_done: { table: discrete, address: 100 }\n");
+  ServerProcess plant(kExe,
+                      {"serve", path("marked.yaml"), "--modbus", "127.0.0.1:0", "--ads", "127.0.0.1:0", "--http", "127.0.0.1:0",
+                       "--hmi-paused", "--quiet", "--json", path("plant.json")},
+                      kExample, "modbus: serving on ");
+  ASSERT_GT(plant.port(), 0) << plant.errorOutput();
+  const int hmi = announcedPort(plant, "hmi: serving http://");
+  ASSERT_GT(hmi, 0) << plant.errorOutput();
+  ServerProcess monitor(kExe,
+                        {"monitor", path("marked.yaml"), "--modbus", "127.0.0.1:" + std::to_string(plant.port()), "--poll", "5ms",
+                         "--quiet", "--json", path("monitor.json")},
+                        kExample, "modbus: the PLC at ");
+  ASSERT_GT(monitor.port(), 0) << monitor.errorOutput();
+  ASSERT_TRUE(monitor.waitFor("is watched (read only)")) << monitor.errorOutput();
+  ASSERT_NE(httpPost(hmi, "/api/control", R"({"action": "run"})").find(" 200 "), std::string::npos);
+  ASSERT_TRUE(monitor.waitFor("monitor: cycle 2 completed")) << monitor.errorOutput();
+  ASSERT_NE(httpPost(hmi, "/api/control", R"({"action": "pause"})").find(" 200 "), std::string::npos);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the monitor's polls catch up with the paused plant
+  EXPECT_EQ(monitor.stop(), 0) << monitor.errorOutput();
+  EXPECT_EQ(plant.stop(), 0) << plant.errorOutput();
+  const nlohmann::json watched = nlohmann::json::parse(readFile(path("monitor.json")));
+  const nlohmann::json served = nlohmann::json::parse(readFile(path("plant.json")));
+  EXPECT_GE(watched.at("run").at("cycles_completed").get<uint32_t>(), 2u);
+  EXPECT_EQ(watched.at("run").at("cycles_completed"), served.at("run").at("cycles_completed"))
+      << "the monitor counted the served run's cycles";
+}
+
 TEST_F(Monitor, ServesTheHmiReadOnlyOverTheWatchedCell) {
   ServerProcess plant(kExe, {"serve", kExample + "/cell.yaml", "--ads", "127.0.0.1:0", "--quiet"}, kExample, "ads: serving on ");
   ASSERT_GT(plant.port(), 0) << plant.errorOutput();
@@ -274,3 +325,29 @@ TEST_F(Monitor, ABadPollPeriodIsAUsageError) {
 }
 
 }  // namespace
+
+// Production rows are written while the monitor runs (the current shift's row each time a part
+// completes and every second), so a monitor killed with SIGKILL, which writes nothing when it
+// stops, still leaves them in the historian, up to its last commit.
+TEST_F(Monitor, AKilledMonitorKeepsItsProductionRowsInTheHistorian) {
+  std::ofstream(path("planned.yaml")) << cellCopy({}, "plan:\n  shifts:\n    - { name: AllDay, start: \"00:00\", end: \"24:00\", parts: 1000 }\n");
+  ServerProcess plant(kExe, {"serve", kExample + "/cell.yaml", "--ads", "127.0.0.1:0", "--quiet"}, kExample, "ads: serving on ");
+  ASSERT_GT(plant.port(), 0) << plant.errorOutput();
+  ServerProcess monitor(kExe,
+                        {"monitor", path("planned.yaml"), "--ads", "127.0.0.1:" + std::to_string(plant.port()), "--poll", "5ms", "--quiet",
+                         "--history", path("h.sqlite")},
+                        kExample, "ads: the PLC at ");
+  ASSERT_GT(monitor.port(), 0) << monitor.errorOutput();
+  ASSERT_TRUE(monitor.waitFor("monitor: cycle 2 completed")) << monitor.errorOutput();
+  std::this_thread::sleep_for(std::chrono::seconds(1));  // past the writer's next commit (at most 200 ms)
+  EXPECT_EQ(monitor.signal(SIGKILL), 128 + SIGKILL) << monitor.errorOutput();
+  EXPECT_EQ(plant.stop(), 0) << plant.errorOutput();
+  EXPECT_EQ(monitor.errorOutput().find("history: run 1 recorded"), std::string::npos) << "killed: it never got to end the run";
+
+  std::string out;
+  ASSERT_EQ(shell(kExe + " history " + path("h.sqlite") + " --run 1", out), 0) << out;
+  EXPECT_NE(out.find("not ended"), std::string::npos) << out;
+  std::smatch row;
+  ASSERT_TRUE(std::regex_search(out, row, std::regex(R"((\d{4}-\d\d-\d\d) +AllDay +1000 +[0-9.]+ +(\d+))"))) << out;
+  EXPECT_GE(std::stoi(row[2].str()), 2) << "the two cycles completed before the kill: " << out;
+}

@@ -3,7 +3,7 @@
 import { Layout } from './layout.js';
 import { Gantt } from './gantt.js';
 import { Trend } from './trend.js';
-import { SfcPanel, RulePanel } from './panels.js';
+import { StationPanel, SfcPanel, RulePanel } from './panels.js';
 
 const $ = (id) => document.getElementById(id);
 const seconds = (ns) => `${(ns / 1e9).toFixed(3)} s`;
@@ -21,7 +21,7 @@ const state = {
   nowNs: 0,
   dirty: true,
 };
-let layout, gantt, trend, stream, sfcPanel, rulePanel;
+let layout, gantt, trend, stream, stationPanel, sfcPanel, rulePanel;
 
 async function post(path, body) {
   const headers = { 'Content-Type': 'application/json' };
@@ -51,6 +51,7 @@ function startOver() {
   $('events').replaceChildren();
   trend.clear();
   rulePanel.clear();
+  stationPanel.clear();
   $('message').textContent = 'reset: the run started again';
 }
 
@@ -71,6 +72,7 @@ function applyFrame(f) {
     if (a[4] < 0) state.current.set(a[1], a);
     else if (state.current.get(a[1])?.[0] === a[0]) state.current.delete(a[1]);
   }
+  if (f.stations) stationPanel.update(f.stations);
   for (const e of f.faults ?? []) addEvent(`${seconds(e.t)} ${e.source}: ${e.message}`, 'fault');
   for (const c of f.collisions ?? []) {
     const names = state.model.devices;
@@ -116,6 +118,7 @@ function render() {
     $('vtime').dataset.ns = state.nowNs;
     layout.update(state.values, deviceState, state.belts);
     gantt.render(state.activities, state.nowNs);
+    stationPanel.render(state.nowNs, deviceState);
     trend.render(state.nowNs);
     renderWatch();
   }
@@ -212,6 +215,7 @@ async function start() {
   if (m.readOnly) for (const b of document.querySelectorAll('button:not(#trend-form button), #speed')) b.disabled = true;  // trends only watch
   layout = new Layout($('layout'), m);
   gantt = new Gantt($('gantt'), m);
+  stationPanel = new StationPanel($('stations').tBodies[0], m.devices, m.labels);
   sfcPanel = new SfcPanel($('sfc-panel'), $('sfc-steps').tBodies[0], m.sfcSteps ?? []);
   rulePanel = new RulePanel($('rules-panel'), $('rules').tBodies[0], m.rules ?? []);
   setUpTrends();

@@ -1,8 +1,11 @@
-// The panels of the PLC's program state: the active SFC steps (one row per POU with a chart:
-// its active steps and the time in each) and the fired rules of activity-diagram programs (one
-// row per rule: diagram, index, LU type, THEN, how often its IF held and when last). Both are
-// hidden when the program has none. Frames: `steps` ([step index, ms in step] of every active
-// step) and `rules` ([rule index, count, last ns] of the rules that fired); docs/hmi.md.
+// The panels of the cell's state beyond the layout: the stations (one row per device: its state,
+// the operation it is in and for how long, or how long it has been idle), the active SFC steps
+// (one row per POU with a chart: its active steps and the time in each) and the fired rules of
+// activity-diagram programs (one row per rule: diagram, index, LU type, THEN, how often its IF
+// held and when last); the last two are hidden when the program has none. Frames: `stations`
+// ([device, label or -1, since ns] of the stations that changed), `steps` ([step index, ms in
+// step] of every active step) and `rules` ([rule index, count, last ns] of the rules that
+// fired); docs/hmi.md.
 const seconds = (ns) => `${(ns / 1e9).toFixed(3)} s`;
 
 function cell(row, text, cls) {
@@ -16,6 +19,48 @@ function cell(row, text, cls) {
 function splitStep(path) {
   const dot = path.lastIndexOf('.');
   return [path.slice(0, dot), path.slice(dot + 1)];
+}
+
+export class StationPanel {
+  // devices: the model's; labels: the model's operation names.
+  constructor(tbody, devices, labels) {
+    this.labels = labels;
+    this.rows = new Map();  // trace device index -> {row, state, op, elapsed, label, sinceNs}
+    for (const d of devices) {
+      const row = tbody.insertRow();
+      row.dataset.device = d.name;
+      cell(row, d.label || d.name, 'station');
+      this.rows.set(d.trace, { device: d, row, state: cell(row, 'idle', 'state'), op: cell(row, '–', 'op'),
+                               elapsed: cell(row, '–', 'elapsed'), label: -1, sinceNs: 0 });
+    }
+  }
+
+  // changes: [[trace device, label or -1, since ns], ...]
+  update(changes) {
+    for (const [device, label, sinceNs] of changes) {
+      const r = this.rows.get(device);
+      if (!r) continue;
+      r.label = label;
+      r.sinceNs = sinceNs;
+    }
+  }
+
+  // Every frame drawn: the elapsed times at virtual time `nowNs`; `stateOf(device)` gives the
+  // state the layout colours it by (idle, busy, error, fault) and its text.
+  render(nowNs, stateOf) {
+    for (const r of this.rows.values()) {
+      const { state, op } = stateOf(r.device);
+      r.row.dataset.state = r.state.textContent = state;
+      r.op.textContent = r.label >= 0 ? this.labels[r.label] ?? '' : state === 'idle' ? '(idle)' : op;
+      const elapsed = Math.max(0, nowNs - r.sinceNs);
+      r.elapsed.dataset.ns = elapsed;
+      r.elapsed.textContent = seconds(elapsed);
+    }
+  }
+
+  clear() {
+    for (const r of this.rows.values()) [r.label, r.sinceNs] = [-1, 0];
+  }
 }
 
 export class SfcPanel {

@@ -200,5 +200,51 @@ TEST_F(ModbusSection, DetachingTheSoftPlcDropsWhatNamesItsVariables) {
   EXPECT_EQ(busSignals(*cell).size(), 5u);
 }
 
+// `modbus: cycle_done:` publishes the soft PLC's cycle marker (`run: cycle_done`), which a Modbus
+// client cannot read by name, on a tag of its own: after the map, or in the automatic one.
+TEST_F(ModbusSection, TheCycleMarkerIsMappedWhereCycleDoneSays) {
+  write("main.st", kMainSt);
+  const std::string head = "plc:\n  sources: [main.st]\nrun:\n  cycle_done: MAIN.finished\n" + std::string(kDevices);
+  auto cell = loads(head + "modbus:\n  cycle_done: { table: discrete, address: 100 }\n");
+  ASSERT_TRUE(cell);
+  ASSERT_NE(cell->modbus.cycleDone, kNoTag);
+  EXPECT_EQ(cell->bus.name(cell->modbus.cycleDone), "MAIN.finished");
+  const mb::MapEntry& marker = cell->modbus.entries.back();
+  EXPECT_EQ(marker.tag, cell->modbus.cycleDone);
+  EXPECT_EQ(marker.table, mb::Table::DiscreteInput);
+  EXPECT_EQ(marker.address, 100);
+  EXPECT_EQ(marker.dir, mb::SignalDir::Status);
+  EXPECT_TRUE(marker.readOnly);
+  EXPECT_TRUE(cell->modbus.automatic) << "the devices' signals keep their automatic places";
+
+  cell = loads(head + "modbus:\n  map:\n    - { signal: Clamp.done, table: discrete, address: 0 }\n  cycle_done: {}\n");
+  ASSERT_TRUE(cell);
+  EXPECT_EQ(mb::formatMapCsv(cell->modbus),
+            "table,address,type,signal,direction,access,word_order,scale\n"
+            "discrete,0,BOOL,Clamp.done,status,read,,\n"
+            "discrete,1,BOOL,MAIN.finished,status,read,,\n");
+  cell = loads(std::string("plc:\n  sources: [main.st]\n") + kDevices);
+  ASSERT_TRUE(cell);
+  EXPECT_EQ(cell->modbus.cycleDone, kNoTag) << "no cycle_done: no marker mapped";
+}
+
+TEST_F(ModbusSection, CycleDoneMistakesAtTheirPosition) {
+  write("main.st", kMainSt);
+  EXPECT_THAT(fails(std::string(kDevices) + "modbus:\n  cycle_done: { table: discrete }\n"),
+              ElementsAre("cell.yaml:11:15: error[C010]: 'cycle_done' publishes the PLC's cycle marker, but the cell names none: add "
+                          "'run: cycle_done: VARIABLE' (a BOOL of the soft PLC)"));
+  const std::string head = "plc:\n  sources: [main.st]\nrun:\n  cycle_done: MAIN.finished\n" + std::string(kDevices);  // 1-13
+  EXPECT_THAT(fails(head + "modbus:\n"                                                               // 14
+                           "  map:\n"                                                                 // 15
+                           "    - { signal: Clamp.done, table: discrete, address: 4 }\n"              // 16
+                           "  cycle_done: { table: discrete, address: 4, colour: red }\n"),           // 17
+              ElementsAre("cell.yaml:17:15: error[C010]: discrete 4 overlaps 'Clamp.done' at 4",
+                          "cell.yaml:17:45: error[C011]: unknown key 'colour' in 'cycle_done' (expected one of: table, address, "
+                          "type, word_order, scale, read_only)"));
+  EXPECT_THAT(fails(head + "modbus:\n  cycle_done: 100\n"),
+              ElementsAre("cell.yaml:15:15: error[C010]: 'cycle_done' must be a map with optional 'table', 'address' and 'type', "
+                          "e.g. { table: discrete, address: 100 }"));
+}
+
 }  // namespace
 }  // namespace virtcom::cell::test

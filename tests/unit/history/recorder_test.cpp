@@ -125,6 +125,42 @@ TEST_F(Recorder_, ProductionPerShiftIsRecordedAfterTheEnd) {
   EXPECT_TRUE(reader.production(2).empty());
 }
 
+// `virtcom monitor` with a plan, while recording: each shift occurrence's row as it stands goes
+// through the queue and the writer thread; a later row of the same occurrence replaces it; the
+// day is the local date the shift started on.
+TEST_F(Recorder_, ProductionRowsAreWrittenWhileRecording) {
+  RecorderOptions options;
+  options.shiftNames = {"Early", "Late"};
+  auto recorder = open("h.sqlite", options);
+  Trace t = sampleTrace();
+  recorder->production(0, {1, 2, 1, 0, 400, 0});  // not begun: nothing to write it into
+  recorder->begin(t);
+  constexpr int64_t kEarly = 1'796'191'200'000'000'000;  // 2026-12-02 06:00 local
+  constexpr int64_t kHourNs = 3'600'000'000'000;
+  recorder->production(0, {kEarly, kEarly + 8 * kHourNs, kEarly + kHourNs, 50.0, 400, 3});
+  recorder->tick(t, 1'000'000);
+  recorder->production(0, {kEarly, kEarly + 8 * kHourNs, kEarly + kHourNs, 62.5, 400, 5});
+  recorder->production(1, {kEarly + 8 * kHourNs, kEarly + 16 * kHourNs, kEarly + 8 * kHourNs, 0, 320, 0});
+  recorder->production(7, {0, 1, 0, 0, 1, 1});  // not a shift of the plan: left out
+  recorder->tick(t, 2'000'000);
+  t.endNs = 2'000'000;
+  recorder->end(t);
+  EXPECT_EQ(recorder->drops(), 0u);
+  EXPECT_EQ(recorder->error(), "");
+  recorder.reset();
+  const std::vector<ProductionRow> back = read("h.sqlite").production(1);
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[0].day, "2026-12-02");
+  EXPECT_EQ(back[0].shift, "Early");
+  EXPECT_EQ(back[0].startWallNs, kEarly);
+  EXPECT_EQ(back[0].watchedFromWallNs, kEarly + kHourNs);
+  EXPECT_EQ(back[0].plan, 400);
+  EXPECT_DOUBLE_EQ(back[0].planNow, 62.5);
+  EXPECT_EQ(back[0].actual, 5) << "the later row replaced the earlier one";
+  EXPECT_EQ(back[1].shift, "Late");
+  EXPECT_EQ(back[1].day, "2026-12-02");
+}
+
 TEST_F(Recorder_, RunsAccumulateInOneFile) {
   for (int i = 0; i < 3; ++i) recordSample(*open("h.sqlite"));
   HistoryReader reader = read("h.sqlite");

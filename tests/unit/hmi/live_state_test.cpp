@@ -1,5 +1,5 @@
 // The live state over the gearbox cell: what the simulation publishes, commands applied between
-// ticks (pause, single step, force, fault), and the API's answers over it.
+// ticks (pause, single step, force, fault), the stations, and the API's answers over it.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -156,6 +156,42 @@ TEST_F(GearboxHmi, AnInjectedFaultFailsTheDevicesNextCommand) {
   EXPECT_EQ(cell->devices[0]->faults().errorCode, 77);
   EXPECT_EQ(simulation->trace().end, RunEnd::DeviceError);
   EXPECT_EQ(simulation->trace().endMessage, "Robot1 reported error 77");
+}
+
+
+// The stations as published agree with the trace: a station in an operation shows the label and
+// start of its device's running activity, an idle one the end of its last; the stream sends a
+// station again only when it changed.
+TEST_F(GearboxHmi, EachStationShowsItsRunningOperationAndSinceWhen) {
+  auto stream = api->openStream(parseRequest({"GET", "/api/stream", {}, "", ""}, {}));
+  steps(150);
+  live->end(simulation->trace());
+  Json first = Json::parse(stream->nextFrame());
+  const Trace& trace = simulation->trace();
+  ASSERT_EQ(first["stations"].size(), trace.devices.size()) << "the first frame has every station";
+  bool someBusy = false;
+  for (const Json& s : first["stations"]) {
+    const auto device = s[0].get<uint32_t>();
+    const ActivityRecord* last = nullptr;
+    for (const ActivityRecord& a : trace.activities)
+      if (a.device == device) last = &a;
+    if (!last) {
+      EXPECT_EQ(s, Json::array({device, -1, 0})) << "never busy";
+    } else if (last->endNs < 0) {
+      someBusy = true;
+      EXPECT_EQ(s, Json::array({device, last->label, last->startNs})) << trace.devices[device].name;
+    } else {
+      EXPECT_EQ(s, Json::array({device, -1, last->endNs})) << trace.devices[device].name;
+    }
+  }
+  EXPECT_TRUE(someBusy) << "1.5 s into the gearbox cycle a station is busy";
+  live->end(simulation->trace());
+  EXPECT_FALSE(Json::parse(stream->nextFrame()).contains("stations")) << "nothing changed: no stations";
+  steps(100);
+  live->end(simulation->trace());
+  Json next = Json::parse(stream->nextFrame());
+  ASSERT_TRUE(next.contains("stations"));
+  for (const Json& s : next["stations"]) EXPECT_NE(s, first["stations"][s[0].get<size_t>()]) << "only the stations that changed";
 }
 
 }  // namespace

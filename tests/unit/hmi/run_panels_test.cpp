@@ -31,11 +31,11 @@ struct Served {
   std::unique_ptr<sim::Simulation> simulation;
   std::unique_ptr<Api> api;
 
-  explicit Served(const std::string& example, std::vector<RuleInfo> rules = {}, std::vector<RuleFlag> flags = {})
+  explicit Served(const std::string& example, std::vector<RuleInfo> rules = {}, std::vector<plc::CountedRule> counted = {})
       : path(std::string(VIRTCOM_SOURCE_DIR) + "/examples/" + example) {
     cell = load();
     live = std::make_unique<LiveState>(*cell, &interrupt);
-    live->watchRules(std::move(flags));
+    live->watchRules(std::move(counted), cell->module ? cell->module->tasks.size() : 0);
     start();
     api = std::make_unique<Api>(*cell, *live, simulation->plc().baseTickNs(), WriteAccess{}, std::move(rules));
   }
@@ -187,7 +187,7 @@ TEST(HmiPanels, TheSfcPanelShowsTheActiveStepAndItsTime) {
 // The tank's rules, with their fired flags resolved as the CLI does (cli/rule_trace.hpp).
 TEST(HmiPanels, TheRulePanelCountsEveryScanWhoseIfHeld) {
   std::vector<RuleInfo> rules;
-  std::vector<RuleFlag> flags;
+  std::vector<plc::CountedRule> flags;
   {
     SourceManager sources;
     Diagnostics diags;
@@ -197,7 +197,7 @@ TEST(HmiPanels, TheRulePanelCountsEveryScanWhoseIfHeld) {
       auto ref = bc::resolveVariable(*cell->module, "TankControl." + std::string(ad::kFiredVariable) + "[" + std::to_string(k) + "]");
       if (!ref) break;
       rules.push_back({"Tank", std::to_string(k), "1", "then " + std::to_string(k)});
-      flags.push_back({ref->address, ref->bit});
+      flags.push_back({*ref, 0});  // the tank cell's one task
     }
   }
   ASSERT_GT(flags.size(), 3u);

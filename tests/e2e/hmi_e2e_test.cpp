@@ -7,6 +7,8 @@
 //  - Reset (served, and after a run's end; refused with --modbus), the SFC step panel
 //    (cell-sfc.yaml), the fired-rule panel (activity/tank-cell.yaml) and parts on a conveyor
 //    (activity/conveyor-cell.yaml): tests/e2e/hmi/check_run_panels.js;
+//  - the History panel: a recorded run browsed with `virtcom history --http`, the past of a
+//    served run (tests/e2e/hmi/check_history.js);
 //  - the start-up checks of the HMI options.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -140,6 +142,41 @@ TEST(Hmi, EveryResetStartsANewRecordedRun) {
   out.clear();
   ASSERT_EQ(shell(kExe + " history '" + db + "'", out), 0) << out;
   EXPECT_NE(out.find("\n2 "), std::string::npos) << "two runs listed: " << out;
+  fs::remove(db);
+}
+
+// The History panel (tests/e2e/hmi/check_history.js): a recorded run browsed with `virtcom
+// history FILE --http` (its Gantt chart, a trend, a zoomed range, the layout at a time), and the
+// past of a served run shown while it runs (`serve --history --http`).
+TEST(Hmi, ARecordedRunIsBrowsedFromItsHistory) {
+  if (browserMissing()) GTEST_SKIP() << "no browser";
+  const std::string db = (fs::temp_directory_path() / ("virtcom-hmi-browse-" + std::to_string(::getpid()) + ".sqlite")).string();
+  fs::remove(db);
+  std::string out;
+  ASSERT_EQ(shell(kExe + " run '" + kGearbox + "/cell.yaml' --quiet --history '" + db + "'", out), 0) << out;
+  {
+    ServerProcess browse(kExe, {"history", db, "--http", "127.0.0.1:0"}, kGearbox, kAnnounce);
+    ASSERT_GT(browse.port(), 0) << browse.errorOutput();
+    EXPECT_EQ(runCheck("replay", browse.port(), out, "check_history.js"), 0) << out << browse.errorOutput();
+    EXPECT_NE(out.find("hmi checks passed"), std::string::npos) << out;
+    EXPECT_EQ(browse.stop(), 0) << browse.errorOutput();
+  }
+  fs::remove(db);
+}
+
+TEST(Hmi, ThePastOfTheServedRunIsShownFromItsHistory) {
+  if (browserMissing()) GTEST_SKIP() << "no browser";
+  const std::string db = (fs::temp_directory_path() / ("virtcom-hmi-past-" + std::to_string(::getpid()) + ".sqlite")).string();
+  fs::remove(db);
+  {
+    ServerProcess cell(kExe, {"serve", kGearbox + "/cell.yaml", "--http", "127.0.0.1:0", "--quiet", "--speed", "4", "--history", db},
+                       kGearbox, kAnnounce);
+    ASSERT_GT(cell.port(), 0) << cell.errorOutput();
+    std::string out;
+    EXPECT_EQ(runCheck("live", cell.port(), out, "check_history.js"), 0) << out << cell.errorOutput();
+    EXPECT_NE(out.find("hmi checks passed"), std::string::npos) << out;
+    EXPECT_EQ(cell.stop(), 0) << cell.errorOutput();
+  }
   fs::remove(db);
 }
 

@@ -180,6 +180,32 @@ TEST(Hmi, ThePastOfTheServedRunIsShownFromItsHistory) {
   fs::remove(db);
 }
 
+// monitor --history --http: the page's history routes read the file the monitor records (no
+// browser needed: node asks the API).
+TEST(Hmi, TheMonitorsHistoryIsServedToThePage) {
+  const std::string ads = std::string(VIRTCOM_SOURCE_DIR) + "/examples/ads-cell";
+  const std::string db = (fs::temp_directory_path() / ("virtcom-hmi-monitor-" + std::to_string(::getpid()) + ".sqlite")).string();
+  fs::remove(db);
+  {
+    ServerProcess plant(kExe, {"serve", ads + "/cell.yaml", "--ads", "127.0.0.1:0", "--quiet"}, ads, "ads: serving on ");
+    ASSERT_GT(plant.port(), 0) << plant.errorOutput();
+    ServerProcess monitor(kExe,
+                          {"monitor", ads + "/cell.yaml", "--ads", "127.0.0.1:" + std::to_string(plant.port()), "--http", "127.0.0.1:0",
+                           "--quiet", "--history", db},
+                          ads, kAnnounce);
+    ASSERT_GT(monitor.port(), 0) << monitor.errorOutput();
+    const std::string check = "node -e \"const u = 'http://127.0.0.1:" + std::to_string(monitor.port()) +
+                              "/api/'; (async () => { const m = await (await fetch(u + 'model')).json();"
+                              " const r = await (await fetch(u + 'history/runs')).json();"
+                              " process.exit(m.history && !m.replay && r.runs.length === 1 && !r.runs[0].ended ? 0 : 1); })()\"";
+    std::string out;
+    EXPECT_EQ(shell(check, out), 0) << out << monitor.errorOutput();
+    EXPECT_EQ(monitor.stop(), 0) << monitor.errorOutput();
+    EXPECT_EQ(plant.stop(), 0) << plant.errorOutput();
+  }
+  fs::remove(db);
+}
+
 TEST(Hmi, BindingBeyondLoopbackNeedsAnAllowList) {
   std::string out;
   EXPECT_EQ(shell(kExe + " serve '" + kGearbox + "/cell.yaml' --http 0.0.0.0:0 --quiet", out), 64) << out;

@@ -1,18 +1,23 @@
 // `virtcom history FILE.sqlite`: the runs a history database holds (recorded by `run` or
 // `serve` with --history), and one run, or a time range of it, exported through the same
-// writers as `virtcom run` (CSV, VCD, the JSON and HTML reports). docs/history.md.
+// writers as `virtcom run` (CSV, VCD, the JSON and HTML reports), or browsed in the web HMI
+// (--http: the page's Gantt, trends and layout over the recorded runs). docs/history.md.
+#include <chrono>
 #include <ctime>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <thread>
 
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "cli/hmi_options.hpp"
 #include "history/query.hpp"
 #include "report/html_report.hpp"
 #include "report/json_report.hpp"
 #include "report/kpis.hpp"
 #include "report/waveform.hpp"
+#include "sim/simulation.hpp"
 
 namespace virtcom::cli {
 
@@ -24,6 +29,8 @@ struct HistoryOptions {
   std::string from, to;
   std::string csv, vcd, html, json;
   std::vector<std::string> signals;
+  HmiServeOptions http;  // --http: browse in the web HMI
+  std::string cell;      // --cell: the cell file the page draws (default: the run's)
   bool exports() const { return !csv.empty() || !vcd.empty() || !html.empty() || !json.empty(); }
 };
 
@@ -102,9 +109,66 @@ bool exportRun(const HistoryOptions& o, history::HistoryReader& reader, const hi
   return ok;
 }
 
+// `--http`: the page served over the history, read-only, until Ctrl-C. The layout is drawn from
+// the cell file of the run shown first (as recorded, or --cell); the Gantt chart and the trends
+// of any run come from the database.
+ExitCode browseHistory(const HistoryOptions& o, history::HistoryReader& reader) {
+  HmiServeOptions http = o.http;
+  http.readOnly = true;  // nothing to write: no token is made up
+  auto binding = checkHmiOptions(http, "--http");
+  if (!binding) {
+    std::cerr << "error: " << binding.error() << "\n";
+    return ExitCode::Usage;
+  }
+  const int64_t id = o.run > 0 ? o.run : reader.lastRunId();
+  auto run = reader.run(id);
+  if (!run && o.cell.empty()) {
+    std::cerr << "error: " << o.file << ": " << (id == 0 ? "no run recorded yet" : "no run " + std::to_string(id))
+              << ": the page draws the layout of a run's cell file (or give --cell CELL.yaml)\n";
+    return ExitCode::HistoryError;
+  }
+  const std::string cellFile = o.cell.empty() ? run->cellFile : o.cell;
+  SourceManager sources;
+  auto cell = loadCellFile(cellFile, sources);
+  if (!cell) {
+    std::cerr << "error: --http: the page draws the layout of " << cellFile
+              << ", which does not load (see above): give the cell file with --cell CELL.yaml\n";
+    return ExitCode::Usage;
+  }
+  auto api = hmi::HistoryApi::open(o.file);
+  if (!api) {
+    std::cerr << "error: " << api.error() << "\n";
+    return ExitCode::HistoryError;
+  }
+  // Never run: it prepares the devices (trace indexes, labels) the page's model describes.
+  sim::Simulation prepared(*cell, {});
+  hmi::LiveState live(*cell, &gStopRequested, true);  // never published: the page shows only the history
+  hmi::Api page(*cell, live, prepared.hasPlc() ? prepared.plc().baseTickNs() : cell->run.plcCycleNs, binding->access);
+  page.attachHistory(**api, true);
+  stopOnSignals();
+  auto server = hmi::HttpServer::start(page, binding->at, binding->allowedPeers);
+  if (!server) {
+    std::cerr << "error: --http: " << server.error() << "\n";
+    return ExitCode::Usage;
+  }
+  std::cerr << "hmi: serving http://" << formatEndpoint((*server)->bound()) << "/ (history of " << o.file
+            << ", read-only) until Ctrl-C\n";
+  while (!gStopRequested.load()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  (*server)->stop();
+  return ExitCode::Ok;
+}
+
 ExitCode showHistory(const HistoryOptions& o) {
   auto range = timeRange(o);
   if (!range) return ExitCode::Usage;
+  if (o.http.enabled() && (o.exports() || !range->whole() || !o.signals.empty())) {
+    std::cerr << "error: --http browses the history in the web HMI: it takes no --csv, --vcd, --report, --json, --from, --to or --signal\n";
+    return ExitCode::Usage;
+  }
+  if (!o.http.enabled() && (!o.cell.empty() || !o.http.allow.empty() || o.http.anyPeer)) {
+    std::cerr << "error: --cell, --http-allow and --allow-any-peer go with --http\n";
+    return ExitCode::Usage;
+  }
   if (!o.exports() && (!range->whole() || !o.signals.empty())) {
     std::cerr << "error: --from, --to and --signal select what is exported: add --csv, --vcd, --report or --json\n";
     return ExitCode::Usage;
@@ -114,6 +178,7 @@ ExitCode showHistory(const HistoryOptions& o) {
     std::cerr << "error: " << reader.error() << "\n";
     return ExitCode::HistoryError;
   }
+  if (o.http.enabled()) return browseHistory(o, *reader);
   const int64_t id = o.run > 0 ? o.run : reader->lastRunId();
   if (o.run == 0 && !o.exports()) {
     printRuns(reader->runs());
@@ -138,8 +203,8 @@ ExitCode showHistory(const HistoryOptions& o) {
 void addHistoryCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   auto o = std::make_shared<HistoryOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "history", "List the runs a history database holds (recorded with run/serve --history), or export one run or a time range of it "
-                 "as CSV, VCD or a report");
+      "history", "List the runs a history database holds (recorded with run/serve --history), export one run or a time range of it "
+                 "as CSV, VCD or a report, or browse them in the web HMI (--http)");
   cmd->add_option("file", o->file, "the history database (SQLite), e.g. cell.sqlite")->required();
   cmd->add_option("--run", o->run, "the run to show or export (an id from the list; default: the newest)")->check(CLI::PositiveNumber);
   cmd->add_option("--from", o->from, "export from this virtual time on, e.g. 10s, 1500ms (default: the start); times become relative to it");
@@ -149,6 +214,9 @@ void addHistoryCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_option("--report", o->html, "write the HTML report (as run --report) to this file");
   cmd->add_option("--json", o->json, "write the JSON report (as run --json) to this file");
   cmd->add_option("--signal", o->signals, "signal shown in the report's timeline (repeatable); default: those of the recorded run");
+  addHttpOptions(cmd, o->http, "--http",
+                 "browse the runs in the web HMI instead (their Gantt chart, trends and layout over time, read-only)");
+  cmd->add_option("--cell", o->cell, "with --http: the cell file whose layout the page draws (default: the one the run recorded)");
   cmd->callback([o, setExit] { setExit(showHistory(*o)); });
 }
 

@@ -311,6 +311,7 @@ ExitCode monitorCell(const MonitorOptions& o) {
   std::optional<LiveHmi> hmi;
   if (hmiBinding) {
     hmi.emplace(*cell, &gStopRequested, o.hmi.paused, options);
+    hmi->keepHistory(o.history.path);
     hmi->refuseReset("reset is off in monitor: the plant is real and keeps its own state");
   }
   if (hmi && !cell->plan.shifts.empty()) hmi->watchShifts([&production](hmi::ShiftProgress& p) { production.progress(p); });

@@ -284,6 +284,7 @@ ExitCode runCell(const RunOptions& o) {
   std::optional<LiveHmi> hmi;
   if (hmiBinding) {
     hmi.emplace(*cell, &gStopRequested, o.hmi.paused, options);  // paced: speed 1 unless --speed
+    hmi->keepHistory(o.history.path);
     if (const char* why = resetRefusal(*cell, !files.empty())) hmi->refuseReset(why);
   }
   stopOnSignals();

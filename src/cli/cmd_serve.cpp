@@ -166,6 +166,7 @@ ExitCode serveCell(const ServeOptions& o) {
   std::optional<LiveHmi> hmi;
   if (hmiBinding) {
     hmi.emplace(*cell, &gStopRequested, o.hmi.paused, options);
+    hmi->keepHistory(o.history.path);
     if (!o.modbus.empty() || ads)
       hmi->refuseReset("reset is off while --modbus or --ads serve the run: their clients hold the state of the run; restart serve");
   }

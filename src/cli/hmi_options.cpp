@@ -34,12 +34,14 @@ std::function<void(plc::Runtime&)> chain(std::function<void(plc::Runtime&)> befo
 
 }  // namespace
 
-void addHmiOptions(CLI::App* cmd, HmiServeOptions& o, const std::string& listenFlag) {
-  cmd->add_option(listenFlag, o.listen,
-                  "serve the web HMI (live layout, Gantt, KPIs, watch table, controls) on HOST:PORT, e.g. 127.0.0.1:8080 "
-                  "(port 0: a free port, printed; see docs/hmi.md)");
+void addHttpOptions(CLI::App* cmd, HmiServeOptions& o, const std::string& listenFlag, const std::string& what) {
+  cmd->add_option(listenFlag, o.listen, what + " on HOST:PORT, e.g. 127.0.0.1:8080 (port 0: a free port, printed; see docs/hmi.md)");
   cmd->add_option("--http-allow", o.allow, "comma-separated IPv4 peers allowed to use the HMI (needed to bind beyond loopback)");
   cmd->add_flag("--allow-any-peer", o.anyPeer, "let every peer use an HMI bound beyond loopback (instead of --http-allow)");
+}
+
+void addHmiOptions(CLI::App* cmd, HmiServeOptions& o, const std::string& listenFlag) {
+  addHttpOptions(cmd, o, listenFlag, "serve the web HMI (live layout, Gantt, KPIs, watch table, controls)");
   cmd->add_option("--hmi-token", o.token, "token that HMI writes, forces, faults and controls need (Authorization: Bearer TOKEN)");
   cmd->add_flag("--hmi-readonly", o.readOnly, "the HMI only watches: writes, forces, faults and controls are refused (403)");
   cmd->add_flag("--hmi-paused", o.paused, "start paused: the first tick waits for run or step from the HMI");
@@ -95,6 +97,12 @@ std::expected<void, std::string> LiveHmi::serve(const HmiBinding& binding, sim::
   }
   api_ = std::make_unique<hmi::Api>(*cell_, live_, baseTickNs, binding.access, std::move(rules));
   if (!resetRefusal_.empty()) api_->refuseReset(resetRefusal_);
+  if (!historyPath_.empty()) {
+    auto history = hmi::HistoryApi::open(historyPath_);
+    if (!history) return std::unexpected("--history: " + history.error());
+    history_ = std::move(*history);
+    api_->attachHistory(*history_, false);
+  }
   auto server = hmi::HttpServer::start(*api_, binding.at, binding.allowedPeers);
   if (!server) return std::unexpected(server.error());
   server_ = std::move(*server);

@@ -30,6 +30,9 @@ struct HmiServeOptions {
 // Adds `listenFlag` (--http or --hmi), --http-allow, --allow-any-peer, --hmi-token,
 // --hmi-readonly and --hmi-paused to `cmd`.
 void addHmiOptions(CLI::App* cmd, HmiServeOptions& o, const std::string& listenFlag);
+// Adds where and to whom the page is served: `listenFlag` (described by `what`), --http-allow
+// and --allow-any-peer (what `virtcom history --http`, which only reads, takes of the above).
+void addHttpOptions(CLI::App* cmd, HmiServeOptions& o, const std::string& listenFlag, const std::string& what);
 
 // Where and to whom the HMI is served, checked before the cell is loaded.
 struct HmiBinding {
@@ -57,6 +60,9 @@ class LiveHmi {
   // if the address cannot be bound.
   std::expected<void, std::string> serve(const HmiBinding& binding, sim::Simulation& simulation, const SourceManager& sources);
   void stop();
+  // Before serve(): the page can show the recorded past of the runs from the history database
+  // at `path` (the command's --history; empty: none), over a second, read-only connection.
+  void keepHistory(std::string path) { historyPath_ = std::move(path); }
   // virtcom monitor with a plan: the KPI panel shows the current shift's parts against the plan.
   void watchShifts(std::function<void(hmi::ShiftProgress&)> fill) { live_.watchShifts(std::move(fill)); }
 
@@ -73,7 +79,9 @@ class LiveHmi {
  private:
   cell::Cell* cell_;
   std::string resetRefusal_;
+  std::string historyPath_;
   hmi::LiveState live_;
+  std::unique_ptr<hmi::HistoryApi> history_;  // before api_, which points at it
   std::unique_ptr<hmi::Api> api_;
   std::unique_ptr<hmi::HttpServer> server_;
 };

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/signal_number.hpp"
+#include "history/query_sql.hpp"
 #include "history/schema.hpp"
 
 namespace virtcom::history {
@@ -45,17 +47,62 @@ RunEnd runEndByName(const std::string& name) {
   return RunEnd::Interrupted;
 }
 
+constexpr const char* kDevices = "SELECT name, type, lane_group, busy_ns, energy_j FROM devices WHERE run = ?1 ORDER BY id";
+
+// One signal's decimation while the changes of a range stream by: the first maxPoints changes
+// as they are, and per time bucket the smallest, largest and last.
+class Decimator {
+ public:
+  Decimator(ElemType type, int64_t fromNs, int64_t bucketNs, size_t buckets, size_t maxPoints)
+      : type_(type), fromNs_(fromNs), bucketNs_(bucketNs), maxPoints_(maxPoints), buckets_(buckets) {}
+
+  void add(const SignalChange& c) {
+    if (series.changes++ < maxPoints_) series.points.push_back(c);
+    const size_t index = std::min(static_cast<size_t>((c.timeNs - fromNs_) / bucketNs_), buckets_.size() - 1);
+    Bucket& b = buckets_[index];
+    const double v = signalNumber(type_, c.raw);
+    if (!b.used || v < b.minValue) b.min = c, b.minValue = v;
+    if (!b.used || v > b.maxValue) b.max = c, b.maxValue = v;
+    b.last = c;
+    b.used = true;
+  }
+
+  Series finish() {
+    if (series.changes <= maxPoints_) return std::move(series);
+    series.points.clear();
+    for (const Bucket& b : buckets_) {
+      if (!b.used) continue;
+      SignalChange keep[] = {b.min, b.max, b.last};
+      std::ranges::sort(keep, {}, &SignalChange::timeNs);
+      for (size_t i = 0; i < 3; ++i)
+        if (i == 0 || keep[i].timeNs != keep[i - 1].timeNs) series.points.push_back(keep[i]);
+    }
+    return std::move(series);
+  }
+
+  Series series;
+
+ private:
+  struct Bucket {
+    SignalChange min, max, last;
+    double minValue = 0, maxValue = 0;
+    bool used = false;
+  };
+  ElemType type_;
+  int64_t fromNs_, bucketNs_;
+  size_t maxPoints_;
+  std::vector<Bucket> buckets_;
+};
+
 // The parts of a trace that do not depend on the range: devices and labels.
-void readDevicesAndLabels(Connection& db, int64_t run, Trace& trace) {
-  Statement devices(db, "SELECT name, type, lane_group, busy_ns, energy_j FROM devices WHERE run = ?1 ORDER BY id");
+void readDevicesAndLabels(HistoryReader& reader, Connection& db, int64_t run, Trace& trace) {
+  Statement devices(db, kDevices);
   devices.bind(1, run);
   while (devices.step()) {
     trace.addDevice(devices.columnText(0), devices.columnText(1), devices.columnText(2));
     trace.totals.back() = {devices.columnInt(3), devices.columnDouble(4)};
   }
-  Statement labels(db, "SELECT text FROM labels WHERE run = ?1 ORDER BY id");
-  labels.bind(1, run);
-  while (labels.step()) trace.labels.push_back(labels.columnText(0));
+  trace.labels = reader.labels(run);
 }
 
 // A part of a run has no measured totals: each device's are its clipped activities'.
@@ -144,8 +191,24 @@ std::vector<SignalInfo> HistoryReader::signals(int64_t run) {
   return result;
 }
 
+std::vector<DeviceInfo> HistoryReader::devices(int64_t run) {
+  std::vector<DeviceInfo> result;
+  Statement s(db_, kDevices);
+  s.bind(1, run);
+  while (s.step()) result.push_back({s.columnText(0), s.columnText(1), s.columnText(2)});
+  return result;
+}
+
+std::vector<std::string> HistoryReader::labels(int64_t run) {
+  std::vector<std::string> result;
+  Statement s(db_, "SELECT text FROM labels WHERE run = ?1 ORDER BY id");
+  s.bind(1, run);
+  while (s.step()) result.push_back(s.columnText(0));
+  return result;
+}
+
 void HistoryReader::forEachChange(int64_t run, TimeRange range, const std::function<bool(const SignalChange&)>& fn) {
-  Statement s(db_, "SELECT t_ns, signal, raw FROM changes WHERE run = ?1 AND t_ns BETWEEN ?2 AND ?3 ORDER BY t_ns, signal");
+  Statement s(db_, sql::kChangesInRange);
   s.bind(1, run).bind(2, range.fromNs).bind(3, range.toNs);
   while (s.step())
     if (!fn({s.columnInt(0), static_cast<TagId>(s.columnInt(1)), static_cast<uint64_t>(s.columnInt(2))})) return;
@@ -174,6 +237,37 @@ std::vector<uint64_t> HistoryReader::valuesBefore(int64_t run, int64_t fromNs) {
   return values;
 }
 
+std::vector<Series> HistoryReader::series(int64_t run, const std::vector<TagId>& wanted, TimeRange range, size_t maxPoints) {
+  const std::vector<SignalInfo> all = signals(run);
+  auto summary = this->run(run);
+  std::vector<Series> result;
+  if (!summary) return result;
+  const int64_t from = range.fromNs, to = std::max(from, std::min(range.toNs, summary->endNs));
+  maxPoints = std::max<size_t>(maxPoints, 3);
+  const size_t buckets = maxPoints / 3;
+  const int64_t bucketNs = std::max<int64_t>(1, (to - from) / static_cast<int64_t>(buckets) + 1);
+  std::vector<Decimator> plots;
+  std::vector<int> plotOf(all.size(), -1);  // signal -> index into plots
+  Statement before(db_, sql::kValueBefore);
+  for (TagId signal : wanted) {
+    if (signal >= all.size() || plotOf[signal] >= 0) continue;
+    plotOf[signal] = static_cast<int>(plots.size());
+    plots.emplace_back(all[signal].type, from, bucketNs, buckets, maxPoints);
+    plots.back().series.signal = signal;
+    plots.back().series.before = all[signal].initial;
+    before.bind(1, run).bind(2, from).bind(3, static_cast<int64_t>(signal));
+    if (before.step()) plots.back().series.before = static_cast<uint64_t>(before.columnInt(0));
+    before.reset();
+  }
+  if (!plots.empty())
+    forEachChange(run, {from, range.toNs}, [&](const SignalChange& c) {
+      if (c.tag < plotOf.size() && plotOf[c.tag] >= 0) plots[static_cast<size_t>(plotOf[c.tag])].add(c);
+      return true;
+    });
+  for (Decimator& d : plots) result.push_back(d.finish());
+  return result;
+}
+
 std::vector<ProductionRow> HistoryReader::production(int64_t run) {
   std::vector<ProductionRow> result;
   Statement s(db_,
@@ -188,9 +282,7 @@ std::vector<ProductionRow> HistoryReader::production(int64_t run) {
 
 std::vector<ActivityRecord> HistoryReader::activities(int64_t run, TimeRange range) {
   std::vector<ActivityRecord> result;
-  Statement s(db_,
-              "SELECT device, label, start_ns, IFNULL(end_ns, -1), energy_j, error_code FROM activities "
-              "WHERE run = ?1 AND start_ns <= ?3 AND (end_ns IS NULL OR end_ns >= ?2) ORDER BY start_ns, id");
+  Statement s(db_, sql::kActivitiesInRange);
   s.bind(1, run).bind(2, range.fromNs).bind(3, range.toNs);
   while (s.step()) {
     ActivityRecord a;
@@ -220,7 +312,7 @@ Trace HistoryReader::trace(int64_t runId, TimeRange range, size_t* skipped) {
     trace.changes.push_back({c.timeNs - from, c.tag, c.raw});
     return true;
   });
-  readDevicesAndLabels(db_, runId, trace);
+  readDevicesAndLabels(*this, db_, runId, trace);
   size_t danglingActivities = 0;
   for (ActivityRecord a : activities(runId, {from, to})) {
     if (a.device >= trace.devices.size() || a.label >= trace.labels.size()) {

@@ -41,6 +41,15 @@ struct TimeRange {
   bool whole() const { return fromNs == 0 && toNs == INT64_MAX; }
 };
 
+// One signal of a plot over a time range (HistoryReader::series).
+struct Series {
+  TagId signal = 0;
+  uint64_t before = 0;               // its value just before the range (the initial one if none)
+  std::vector<SignalChange> points;  // its changes in the range, or their decimation, in time order
+  size_t changes = 0;                // its changes in the range before decimation
+  bool decimated() const { return points.size() < changes; }
+};
+
 class HistoryReader {
  public:
   // Opens an existing history for reading (see openDatabase: the error says what is wrong).
@@ -55,12 +64,22 @@ class HistoryReader {
   int64_t lastRunId();
 
   std::vector<SignalInfo> signals(int64_t run);
+  // The run's devices (index = ActivityRecord::device) and labels (ActivityRecord::label).
+  std::vector<DeviceInfo> devices(int64_t run);
+  std::vector<std::string> labels(int64_t run);
   // The changes with range.fromNs <= time <= range.toNs in trace order (time, then signal),
   // each passed to `fn`; stops early when fn returns false. Uses the (run, t_ns) key.
   void forEachChange(int64_t run, TimeRange range, const std::function<bool(const SignalChange&)>& fn);
   std::vector<SignalChange> changes(int64_t run, TimeRange range);
   // Each signal's value just before range.fromNs (its initial value if it did not change before).
   std::vector<uint64_t> valuesBefore(int64_t run, int64_t fromNs);
+  // A plot of `signals` over `range` with at most about `maxPoints` points each: the changes of
+  // a signal with more than maxPoints of them are cut into maxPoints / 3 buckets of equal time,
+  // each keeping its smallest, largest and last change (in time order, each once), so a spike
+  // survives and the value held after a bucket is right. One search of the (run, t_ns) key over
+  // the range; memory bounded by maxPoints per signal. Signals the run does not have are left
+  // out; a range beyond the recorded end is cut at it.
+  std::vector<Series> series(int64_t run, const std::vector<TagId>& signals, TimeRange range, size_t maxPoints);
   // The activities overlapping the range (start <= toNs, end >= fromNs or still running), in
   // start order, with endNs -1 for one that had not ended. Uses the (run, start_ns) index.
   std::vector<ActivityRecord> activities(int64_t run, TimeRange range);

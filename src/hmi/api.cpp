@@ -40,6 +40,14 @@ Api::Api(const cell::Cell& cell, LiveState& live, int64_t baseTickNs, WriteAcces
   model_["rules"] = std::move(ruleList);
   model_["readOnly"] = access_.readOnly;
   model_["tokenRequired"] = !access_.readOnly && !access_.token.empty();
+  model_["history"] = false;
+  model_["replay"] = false;
+}
+
+void Api::attachHistory(HistoryApi& history, bool replay) {
+  history_ = &history;
+  model_["history"] = true;
+  model_["replay"] = replay;
 }
 
 Response Api::handle(const ParsedRequest& r) {
@@ -57,6 +65,11 @@ Response Api::handle(const ParsedRequest& r) {
       return ok();
     }
     case Route::Fault: return fault(r);
+    case Route::HistoryRuns:
+    case Route::HistoryRange:
+    case Route::HistoryState:
+      if (!history_) return errorResponse(404, "this HMI keeps no history: start it with --history FILE, or browse a file with virtcom history FILE --http");
+      return history_->handle(r);
     case Route::Stream: return errorResponse(500, "the stream is served by openStream()");
     case Route::Error: return r.error;
   }

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cell/cell.hpp"
+#include "hmi/history_api.hpp"
 #include "hmi/live_state.hpp"
 #include "hmi/request.hpp"
 #include "hmi/stream_session.hpp"
@@ -31,6 +32,11 @@ class Api {
   // PLC image); without it, reset is posted to the live state.
   void refuseReset(std::string why) { resetRefusal_ = std::move(why); }
 
+  // Before serving: the history routes answer from `history` (which must outlive the Api) and
+  // the model says so ("history": true); `replay` (virtcom history --http): there is no live
+  // run, the page only browses the history ("replay": true). Without it they answer 404.
+  void attachHistory(HistoryApi& history, bool replay);
+
   const WriteAccess& access() const { return access_; }
   // Any route but Route::Stream. Thread-safe (HTTP threads call it at once).
   Response handle(const ParsedRequest& request);
@@ -53,6 +59,7 @@ class Api {
   std::vector<ElemType> tagTypes_;
   std::vector<sfc::StepVariable> steps_;  // the SFC panel's steps, in declaration order
   std::string resetRefusal_;
+  HistoryApi* history_ = nullptr;
 };
 
 }  // namespace virtcom::hmi

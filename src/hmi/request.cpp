@@ -1,5 +1,6 @@
 #include "hmi/request.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <optional>
 
@@ -146,9 +147,61 @@ ParsedRequest parsePost(const Request& r, const WriteAccess& access) {
   return failed(404, "no such API: POST " + r.path.substr(0, kMaxText));
 }
 
+bool hasQuery(const Request& r, const char* key) {
+  for (const auto& [k, v] : r.query)
+    if (k == key) return true;
+  return false;
+}
+
+// ?key= as a whole number in [min, max] into `value` (kept when absent and not `required`);
+// the refusal otherwise.
+std::optional<ParsedRequest> integerParameter(const Request& r, const char* key, int64_t min, int64_t max, bool required,
+                                              int64_t& value) {
+  if (!hasQuery(r, key)) {
+    if (!required) return std::nullopt;
+    return failed(400, std::string("'") + key + "' is missing: give ?" + key + "=N");
+  }
+  const std::string text = queryValue(r, key);
+  int64_t parsed = 0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), parsed);
+  if (ec != std::errc() || end != text.data() + text.size() || parsed < min || parsed > max)
+    return failed(400, std::string("'") + key + "' must be a whole number from " + std::to_string(min) + " to " + std::to_string(max) +
+                           ", not '" + text.substr(0, 40) + "'");
+  value = parsed;
+  return std::nullopt;
+}
+
+// GET /api/history/range and /api/history/state: the run, the times (virtual ns), the signals.
+ParsedRequest parseHistory(const Request& r, Route route) {
+  ParsedRequest p;
+  p.route = route;
+  int64_t points = p.points;
+  if (auto refused = integerParameter(r, "run", 1, INT64_MAX, true, p.run)) return *refused;
+  if (route == Route::HistoryState) {
+    if (auto refused = integerParameter(r, "at", 0, INT64_MAX, true, p.fromNs)) return *refused;
+    return p;
+  }
+  if (auto refused = integerParameter(r, "from", 0, INT64_MAX, false, p.fromNs)) return *refused;
+  if (auto refused = integerParameter(r, "to", 0, INT64_MAX, false, p.toNs)) return *refused;
+  if (auto refused = integerParameter(r, "points", kMinPoints, kMaxPoints, false, points)) return *refused;
+  p.points = static_cast<int32_t>(points);
+  if (p.fromNs > p.toNs) return failed(400, "'from' (" + std::to_string(p.fromNs) + " ns) is after 'to' (" + std::to_string(p.toNs) + " ns)");
+  p.signals = splitList(queryValue(r, "signals"));
+  if (p.signals.size() > kMaxWatch) return failed(400, "at most " + std::to_string(kMaxWatch) + " signals per request");
+  for (const std::string& name : p.signals)
+    if (name.size() > kMaxText) return failed(400, "a signal name is longer than " + std::to_string(kMaxText) + " characters");
+  return p;
+}
+
 ParsedRequest parseGet(const Request& r) {
   ParsedRequest p;
-  if (r.path == "/api/model") {
+  if (r.path == "/api/history/runs") {
+    p.route = Route::HistoryRuns;
+  } else if (r.path == "/api/history/range") {
+    return parseHistory(r, Route::HistoryRange);
+  } else if (r.path == "/api/history/state") {
+    return parseHistory(r, Route::HistoryState);
+  } else if (r.path == "/api/model") {
     p.route = Route::Model;
   } else if (r.path == "/api/stream") {
     p.route = Route::Stream;

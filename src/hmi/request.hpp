@@ -5,6 +5,7 @@
 // fuzzed, tests/fuzz/fuzz_hmi_request.cpp); docs/hmi.md is the API's documentation.
 // Compiled by the clang fuzz build: no <expected>.
 #include <cstdint>
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,10 +33,15 @@ struct WriteAccess {
   std::string token;  // empty: no token needed
 };
 
-enum class Route : uint8_t { Asset, Model, Stream, Vars, Control, Write, Release, Fault, Error };
+enum class Route : uint8_t { Asset, Model, Stream, Vars, Control, Write, Release, Fault, HistoryRuns, HistoryRange, HistoryState, Error };
 
 // A control action of POST /api/control.
 enum class Action : uint8_t { Pause, Run, Step, Speed, Reset };
+
+// The plot points per signal a history range asks for (?points=): the default and the bounds.
+inline constexpr int32_t kDefaultPoints = 1000;
+inline constexpr int32_t kMinPoints = 3;
+inline constexpr int32_t kMaxPoints = 20000;
 
 // What a request asks for, checked. Fields beyond `route` are those its route uses.
 struct ParsedRequest {
@@ -50,6 +56,11 @@ struct ParsedRequest {
   std::string text;                  // Write: the value as IEC text
   bool force = false;                // Write: keep the value over every scan until released
   int32_t code = 0;                  // Fault: the error code to inject (0 clears)
+  int64_t run = 0;                   // HistoryRange/HistoryState: ?run= (>= 1)
+  int64_t fromNs = 0;                // HistoryRange: ?from= (virtual ns); HistoryState: ?at=
+  int64_t toNs = INT64_MAX;          // HistoryRange: ?to= (>= from)
+  std::vector<std::string> signals;  // HistoryRange: ?signals=a,b (names, at most kMaxWatch)
+  int32_t points = kDefaultPoints;   // HistoryRange: ?points= (per signal, kMinPoints..kMaxPoints)
 };
 
 // Reads a request. Never throws; malformed input gives Route::Error with a 4xx response whose

@@ -1,30 +1,18 @@
 #include "hmi/stream_session.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cstring>
 
 #include <nlohmann/json.hpp>
 
 #include "core/ascii.hpp"
+#include "hmi/json_values.hpp"
 
 namespace virtcom::hmi {
 
 namespace {
 
 using Json = nlohmann::json;
-
-// A tag's raw bus value as a JSON number or boolean.
-Json signalValue(ElemType type, uint64_t raw) {
-  if (type == ElemType::Bool) return raw != 0;
-  if (isFloat(type)) return std::bit_cast<double>(raw);
-  if (isInteger(type) && !isSignedInt(type)) return raw;
-  return static_cast<int64_t>(raw);
-}
-
-Json activityJson(uint32_t index, const ActivityRecord& a) {
-  return Json::array({index, a.device, a.label, a.startNs, a.endNs, a.errorCode, a.energyJ});
-}
 
 }  // namespace
 

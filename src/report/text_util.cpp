@@ -187,14 +187,6 @@ std::vector<uint32_t> heldActivities(const Trace& t) {
   return out;
 }
 
-double signalNumber(ElemType type, uint64_t raw) {
-  if (type == ElemType::Bool) return raw != 0 ? 1.0 : 0.0;
-  if (isFloat(type)) return std::bit_cast<double>(raw);
-  ElemKind kind = elemTypeInfo(type).kind;
-  if (kind == ElemKind::Unsigned || kind == ElemKind::Bits) return static_cast<double>(raw);
-  return static_cast<double>(static_cast<int64_t>(raw));
-}
-
 std::string signalText(ElemType type, uint64_t raw) {
   if (type == ElemType::Bool) return raw != 0 ? "1" : "0";
   if (isFloat(type)) return formatShortest(std::bit_cast<double>(raw));

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/signal_number.hpp"
 #include "core/trace.hpp"
 
 namespace virtcom::report {
@@ -46,9 +47,7 @@ int64_t activityEndNs(const Trace& t, const ActivityRecord& a);
 // the first and last it kept and those still running in between (docs/report.md "Long runs").
 std::vector<uint32_t> heldActivities(const Trace& t);
 
-// A signal's raw TagBus value as a number (BOOL 0/1, integers sign- or zero-extended by kind,
-// REAL/LREAL from their double bits) and as text for tables and CSV.
-double signalNumber(ElemType type, uint64_t raw);
+// A signal's raw TagBus value as text for tables and CSV (as a number: core/signal_number.hpp).
 std::string signalText(ElemType type, uint64_t raw);
 // STRING/WSTRING values do not fit a raw slot: such signals are not plotted or dumped.
 bool isPlottable(ElemType type);

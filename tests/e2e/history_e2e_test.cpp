@@ -164,12 +164,32 @@ TEST_F(History, BadFilesAndRunsAreClearErrors) {
   EXPECT_THAT(output, HasSubstr("error: --from, --to and --signal select what is exported: add --csv, --vcd, --report or --json"));
 }
 
+// `virtcom history FILE --http` (browsed in tests/e2e/hmi_e2e_test.cpp): its options' mistakes.
+TEST_F(History, BrowsingOptionsAreChecked) {
+  std::string output;
+  const std::string db = out("h.sqlite");
+  EXPECT_EQ(virtcom("history " + db + " --http 127.0.0.1:0 --csv " + out("x.csv"), output), kUsage);
+  EXPECT_THAT(output, HasSubstr("error: --http browses the history in the web HMI: it takes no --csv"));
+  EXPECT_EQ(virtcom("history " + db + " --http 127.0.0.1:0 --from 1s", output), kUsage);
+  EXPECT_THAT(output, HasSubstr("error: --http browses the history in the web HMI"));
+  EXPECT_EQ(virtcom("history " + db + " --cell " + kGearbox, output), kUsage);
+  EXPECT_THAT(output, HasSubstr("error: --cell, --http-allow and --allow-any-peer go with --http"));
+  ASSERT_EQ(virtcom("run " + kGearbox + " --set MAIN.sequence=3 --quiet --history " + db, output), 0) << output;
+  EXPECT_EQ(virtcom("history " + db + " --http 0.0.0.0:0", output), kUsage);
+  EXPECT_THAT(output, HasSubstr("error: --http: 0.0.0.0 is reachable beyond this machine"));
+  EXPECT_EQ(virtcom("history " + db + " --http 127.0.0.1:0 --run 7", output), kHistoryError);
+  EXPECT_THAT(output, HasSubstr("no run 7: the page draws the layout of a run's cell file (or give --cell CELL.yaml)"));
+  EXPECT_EQ(virtcom("history " + db + " --http 127.0.0.1:0 --cell " + out("none.yaml"), output), kUsage);
+  EXPECT_THAT(output, HasSubstr("error: --http: the page draws the layout of " + out("none.yaml") + ", which does not load"));
+}
+
 TEST_F(History, HelpNamesEveryOption) {
   std::string output;
   ASSERT_EQ(virtcom("--help", output), 0);
   EXPECT_THAT(output, HasSubstr("history"));
   ASSERT_EQ(virtcom("history --help", output), 0);
-  for (const char* option : {"--run", "--from", "--to", "--csv", "--vcd", "--report", "--json", "--signal"})
+  for (const char* option : {"--run", "--from", "--to", "--csv", "--vcd", "--report", "--json", "--signal", "--http", "--http-allow",
+                             "--allow-any-peer", "--cell"})
     EXPECT_THAT(output, HasSubstr(option)) << option;
   for (const char* command : {"run", "serve"}) {
     ASSERT_EQ(virtcom(std::string(command) + " --help", output), 0);

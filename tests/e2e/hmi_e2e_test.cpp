@@ -9,6 +9,8 @@
 //    (activity/conveyor-cell.yaml): tests/e2e/hmi/check_run_panels.js;
 //  - the Stations panel (tests/e2e/hmi/check_stations.js) on `run --hmi` and on `monitor --http`
 //    watching a served cell;
+//  - the History panel: a recorded run browsed with `virtcom history --http`, the past of a
+//    served run (tests/e2e/hmi/check_history.js);
 //  - the start-up checks of the HMI options.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -172,6 +174,67 @@ TEST(Hmi, TheStationsPanelShowsTheWatchedPlantsStationsInAMonitor) {
   EXPECT_NE(out.find("hmi checks passed"), std::string::npos) << out;
   EXPECT_EQ(monitor.stop(), 0) << monitor.errorOutput();
   EXPECT_EQ(plant.stop(), 0) << plant.errorOutput();
+}
+
+// The History panel (tests/e2e/hmi/check_history.js): a recorded run browsed with `virtcom
+// history FILE --http` (its Gantt chart, a trend, a zoomed range, the layout at a time), and the
+// past of a served run shown while it runs (`serve --history --http`).
+TEST(Hmi, ARecordedRunIsBrowsedFromItsHistory) {
+  if (browserMissing()) GTEST_SKIP() << "no browser";
+  const std::string db = (fs::temp_directory_path() / ("virtcom-hmi-browse-" + std::to_string(::getpid()) + ".sqlite")).string();
+  fs::remove(db);
+  std::string out;
+  ASSERT_EQ(shell(kExe + " run '" + kGearbox + "/cell.yaml' --quiet --history '" + db + "'", out), 0) << out;
+  {
+    ServerProcess browse(kExe, {"history", db, "--http", "127.0.0.1:0"}, kGearbox, kAnnounce);
+    ASSERT_GT(browse.port(), 0) << browse.errorOutput();
+    EXPECT_EQ(runCheck("replay", browse.port(), out, "check_history.js"), 0) << out << browse.errorOutput();
+    EXPECT_NE(out.find("hmi checks passed"), std::string::npos) << out;
+    EXPECT_EQ(browse.stop(), 0) << browse.errorOutput();
+  }
+  fs::remove(db);
+}
+
+TEST(Hmi, ThePastOfTheServedRunIsShownFromItsHistory) {
+  if (browserMissing()) GTEST_SKIP() << "no browser";
+  const std::string db = (fs::temp_directory_path() / ("virtcom-hmi-past-" + std::to_string(::getpid()) + ".sqlite")).string();
+  fs::remove(db);
+  {
+    ServerProcess cell(kExe, {"serve", kGearbox + "/cell.yaml", "--http", "127.0.0.1:0", "--quiet", "--speed", "4", "--history", db},
+                       kGearbox, kAnnounce);
+    ASSERT_GT(cell.port(), 0) << cell.errorOutput();
+    std::string out;
+    EXPECT_EQ(runCheck("live", cell.port(), out, "check_history.js"), 0) << out << cell.errorOutput();
+    EXPECT_NE(out.find("hmi checks passed"), std::string::npos) << out;
+    EXPECT_EQ(cell.stop(), 0) << cell.errorOutput();
+  }
+  fs::remove(db);
+}
+
+// monitor --history --http: the page's history routes read the file the monitor records (no
+// browser needed: node asks the API).
+TEST(Hmi, TheMonitorsHistoryIsServedToThePage) {
+  const std::string ads = std::string(VIRTCOM_SOURCE_DIR) + "/examples/ads-cell";
+  const std::string db = (fs::temp_directory_path() / ("virtcom-hmi-monitor-" + std::to_string(::getpid()) + ".sqlite")).string();
+  fs::remove(db);
+  {
+    ServerProcess plant(kExe, {"serve", ads + "/cell.yaml", "--ads", "127.0.0.1:0", "--quiet"}, ads, "ads: serving on ");
+    ASSERT_GT(plant.port(), 0) << plant.errorOutput();
+    ServerProcess monitor(kExe,
+                          {"monitor", ads + "/cell.yaml", "--ads", "127.0.0.1:" + std::to_string(plant.port()), "--http", "127.0.0.1:0",
+                           "--quiet", "--history", db},
+                          ads, kAnnounce);
+    ASSERT_GT(monitor.port(), 0) << monitor.errorOutput();
+    const std::string check = "node -e \"const u = 'http://127.0.0.1:" + std::to_string(monitor.port()) +
+                              "/api/'; (async () => { const m = await (await fetch(u + 'model')).json();"
+                              " const r = await (await fetch(u + 'history/runs')).json();"
+                              " process.exit(m.history && !m.replay && r.runs.length === 1 && !r.runs[0].ended ? 0 : 1); })()\"";
+    std::string out;
+    EXPECT_EQ(shell(check, out), 0) << out << monitor.errorOutput();
+    EXPECT_EQ(monitor.stop(), 0) << monitor.errorOutput();
+    EXPECT_EQ(plant.stop(), 0) << plant.errorOutput();
+  }
+  fs::remove(db);
 }
 
 TEST(Hmi, BindingBeyondLoopbackNeedsAnAllowList) {

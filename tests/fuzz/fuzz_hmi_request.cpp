@@ -1,7 +1,8 @@
 // libFuzzer target for the web HMI's request layer (src/hmi/request.cpp), which reads every
 // untrusted byte of an HTTP request: the input is cut into method selector, path, query,
 // Authorization and body, and read under each write access. Finds crashes, hangs and
-// responses that break the layer's contract (a refusal without a 4xx status and a JSON body).
+// responses that break the layer's contract (a refusal without a 4xx status and a JSON body, a
+// history range outside the bounds the history answers rely on).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -46,6 +47,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (parsed.route == hmi::Route::Error && (parsed.error.status < 400 || parsed.error.status >= 500 || parsed.error.body.empty()))
       __builtin_trap();
     if (parsed.route == hmi::Route::Stream && parsed.watch.size() > hmi::kMaxWatch) __builtin_trap();
+    if (parsed.route == hmi::Route::HistoryRange &&
+        (parsed.run < 1 || parsed.fromNs < 0 || parsed.fromNs > parsed.toNs || parsed.signals.size() > hmi::kMaxWatch ||
+         parsed.points < hmi::kMinPoints || parsed.points > hmi::kMaxPoints))
+      __builtin_trap();
   }
   return 0;
 }

@@ -1,9 +1,12 @@
 // The HMI page: reads /api/model once, follows /api/stream (server-sent events, one JSON frame of
-// changes at a time; schema in docs/hmi.md) and sends controls, writes and faults as POSTs.
+// changes at a time; schema in docs/hmi.md) and sends controls, writes and faults as POSTs. With a
+// history database the History panel (history.js) shows recorded runs; under `virtcom history
+// --http` (model.replay) it is all the page shows: no stream, no controls.
 import { Layout } from './layout.js';
 import { Gantt } from './gantt.js';
 import { Trend } from './trend.js';
 import { StationPanel, SfcPanel, RulePanel } from './panels.js';
+import { HistoryView } from './history.js';
 
 const $ = (id) => document.getElementById(id);
 const seconds = (ns) => `${(ns / 1e9).toFixed(3)} s`;
@@ -21,7 +24,8 @@ const state = {
   nowNs: 0,
   dirty: true,
 };
-let layout, gantt, trend, stream, stationPanel, sfcPanel, rulePanel;
+let layout, gantt, trend, stream, stationPanel, sfcPanel, rulePanel, history;
+const live = () => !history?.active;  // the Gantt chart and trends follow the live run
 
 async function post(path, body) {
   const headers = { 'Content-Type': 'application/json' };
@@ -65,7 +69,7 @@ function applyFrame(f) {
   if (document.activeElement !== $('speed')) $('speed').value = f.speed;
   for (const [tag, value] of f.signals ?? []) {
     state.values[tag] = value;
-    trend.push(state.model.signals[tag].name, f.t, value);
+    if (live()) trend.push(state.model.signals[tag].name, f.t, value);
   }
   for (const a of f.activities ?? []) {
     state.activities.set(a[0], a);
@@ -96,7 +100,7 @@ function applyFrame(f) {
   if (f.forced) state.forced = f.forced;
   for (const v of f.vars ?? []) {
     state.vars.set(v.name, v);
-    trend.push(v.name, f.t, v.value);
+    if (live()) trend.push(v.name, f.t, v.value);
   }
   if (f.steps) sfcPanel.update(f.steps);
   if (f.rules) rulePanel.update(f.rules);
@@ -117,11 +121,14 @@ function render() {
     $('vtime').textContent = seconds(state.nowNs);
     $('vtime').dataset.ns = state.nowNs;
     layout.update(state.values, deviceState, state.belts);
-    gantt.render(state.activities, state.nowNs);
+    if (live()) {
+      gantt.render(state.activities, state.nowNs);
+      trend.render(state.nowNs);
+    }
     stationPanel.render(state.nowNs, deviceState);
-    trend.render(state.nowNs);
     renderWatch();
   }
+  history?.render();
   requestAnimationFrame(render);
 }
 
@@ -160,6 +167,11 @@ function addWatchRow(name) {
 
 // A trended name: a bus signal, or a PLC variable (then watched, so the stream sends its values).
 function addTrend(name) {
+  if (!live()) {  // the history has the recorded signals by name
+    trend.add(name);
+    history.reload();
+    return;
+  }
   const tag = state.model.signals.findIndex(s => s.name === name);
   if (tag < 0 && !state.watch.includes(name)) watch(name);
   trend.add(name);
@@ -206,19 +218,43 @@ async function search() {
   }
 }
 
+// The layout at a time of a recorded run (replay): its signals' values and running activities.
+function showRecordedState(s) {
+  state.nowNs = s.at;
+  state.values = state.model.signals.map((signal) => s.values[signal.name]);
+  state.current.clear();
+  for (const a of s.activities) {
+    const device = state.model.devices.find((d) => d.name === s.devices[a[1]]?.name);
+    const label = state.model.labels.indexOf(s.labels[a[2]]);
+    if (device) state.current.set(device.trace, [a[0], device.trace, label, ...a.slice(3)]);
+  }
+  state.dirty = true;
+}
+
+// Replay: the panels of the live run are hidden; the history shows the newest run.
+function startReplay() {
+  document.body.classList.add('replay');
+  $('run-state').textContent = 'history';
+  $('run-state').className = 'badge ended';
+  history.activate();
+  requestAnimationFrame(render);
+}
+
 async function start() {
   state.model = await (await fetch('/api/model')).json();
   const m = state.model;
   document.title = `${m.name} — virtcom HMI`;
   $('cell-name').textContent = m.name;
   $('token').hidden = !m.tokenRequired;
-  if (m.readOnly) for (const b of document.querySelectorAll('button:not(#trend-form button), #speed')) b.disabled = true;  // trends only watch
+  if (m.readOnly) for (const b of document.querySelectorAll('button:not(#trend-form button):not(#history-panel button), #speed')) b.disabled = true;  // trends and history only watch
   layout = new Layout($('layout'), m);
   gantt = new Gantt($('gantt'), m);
   stationPanel = new StationPanel($('stations').tBodies[0], m.devices, m.labels);
   sfcPanel = new SfcPanel($('sfc-panel'), $('sfc-steps').tBodies[0], m.sfcSteps ?? []);
   rulePanel = new RulePanel($('rules-panel'), $('rules').tBodies[0], m.rules ?? []);
   setUpTrends();
+  if (m.history) history = new HistoryView(m, gantt, trend, showRecordedState, () => { state.dirty = true; });
+  if (m.replay) return startReplay();
   for (const d of m.devices) $('fault-device').add(new Option(d.name, d.name));
   for (const button of document.querySelectorAll('[data-action]'))
     button.onclick = () => post('/api/control', { action: button.dataset.action });

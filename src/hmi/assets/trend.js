@@ -1,7 +1,8 @@
 // The Trends panel: chosen signals (bus tags) and watched PLC variables plotted over virtual time
 // on one canvas, fed by the stream's frames. Each series keeps at most MAX_POINTS points (the
 // oldest are dropped), so a page left open for days stays small. The time axis zooms with the
-// mouse wheel or the buttons: the window always ends at the present.
+// mouse wheel or the buttons: the window always ends at the present, unless a fixed window of the
+// history is shown (showRange; the zoom then goes to onWindowZoom, which reads another range).
 const MAX_POINTS = 4000;
 const COLOURS = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2', '#17becf'];
 const MIN_SPAN_NS = 100e6;
@@ -26,6 +27,8 @@ export class Trend {
     this.series = new Map();    // name -> {points: [[tNs, v]], colour}
     this.spanNs = 0;            // 0: everything since the start
     this.nowNs = 0;
+    this.window = null;         // {fromNs, toNs}: a fixed range of the history
+    this.onWindowZoom = null;
     canvas.addEventListener('wheel', (e) => {
       e.preventDefault();
       this.zoom(e.deltaY < 0 ? 0.5 : 2);
@@ -64,9 +67,15 @@ export class Trend {
 
   // factor < 1 zooms in; the span never exceeds the run so far (then it is "all").
   zoom(factor) {
+    if (this.window && this.onWindowZoom) return this.onWindowZoom(factor);
     const span = (this.spanNs || this.nowNs) * factor;
     this.spanNs = span >= this.nowNs ? 0 : Math.max(span, MIN_SPAN_NS);
     this.canvas.dataset.spanNs = this.spanNs;
+  }
+
+  // Plots [fromNs, toNs] from now on (null: back to the live window ending at the present).
+  showRange(fromNs, toNs) {
+    this.window = fromNs === null ? null : { fromNs, toNs };
   }
 
   renderLegend() {
@@ -89,7 +98,8 @@ export class Trend {
     if (c.width !== width) c.width = width;
     if (c.height !== height) c.height = height;
     ctx.clearRect(0, 0, width, height);
-    const t1 = Math.max(nowNs, 1), t0 = this.spanNs ? Math.max(t1 - this.spanNs, 0) : 0;
+    const t1 = this.window ? Math.max(this.window.toNs, this.window.fromNs + 1) : Math.max(nowNs, 1);
+    const t0 = this.window ? this.window.fromNs : this.spanNs ? Math.max(t1 - this.spanNs, 0) : 0;
     let lo = Infinity, hi = -Infinity;
     for (const s of this.series.values())
       for (const [t, v] of s.points) if (t >= t0 || s.points.length === 1) { lo = Math.min(lo, v); hi = Math.max(hi, v); }

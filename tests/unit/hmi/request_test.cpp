@@ -85,5 +85,48 @@ TEST(HmiRequest, OtherMethodsAreRefused) {
   EXPECT_EQ(parseRequest({"DELETE", "/api/model", {}, "", ""}, {}).error.status, 405);
 }
 
+TEST(HmiRequest, HistoryRangesAreChecked) {
+  const WriteAccess open;
+  EXPECT_EQ(parseRequest(get("/api/history/runs"), open).route, Route::HistoryRuns);
+  ParsedRequest range = parseRequest(
+      get("/api/history/range", {{"run", "2"}, {"from", "1000"}, {"to", "5000"}, {"signals", "Press.busy,,MAIN.x"}, {"points", "50"}}), open);
+  ASSERT_EQ(range.route, Route::HistoryRange) << range.error.body;
+  EXPECT_EQ(range.run, 2);
+  EXPECT_EQ(range.fromNs, 1000);
+  EXPECT_EQ(range.toNs, 5000);
+  EXPECT_EQ(range.signals, (std::vector<std::string>{"Press.busy", "MAIN.x"}));
+  EXPECT_EQ(range.points, 50);
+  ParsedRequest whole = parseRequest(get("/api/history/range", {{"run", "1"}}), open);
+  EXPECT_EQ(whole.fromNs, 0);
+  EXPECT_EQ(whole.toNs, INT64_MAX);
+  EXPECT_EQ(whole.points, kDefaultPoints);
+  ParsedRequest state = parseRequest(get("/api/history/state", {{"run", "1"}, {"at", "42"}}), open);
+  ASSERT_EQ(state.route, Route::HistoryState);
+  EXPECT_EQ(state.fromNs, 42);
+}
+
+TEST(HmiRequest, BadHistoryParametersSayWhatIsExpected) {
+  const WriteAccess open;
+  auto refused = [&](std::vector<std::pair<std::string, std::string>> query, const std::string& path = "/api/history/range") {
+    ParsedRequest p = parseRequest(get(path, std::move(query)), open);
+    EXPECT_EQ(p.route, Route::Error);
+    EXPECT_EQ(p.error.status, 400);
+    return p.error.body;
+  };
+  EXPECT_NE(refused({}).find("'run' is missing"), std::string::npos);
+  EXPECT_NE(refused({{"run", "0"}}).find("'run' must be a whole number from 1"), std::string::npos);
+  EXPECT_NE(refused({{"run", "1x"}}).find("not '1x'"), std::string::npos);
+  EXPECT_NE(refused({{"run", "1"}, {"from", "-5"}}).find("'from'"), std::string::npos);
+  EXPECT_NE(refused({{"run", "1"}, {"from", "99999999999999999999"}}).find("'from'"), std::string::npos);
+  EXPECT_NE(refused({{"run", "1"}, {"from", "10"}, {"to", "5"}}).find("after 'to'"), std::string::npos);
+  EXPECT_NE(refused({{"run", "1"}, {"points", "2"}}).find("'points'"), std::string::npos);
+  EXPECT_NE(refused({{"run", "1"}, {"points", "20001"}}).find("'points'"), std::string::npos);
+  std::string many;
+  for (size_t i = 0; i <= kMaxWatch; ++i) many += "s" + std::to_string(i) + ",";
+  EXPECT_NE(refused({{"run", "1"}, {"signals", many}}).find("at most"), std::string::npos);
+  EXPECT_NE(refused({{"run", "1"}}, "/api/history/state").find("'at' is missing"), std::string::npos);
+  EXPECT_EQ(parseRequest(get("/api/history/other"), open).error.status, 404);
+}
+
 }  // namespace
 }  // namespace virtcom::hmi

@@ -146,10 +146,7 @@ class MapParser {
   // `cycle_done: { table: discrete, address: 100 }`: the cycle marker `s`, placed as an entry.
   void addCycleMarker(SignalMap& map, const ConfigNode& node, const BusSignal& s, WordOrder order) {
     ConfigReader r(node, diags_, "'cycle_done'");
-    if (node.kind() != ConfigNode::Kind::Map) {
-      r.error(node.loc(), "'cycle_done' must be a map with optional 'table', 'address' and 'type', e.g. { table: discrete, address: 100 }");
-      return;
-    }
+    if (node.kind() != ConfigNode::Kind::Map) return;  // the reader has reported that it must be a map
     if (auto entry = readPlacement(r, node, s, order)) {
       if (checkOverlap(*entry, map, node.loc(), r)) {
         map.entries.push_back(*entry);

@@ -234,9 +234,10 @@ std::string httpPost(int port, const std::string& target, const std::string& bod
   return std::string(response.begin(), response.end());
 }
 
-// The port a process announced after `prefix` ("hmi: serving http://127.0.0.1:PORT/"), 0 if none.
-int announcedPort(ServerProcess& p, const std::string& prefix) {
-  if (!p.waitFor(prefix)) return 0;
+// The port a process announced after `prefix` on a line ending in `lineEnd` ("hmi: serving
+// http://127.0.0.1:PORT/ (loopback, writes allowed)"), 0 if none.
+int announcedPort(ServerProcess& p, const std::string& prefix, const std::string& lineEnd) {
+  if (!p.waitFor(prefix) || !p.waitFor(lineEnd)) return 0;
   const std::string& err = p.errorOutput();
   const size_t colon = err.find(':', err.find(prefix) + prefix.size());
   return colon == std::string::npos ? 0 : std::atoi(err.c_str() + colon + 1);
@@ -253,7 +254,7 @@ TEST_F(Monitor, CountsThePlantsCyclesOverModbusWhereTheMapPutsCycleDone) {
                        "--hmi-paused", "--quiet", "--json", path("plant.json")},
                       kExample, "modbus: serving on ");
   ASSERT_GT(plant.port(), 0) << plant.errorOutput();
-  const int hmi = announcedPort(plant, "hmi: serving http://");
+  const int hmi = announcedPort(plant, "hmi: serving http://", "writes allowed)");
   ASSERT_GT(hmi, 0) << plant.errorOutput();
   ServerProcess monitor(kExe,
                         {"monitor", path("marked.yaml"), "--modbus", "127.0.0.1:" + std::to_string(plant.port()), "--poll", "5ms",

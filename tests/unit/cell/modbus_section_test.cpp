@@ -239,11 +239,10 @@ TEST_F(ModbusSection, CycleDoneMistakesAtTheirPosition) {
                            "    - { signal: Clamp.done, table: discrete, address: 4 }\n"              // 16
                            "  cycle_done: { table: discrete, address: 4, colour: red }\n"),           // 17
               ElementsAre("cell.yaml:17:15: error[C010]: discrete 4 overlaps 'Clamp.done' at 4",
-                          "cell.yaml:17:45: error[C011]: unknown key 'colour' in 'cycle_done' (expected one of: table, address, "
-                          "type, word_order, scale, read_only)"));
+                          "cell.yaml:17:46: error[C011]: unknown key 'colour' in 'cycle_done' (expected one of: table, type, "
+                          "word_order, scale, read_only, address)"));
   EXPECT_THAT(fails(head + "modbus:\n  cycle_done: 100\n"),
-              ElementsAre("cell.yaml:15:15: error[C010]: 'cycle_done' must be a map with optional 'table', 'address' and 'type', "
-                          "e.g. { table: discrete, address: 100 }"));
+              ElementsAre("cell.yaml:15:15: error[C010]: 'cycle_done' must be a mapping of `key: value` entries"));
 }
 
 }  // namespace

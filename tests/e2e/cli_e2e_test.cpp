@@ -199,9 +199,9 @@ TEST_F(CliBackend, AutoSwitchingMidRunPrintsWhatTheInterpreterPrints) {
   std::vector<std::string> tiered = args, interp = args;
   tiered.insert(tiered.end(), {"--backend", "auto"});
   interp.insert(interp.end(), {"--backend", "interp"});
+  ::setenv("VIRTCOM_TIER_LOG", "1", 1);
   RunResult reference = run(interp);
   ::setenv("VIRTCOM_TIER_SWITCH_AT_SCAN", "7", 1);
-  ::setenv("VIRTCOM_TIER_LOG", "1", 1);
   RunResult r = run(tiered);
   EXPECT_EQ(r.exitCode, 0) << show(r);
   EXPECT_EQ(r.out, reference.out) << show(r);

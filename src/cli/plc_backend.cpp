@@ -31,6 +31,7 @@ struct PlcBackend::Compile {
   std::mutex mutex;
   std::condition_variable finished;
   bool done = false;             // guarded by mutex
+  bool stopping = false;         // guarded by mutex: the command no longer wants the code
   aot::CompileResult result;     // guarded by mutex, set with done
   int64_t startedNs = monotonicNowNs();
   int64_t tookNs = 0;            // guarded by mutex, set with done
@@ -42,6 +43,16 @@ namespace {
 // processes (aot::compileModule then only removes its temporary files), and how often it looks.
 constexpr int64_t kCompileStopBoundNs = 2'000'000'000;
 constexpr auto kCompileStopPoll = std::chrono::milliseconds(20);
+
+// A run that ends sooner never starts the compile: the interpreter finishes it before any
+// compile could (the gearbox cell's whole run is about 30 ms of CPU, a first compile seconds),
+// and each of the many short runs of a test suite would otherwise pay for a compile it never
+// uses.
+// $VIRTCOM_TIER_DELAY_MS replaces it (tests and measurements).
+std::chrono::milliseconds tierUpDelay() {
+  const char* text = std::getenv("VIRTCOM_TIER_DELAY_MS");
+  return std::chrono::milliseconds(text && *text ? std::strtoll(text, nullptr, 10) : 500);
+}
 
 // The processes this one started and theirs (read from /proc): the background compile's C
 // compiler and what it runs (cc1, as). No command runs other child processes while it runs a
@@ -94,7 +105,16 @@ PlcBackend::PlcBackend(const std::string& backend, const bc::Module& m) : reques
   if (backend != "auto") return;
   handoff_ = std::make_shared<vm::CompiledHandoff>();
   compile_ = std::make_shared<Compile>(m);
-  auto work = [compile = compile_, handoff = handoff_] {
+  auto work = [compile = compile_, handoff = handoff_](std::chrono::milliseconds delay) {
+    if (delay.count() > 0) {
+      std::unique_lock lock(compile->mutex);
+      if (compile->finished.wait_for(lock, delay, [&] { return compile->stopping; })) {
+        compile->result.error = "the run ended before the compile started";
+        compile->done = true;
+        compile->finished.notify_all();
+        return;
+      }
+    }
     aot::CompileResult r = aot::compileModule(compile->module);
     if (r.code) handoff->publish(r.code);
     std::lock_guard lock(compile->mutex);
@@ -105,15 +125,17 @@ PlcBackend::PlcBackend(const std::string& backend, const bc::Module& m) : reques
   };
   if (const uint64_t scans = switchHookScans()) {
     handoff_->holdUntilScan(scans);
-    work();
+    work(std::chrono::milliseconds(0));
     return;
   }
-  compile_->thread = std::thread(work);
+  compile_->thread = std::thread(work, tierUpDelay());
 }
 
 PlcBackend::~PlcBackend() {
   if (!compile_ || !compile_->thread.joinable()) return;
   std::unique_lock lock(compile_->mutex);
+  compile_->stopping = true;
+  compile_->finished.notify_all();
   // Terminated again and again until the compile gives up: the thread may still be writing
   // the C source and spawn the compiler after a first round.
   const int64_t deadlineNs = monotonicNowNs() + kCompileStopBoundNs;

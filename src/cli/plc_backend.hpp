@@ -2,9 +2,10 @@
 // `--backend`: how the soft PLC runs its program, for every command that runs one.
 //   interp  the bytecode interpreter only;
 //   aot     machine code compiled (or taken from the cache) before the first scan;
-//   auto    (the default) the interpreter at once, the machine code compiled on a background
-//           thread and switched to between two scans when it is ready (plc::Runtime's tier
-//           switch). Without a C compiler it stays on the interpreter, silently.
+//   auto    (the default) the interpreter at once; a run still going after half a second has
+//           its machine code compiled on a background thread and switched to between two
+//           scans when it is ready (plc::Runtime's tier switch). Without a C compiler it stays
+//           on the interpreter, silently.
 #include <memory>
 #include <string>
 

@@ -151,6 +151,7 @@ class CliBackend : public CliTest {
     ::unsetenv("CC");
     ::unsetenv("VIRTCOM_TIER_SWITCH_AT_SCAN");
     ::unsetenv("VIRTCOM_TIER_LOG");
+    ::unsetenv("VIRTCOM_TIER_DELAY_MS");
     CliTest::TearDown();
   }
   // The files left in the AOT cache folder (compiled objects and their C source, or leftovers).
@@ -242,6 +243,7 @@ TEST_F(CliBackend, AutoDoesNotWaitForTheCompilerAndLeavesNoTemporaryFiles) {
   fs::permissions(compiler, fs::perms::owner_all);
   ::setenv("CC", compiler.c_str(), 1);
   ::setenv("VIRTCOM_TIER_LOG", "1", 1);
+  ::setenv("VIRTCOM_TIER_DELAY_MS", "0", 1);  // compile at once, however short the run
   RunResult r = run({"exec", "counter.st", "--cycles", "200000"});
   EXPECT_EQ(r.exitCode, 0) << show(r);
   EXPECT_TRUE(contains(r.err, "machine code not ready when the run ended")) << show(r);

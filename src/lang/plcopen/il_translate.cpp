@@ -120,6 +120,7 @@ class IlTranslator {
   st::StmtPtr carryTo(size_t label, SourceLocation loc);
   void startLabel(size_t label, SourceLocation loc);
   void emitGuarded(Cond cond, st::StmtList body, SourceLocation loc);
+  std::string hidden(std::string name, std::string_view type, SourceLocation loc);
   std::string crVariable(const std::string& type, SourceLocation loc);
   std::string typeOf(const st::Expr& e) const;
   bool reads(const st::Expr& e, std::string_view name) const;
@@ -288,19 +289,23 @@ bool IlTranslator::reads(const st::Expr& e, std::string_view name) const {
   return false;
 }
 
-std::string IlTranslator::crVariable(const std::string& type, SourceLocation loc) {
-  std::string name = "__" + prefix_ + "il_cr_" + type;
+// A hidden variable of the body, declared the first time it is asked for.
+std::string IlTranslator::hidden(std::string name, std::string_view type, SourceLocation loc) {
   bool declared = std::any_of(temps_.vars.begin(), temps_.vars.end(),
                               [&](const st::VarDecl& d) { return d.names.front().name == name; });
   if (!declared) {
     st::VarDecl decl;
     decl.names.push_back({name, loc});
-    decl.type.name = type;
+    decl.type.name = std::string(type);
     decl.type.loc = loc;
     decl.loc = loc;
     temps_.vars.push_back(std::move(decl));
   }
   return name;
+}
+
+std::string IlTranslator::crVariable(const std::string& type, SourceLocation loc) {
+  return hidden("__" + prefix_ + "il_cr_" + type, type, loc);
 }
 
 bool IlTranslator::requireCr(const Instruction& ins) {
@@ -401,7 +406,7 @@ void IlTranslator::jump(const Instruction& ins) {
     holdAsBool(loc);
   }
   size_t index = static_cast<size_t>(label - labels_.begin());
-  if (jumpVar_.empty()) jumpVar_ = "__" + prefix_ + "il_jump";
+  if (jumpVar_.empty()) jumpVar_ = hidden("__" + prefix_ + "il_jump", "INT", loc);
   st::StmtList body;
   if (st::StmtPtr carry = carryTo(index, loc)) body.push_back(std::move(carry));
   for (st::StmtPtr& s : jumpToSection(b_, jumpVar_, index + 1, loc)) body.push_back(std::move(s));
@@ -573,14 +578,6 @@ st::StmtList IlTranslator::run() {
   for (size_t k = 0; k < code_.size() && !failed_; ++k) translate(code_[k], k);
   if (!deferred_.empty() && !failed_) fail(diag::X011, clean_.size(), "IL: a deferred operator's ')' is missing");
   st::StmtList body = joinSections(b_, std::move(sections_), jumpVar_, at(0));
-  if (jumpVar_.size()) {
-    st::VarDecl decl;
-    decl.names.push_back({jumpVar_, at(0)});
-    decl.type.name = "INT";
-    decl.type.loc = at(0);
-    decl.loc = at(0);
-    temps_.vars.push_back(std::move(decl));
-  }
   if (!temps_.vars.empty()) owner_.varBlocks.push_back(std::move(temps_));
   return body;
 }

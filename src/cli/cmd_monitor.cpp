@@ -5,7 +5,8 @@
 // operations are recognised from their handshake (sim/operation_recogniser.hpp) and recorded
 // as a simulated run's would be, so the HMI, the reports and the summary work unchanged. The
 // digital shadow: the cell model, run once in virtual time at start-up, predicts each
-// operation's duration; a completed operation beyond the deviation threshold is an alert.
+// operation's duration; a completed operation beyond the deviation threshold is an alert. Over
+// ADS the position of the program's SFC charts is read too (cli/sfc_mirror.hpp).
 #include <climits>
 #include <cstdio>
 #include <ctime>
@@ -19,6 +20,7 @@
 #include "cli/history_options.hpp"
 #include "cli/hmi_options.hpp"
 #include "cli/modbus_options.hpp"
+#include "cli/sfc_mirror.hpp"
 #include "report/json_report.hpp"
 #include "report/kpis.hpp"
 #include "report/production.hpp"
@@ -45,8 +47,9 @@ struct MonitorOptions {
 
 // The cell's wiring as variables to read from the real PLC: the soft PLC's wires by their
 // variable names (or a `plc: ads:` cell's own), every one read, none written; `cycle_done` and
-// `record` variables observed too. Replaces the cell's controller by that read-only link.
-std::expected<void, std::string> watchOverAds(cell::Cell& cell, const MonitorOptions& o) {
+// `record` variables observed too, and the steps of the program's charts (`mirror`). Replaces
+// the cell's controller by that read-only link.
+std::expected<void, std::string> watchOverAds(cell::Cell& cell, const MonitorOptions& o, const SfcMirror& mirror) {
   auto router = parseEndpoint(o.ads);
   if (!router) return std::unexpected("--ads: " + router.error());
   cell::AdsClientSettings watch = cell.plcAds.value_or(cell::AdsClientSettings{});
@@ -66,6 +69,7 @@ std::expected<void, std::string> watchOverAds(cell::Cell& cell, const MonitorOpt
       watch.wires.push_back({cycleTag, plant::PortDir::In, cell.run.cycleDoneVar, {}, {}, false, -1});
     }
     for (const auto& name : cell.run.recordVars) watch.wires.push_back({kNoTag, plant::PortDir::In, name, {}, {}, false, -1});
+    mirror.addWires(watch.wires);
   }
   for (cell::ExternalWire& w : watch.wires) w.dir = plant::PortDir::In;  // the monitor never writes to the PLC
   watch.faultOnLoss = true;
@@ -100,7 +104,7 @@ std::expected<cell::ModbusClientSettings, std::string> watchOverModbus(cell::Cel
 // The read-only link to the plant's PLC (--ads or --modbus) over the cell's tag bus; the cell's
 // own controller is detached. Null, the problem printed, if it cannot start; `failure` says how.
 std::unique_ptr<BusBridge> openLink(cell::Cell& cell, const SourceManager& sources, const MonitorOptions& o, int64_t pollNs,
-                                    ExitCode& failure) {
+                                    SfcMirror& mirror, ExitCode& failure) {
   failure = ExitCode::Usage;
   if (!o.modbus.empty()) {
     auto watch = watchOverModbus(cell, o, pollNs);
@@ -110,12 +114,15 @@ std::unique_ptr<BusBridge> openLink(cell::Cell& cell, const SourceManager& sourc
     }
     return startClientBridge(*watch, "is watched (read only)");
   }
-  if (auto watched = watchOverAds(cell, o); !watched) {
+  if (auto watched = watchOverAds(cell, o, mirror); !watched) {
     std::cerr << "error: " << watched.error() << "\n";
     return nullptr;
   }
   failure = ExitCode::InputError;
-  return startAdsBridge(cell, sources, "is watched (read only)");
+  auto bridge = startAdsBridge(cell, sources, "is watched (read only)");
+  if (bridge && !mirror.empty())
+    std::fprintf(stderr, "monitor: the PLC has %zu of the %zu SFC steps of the cell's program\n", mirror.bind(cell.bus), mirror.steps().size());
+  return bridge;
 }
 
 // The model's prediction: the cell run once in virtual time with its own soft PLC. Null (and a
@@ -284,7 +291,9 @@ ExitCode monitorCell(const MonitorOptions& o) {
   cell->run.plcCycleNs = *pollNs;
   stopOnSignals();
   ExitCode linkFailure = ExitCode::Ok;
-  auto bridge = openLink(*cell, sources, o, *pollNs, linkFailure);
+  // Over ADS, the charts of the cell's program are looked for in the PLC by their step names.
+  SfcMirror mirror(o.modbus.empty() ? std::move(cell->module) : nullptr);
+  auto bridge = openLink(*cell, sources, o, *pollNs, mirror, linkFailure);
   if (!bridge) return linkFailure;
   // The monitor's own time follows the wall clock: a full queue drops events, never waits.
   auto recorder = openRecorder(o.history, *cell, o.cellFile, cell->run.recordVars, true);
@@ -304,6 +313,7 @@ ExitCode monitorCell(const MonitorOptions& o) {
   options.watch.threshold = o.deviationPercent / 100;
   AlertPrinter alerts(model && model->trace.cyclesCompleted > 0 ? model->trace.cycleEndNs - model->trace.cycleStartNs : 0);
   options.traceSinks.push_back(&alerts);
+  if (!mirror.empty()) options.traceSinks.push_back(&mirror);  // before the HMI's, which publishes its image
   LocalWallClock wallClock;
   ProductionSink production(cell->plan, wallClock, *recorder && !cell->plan.shifts.empty() ? recorder->get() : nullptr);
   options.traceSinks.push_back(&production);
@@ -314,6 +324,7 @@ ExitCode monitorCell(const MonitorOptions& o) {
     hmi->keepHistory(o.history.path);
     hmi->refuseReset("reset is off in monitor: the plant is real and keeps its own state");
   }
+  if (hmi && !mirror.empty()) hmi->mirrorSteps(mirror);
   if (hmi && !cell->plan.shifts.empty()) hmi->watchShifts([&production](hmi::ShiftProgress& p) { production.progress(p); });
   if (model) options.watch.model = &model->trace;
   sim::Simulation simulation(*cell, options);
@@ -331,6 +342,7 @@ ExitCode monitorCell(const MonitorOptions& o) {
   if (!o.quiet) {
     std::cout << report::summaryTable(trace, kpis);
     printShadow(trace, *simulation.recogniser());
+    if (!mirror.empty()) std::cout << "\nSFC steps active when stopped: " << (mirror.activeSteps().empty() ? "none" : mirror.activeSteps()) << "\n";
     std::cout << report::productionTable(produced);
   }
   if (!o.json.empty() && !writeFile(o.json, report::jsonReport(trace, kpis, {}, &produced))) return ExitCode::Usage;

@@ -97,6 +97,7 @@ std::expected<void, std::string> LiveHmi::serve(const HmiBinding& binding, sim::
   }
   api_ = std::make_unique<hmi::Api>(*cell_, live_, baseTickNs, binding.access, std::move(rules));
   if (!resetRefusal_.empty()) api_->refuseReset(resetRefusal_);
+  if (mirror_) api_->showSteps(mirror_->steps());
   if (!historyPath_.empty()) {
     auto history = hmi::HistoryApi::open(historyPath_);
     if (!history) return std::unexpected("--history: " + history.error());

@@ -12,6 +12,7 @@
 
 #include "hmi/api.hpp"
 #include "hmi/http_server.hpp"
+#include "cli/sfc_mirror.hpp"
 #include "hmi/live_state.hpp"
 #include "sim/simulation.hpp"
 
@@ -65,6 +66,12 @@ class LiveHmi {
   void keepHistory(std::string path) { historyPath_ = std::move(path); }
   // virtcom monitor with a plan: the KPI panel shows the current shift's parts against the plan.
   void watchShifts(std::function<void(hmi::ShiftProgress&)> fill) { live_.watchShifts(std::move(fill)); }
+  // virtcom monitor over ADS: the SFC panel shows the real PLC's steps, read by `mirror`
+  // (which must outlive this).
+  void mirrorSteps(const SfcMirror& mirror) {
+    mirror_ = &mirror;
+    live_.mirrorMemory(mirror.image(), mirror.imageSize());
+  }
 
   // The run just ended on a reset from the page.
   bool resetRequested() const { return live_.resetting(); }
@@ -80,6 +87,7 @@ class LiveHmi {
   cell::Cell* cell_;
   std::string resetRefusal_;
   std::string historyPath_;
+  const SfcMirror* mirror_ = nullptr;
   hmi::LiveState live_;
   std::unique_ptr<hmi::HistoryApi> history_;  // before api_, which points at it
   std::unique_ptr<hmi::Api> api_;

@@ -30,10 +30,7 @@ Api::Api(const cell::Cell& cell, LiveState& live, int64_t baseTickNs, WriteAcces
     : live_(live), access_(std::move(access)), model_(cellModel(cell, baseTickNs)), catalog_(cell.module.get()) {
   for (const auto& d : cell.devices) deviceNames_.push_back(d->name());
   for (TagId id = 0; id < cell.bus.size(); ++id) tagTypes_.push_back(cell.bus.type(id));
-  if (cell.module) steps_ = sfc::findSteps(*cell.module);
-  Json steps = Json::array();
-  for (const sfc::StepVariable& step : steps_) steps.push_back(step.path);
-  model_["sfcSteps"] = std::move(steps);
+  showSteps(cell.module ? sfc::findSteps(*cell.module) : std::vector<sfc::StepVariable>{});
   Json ruleList = Json::array();
   for (const RuleInfo& r : rules)
     ruleList.push_back({{"diagram", r.diagram}, {"index", r.index}, {"luType", r.luType}, {"then", r.then}});
@@ -42,6 +39,13 @@ Api::Api(const cell::Cell& cell, LiveState& live, int64_t baseTickNs, WriteAcces
   model_["tokenRequired"] = !access_.readOnly && !access_.token.empty();
   model_["history"] = false;
   model_["replay"] = false;
+}
+
+void Api::showSteps(std::vector<sfc::StepVariable> steps) {
+  steps_ = std::move(steps);
+  Json paths = Json::array();
+  for (const sfc::StepVariable& step : steps_) paths.push_back(step.path);
+  model_["sfcSteps"] = std::move(paths);
 }
 
 void Api::attachHistory(HistoryApi& history, bool replay) {

@@ -37,6 +37,10 @@ class Api {
   // run, the page only browses the history ("replay": true). Without it they answer 404.
   void attachHistory(HistoryApi& history, bool replay);
 
+  // The SFC panel's steps, when they are not the cell's soft PLC's (virtcom monitor: the real
+  // PLC's, mirrored into the live state's memory; see LiveState::mirrorMemory).
+  void showSteps(std::vector<sfc::StepVariable> steps);
+
   const WriteAccess& access() const { return access_; }
   // Any route but Route::Stream. Thread-safe (HTTP threads call it at once).
   Response handle(const ParsedRequest& request);

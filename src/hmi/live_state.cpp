@@ -31,7 +31,7 @@ void LiveState::begin(const Trace& trace) {
     if (const auto* conveyor = dynamic_cast<const plant::Conveyor*>(d.get())) conveyors_.push_back(conveyor);
   std::lock_guard lock(snapshotMutex_);
   snapshot_.tags.assign(cell_->bus.size(), 0);
-  snapshot_.memory.assign(cell_->module ? cell_->module->staticSize : 0, 0);
+  snapshot_.memory.assign(cell_->module ? cell_->module->staticSize : mirrorSize_, 0);
   snapshot_.injected.assign(cell_->devices.size(), 0);
   if (snapshot_.activities.empty()) snapshot_.activities.setLimit(trace.activities.limit());
   snapshot_.activities.reserve(trace.activities.capacity());
@@ -113,7 +113,8 @@ bool LiveState::publish(const Trace& trace, bool wait) {
   s.speed = speed_;
   for (TagId id = 0; id < s.tags.size(); ++id) s.tags[id] = cell_->bus.raw(id);
   mirrorTrace(trace);
-  if (plc_ && !s.memory.empty()) std::memcpy(s.memory.data(), plc_->machine().memory(), s.memory.size());
+  if (const uint8_t* memory = plc_ ? plc_->machine().memory() : mirror_; memory && !s.memory.empty())
+    std::memcpy(s.memory.data(), memory, s.memory.size());
   for (size_t d = 0; d < s.injected.size(); ++d) s.injected[d] = cell_->devices[d]->faults().errorCode;
   std::ranges::copy(rules_.firings(), s.rules.begin());
   copyBelts();

@@ -132,6 +132,13 @@ class LiveState final : public TraceSink, public sim::RunControl {
   // Before the run: `fill` updates the shift's progress in place at each publication, on the
   // simulation's thread (virtcom monitor with a plan). Without it the snapshot has none.
   void watchShifts(std::function<void(ShiftProgress&)> fill) { shiftProgress_ = std::move(fill); }
+  // Before the run, without a soft PLC: the snapshot's PLC memory is copied from `image`
+  // (`size` bytes, laid out as the cell's program; updated on the simulation's thread, e.g. the
+  // real PLC's SFC flags virtcom monitor reads), so the panels that read it work unchanged.
+  void mirrorMemory(const uint8_t* image, size_t size) {
+    mirror_ = image;
+    mirrorSize_ = size;
+  }
 
   // ---- any thread ----
   void post(Command command);
@@ -162,6 +169,8 @@ class LiveState final : public TraceSink, public sim::RunControl {
   const std::atomic<bool>* interrupt_;
   const Trace* trace_ = nullptr;
   plc::Runtime* plc_ = nullptr;
+  const uint8_t* mirror_ = nullptr;  // the PLC memory without a soft PLC (mirrorMemory)
+  size_t mirrorSize_ = 0;
 
   // simulation thread only
   bool paused_;

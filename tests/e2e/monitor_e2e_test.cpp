@@ -352,3 +352,43 @@ TEST_F(Monitor, AKilledMonitorKeepsItsProductionRowsInTheHistorian) {
   ASSERT_TRUE(std::regex_search(out, row, std::regex(R"((\d{4}-\d\d-\d\d) +AllDay +1000 +[0-9.]+ +(\d+))"))) << out;
   EXPECT_GE(std::stoi(row[2].str()), 2) << "the two cycles completed before the kill: " << out;
 }
+
+// The position of the real PLC's state machine: the gearbox's SFC variant served as the plant,
+// the monitor finds every step of the cell's program in the PLC by name; its HMI lists them and
+// streams the active ones, and the historian records the step flags as signals.
+TEST_F(Monitor, FollowsThePlcsSfcStepsInTheHmiAndTheHistorian) {
+  const std::string gearbox = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell";
+  ServerProcess plant(kExe, {"serve", gearbox + "/cell-sfc.yaml", "--ads", "127.0.0.1:0", "--quiet"}, gearbox, "ads: serving on ");
+  ASSERT_GT(plant.port(), 0) << plant.errorOutput();
+  ServerProcess monitor(kExe,
+                        {"monitor", gearbox + "/cell-sfc.yaml", "--ads", "127.0.0.1:" + std::to_string(plant.port()), "--poll", "5ms",
+                         "--http", "127.0.0.1:0", "--history", path("h.sqlite"), "--quiet"},
+                        gearbox, "hmi: serving http://");
+  ASSERT_GT(monitor.port(), 0) << monitor.errorOutput();
+  std::smatch found;
+  const std::string err = monitor.errorOutput();
+  ASSERT_TRUE(std::regex_search(err, found, std::regex("the PLC has (\\d+) of the (\\d+) SFC steps"))) << err;
+  EXPECT_GT(std::stoi(found[2]), 5);
+  EXPECT_EQ(found[1], found[2]) << "every step of the served program is found in the PLC";
+
+  const std::string model = httpGet(monitor.port(), "/api/model");
+  EXPECT_NE(model.find(R"("sfcSteps":["MAIN.Load",)"), std::string::npos) << model;
+  // The stream's first frame carries the active steps, [index, ms in the step] each: at least
+  // one step is active in a running chart (the plant runs in real time: the first cycle lasts
+  // about 100 s, longer than this test).
+  LoopbackClient viewer(monitor.port());
+  const std::string request = "GET /api/stream HTTP/1.0\r\nHost: 127.0.0.1\r\n\r\n";
+  ASSERT_TRUE(viewer.send(std::vector<uint8_t>(request.begin(), request.end())));
+  const std::vector<uint8_t> frames = viewer.receive(1 << 16);  // what came within the 5 s receive timeout
+  const std::string text(frames.begin(), frames.end());
+  EXPECT_TRUE(std::regex_search(text, std::regex(R"re("steps":\[\[\d+,\d+\])re"))) << text.substr(0, 2000);
+  viewer.close();
+  EXPECT_EQ(monitor.stop(), 0) << monitor.errorOutput();
+  EXPECT_EQ(plant.stop(), 0) << plant.errorOutput();
+
+  std::string out;
+  ASSERT_EQ(shell(kExe + " history " + path("h.sqlite") + " --csv " + path("h.csv"), out), 0) << out;
+  const std::string csv = readFile(path("h.csv"));
+  EXPECT_NE(csv.find("MAIN.Load.X"), std::string::npos) << csv.substr(0, 2000);
+  EXPECT_NE(csv.find("MAIN.Robot1Wait.X"), std::string::npos) << csv.substr(0, 2000);
+}

@@ -66,8 +66,11 @@ struct ModbusClientSettings {
   int64_t pollNs = 10'000'000;         // read commands / write changed status this often
   int64_t timeoutNs = 500'000'000;     // a request unanswered this long means the link is lost
   bool faultOnLoss = true;             // on_loss: fault (end the run) or hold (keep, reconnect)
-  modbus_map::SignalMap map;           // the PLC's tables (Client role)
+  modbus_map::SignalMap map;           // the PLC's tables (Client role); map.cycleDone: `cycle_done:`
 };
+
+// The signal `plc: modbus: cycle_done:` reads the external PLC's cycle marker into.
+inline constexpr const char* kModbusCycleDoneSignal = "plc.cycle_done";
 
 // A device port wired to a variable of an external PLC by name (`plc: ads:`): resolved, checked
 // and given a handle when the bridge starts, since the program is not here to check it against.

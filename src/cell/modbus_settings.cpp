@@ -70,7 +70,15 @@ void readModbusClient(Cell& cell, const ConfigNode& node, Diagnostics& diags) {
   s.timeoutNs = readLinkDurationNs(r, node, "timeout", 0.5);
   s.faultOnLoss = readFaultOnLoss(r, node);
   auto signals = busSignals(cell);
-  s.map = modbus_map::parseSignalMap(&r, signals, modbus_map::MapRole::Client);
+  // `cycle_done:` places the PLC's cycle marker in its tables (a Modbus PLC has no variables by
+  // name): the bridge reads it with the commands and the run counts its rising edges, as it does
+  // `run: cycle_done` of a soft or ADS PLC.
+  std::optional<modbus_map::BusSignal> marker;
+  if (node.find("cycle_done"))
+    marker = modbus_map::BusSignal{cell.bus.add(kModbusCycleDoneSignal, ElemType::Bool), kModbusCycleDoneSignal, ElemType::Bool,
+                                   modbus_map::SignalDir::Command};
+  s.map = modbus_map::parseSignalMap(&r, signals, modbus_map::MapRole::Client, marker ? &*marker : nullptr);
+  if (s.map.cycleDone != kNoTag) cell.run.cycleDoneTag = s.map.cycleDone;
   r.rejectUnknownKeys();
   cell.plcModbus = std::move(s);
 }

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <thread>
 
 #include "modbus_client.hpp"
@@ -229,6 +230,28 @@ TEST_F(BridgeE2e, TheCellCommissionsAgainstTheSoftPlcInAnotherProcess) {
   EXPECT_EQ(modbus_read_registers(ctx, 2054, 2, force), 2);    // %MD3, high word first
   EXPECT_GE(cycles, 1) << "not one clamp-press-unclamp cycle in 3 s";
   EXPECT_GT(modbus_get_float_abcd(force), 1000.0f);  // the press force reached the PLC
+  modbus_close(ctx);
+  modbus_free(ctx);
+  EXPECT_EQ(plc.stop(), 0) << plc.errorOutput();
+}
+
+// `cycle_done:` places the external PLC's cycle marker (controller.st's coil 2): the run counts
+// the PLC's cycles there and ends after `run: cycles` of them (exit 0), as a soft PLC's run does.
+TEST_F(BridgeE2e, ThePlcsCycleMarkerEndsTheRunAfterItsCycles) {
+  ServerProcess plc(kExe, {"exec", "plc/controller.st", "--modbus", "127.0.0.1:0"}, kExample, kAnnounce);
+  ASSERT_GT(plc.port(), 0) << plc.errorOutput();
+  std::string cell = readFile(bridgeCell(plc.port()));
+  cell.replace(cell.find("# cycle_done:"), 13, "cycle_done:");
+  std::ofstream(dir_ / "cycles.yaml") << cell << "run:\n  cycles: 2\n";
+  std::string out;
+  EXPECT_EQ(shell(std::string(kExe) + " run " + (dir_ / "cycles.yaml").string() + " --time-limit 20s --json " + (dir_ / "r.json").string(), out), 0) << out;
+  const std::string json = readFile((dir_ / "r.json").string());
+  EXPECT_TRUE(std::regex_search(json, std::regex(R"re("cycles_completed": ?2\b)re"))) << json.substr(0, 1500);
+  modbus_t* ctx = connectModbus(plc.port());
+  ASSERT_NE(ctx, nullptr);
+  uint16_t cycles = 0;
+  EXPECT_EQ(modbus_read_registers(ctx, 1044, 1, &cycles), 1);  // %MW20: the PLC's own count
+  EXPECT_GE(cycles, 2);
   modbus_close(ctx);
   modbus_free(ctx);
   EXPECT_EQ(plc.stop(), 0) << plc.errorOutput();

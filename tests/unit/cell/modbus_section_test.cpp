@@ -140,6 +140,35 @@ TEST_F(ModbusSection, TheClientBridgeSettingsAndItsMapDefaults) {
             "holding,6,REAL,Press.position,status,read/write,high_first,1\n");
 }
 
+// An external Modbus PLC's cycle marker: read from where `cycle_done:` places it (any table a
+// client can read, after the map), the run counts its rising edges.
+TEST_F(ModbusSection, TheClientBridgeReadsThePlcsCycleMarkerWhereCycleDoneSays) {
+  auto cell = loads(std::string("plc:\n"
+                                "  modbus:\n"
+                                "    address: 127.0.0.1:1502\n"
+                                "    map:\n"
+                                "      - { signal: Clamp.execute, table: coil, address: 0 }\n"
+                                "    cycle_done: { table: coil, address: 2 }\n") +
+                    kDevices);
+  ASSERT_TRUE(cell);
+  const mb::SignalMap& map = cell->plcModbus->map;
+  ASSERT_NE(map.cycleDone, kNoTag);
+  EXPECT_EQ(cell->run.cycleDoneTag, map.cycleDone);
+  EXPECT_EQ(cell->bus.name(map.cycleDone), "plc.cycle_done");
+  EXPECT_EQ(mb::formatMapCsv(map),
+            "table,address,type,signal,direction,access,word_order,scale\n"
+            "coil,0,BOOL,Clamp.execute,command,read/write,,\n"
+            "coil,2,BOOL,plc.cycle_done,command,read/write,,\n");
+
+  cell = loads(std::string("plc:\n  modbus: { address: 127.0.0.1:1502 }\n") + kDevices);
+  ASSERT_TRUE(cell);
+  EXPECT_EQ(cell->run.cycleDoneTag, kNoTag) << "no cycle_done: no cycles counted";
+  EXPECT_EQ(cell->bus.find("plc.cycle_done"), kNoTag);
+  EXPECT_THAT(fails(std::string("plc:\n  modbus:\n    address: 127.0.0.1:1502\n    cycle_done: { table: coil, address: -1 }\n") +
+                    kDevices),
+              ElementsAre(::testing::HasSubstr("cell.yaml:4:")));
+}
+
 TEST_F(ModbusSection, ClientBridgeMistakes) {
   EXPECT_THAT(fails(std::string("plc:\n"
                                 "  modbus:\n"

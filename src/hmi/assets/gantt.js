@@ -45,9 +45,10 @@ export class Gantt {
   }
 
   // The virtual time under a mouse event on the chart as last drawn; null over the lane names.
+  // (The chart's own transform: however the page sizes the SVG, its viewBox keeps its aspect and
+  // is centred, so screen and chart x differ by more than a scale.)
   timeAt(event) {
-    const box = this.svg.getBoundingClientRect();
-    const x = (event.clientX - box.left) * WIDTH / box.width;
+    const { x } = new DOMPoint(event.clientX, event.clientY).matrixTransform(this.svg.getScreenCTM().inverse());
     return x < LABEL ? null : this.fromNs + (x - LABEL) / this.scale;
   }
 }

@@ -4,10 +4,12 @@
 // Under `virtcom history FILE --http` (model.replay) it is the page's only source: the layout
 // shows the devices' states at a chosen time (a click on the Gantt chart, /api/history/state).
 // Under serve/run/monitor --history it is a toggle: on, the Gantt chart and the trends show the
-// recorded past instead of the live run; off, they follow the live run again.
+// recorded past instead of the live run; off, they follow the live run again. A range that reaches
+// the end of a run still recording follows it (the same span, re-read every FOLLOW_MS).
 const $ = (id) => document.getElementById(id);
 const POINTS = 600;
 const MIN_SPAN_NS = 10e6;
+const FOLLOW_MS = 2000;
 const seconds = (ns) => (ns / 1e9).toFixed(3);
 
 async function getJson(url) {
@@ -32,6 +34,9 @@ export class HistoryView {
     this.activities = new Map();  // as the live page keeps them: index -> [index, trace device, label, ...]
     this.labels = [];
     this.recorded = null;         // the names of the signals the run recorded, once known
+    this.following = false;       // the range ends at the end of a run still recording
+    this.ticket = 0;              // the newest load's: an older one's answer is dropped
+    this.loading = 0;             // loads under way (following waits for them: a slow server is not flooded)
     $('history-panel').hidden = false;
     $('history-toggle').hidden = model.replay;
     $('history-on').onchange = () => ($('history-on').checked ? this.activate() : this.deactivate());
@@ -40,6 +45,7 @@ export class HistoryView {
     $('history-zoom-in').onclick = () => this.zoom(0.5);
     $('history-zoom-out').onclick = () => this.zoom(2);
     $('history-all').onclick = () => this.run && this.load(0, this.run.endNs);
+    if (!model.replay) setInterval(() => this.follow(), FOLLOW_MS);
     this.gantt.svg.addEventListener('click', (e) => {
       const t = this.active ? this.gantt.timeAt(e) : null;
       if (t !== null) this.showAt(t);
@@ -88,16 +94,31 @@ export class HistoryView {
     this.load(Math.max(0, middle - half), Math.min(this.run.endNs, middle + half));
   }
 
-  async load(fromNs, toNs) {
-    if (!this.run || !(toNs >= fromNs)) return;
+  // The range [fromNs, toNs]; with spanToEnd instead, the last spanToEnd of the run as recorded now.
+  async load(fromNs, toNs, spanToEnd = null) {
+    if (!this.run || (spanToEnd === null && !(toNs >= fromNs))) return;
+    ++this.loading;
+    try {
+      await this.loadRange(fromNs, toNs, spanToEnd);
+    } finally {
+      --this.loading;
+    }
+  }
+
+  // endBefore: the run's end when the range was chosen (a range up to it follows the run).
+  async loadRange(fromNs, toNs, spanToEnd, endBefore = this.run.endNs) {
+    const ticket = ++this.ticket;
     if (!this.model.replay) await this.refreshRun();  // the live run has grown
+    if (spanToEnd !== null) [fromNs, toNs] = [Math.max(0, this.run.endNs - spanToEnd), this.run.endNs];
+    const following = !this.model.replay && !this.run.ended && toNs >= endBefore;
     // Only what the run recorded (the trend may hold names of another run or PLC variables).
     const first = this.recorded === null;
     const names = this.trend.names().filter((n) => this.recorded?.has(n)).map(encodeURIComponent).join(',');
     const url = `/api/history/range?run=${this.run.id}&from=${Math.round(fromNs)}&to=${Math.round(toNs)}` +
                 `&points=${POINTS}&signals=${names}`;
     const data = await this.fetch(url);
-    if (!data) return;
+    if (!data || ticket !== this.ticket) return;
+    this.following = following;
     this.fromNs = data.from;
     this.toNs = Math.max(data.to, data.from);
     $('history-from').value = seconds(this.fromNs);
@@ -105,7 +126,7 @@ export class HistoryView {
     this.labels = data.labels;
     this.fillChoices(data.signals);
     this.recorded = new Set(data.signals);
-    if (first && this.trend.names().some((n) => this.recorded.has(n))) return this.load(fromNs, toNs);
+    if (first && this.trend.names().some((n) => this.recorded.has(n))) return this.loadRange(fromNs, toNs, null, endBefore);
     const traceOf = data.devices.map((d) => this.model.devices.find((m) => m.name === d.name)?.trace ?? -1);
     this.activities = new Map();
     for (const a of data.activities) if (traceOf[a[1]] >= 0) this.activities.set(a[0], [a[0], traceOf[a[1]], ...a.slice(2)]);
@@ -121,6 +142,10 @@ export class HistoryView {
     Object.assign($('history-info').dataset, { activities: data.activities.length, from: this.fromNs, to: this.toNs });
     this.dirty = true;
     if (this.model.replay) await this.showAt(this.atNs ?? this.toNs);
+  }
+
+  follow() {
+    if (this.active && this.following && this.run && this.loading === 0) this.load(null, null, this.toNs - this.fromNs);
   }
 
   // Trending a new signal reads the range again.

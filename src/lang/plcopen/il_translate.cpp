@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <span>
 
 #include "core/ascii.hpp"
 #include "lang/plcopen/diagnostic_codes.hpp"
@@ -48,8 +49,14 @@ constexpr Operator kOperators[] = {
     {")", Kind::Close},
 };
 
-// The FB input operators of IEC 61131-3 (CLK trig sets trig.CLK := CR): not translated.
+// The FB input operators of IEC 61131-3: `CLK trig` calls trig(CLK := CR), as matiec reads them.
+// S and R are ones too when their operand is an RS or SR instance (else they set/reset a BOOL).
 constexpr std::string_view kFbInputOperators[] = {"S1", "R1", "CLK", "CU", "CD", "PV", "IN", "PT"};
+constexpr std::string_view kSetResetFbs[] = {"RS", "SR"};
+
+bool isOneOf(std::string_view upper, std::span<const std::string_view> names) {
+  return std::find(names.begin(), names.end(), upper) != names.end();
+}
 
 bool isComparison(st::BinaryOp op) {
   return op == st::BinaryOp::Gt || op == st::BinaryOp::Ge || op == st::BinaryOp::Eq || op == st::BinaryOp::Ne ||
@@ -115,6 +122,7 @@ class IlTranslator {
   bool requireCr(const Instruction& ins);
   void holdAsBool(SourceLocation loc);
   void call(const Instruction& ins);
+  void fbInput(const Instruction& ins, st::ExprPtr instance);
   void function(const Instruction& ins);
   void jump(const Instruction& ins);
   st::StmtPtr carryTo(size_t label, SourceLocation loc);
@@ -436,11 +444,25 @@ void IlTranslator::call(const Instruction& ins) {
   if (cr_ && reads(*cr_, instance)) cr_.reset();
 }
 
+// `CLK trig`: trig(CLK := CR); the CR stays unless it reads the instance's outputs.
+void IlTranslator::fbInput(const Instruction& ins, st::ExprPtr instance) {
+  if (!requireCr(ins)) return;
+  SourceLocation loc = at(ins.offset);
+  const std::string name = instance->kind == st::ExprKind::Name ? instance->text : std::string();
+  st::ExprPtr c = b_.expr(st::ExprKind::Call, loc);
+  c->lhs = std::move(instance);
+  st::CallArg input;
+  input.name = asciiUpper(ins.written);
+  input.loc = loc;
+  input.value = b_.clone(*cr_);
+  c->args.push_back(std::move(input));
+  sections_.back().push_back(b_.callStmt(std::move(c)));
+  if (reads(*cr_, name)) cr_.reset();
+}
+
 void IlTranslator::function(const Instruction& ins) {
-  if (std::find(std::begin(kFbInputOperators), std::end(kFbInputOperators), asciiUpper(ins.written)) !=
-      std::end(kFbInputOperators)) {
-    fail(diag::X011, ins.offset, "IL: the FB input operator " + ins.written + " is not supported; use CAL inst(" +
-                                     asciiUpper(ins.written) + " := ...)");
+  if (isOneOf(asciiUpper(ins.written), kFbInputOperators)) {
+    if (st::ExprPtr instance = operand(ins)) fbInput(ins, std::move(instance));
     return;
   }
   if (!requireCr(ins)) return;
@@ -500,6 +522,10 @@ void IlTranslator::translate(const Instruction& ins, size_t index) {
     }
     case Kind::Set: case Kind::Reset: {
       st::ExprPtr target = operand(ins);
+      if (target && isOneOf(asciiUpper(typeOf(*target)), kSetResetFbs)) {
+        fbInput(ins, std::move(target));
+        break;
+      }
       if (!target || !requireCr(ins)) break;
       if (reads(*cr_, target->kind == st::ExprKind::Name ? target->text : std::string())) {
         std::string var = crVariable("BOOL", loc);

@@ -12,9 +12,10 @@
 // - `CAL inst(...)` calls an FB instance (`CALC`/`CALCN`: when the CR is TRUE/FALSE); after a call
 //   a CR that reads the instance is undefined. Any other name as operator is a function called
 //   with the CR as its first argument: `LD 0  LIMIT x, 100` is `LIMIT(0, x, 100)`.
+// - The FB input operators call the FB with that input: `LD c  CLK trig` is `trig(CLK := c);`
+//   (S1, R1, CLK, CU, CD, PV, IN, PT; S and R on an RS/SR instance).
 // - `RET`, `RETC`, `RETCN` return; `JMP`, `JMPC`, `JMPCN` jump.
-// Not translated (X011): the FB input operators (S1, CLK, PT, ...), formal function calls,
-// reading a CR that no instruction set.
+// Not translated (X011): formal function calls, reading a CR that no instruction set.
 #include <string_view>
 
 #include "lang/plcopen/import_internal.hpp"

@@ -46,12 +46,13 @@ TEST(Il, EveryInstructionFormMatchesItsStTwinScanByScan) {
     plc.set("main.forms.c", next() & 0x10000 ? "TRUE" : "FALSE");
     plc.set("main.forms.raw", std::to_string(static_cast<int>(next() >> 16) % 300 - 100));
     plc.scan();
-    for (const char* out : {"both", "latched", "clamped", "doubled", "loops", "pulses"})
+    for (const char* out : {"both", "latched", "clamped", "doubled", "loops", "pulses", "counted", "flipped"})
       ASSERT_EQ(plc.get(std::string("main.forms.") + out), plc.get(std::string("main.twin.") + out))
           << out << " at scan " << scan;
     pulses = std::stoi(plc.get("main.forms.pulses"));
   }
   EXPECT_EQ(plc.get("main.forms.loops"), "2");
+  EXPECT_GT(std::stoi(plc.get("main.forms.counted")), 10) << "CU counter counted the rising edges of c (CLK edge)";
   EXPECT_GE(pulses, 35) << "the TON fires every 5th scan (30 ms, then one scan off); RETCN skips the count otherwise";
 }
 
@@ -79,7 +80,8 @@ INSTANTIATE_TEST_SUITE_P(
                       IlError{"LD x\nJMP Nowhere", "X010"},
                       IlError{"LD 1\nJMP L\nL: ST x", "type that does not follow"},
                       IlError{"LD x\nAND( x\nST x", "')' is missing"},
-                      IlError{"LD TRUE\nIN t", "FB input operator IN"},
+                      IlError{"LD TRUE\nIN x", "il.xml:2:4: error[E206]: 'x' is a variable of type INT, not a function block instance"},
+                      IlError{"IN t", "IN reads the current result"},
                       IlError{"LD\n", "LD needs an operand"},
                       IlError{"LD x\nADD 1 ;\n", "E0"},
                       IlError{"L: LD x\nAND( x\nOR( 1\n)\n)\nJMPCN L\nCAL x(\nST x", "error"}));

@@ -8,7 +8,9 @@
 //                        50 PLC outputs read and 50 device outputs of which one changed: a sum
 //                        read and a Write by handle
 //   ads/read_by_handle_pipelined  kWindow reads by handle sent at once, then their kWindow
-//                        replies (one iteration: one read; reads/s on one connection)
+//                        replies (one iteration: kWindow reads; reads/s on one connection)
+//   ads/read_by_handle_8_connections  8 connections, one read by handle in flight on each:
+//                        sent on all, then all replies received (one iteration: 8 reads)
 //   tcp/echo_floor       the loopback floor: a bare TCP echo server thread (poll, recv, send, as
 //                        the ADS server's loop) returning a frame of the size of a read's request
 // One iteration is one round trip; real time is what counts (the server runs on its own thread).
@@ -26,6 +28,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <ctime>
 #include <cstdlib>
 #include <memory>
 #include <thread>
@@ -78,6 +81,24 @@ class RoundTrips {
 
  private:
   std::vector<int64_t> ns_;
+};
+
+// CPU time of the whole process (client and server threads) over a benchmark run, per item:
+// the counter cpu_us_per_item, which the machine's load does not inflate as it does real time.
+class ProcessCpu {
+ public:
+  ProcessCpu() : startNs_(nowNs()) {}
+  void report(benchmark::State& state, double items) const {
+    if (items > 0) state.counters["cpu_us_per_item"] = static_cast<double>(nowNs() - startNs_) / 1000.0 / items;
+  }
+
+ private:
+  static int64_t nowNs() {
+    timespec t{};
+    ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return static_cast<int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
+  }
+  int64_t startNs_;
 };
 
 class Connection {
@@ -178,6 +199,7 @@ void readByHandle(benchmark::State& state) {
   const uint32_t handle = s.client->u32At(46);
   const Bytes read = request(2, fields({0xF005, handle, 4}));
   RoundTrips trips;
+  ProcessCpu cpu;
   for (auto _ : state) {
     auto started = trips.start();
     if (!s.client->roundTrip(read)) state.SkipWithError("read failed");
@@ -185,6 +207,7 @@ void readByHandle(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
   trips.report(state);
+  cpu.report(state, static_cast<double>(state.iterations()));
 }
 
 // Reads in flight at once in ads/read_by_handle_pipelined (AdsLib's threads sharing one
@@ -199,12 +222,40 @@ void readByHandlePipelined(benchmark::State& state) {
   const Bytes read = request(2, fields({0xF005, handle, 4}));
   Bytes window;
   for (size_t i = 0; i < kWindow; ++i) window.insert(window.end(), read.begin(), read.end());
+  ProcessCpu cpu;
   for (auto _ : state) {
     if (!s.client->sendAll(window)) state.SkipWithError("send failed");
     for (size_t i = 0; i < kWindow; ++i)
       if (!s.client->receiveFrame()) state.SkipWithError("read failed");
   }
   state.SetItemsProcessed(state.iterations() * kWindow);
+  cpu.report(state, static_cast<double>(state.iterations() * kWindow));
+}
+
+// Client connections reading at once in ads/read_by_handle_8_connections.
+constexpr size_t kConnections = 8;
+
+void readByHandle8Connections(benchmark::State& state) {
+  Setup s;
+  if (!start(s, state)) return;
+  std::vector<std::unique_ptr<Connection>> clients;
+  Bytes read;
+  for (size_t i = 0; i < kConnections; ++i) {
+    clients.push_back(std::make_unique<Connection>(s.server->endpoint().port));
+    clients.back()->roundTrip(request(9, fields({0xF003, 0, 4, 7}, "MAIN.v7")));
+    read = request(2, fields({0xF005, clients.back()->u32At(46), 4}));  // handles are server-wide
+  }
+  // Each iteration: one request sent on every connection, then every reply received, from
+  // this one thread (client threads would measure the scheduler of this 2-core machine).
+  bool failed = false;
+  ProcessCpu cpu;
+  for (auto _ : state) {
+    for (auto& c : clients) failed |= !c->sendAll(read);
+    for (auto& c : clients) failed |= !c->receiveFrame();
+  }
+  if (failed) state.SkipWithError("read failed");
+  state.SetItemsProcessed(state.iterations() * kConnections);
+  cpu.report(state, static_cast<double>(state.iterations() * kConnections));
 }
 
 // A bare TCP echo server on loopback: one thread, poll on the listener and its connections,
@@ -263,6 +314,7 @@ void tcpEchoFloor(benchmark::State& state) {
   if (!client.ok()) return state.SkipWithError("cannot connect");
   const Bytes frame = request(2, fields({0xF005, 1, 4}));  // the size of a read by handle
   RoundTrips trips;
+  ProcessCpu cpu;
   for (auto _ : state) {
     auto started = trips.start();
     if (!client.sendAll(frame) || !client.receive(frame.size())) state.SkipWithError("echo failed");
@@ -270,6 +322,7 @@ void tcpEchoFloor(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
   trips.report(state);
+  cpu.report(state, static_cast<double>(state.iterations()));
 }
 
 void sumRead100(benchmark::State& state) {
@@ -339,6 +392,7 @@ BENCHMARK(sumRead100)->Name("ads/sum_read_100")->UseRealTime()->MinTime(1.0);
 BENCHMARK(notificationLatency)->Name("ads/notification")->UseRealTime()->MinTime(1.0);
 BENCHMARK(bridgeStep)->Name("ads/bridge_step")->UseRealTime()->MinTime(1.0);
 BENCHMARK(readByHandlePipelined)->Name("ads/read_by_handle_pipelined")->UseRealTime()->MinTime(1.0);
+BENCHMARK(readByHandle8Connections)->Name("ads/read_by_handle_8_connections")->UseRealTime()->MinTime(1.0);
 BENCHMARK(tcpEchoFloor)->Name("tcp/echo_floor")->UseRealTime()->MinTime(1.0);
 
 BENCHMARK_MAIN();

@@ -40,9 +40,9 @@ ExitCode render(const RenderOptions& o) {
   const std::string dot = ad::toDot(*program, diagrams);
   if (!o.dot.empty() && !writeFile(o.dot, dot)) return ExitCode::Usage;
   if (o.svg.empty()) return ExitCode::Ok;
-  std::optional<std::string> svg = renderSvg(dot);
+  std::expected<std::string, std::string> svg = renderSvg(dot);
   if (!svg) {
-    std::cerr << "virtcom ad render: Graphviz could not lay out the diagrams\n";
+    std::cerr << "virtcom ad render: " << svg.error() << "\n";
     return ExitCode::InputError;
   }
   return writeFile(o.svg, *svg) ? ExitCode::Ok : ExitCode::Usage;

@@ -2,94 +2,74 @@
 
 #include <algorithm>
 #include <chrono>
+#include <thread>
 
-#include <httplib.h>
+#include "core/bundled_module.hpp"
 
 namespace virtcom::hmi {
 
 namespace {
 
 constexpr size_t kPoolThreads = HttpServer::kMaxStreams + 8;
-
-Request toRequest(const httplib::Request& in) {
-  Request r;
-  r.method = in.method;
-  r.path = in.path;
-  for (const auto& [key, value] : in.params) r.query.emplace_back(key, value);
-  r.body = in.body;
-  r.authorization = in.get_header_value("Authorization");
-  return r;
-}
-
-void send(const Response& from, httplib::Response& to) {
-  to.status = from.status;
-  to.set_header("Cache-Control", "no-store");
-  to.set_content(from.body, from.contentType);
-}
+constexpr int kWriteTimeoutS = 5;  // a stalled viewer ends its own stream
 
 }  // namespace
 
-HttpServer::HttpServer(Api& api, std::vector<uint32_t> allowedPeers)
-    : api_(api), allowedPeers_(std::move(allowedPeers)), server_(std::make_unique<httplib::Server>()) {}
+HttpServer::HttpServer(Api& api, std::vector<uint32_t> allowedPeers) : api_(api), allowedPeers_(std::move(allowedPeers)) {}
 
-HttpServer::~HttpServer() { stop(); }
+HttpServer::~HttpServer() {
+  stop();
+  listener_.reset();  // before the members its threads used
+}
 
 std::expected<std::unique_ptr<HttpServer>, std::string> HttpServer::start(Api& api, const Endpoint& at,
                                                                           std::vector<uint32_t> allowedPeers) {
+  auto startListener = bundledModuleSymbol(kHttpModule, kStartHttpListenerSymbol);
+  if (!startListener) return std::unexpected(startListener.error());
   std::unique_ptr<HttpServer> s(new HttpServer(api, std::move(allowedPeers)));
-  s->server_->new_task_queue = [] { return new httplib::ThreadPool(kPoolThreads); };
-  s->server_->set_write_timeout(std::chrono::seconds(5));  // a stalled viewer ends its own stream
-  s->route();
-  const std::string host = formatIpv4(at.ipv4);
-  int port = at.port == 0 ? s->server_->bind_to_any_port(host) : (s->server_->bind_to_port(host, at.port) ? at.port : -1);
-  if (port <= 0) return std::unexpected("cannot listen on " + formatEndpoint(at) + " (address in use or not local?)");
-  s->bound_ = {at.ipv4, static_cast<uint16_t>(port)};
-  s->listener_ = std::thread([server = s->server_.get()] { server->listen_after_bind(); });
+  const HttpListenerOptions options{formatIpv4(at.ipv4), at.port, kPoolThreads, kWriteTimeoutS};
+  s->listener_.reset(reinterpret_cast<StartHttpListener>(*startListener)(*s, options));
+  if (!s->listener_) return std::unexpected("cannot listen on " + formatEndpoint(at) + " (address in use or not local?)");
+  s->bound_ = {at.ipv4, s->listener_->port()};
   return s;
 }
 
 void HttpServer::stop() {
   if (stopping_.exchange(true)) return;
-  server_->stop();
-  if (listener_.joinable()) listener_.join();
+  if (listener_) listener_->stop();
 }
 
-void HttpServer::route() {
-  server_->set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-    if (allowedPeers_.empty()) return httplib::Server::HandlerResponse::Unhandled;
-    auto peer = parseIpv4(req.remote_addr);
-    if (peer && std::ranges::find(allowedPeers_, *peer) != allowedPeers_.end()) return httplib::Server::HandlerResponse::Unhandled;
-    send(errorResponse(403, "this address is not in --http-allow"), res);
-    return httplib::Server::HandlerResponse::Handled;
-  });
-  auto handler = [this](const httplib::Request& req, httplib::Response& res) {
-    ParsedRequest parsed = parseRequest(toRequest(req), api_.access());
-    if (parsed.route != Route::Stream) return send(api_.handle(parsed), res);
-    if (streams_.fetch_add(1) >= kMaxStreams) {
-      streams_.fetch_sub(1);
-      return send(errorResponse(503, "too many viewers at once"), res);
+bool HttpServer::allows(const std::string& peer) {
+  if (allowedPeers_.empty()) return true;
+  auto ipv4 = parseIpv4(peer);
+  return ipv4 && std::ranges::find(allowedPeers_, *ipv4) != allowedPeers_.end();
+}
+
+Response HttpServer::refusal() { return errorResponse(403, "this address is not in --http-allow"); }
+
+HttpAnswer HttpServer::answer(const Request& request) {
+  ParsedRequest parsed = parseRequest(request, api_.access());
+  if (parsed.route != Route::Stream) return {api_.handle(parsed), {}, {}};
+  if (streams_.fetch_add(1) >= kMaxStreams) {
+    streams_.fetch_sub(1);
+    return {errorResponse(503, "too many viewers at once"), {}, {}};
+  }
+  std::shared_ptr<StreamSession> session = api_.openStream(parsed);
+  HttpAnswer a;
+  a.response.contentType = "text/event-stream";
+  a.stream = [this, session, quiet = 0](const std::function<bool(std::string_view)>& write) mutable {
+    std::string frame = session->nextFrame();
+    if (frame.empty() && (quiet += kFramePeriodMs) >= kHeartbeatMs) frame = ":";  // an SSE comment line
+    if (!frame.empty()) {
+      quiet = 0;
+      std::string event = frame == ":" ? ":\n\n" : "data: " + frame + "\n\n";
+      if (!write(event)) return false;
     }
-    std::shared_ptr<StreamSession> session = api_.openStream(parsed);
-    res.set_header("Cache-Control", "no-store");
-    res.set_chunked_content_provider(
-        "text/event-stream",
-        [this, session, quiet = 0](size_t, httplib::DataSink& sink) mutable {
-          std::string frame = session->nextFrame();
-          if (frame.empty() && (quiet += kFramePeriodMs) >= kHeartbeatMs) frame = ":";  // an SSE comment line
-          if (!frame.empty()) {
-            quiet = 0;
-            std::string event = frame == ":" ? ":\n\n" : "data: " + frame + "\n\n";
-            if (!sink.write(event.data(), event.size())) return false;
-          }
-          std::this_thread::sleep_for(std::chrono::milliseconds(kFramePeriodMs));
-          return !stopping_.load();
-        },
-        [this](bool) { streams_.fetch_sub(1); });
+    std::this_thread::sleep_for(std::chrono::milliseconds(kFramePeriodMs));
+    return !stopping_.load();
   };
-  server_->Get(".*", handler);
-  server_->Post(".*", handler);
-  server_->Put(".*", handler);
-  server_->Delete(".*", handler);
+  a.ended = [this] { streams_.fetch_sub(1); };
+  return a;
 }
 
 }  // namespace virtcom::hmi

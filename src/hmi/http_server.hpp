@@ -3,35 +3,33 @@
 // threads, none of them the simulation's. This file is the thin glue: every request is read by
 // parseRequest() and answered by Api; the stream is sent as server-sent events, one frame per
 // kFramePeriod at most, each viewer on its own pool thread, so a slow or dead browser only
-// delays its own frames.
+// delays its own frames. cpp-httplib itself is called only by the module virtcom-httplib.so
+// (http_module.hpp), loaded by start().
 #include <atomic>
 #include <cstdint>
 #include <expected>
 #include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "core/endpoint.hpp"
 #include "hmi/api.hpp"
-
-namespace httplib {
-class Server;
-}
+#include "hmi/http_module.hpp"
 
 namespace virtcom::hmi {
 
-class HttpServer {
+class HttpServer final : private HttpHandler {
  public:
   static constexpr int kFramePeriodMs = 50;   // 20 frames a second per viewer at most
   static constexpr int kMaxStreams = 24;      // viewers at once; the pool has room for requests besides
   static constexpr int kHeartbeatMs = 2000;   // an SSE comment when nothing changed: finds dead peers
 
   // Binds `at` (port 0: a free port) and serves `api` (which must outlive the server) to the peers
-  // of `allowedPeers` (IPv4, host byte order; empty: any). Error text if it cannot bind.
+  // of `allowedPeers` (IPv4, host byte order; empty: any). Error text if it cannot bind or the
+  // module cannot be loaded.
   static std::expected<std::unique_ptr<HttpServer>, std::string> start(Api& api, const Endpoint& at,
                                                                       std::vector<uint32_t> allowedPeers);
-  ~HttpServer();  // stop()
+  ~HttpServer() override;  // stop()
   HttpServer(const HttpServer&) = delete;
   HttpServer& operator=(const HttpServer&) = delete;
 
@@ -41,12 +39,13 @@ class HttpServer {
 
  private:
   HttpServer(Api& api, std::vector<uint32_t> allowedPeers);
-  void route();
+  bool allows(const std::string& peer) override;
+  Response refusal() override;
+  HttpAnswer answer(const Request& request) override;
 
   Api& api_;
   std::vector<uint32_t> allowedPeers_;
-  std::unique_ptr<httplib::Server> server_;
-  std::thread listener_;
+  std::unique_ptr<HttpListener> listener_;  // its threads call back into this object
   Endpoint bound_;
   std::atomic<bool> stopping_{false};
   std::atomic<int> streams_{0};

@@ -61,6 +61,11 @@ class Lexer {
       : fileId_(fileId), src_(src), diags_(diags), line_(origin.line), firstLineShift_(origin.col - 1) {}
 
   std::vector<Token> run() {
+    // Room for one token per 3 bytes of source, more than ST holds, so the vector is not
+    // copied as it grows: a growing vector touched about twice its final memory, and a page
+    // fault on each new page was a third of a gearbox run's page faults. Pages reserved but
+    // never written cost nothing (docs/performance.md, "Start-up").
+    out_.reserve(src_.size() / 3 + 1);
     while (!atEnd()) lexOne();
     Token eof;
     eof.kind = Tok::Eof;

@@ -46,6 +46,8 @@ std::expected<std::unique_ptr<Server>, std::string> Server::start(const ServerCo
   std::unique_ptr<Server> s(new Server(config, table));
   auto started = s->io_.start(config.listen, "OPC UA", [server = s.get()] { server->run(); });
   if (!started) return std::unexpected(started.error());
+  std::lock_guard lock(s->mutex_);
+  s->core_.setBound(s->io_.bound());
   return s;
 }
 

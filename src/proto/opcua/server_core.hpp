@@ -59,6 +59,8 @@ class ServerCore {
   const ServerConfig& config() const { return config_; }
   const AddressSpace& space() const { return space_; }
   std::string endpointUrl() const;
+  // The endpoint really bound (its port when 0 was asked for): what endpointUrl() names.
+  void setBound(const net::Endpoint& bound) { config_.listen = bound; }
 
   // The published image (zero until the first publish) and the writes waiting for the scan.
   std::span<const uint8_t> snapshot() const { return snapshot_; }

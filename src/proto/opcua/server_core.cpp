@@ -27,7 +27,7 @@ ServerCore::ServerCore(const ads::SymbolTable& table, ServerConfig config)
 }
 
 std::string ServerCore::endpointUrl() const {
-  return config_.endpointUrl.empty() ? "opc.tcp://" + net::formatEndpoint(config_.listen) : config_.endpointUrl;
+  return config_.endpointUrl.empty() ? "opc.tcp://" + formatEndpoint(config_.listen) : config_.endpointUrl;
 }
 
 uint32_t ServerCore::write(const PlcValue& v, std::span<const uint8_t> bytes) {

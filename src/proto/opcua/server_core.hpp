@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "proto/ads/write_queue.hpp"
-#include "proto/net/endpoint.hpp"
+#include "core/endpoint.hpp"
 #include "proto/opcua/address_space.hpp"
 #include "proto/opcua/types.hpp"
 
@@ -18,7 +18,7 @@ namespace virtcom::proto::opcua {
 inline constexpr uint16_t kDefaultPort = 4840;
 
 struct ServerConfig {
-  net::Endpoint listen{0x7f000001, kDefaultPort};
+  Endpoint listen{0x7f000001, kDefaultPort};
   std::vector<uint32_t> allowedPeers;      // IPv4 peers; empty: any peer that can reach `listen`
   size_t maxClients = 32;                  // TCP connections; further ones are closed at once
   size_t maxSessions = 32;                 // beyond: BadTooManySessions
@@ -60,7 +60,7 @@ class ServerCore {
   const AddressSpace& space() const { return space_; }
   std::string endpointUrl() const;
   // The endpoint really bound (its port when 0 was asked for): what endpointUrl() names.
-  void setBound(const net::Endpoint& bound) { config_.listen = bound; }
+  void setBound(const Endpoint& bound) { config_.listen = bound; }
 
   // The published image (zero until the first publish) and the writes waiting for the scan.
   std::span<const uint8_t> snapshot() const { return snapshot_; }

@@ -5,6 +5,7 @@
 // what it appended is discarded.
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "proto/opcua/binary_codec.hpp"
@@ -45,6 +46,8 @@ struct ServiceEntry {
 };
 // The entry of a request encoding id, or nullptr.
 const ServiceEntry* findService(uint32_t requestId);
+// Every entry of services.def, in its order.
+std::span<const ServiceEntry> allServices();
 
 #define X(name, request, response, access) uint32_t handle##name(ServiceContext& ctx, Reader& in, Writer& out);
 #include "proto/opcua/services.def"

@@ -70,6 +70,8 @@ const ServiceEntry* findService(uint32_t requestId) {
   return nullptr;
 }
 
+std::span<const ServiceEntry> allServices() { return kServices; }
+
 bool decode(Reader& r, RequestHeader& h) {
   return decode(r, h.authenticationToken) && decode(r, h.timestamp) && r.u32(h.requestHandle) &&
          r.u32(h.returnDiagnostics) && decode(r, h.auditEntryId) && r.u32(h.timeoutHint) && decode(r, h.additionalHeader);

@@ -46,7 +46,9 @@ void encodeServerStatus(Writer& w, const ServerCore& core) {
   w.put32(lengthAt, static_cast<uint32_t>(w.size() - lengthAt - 4));
 }
 
-uint32_t encodeValue(Writer& w, const ServerCore& core, const Node& n) {
+}  // namespace
+
+uint32_t encodeValueAttribute(Writer& w, const ServerCore& core, const Node& n) {
   if (n.nodeClass != NodeClass::Variable) return bad(StatusCodeValue::BadAttributeIdInvalid);
   switch (n.source) {
     case ValueSource::Fixed: encode(w, n.fixed); return 0;
@@ -58,6 +60,8 @@ uint32_t encodeValue(Writer& w, const ServerCore& core, const Node& n) {
   }
   return bad(StatusCodeValue::BadInternalError);
 }
+
+namespace {
 
 uint8_t accessLevel(const Node& n, bool user, const ServerCore& core) {
   const bool writable = n.writable && !(user && core.config().readOnly);
@@ -79,7 +83,7 @@ uint32_t encodeAttribute(Writer& w, const ServerCore& core, const Node& n, uint3
       if (n.nodeClass != NodeClass::Object) break;
       scalarVariant(w, BuiltinType::Byte, uint8_t{0});
       return 0;
-    case kValueAttr: return encodeValue(w, core, n);
+    case kValueAttr: return encodeValueAttribute(w, core, n);
     default: break;
   }
   if (!variable) return bad(StatusCodeValue::BadAttributeIdInvalid);

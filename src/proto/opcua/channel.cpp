@@ -133,15 +133,29 @@ bool Channel::onMessage(char chunk, std::span<const uint8_t> body, std::vector<u
     return fail(tx, StatusCodeValue::BadRequestTooLarge, "request larger than the server's MaxMessageSize");
   partial_.insert(partial_.end(), payload.begin(), payload.end());
   if (chunk == 'C') return true;
-  serve(partial_, nowNs);
+  const Reply reply = serve(partial_, requestId, nowNs);
   partial_.clear();
-  const bool closing = body_.empty();  // CloseSecureChannel: no response
-  if (closing) return false;
-  sendChunks("MSG", requestId, tx);
+  if (reply == Reply::Close) return false;
+  if (reply == Reply::Send) sendChunks("MSG", requestId, tx);
   return true;
 }
 
-void Channel::serve(std::span<const uint8_t> request, int64_t nowNs) {
+void Channel::tick(int64_t nowNs, std::vector<uint8_t>& tx) {
+  if (channelId_ == 0) return;
+  for (Session& s : core_.sessions())
+    if (s.channelId == channelId_ && s.activated)
+      runSubscriptions(core_, s, nowNs, body_, [&](uint32_t requestId) { sendChunks("MSG", requestId, tx); });
+}
+
+int64_t Channel::nextDueNs() {
+  int64_t due = INT64_MAX;
+  if (channelId_ == 0) return due;
+  for (const Session& s : core_.sessions())
+    if (s.channelId == channelId_ && s.activated) due = std::min(due, nextSubscriptionDueNs(s));
+  return due;
+}
+
+Channel::Reply Channel::serve(std::span<const uint8_t> request, uint32_t requestId, int64_t nowNs) {
   body_.clear();
   Writer w(body_);
   Reader r(request);
@@ -150,12 +164,12 @@ void Channel::serve(std::span<const uint8_t> request, int64_t nowNs) {
   if (!decode(r, typeId)) {
     encode(w, NodeId::num(0, kServiceFaultId));
     encodeResponseHeader(w, 0, static_cast<uint32_t>(StatusCodeValue::BadDecodingError));
-    return;
+    return Reply::Send;
   }
-  if (typeId == NodeId::num(0, kCloseChannelRequestId)) return;  // body_ stays empty: close
+  if (typeId == NodeId::num(0, kCloseChannelRequestId)) return Reply::Close;
   const bool headerOk = decode(r, header);
   const ServiceEntry* service = typeId.ns == 0 && typeId.kind == NodeId::Kind::Numeric ? findService(typeId.numeric) : nullptr;
-  ServiceContext ctx{core_, channelId_, nullptr, nowNs};
+  ServiceContext ctx{core_, channelId_, nullptr, nowNs, requestId, header.requestHandle};
   uint32_t status = !headerOk ? static_cast<uint32_t>(StatusCodeValue::BadDecodingError)
                     : !service ? static_cast<uint32_t>(StatusCodeValue::BadServiceUnsupported)
                                : 0;
@@ -172,13 +186,18 @@ void Channel::serve(std::span<const uint8_t> request, int64_t nowNs) {
     encode(w, NodeId::num(0, service->responseId));
     encodeResponseHeader(w, header.requestHandle, 0);
     status = service->handler(ctx, r, w);
+    if (status == kDeferredResponse) {
+      body_.clear();
+      return Reply::Later;
+    }
     if (status == 0 && peerMaxMessage_ != 0 && body_.size() > peerMaxMessage_)
       status = static_cast<uint32_t>(StatusCodeValue::BadResponseTooLarge);
-    if (status == 0) return;
+    if (status == 0) return Reply::Send;
     body_.clear();
   }
   encode(w, NodeId::num(0, kServiceFaultId));
   encodeResponseHeader(w, header.requestHandle, status);
+  return Reply::Send;
 }
 
 void Channel::sendChunks(const char* type, uint32_t requestId, std::vector<uint8_t>& tx) {

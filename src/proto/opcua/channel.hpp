@@ -20,13 +20,20 @@ class Channel {
   // connection once `tx` is sent (CLO, or an error already answered with ERR).
   bool handleFrame(std::span<const uint8_t> frame, std::vector<uint8_t>& tx, int64_t nowNs);
   uint32_t channelId() const { return channelId_; }
+  // Samples the monitored items and answers the Publish requests of this channel's sessions
+  // that are due at `nowNs`, appending to `tx`.
+  void tick(int64_t nowNs, std::vector<uint8_t>& tx);
+  // When tick() has something to do next (INT64_MAX: nothing).
+  int64_t nextDueNs();
 
  private:
   bool onHello(std::span<const uint8_t> body, std::vector<uint8_t>& tx);
   bool onOpen(std::span<const uint8_t> body, std::vector<uint8_t>& tx);
   bool onMessage(char chunk, std::span<const uint8_t> body, std::vector<uint8_t>& tx, int64_t nowNs);
-  // Runs the request in `request` (type id, RequestHeader, body) into body_.
-  void serve(std::span<const uint8_t> request, int64_t nowNs);
+  enum class Reply : uint8_t { Send, Later, Close };
+  // Runs the request in `request` (type id, RequestHeader, body) into body_: Send it, nothing
+  // yet (a Publish waiting), or close (CloseSecureChannel).
+  Reply serve(std::span<const uint8_t> request, uint32_t requestId, int64_t nowNs);
   // Sends body_ as MSG chunks of at most the peer's receive buffer.
   void sendChunks(const char* type, uint32_t requestId, std::vector<uint8_t>& tx);
   bool fail(std::vector<uint8_t>& tx, StatusCodeValue status, const char* reason);

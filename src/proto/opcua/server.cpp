@@ -6,7 +6,9 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <climits>
 #include <cerrno>
 
 #include "core/clock.hpp"
@@ -99,6 +101,7 @@ void Server::run() {
       used += scan.size;
     }
     c.rx.erase(c.rx.begin(), c.rx.begin() + static_cast<ptrdiff_t>(used));
+    if (!c.closing) c.channel.tick(monotonicNowNs(), c.tx);
     return true;
   };
   try {
@@ -106,12 +109,20 @@ void Server::run() {
       fds.clear();
       fds.push_back({io_.wakeFd(), POLLIN, 0});
       fds.push_back({io_.listenFd(), POLLIN, 0});
+      int64_t nextDue = INT64_MAX;
+      {
+        std::lock_guard lock(mutex_);
+        for (const auto& c : clients) nextDue = std::min(nextDue, c->channel.nextDueNs());
+      }
       for (const auto& c : clients) {
         short events = c->tx.size() < kMaxUnsentBytes && !c->closing ? POLLIN : 0;
         if (!c->tx.empty()) events = static_cast<short>(events | POLLOUT);
         fds.push_back({c->fd, events, 0});
       }
-      if (::poll(fds.data(), fds.size(), -1) < 0) {
+      int timeoutMs = -1;
+      if (nextDue != INT64_MAX)
+        timeoutMs = static_cast<int>(std::clamp<int64_t>((nextDue - monotonicNowNs() + 999'999) / 1'000'000, 0, 1000));
+      if (::poll(fds.data(), fds.size(), timeoutMs) < 0) {
         if (errno == EINTR) continue;
         break;
       }
@@ -120,6 +131,10 @@ void Server::run() {
         Connection& c = *clients[i];
         bool keep = true;
         if (fds[i + kFixedFds].revents & (POLLIN | POLLHUP | POLLERR)) keep = receive(c);
+        if (keep && !c.closing) {
+          std::lock_guard lock(mutex_);
+          c.channel.tick(monotonicNowNs(), c.tx);
+        }
         if (keep) keep = flush(c);
         if (!keep) {
           ::close(c.fd);

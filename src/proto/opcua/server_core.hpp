@@ -11,6 +11,7 @@
 #include "proto/ads/write_queue.hpp"
 #include "core/endpoint.hpp"
 #include "proto/opcua/address_space.hpp"
+#include "proto/opcua/subscription.hpp"
 #include "proto/opcua/types.hpp"
 
 namespace virtcom::proto::opcua {
@@ -26,6 +27,9 @@ struct ServerConfig {
   uint32_t receiveBufferBytes = 65536;     // the largest chunk the server takes
   size_t maxOperations = 10000;            // nodes of one Read, Write, Browse...; beyond: BadTooManyOperations
   size_t maxContinuationPoints = 16;       // Browse continuation points per session
+  size_t maxSubscriptions = 16;            // per session; beyond: BadTooManySubscriptions
+  size_t maxMonitoredItems = 10000;        // per subscription; beyond: BadTooManyMonitoredItems
+  size_t maxPublishRequests = 10;          // queued per session; beyond: BadTooManyPublishRequests
   bool readOnly = false;                   // every Write refused (BadUserAccessDenied)
   size_t writeQueueBytes = 64 * 1024;      // written data between two scans
   AddressSpaceConfig names;
@@ -50,6 +54,8 @@ struct Session {
   std::string name;
   std::vector<ContinuationPoint> continuationPoints;
   uint32_t nextContinuationPoint = 1;
+  std::vector<Subscription> subscriptions;
+  std::deque<PendingPublish> publishes;
 };
 
 class ServerCore {
@@ -77,6 +83,8 @@ class ServerCore {
   Session* findSession(const NodeId& token);
   void closeSession(uint32_t id);
   size_t sessionCount() const { return sessions_.size(); }
+  std::vector<Session>& sessions() { return sessions_; }
+  uint32_t newSubscriptionId() { return nextSubscriptionId_++; }
 
   uint32_t newChannelId() { return nextChannelId_++; }
   uint32_t newTokenId() { return nextTokenId_++; }
@@ -88,6 +96,7 @@ class ServerCore {
   std::vector<uint8_t> snapshot_;
   ads::WriteQueue pending_;
   std::vector<Session> sessions_;
+  uint32_t nextSubscriptionId_ = 1;
   uint32_t nextSessionId_ = 1, nextChannelId_ = 1, nextTokenId_ = 1;
   uint32_t tokenSalt_ = 0;
   DateTime startTime_;

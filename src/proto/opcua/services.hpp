@@ -4,6 +4,7 @@
 // (after the ResponseHeader); it returns 0 or the Bad status of a ServiceFault, in which case
 // what it appended is discarded.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -34,7 +35,11 @@ struct ServiceContext {
   uint32_t channelId = 0;
   Session* session = nullptr;  // set for Session and Active services
   int64_t nowNs = 0;
+  uint32_t requestId = 0, requestHandle = 0;
 };
+
+// What a handler returns when it answers later (Publish): no response now.
+inline constexpr uint32_t kDeferredResponse = 0x00000001;
 
 using ServiceHandler = uint32_t (*)(ServiceContext&, Reader&, Writer&);
 
@@ -56,6 +61,16 @@ std::span<const ServiceEntry> allServices();
 // Shared by the handlers: the ApplicationDescription and EndpointDescription of this server.
 void encodeApplicationDescription(Writer& w, const ServerCore& core);
 void encodeEndpointDescription(Writer& w, const ServerCore& core);
+// The Value attribute of a variable as a Variant (0), or a Bad status (nothing appended).
+uint32_t encodeValueAttribute(Writer& w, const ServerCore& core, const Node& n);
+
+// Channel side of subscriptions: samples due items and answers queued Publish requests of
+// `session` (each answer is appended to `body` and handed to `send` with its request id).
+void runSubscriptions(ServerCore& core, Session& session, int64_t nowNs, std::vector<uint8_t>& body,
+                      const std::function<void(uint32_t requestId)>& send);
+// The earliest time a subscription of `session` needs the channel to run again.
+int64_t nextSubscriptionDueNs(const Session& session);
+
 // An empty DiagnosticInfo array (every response's last field).
 inline void encodeNoDiagnostics(Writer& w) { w.i32(0); }
 

@@ -6,6 +6,7 @@
 const assert = require('node:assert/strict');
 const {
   OPCUAClient, AttributeIds, DataType, StatusCodes, NodeClass, BrowseDirection, makeBrowsePath,
+  ClientSubscription, ClientMonitoredItem, TimestampsToReturn, DataChangeFilter, DataChangeTrigger, DeadbandType,
 } = require('node-opcua-client');
 
 const port = Number(process.argv[2]);
@@ -157,6 +158,40 @@ async function translate(session) {
   assert.equal(missing.statusCode.value, StatusCodes.BadNoMatch.value);
 }
 
+async function subscriptions(session) {
+  const subscription = ClientSubscription.create(session, {
+    requestedPublishingInterval: 50, requestedLifetimeCount: 100, requestedMaxKeepAliveCount: 10,
+    maxNotificationsPerPublish: 100, publishingEnabled: true, priority: 1,
+  });
+  await new Promise((resolve, reject) => { subscription.once('started', resolve); subscription.once('error', reject); });
+  const monitor = async (path, parameters) => {
+    const item = ClientMonitoredItem.create(subscription, { nodeId: id(path), attributeId: AttributeIds.Value },
+      { samplingInterval: 20, discardOldest: true, queueSize: 10, ...parameters }, TimestampsToReturn.Both);
+    const changes = [];
+    item.on('changed', (dv) => changes.push(dv.value.value));
+    await new Promise((resolve, reject) => { item.once('initialized', resolve); item.once('err', reject); });
+    return { item, changes };
+  };
+  const ticks = await monitor('MAIN.ticks');
+  await eventually(async () => ticks.changes.length, (n) => n >= 5, 'MAIN.ticks changes arrive');
+  for (let i = 1; i < ticks.changes.length; ++i) assert.ok(ticks.changes[i] > ticks.changes[i - 1], 'ticks grow');
+  const doubled = await monitor('MAIN.doubled');
+  await session.write({ nodeId: id('MAIN.level'), attributeId: AttributeIds.Value, value: { value: { dataType: DataType.Int16, value: 21 } } });
+  await eventually(async () => doubled.changes, (c) => c.includes(42), 'MAIN.doubled change after level := 21');
+  // An absolute deadband of 100 on a counter that grows by one per scan: few notifications.
+  const coarse = await monitor('MAIN.ticks', {
+    filter: new DataChangeFilter({ trigger: DataChangeTrigger.StatusValue, deadbandType: DeadbandType.Absolute, deadbandValue: 100 }),
+  });
+  await sleep(500);
+  assert.ok(coarse.changes.length >= 1 && coarse.changes.length <= 3, `deadband: ${coarse.changes.length} changes`);
+  for (let i = 1; i < coarse.changes.length; ++i) assert.ok(coarse.changes[i] - coarse.changes[i - 1] > 100, 'deadband respected');
+  await ticks.item.terminate();
+  const settled = ticks.changes.length;
+  await sleep(300);
+  assert.ok(ticks.changes.length <= settled + 1, 'no changes after DeleteMonitoredItems');
+  await subscription.terminate();
+}
+
 (async () => {
   const client = OPCUAClient.create({ endpointMustExist: false, connectionStrategy: { maxRetry: 0 } });
   await client.connect(url);
@@ -183,6 +218,7 @@ async function translate(session) {
   await attributes(session);
   await writes(session);
   await translate(session);
+  await subscriptions(session);
   await session.close();
   await client.disconnect();
   console.log(`ok: ${nodes.size} nodes browsed`);

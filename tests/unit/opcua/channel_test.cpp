@@ -289,5 +289,163 @@ TEST_F(ChannelTest, LongResponsesAreCutIntoChunksOfThePeersBuffer) {
   EXPECT_GT(chunks, 10u);
 }
 
+// Subscriptions through the channel: the first value at once, changes, keep-alives on the
+// keep-alive count, Republish of the last message, and the lifetime count ending a
+// subscription nobody publishes for.
+class SubscriptionTest : public ChannelTest {
+ protected:
+  void SetUp() override {
+    open();
+    createSession();
+    activateSession();
+    Bytes body;
+    Writer w(body);
+    encode(w, 100.0);  // publishing interval (ms)
+    w.u32(9);          // lifetime count
+    w.u32(3);          // max keep-alive count
+    w.u32(0);
+    encode(w, true);
+    w.u8(0);
+    uint32_t type = 0;
+    Bytes created = call(787, body, &type);
+    ASSERT_EQ(type, 790u);
+    subscriptionId_ = get32(created, 24);
+    EXPECT_EQ(get32(created, 24 + 4 + 8), 9u);     // revised lifetime
+    EXPECT_EQ(get32(created, 24 + 4 + 8 + 4), 3u);  // revised keep-alive
+  }
+
+  uint32_t monitor(const char* path, double deadband = 0) {
+    Bytes body;
+    Writer w(body);
+    w.u32(subscriptionId_);
+    w.u32(2);
+    w.i32(1);
+    encode(w, NodeId::str(ids::kPlcNamespace, std::string("|var|virtcom.Application.") + path));
+    w.u32(13);
+    w.nullString();
+    encode(w, QualifiedName{});
+    w.u32(2);   // Reporting
+    w.u32(77);  // client handle
+    encode(w, 10.0);
+    if (deadband > 0) {
+      Bytes filter;
+      Writer f(filter);
+      f.u32(1);
+      f.u32(1);  // absolute
+      encode(f, deadband);
+      encode(w, ExtensionObject{NodeId::num(0, 724), ExtensionObject::Body::Binary, std::string(filter.begin(), filter.end())});
+    } else {
+      encode(w, ExtensionObject{});
+    }
+    w.u32(4);
+    encode(w, true);
+    uint32_t type = 0;
+    Bytes created = call(751, body, &type);
+    EXPECT_EQ(type, 754u);
+    EXPECT_EQ(get32(created, 28), 0u) << statusName(get32(created, 28));
+    return get32(created, 32);
+  }
+
+  // Queues a Publish (no acknowledgements): nothing is answered until tick().
+  void publish() {
+    uint32_t type = 0;
+    EXPECT_TRUE(call(826, {0, 0, 0, 0}, &type).empty());
+  }
+
+  // The PublishResponses tick() sends at `ms` after the session began: for each, the values of
+  // the Int16 notifications in it (empty: a keep-alive).
+  std::vector<std::vector<int16_t>> tickAt(int64_t ms) {
+    Bytes tx;
+    channel_.tick(1'000'000'000 + ms * 1'000'000, tx);
+    std::vector<std::vector<int16_t>> out;
+    for (size_t at = 0; at + 24 <= tx.size(); at += get32(tx, at + 4)) {
+      Reader r(std::span<const uint8_t>(tx).subspan(at + 24, get32(tx, at + 4) - 24));
+      NodeId type;
+      EXPECT_TRUE(decode(r, type));
+      EXPECT_EQ(type.numeric, 829u);
+      std::span<const uint8_t> skip;
+      uint32_t sub = 0, available = 0, sequence = 0, notifications = 0;
+      // ResponseHeader (24 bytes with empty parts), subscription id, available numbers.
+      EXPECT_TRUE(r.bytes(24, skip) && r.u32(sub) && r.u32(available));
+      EXPECT_EQ(sub, subscriptionId_);
+      EXPECT_TRUE(r.bytes(4 * available + 1, skip) && r.u32(sequence) && r.bytes(8, skip) && r.u32(notifications));
+      std::vector<int16_t> values;
+      if (notifications == 1) {
+        ExtensionObject change;
+        EXPECT_TRUE(decode(r, change));
+        EXPECT_EQ(change.typeId, NodeId::num(0, 811));
+        Reader c(std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(change.bytes.data()), change.bytes.size()));
+        uint32_t count = 0;
+        EXPECT_TRUE(c.u32(count));
+        for (uint32_t i = 0; i < count; ++i) {
+          uint32_t handle = 0;
+          DataValue dv;
+          EXPECT_TRUE(c.u32(handle) && decode(c, dv));
+          EXPECT_EQ(handle, 77u);
+          values.push_back(std::get<int16_t>(dv.value.values.at(0)));
+        }
+      }
+      out.push_back(values);
+    }
+    return out;
+  }
+
+  void setCount(int16_t v) {
+    Bytes image(64, 0);
+    image[32] = static_cast<uint8_t>(v);
+    image[33] = static_cast<uint8_t>(static_cast<uint16_t>(v) >> 8);
+    core_.publish(image);
+  }
+
+  uint32_t subscriptionId_ = 0;
+};
+
+TEST_F(SubscriptionTest, ChangesArriveAndKeepAlivesFillTheSilence) {
+  setCount(5);
+  monitor("MAIN.count");
+  EXPECT_TRUE(tickAt(50).empty());  // before the first publishing interval
+  publish();
+  EXPECT_EQ(tickAt(100), (std::vector<std::vector<int16_t>>{{5}}));  // the first value at once
+  setCount(6);
+  setCount(7);
+  publish();
+  EXPECT_TRUE(tickAt(150).empty());  // no request without the interval
+  EXPECT_EQ(tickAt(200), (std::vector<std::vector<int16_t>>{{7}}));  // sampled at 200: the latest
+  publish();
+  EXPECT_TRUE(tickAt(300).empty());
+  EXPECT_TRUE(tickAt(400).empty());
+  EXPECT_EQ(tickAt(500), (std::vector<std::vector<int16_t>>{{}}));  // third silent interval: keep-alive
+}
+
+TEST_F(SubscriptionTest, DeadbandHoldsBackSmallChanges) {
+  setCount(100);
+  monitor("MAIN.count", 10);
+  publish();
+  EXPECT_EQ(tickAt(100), (std::vector<std::vector<int16_t>>{{100}}));
+  setCount(105);
+  publish();
+  tickAt(200);
+  setCount(111);
+  EXPECT_EQ(tickAt(300), (std::vector<std::vector<int16_t>>{{111}}));  // 105 held back (the 200 answer was a keep-alive or nothing)
+}
+
+TEST_F(SubscriptionTest, RepublishAndLifetime) {
+  setCount(1);
+  monitor("MAIN.count");
+  publish();
+  ASSERT_EQ(tickAt(100).size(), 1u);
+  uint32_t type = 0;
+  Bytes again = call(832, {static_cast<uint8_t>(subscriptionId_), 0, 0, 0, 1, 0, 0, 0}, &type);
+  EXPECT_EQ(type, 835u);
+  EXPECT_EQ(get32(again, 24), 1u);  // the NotificationMessage's sequence number
+  Bytes missing = call(832, {static_cast<uint8_t>(subscriptionId_), 0, 0, 0, 9, 0, 0, 0}, &type);
+  EXPECT_EQ(type, kServiceFaultId);
+  // No Publish request for the lifetime count (9 intervals): the subscription is gone.
+  for (int64_t ms = 200; ms <= 2000; ms += 100) tickAt(ms);
+  Bytes gone = call(826, {0, 0, 0, 0}, &type);
+  EXPECT_EQ(type, kServiceFaultId);
+  EXPECT_EQ(serviceResult(gone), 0x80790000u);  // BadNoSubscription
+}
+
 }  // namespace
 }  // namespace virtcom::proto::opcua

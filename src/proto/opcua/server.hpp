@@ -4,7 +4,8 @@
 //  - one I/O thread owns the sockets (poll, non-blocking) and answers every request from the
 //    snapshot of the memory image published after the last scan (consistent, never torn);
 //  - writes are checked, queued and applied by the scan thread before the next scan
-//    (applyPendingWrites), each request whole, in arrival order.
+//    (applyPendingWrites), each request whole, in arrival order;
+//  - subscriptions are sampled and published on the I/O thread, on their own timers.
 // One mutex guards the server state; it is held while answering one message or copying the
 // image, never across socket I/O. Neither scan-side call allocates.
 #include <atomic>

@@ -1,5 +1,5 @@
 #pragma once
-// The OPC UA server options (docs/opcua.md): `--opcua` and its limits on `exec`, one definition
+// The OPC UA server options (docs/opcua.md): `--opcua` and its limits on `exec` and `serve`, one definition
 // of the flags, their checks, the binding to the scan loop and the announcement.
 #include <expected>
 #include <memory>

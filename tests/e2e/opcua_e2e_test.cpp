@@ -136,11 +136,33 @@ TEST(OpcuaE2e, BadEndpointIsAClearError) {
   EXPECT_NE(out.find("error: --opcua-allow: "), std::string::npos) << out;
 }
 
+TEST(OpcuaE2e, ServeCellsSoftPlcOverOpcua) {
+  // examples/ads-cell's soft PLC, served while the cell runs: node-opcua reads and browses it.
+  ServerProcess server(kExe, {"serve", "cell.yaml", "--opcua", "127.0.0.1:0"}, VIRTCOM_SOURCE_DIR "/examples/ads-cell",
+                       "opcua: serving opc.tcp://");
+  ASSERT_GT(server.port(), 0) << server.errorOutput();
+  const std::string script =
+      "const u=require('node-opcua-client');(async()=>{const c=u.OPCUAClient.create({endpointMustExist:false,"
+      "connectionStrategy:{maxRetry:0}});await c.connect('opc.tcp://127.0.0.1:" + std::to_string(server.port()) +
+      "');const s=await c.createSession();const b=await s.browse('ns=0;i=85');"
+      "console.log('folders',b.references.map(r=>r.browseName.name).join(','));await s.close();await c.disconnect();})()"
+      ".catch(e=>{console.error(e);process.exit(1);});";
+  std::string output;
+  int status = virtcom::e2e::shell("cd '" + kClientDir + "' && node -e \"" + script + "\"", output);
+  EXPECT_EQ(status, 0) << output;
+  EXPECT_NE(output.find("folders Server,"), std::string::npos) << output;
+  EXPECT_EQ(server.stop(), 0) << server.errorOutput();
+}
+
 TEST(OpcuaE2e, HelpNamesTheOptions) {
   std::string out;
   EXPECT_EQ(virtcom::e2e::shell("'" + kExe + "' exec --help", out), 0) << out;
-  for (const char* option : {"--opcua ", "--opcua-allow", "--opcua-readonly", "--opcua-max-sessions", "--opcua-max-clients"})
-    EXPECT_NE(out.find(option), std::string::npos) << option;
+  for (const char* command : {"exec", "serve"}) {
+    out.clear();
+    EXPECT_EQ(virtcom::e2e::shell("'" + kExe + "' " + command + " --help", out), 0) << out;
+    for (const char* option : {"--opcua ", "--opcua-allow", "--opcua-readonly", "--opcua-max-sessions", "--opcua-max-clients"})
+      EXPECT_NE(out.find(option), std::string::npos) << command << " " << option;
+  }
 }
 
 }  // namespace

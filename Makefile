@@ -40,11 +40,12 @@ test: deps
 	@cmake -S . -B $(FUZZBUILD) $(CMAKE_GEN) $(LAUNCHER) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DVIRTCOM_FUZZ_ONLY=ON >/dev/null
 	@cmake --build $(FUZZBUILD) -j $(JOBS)
-	@# The npm ads-client for the ADS e2e tests and playwright-core for the HMI's browser tests
+	@# The npm ads-client and node-opcua-client for the ADS and OPC UA e2e tests and playwright-core for the HMI's browser tests
 	@# (Debian's nodejs may come without npm).
 	@command -v npm >/dev/null 2>&1 || { SUDO=""; [ "$$(id -u)" -ne 0 ] && SUDO=sudo; \
 	  DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends npm >/dev/null; }
 	@npm ci --prefix tests/e2e/ads --no-audit --no-fund --loglevel=error >/dev/null
+	@npm ci --prefix tests/e2e/opcua --no-audit --no-fund --loglevel=error >/dev/null
 	@npm ci --prefix tests/e2e/hmi --no-audit --no-fund --loglevel=error >/dev/null
 	@cd $(TESTBUILD) && FUZZ_BUILD_DIR=$(abspath $(FUZZBUILD)) VIRTCOM_REQUIRE_BROWSER=1 VIRTCOM_REQUIRE_MBPOLL=1 \
 	  ctest --output-on-failure -j $(JOBS)

@@ -9,6 +9,7 @@
 #include "cli/common.hpp"
 #include "cli/plc_backend.hpp"
 #include "cli/modbus_options.hpp"
+#include "cli/opcua_options.hpp"
 #include "cli/rule_trace.hpp"
 #include "lang/sfc/step_monitor.hpp"
 #include "plc/retain_file.hpp"
@@ -36,6 +37,7 @@ struct ExecOptions {
   std::string modbusAllow;  // comma-separated peer addresses; empty: any
   bool modbusWritableInputs = false;  // %IW also as holding registers 8192.. (docs/modbus.md)
   AdsServeOptions ads;
+  OpcuaServeOptions opcua;
   std::string retainFile;   // warm start: RETAIN/PERSISTENT variables loaded from and saved to it
   std::string backend = "auto";
 };
@@ -134,7 +136,7 @@ ExitCode runExec(const ExecOptions& o) {
 
   std::unique_ptr<Clock> clock;
   // A Modbus server talks to the real world, so it runs in real time unless told otherwise.
-  double speed = o.speed > 0 ? o.speed : o.modbus.empty() && !o.ads.enabled() ? 0 : 1;
+  double speed = o.speed > 0 ? o.speed : o.modbus.empty() && !o.ads.enabled() && !o.opcua.enabled() ? 0 : 1;
   if (speed > 0) clock = std::make_unique<PacedClock>(speed);
   else clock = std::make_unique<VirtualClock>();
   plc::RuntimeOptions ropts;
@@ -201,15 +203,28 @@ ExitCode runExec(const ExecOptions& o) {
     ads->afterScan(runtime);
     announceAdsServer(o.ads, *ads);
   }
+  std::unique_ptr<OpcuaPlcServer> opcua;
+  if (o.opcua.enabled()) {
+    auto server = startOpcuaServer(o.opcua, *module);
+    if (!server) {
+      std::cerr << "error: " << server.error() << "\n";
+      return ExitCode::Usage;
+    }
+    opcua = std::move(*server);
+    opcua->afterScan(runtime);
+    announceOpcuaServer(*opcua);
+  }
   int64_t cycles = o.cycles < 0 ? (forever ? INT64_MAX : 1) : o.cycles;
   ExitCode exitCode = ExitCode::Ok;
   for (int64_t k = 0; k < cycles && !gStopRequested; ++k) {
     int64_t now = runtime.nextTickNs();
     if (modbus && modbus->applyPendingWrites(modbusView(runtime)) > 0) runtime.inputsTouched();
     if (ads) ads->beforeScan(runtime);
+    if (opcua) opcua->beforeScan(runtime);
     bool ok = runtime.tick();
     if (modbus) modbus->publishSnapshot(modbusView(runtime));
     if (ads) ads->afterScan(runtime);
+    if (opcua) opcua->afterScan(runtime);
     // An ADS client may STOP the PLC (WriteControl): time goes on, only a fault ends the run.
     if (!ok && runtime.state() != plc::PlcState::Fault) ok = true;
     if (!ok) {
@@ -226,6 +241,7 @@ ExitCode runExec(const ExecOptions& o) {
   }
   if (modbus) modbus->stop();
   if (ads) ads->stop();
+  if (opcua) opcua->stop();
   backend.logRun(runtime.tierStats());
   if (!o.retainFile.empty() && exitCode == ExitCode::Ok) {
     std::string problem = plc::saveRetainFile(o.retainFile, *module, runtime.machine().memory());
@@ -271,6 +287,7 @@ void addExecCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_flag("--modbus-writable-inputs", o->modbusWritableInputs, "let --modbus clients write the inputs: holding register 8192+n is %IWn (and the %IX bits in it); off by default");
   cmd->add_option("--modbus-allow", o->modbusAllow, "comma-separated IPv4 peers allowed to connect to --modbus (default: any)");
   addAdsServeOptions(cmd, o->ads);
+  addOpcuaServeOptions(cmd, o->opcua);
   cmd->add_option("--retain-file", o->retainFile, "warm start: load the RETAIN/PERSISTENT variables from this file after the cold start (if it exists) and save them to it when the run ends without a fault");
   cmd->callback([o, setExit] { setExit(runExec(*o)); });
 }

@@ -3,6 +3,8 @@
 //  - `--ads`: its soft PLC, which stays the controller, as a TwinCAT 3 runtime (ADS), the same
 //    server as `exec --ads`. With both, the Modbus map serves the device signals for reading,
 //    and only the commands the soft PLC does not drive for writing;
+//  - `--opcua`: its soft PLC's variables over OPC UA (docs/opcua.md), the same server as
+//    `exec --opcua`; the soft PLC stays the controller;
 //  - `--http`: the web HMI (docs/hmi.md), watching and steering the run. Alone, or with --ads,
 //    the soft PLC is the controller; with --modbus the external PLC is.
 //
@@ -16,6 +18,7 @@
 #include <optional>
 
 #include "cli/ads_options.hpp"
+#include "cli/opcua_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "cli/plc_backend.hpp"
@@ -40,6 +43,7 @@ struct ServeOptions {
   std::string modbus;       // HOST:PORT; empty: no Modbus server
   std::string modbusAllow;  // comma-separated peer addresses; empty: any
   AdsServeOptions ads;      // the soft PLC over ADS
+  OpcuaServeOptions opcua;  // the soft PLC's variables over OPC UA
   HmiServeOptions hmi;      // the web HMI (--http)
   std::string backend = "auto";
   size_t traceWindow = kDefaultTraceWindow;
@@ -84,8 +88,8 @@ void keepSoftPlcCommands(cell::Cell& cell) {
 }
 
 ExitCode serveCell(const ServeOptions& o) {
-  if (o.modbus.empty() && !o.ads.enabled() && !o.hmi.enabled()) {
-    std::cerr << "error: nothing to serve: give --modbus HOST:PORT, --ads HOST:PORT and/or --http HOST:PORT\n";
+  if (o.modbus.empty() && !o.ads.enabled() && !o.opcua.enabled() && !o.hmi.enabled()) {
+    std::cerr << "error: nothing to serve: give --modbus HOST:PORT, --ads HOST:PORT, --opcua HOST:PORT and/or --http HOST:PORT\n";
     return ExitCode::Usage;
   }
   std::optional<HmiBinding> hmiBinding;
@@ -100,10 +104,11 @@ ExitCode serveCell(const ServeOptions& o) {
   SourceManager sources;
   auto cell = loadCellFile(o.cellFile, sources);
   if (!cell) return ExitCode::InputError;
-  if (o.ads.enabled() || (o.hmi.enabled() && o.modbus.empty())) {
-    // The soft PLC is the controller (served over ADS, watched by the HMI); it runs until interrupted.
+  if (o.ads.enabled() || o.opcua.enabled() || (o.hmi.enabled() && o.modbus.empty())) {
+    // The soft PLC is the controller (served over ADS or OPC UA, watched by the HMI); it runs until interrupted.
     if (!cell->module) {
-      std::cerr << "error: " << (o.ads.enabled() ? "--ads serves" : "--http without --modbus runs") << " the cell's soft PLC, but "
+      std::cerr << "error: " << (o.ads.enabled() ? "--ads serves" : o.opcua.enabled() ? "--opcua serves" : "--http without --modbus runs")
+                << " the cell's soft PLC, but "
                 << o.cellFile << " has none ('plc: sources')\n";
       return ExitCode::Usage;
     }
@@ -140,6 +145,15 @@ ExitCode serveCell(const ServeOptions& o) {
     }
     ads = std::move(*server);
   }
+  std::unique_ptr<OpcuaPlcServer> opcua;
+  if (o.opcua.enabled()) {
+    auto server = startOpcuaServer(o.opcua, *cell->module);
+    if (!server) {
+      std::cerr << "error: " << server.error() << "\n";
+      return ExitCode::Usage;
+    }
+    opcua = std::move(*server);
+  }
   sim::SimOptions options;
   options.speed = o.speed;
   options.interrupt = &gStopRequested;
@@ -153,22 +167,34 @@ ExitCode serveCell(const ServeOptions& o) {
     options.compiled = backend->compiled();
     options.tierUp = backend->tierUp();
   }
-  if (ads) {
+  if (ads || opcua) {
     // The first snapshot right after the cold start, then the announcement: a client that
     // connects at once reads the initial values, never an empty image.
     options.preset = [&](plc::Runtime& plc) {
-      ads->afterScan(plc);
-      announceAdsServer(o.ads, *ads);
+      if (ads) {
+        ads->afterScan(plc);
+        announceAdsServer(o.ads, *ads);
+      }
+      if (opcua) {
+        opcua->afterScan(plc);
+        announceOpcuaServer(*opcua);
+      }
     };
-    options.beforeScan = [&](plc::Runtime& plc) { ads->beforeScan(plc); };
-    options.afterScan = [&](plc::Runtime& plc) { ads->afterScan(plc); };
+    options.beforeScan = [&](plc::Runtime& plc) {
+      if (ads) ads->beforeScan(plc);
+      if (opcua) opcua->beforeScan(plc);
+    };
+    options.afterScan = [&](plc::Runtime& plc) {
+      if (ads) ads->afterScan(plc);
+      if (opcua) opcua->afterScan(plc);
+    };
   }
   std::optional<LiveHmi> hmi;
   if (hmiBinding) {
     hmi.emplace(*cell, &gStopRequested, o.hmi.paused, options);
     hmi->keepHistory(o.history.path);
-    if (!o.modbus.empty() || ads)
-      hmi->refuseReset("reset is off while --modbus or --ads serve the run: their clients hold the state of the run; restart serve");
+    if (!o.modbus.empty() || ads || opcua)
+      hmi->refuseReset("reset is off while --modbus, --ads or --opcua serve the run: their clients hold the state of the run; restart serve");
   }
   if (*recorder) options.traceSinks.push_back(recorder->get());
   RunEnd end = RunEnd::Completed;
@@ -199,6 +225,7 @@ ExitCode serveCell(const ServeOptions& o) {
   }
   bridges->clear();  // stops the servers before the report
   if (ads) ads->stop();
+  if (opcua) opcua->stop();
   if (hmi) hmi->stop();
   const Trace& trace = cell->trace;
   const report::Kpis kpis = report::computeKpis(trace);
@@ -228,6 +255,7 @@ void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_option("--modbus", o->modbus, "serve the signals over Modbus TCP on HOST:PORT (e.g. 127.0.0.1:1502; see docs/modbus.md)");
   cmd->add_option("--modbus-allow", o->modbusAllow, "comma-separated IPv4 peers allowed to connect to --modbus (default: any)");
   addAdsServeOptions(cmd, o->ads);
+  addOpcuaServeOptions(cmd, o->opcua);
   addHmiOptions(cmd, o->hmi, "--http");
   cmd->add_option("--speed", o->speed, "pace factor against the wall clock (default 1 = real time)")->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);

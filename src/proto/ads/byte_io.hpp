@@ -1,6 +1,7 @@
 #pragma once
 // Bounds-checked little-endian readers and writers for AMS/ADS frames (ADS is little endian on
-// the wire: docs/ads.md, Wire reference: Byte order and strings).
+// the wire: docs/ads.md, Wire reference: Byte order and strings); the OPC UA codec reads and
+// writes through them too (OPC UA binary is little endian: docs/opcua.md).
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -17,6 +18,7 @@ class LittleEndianReader {
   std::optional<uint8_t> u8() { return fixed<uint8_t>(); }
   std::optional<uint16_t> u16() { return fixed<uint16_t>(); }
   std::optional<uint32_t> u32() { return fixed<uint32_t>(); }
+  std::optional<uint64_t> u64() { return fixed<uint64_t>(); }
   // The next n bytes, or nullopt if fewer remain.
   std::optional<std::span<const uint8_t>> bytes(size_t n) {
     if (remaining() < n) return std::nullopt;

@@ -1,0 +1,53 @@
+#pragma once
+// The OPC UA server options (docs/opcua.md): `--opcua` and its limits on `exec` and `serve`, one definition
+// of the flags, their checks, the binding to the scan loop and the announcement.
+#include <expected>
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "bytecode/module.hpp"
+#include "plc/runtime.hpp"
+#include "proto/ads/symbol_table.hpp"
+#include "proto/opcua/server.hpp"
+
+namespace virtcom::cli {
+
+struct OpcuaServeOptions {
+  std::string listen;  // --opcua HOST:PORT; empty: no server
+  std::string allow;   // --opcua-allow: IPv4 peers; empty: any
+  bool readOnly = false;
+  size_t maxSessions = 32;
+  size_t maxClients = 32;
+  bool enabled() const { return !listen.empty(); }
+};
+
+void addOpcuaServeOptions(CLI::App* cmd, OpcuaServeOptions& o);
+
+// A compiled program served over OPC UA: its ADS symbol table (the address space is generated
+// from it) and the server; the scan loop calls afterScan() once after the cold start, then
+// beforeScan()/afterScan() around every scan. Neither allocates.
+class OpcuaPlcServer {
+ public:
+  void beforeScan(plc::Runtime& runtime);
+  void afterScan(plc::Runtime& runtime);
+  proto::opcua::Server& server() { return *server_; }
+  void stop() { server_->stop(); }
+
+ private:
+  friend std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions&, const bc::Module&);
+  explicit OpcuaPlcServer(proto::ads::SymbolTable table) : table_(std::move(table)) {}
+  proto::ads::SymbolTable table_;
+  std::unique_ptr<proto::opcua::Server> server_;
+};
+
+// Checks the options and starts the server over `module` (which must outlive it). The error
+// text names the option at fault ("--opcua: ...").
+std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions& o, const bc::Module& module);
+
+// "opcua: serving opc.tcp://127.0.0.1:4840 (security None, anonymous)" on stderr, once the
+// first image is published (e2e tests and scripts wait for it).
+void announceOpcuaServer(OpcuaPlcServer& server);
+
+}  // namespace virtcom::cli

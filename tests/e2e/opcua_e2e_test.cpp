@@ -1,0 +1,168 @@
+// End-to-end: `virtcom exec opcua/GVL.st opcua/MAIN.st --opcua 127.0.0.1:0` in its own process,
+// driven by the real npm node-opcua-client (tests/e2e/opcua, installed by `make test` with npm
+// ci) and by raw bytes for what a well-behaved client never does: garbage, half messages,
+// abrupt disconnects, messages out of order.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "server_process.hpp"
+#include "shell_command.hpp"
+#include "support/loopback_client.hpp"
+
+namespace {
+
+using Bytes = std::vector<uint8_t>;
+using virtcom::e2e::ServerProcess;
+using virtcom::test::LoopbackClient;
+
+const std::string kExe = VIRTCOM_EXE;
+const std::string kDataDir = VIRTCOM_E2E_DATA;
+const std::string kClientDir = VIRTCOM_OPCUA_CLIENT_DIR;
+
+std::unique_ptr<ServerProcess> startServer(std::vector<std::string> extra = {}) {
+  std::vector<std::string> args{"exec", "opcua/GVL.st", "opcua/MAIN.st", "--opcua", "127.0.0.1:0"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return std::make_unique<ServerProcess>(kExe, args, kDataDir, "opcua: serving opc.tcp://");
+}
+
+void put32(Bytes& b, uint32_t v) {
+  for (int i = 0; i < 4; ++i) b.push_back(static_cast<uint8_t>(v >> (8 * i)));
+}
+uint32_t get32(const Bytes& b, size_t at) {
+  return b[at] | b[at + 1] << 8 | b[at + 2] << 16 | static_cast<uint32_t>(b[at + 3]) << 24;
+}
+
+// A message of type `type` ("HEL", ...) with `body` (docs/opcua.md, Wire reference: Messages).
+Bytes message(const char* type, const Bytes& body, char chunk = 'F') {
+  Bytes m{static_cast<uint8_t>(type[0]), static_cast<uint8_t>(type[1]), static_cast<uint8_t>(type[2]), static_cast<uint8_t>(chunk)};
+  put32(m, static_cast<uint32_t>(8 + body.size()));
+  m.insert(m.end(), body.begin(), body.end());
+  return m;
+}
+
+Bytes hello() {
+  Bytes b;
+  for (uint32_t v : {0u, 65536u, 65536u, 0u, 0u}) put32(b, v);
+  const std::string url = "opc.tcp://127.0.0.1";
+  put32(b, static_cast<uint32_t>(url.size()));
+  b.insert(b.end(), url.begin(), url.end());
+  return message("HEL", b);
+}
+
+// One whole message; empty if the server closed or timed out.
+Bytes receiveMessage(LoopbackClient& c) {
+  Bytes head = c.receive(8);
+  if (head.size() < 8) return {};
+  Bytes rest = c.receive(get32(head, 4) - 8);
+  head.insert(head.end(), rest.begin(), rest.end());
+  return head;
+}
+
+std::string typeOf(const Bytes& m) { return m.size() >= 3 ? std::string(m.begin(), m.begin() + 3) : ""; }
+
+TEST(OpcuaE2e, NodeOpcuaClientScenario) {
+  ASSERT_TRUE(std::filesystem::exists(kClientDir + "/node_modules/node-opcua-client"))
+      << "the npm node-opcua-client is missing: run `npm ci --prefix tests/e2e/opcua` (make test does)";
+  auto server = startServer();
+  ASSERT_GT(server->port(), 0) << server->errorOutput();
+  std::string output;
+  int status = virtcom::e2e::shell("cd '" + kClientDir + "' && node check_opcua_client.js " + std::to_string(server->port()), output);
+  EXPECT_EQ(status, 0) << output;
+  EXPECT_NE(output.find("ok: "), std::string::npos) << output;
+  EXPECT_EQ(server->stop(), 0) << server->errorOutput();
+}
+
+TEST(OpcuaE2e, GarbageHalfMessagesAndAbruptDisconnectsLeaveOthersServed) {
+  auto server = startServer();
+  ASSERT_GT(server->port(), 0) << server->errorOutput();
+  for (int round = 0; round < 3; ++round) {
+    std::vector<std::unique_ptr<LoopbackClient>> crowd;
+    for (int i = 0; i < 12; ++i) {
+      auto c = std::make_unique<LoopbackClient>(server->port());
+      ASSERT_TRUE(c->connected());
+      Bytes h = hello();
+      switch (i % 4) {
+        case 0: EXPECT_TRUE(c->send({'G', 'E', 'T', ' ', '/', ' ', 'H', 'T', 'T', 'P', '/', '1', '.', '1', '\r', '\n'})); break;
+        case 1: EXPECT_TRUE(c->send(Bytes(h.begin(), h.begin() + 12))); break;  // half a Hello, then gone
+        case 2: EXPECT_TRUE(c->send({'H', 'E', 'L', 'F', 0xff, 0xff, 0xff, 0x7f})); break;  // 2 GB announced
+        default: EXPECT_TRUE(c->send(message("MSG", Bytes(16, 0)))); break;  // MSG before HEL
+      }
+      crowd.push_back(std::move(c));
+    }
+    for (size_t i = 0; i < crowd.size(); ++i) {
+      if (i % 4 == 1) continue;
+      // Answered with ERR, then closed.
+      Bytes err = receiveMessage(*crowd[i]);
+      EXPECT_EQ(typeOf(err), "ERR") << i;
+      EXPECT_TRUE(crowd[i]->closedByServer()) << i;
+    }
+    crowd.clear();  // everyone leaves at once
+  }
+  LoopbackClient steady(server->port());
+  ASSERT_TRUE(steady.connected());
+  ASSERT_TRUE(steady.send(hello()));
+  Bytes ack = receiveMessage(steady);
+  ASSERT_EQ(typeOf(ack), "ACK");
+  EXPECT_EQ(ack.size(), 28u);
+  EXPECT_EQ(get32(ack, 8), 0u);  // protocol version
+  // An OPN with another security policy is refused with ERR BadSecurityPolicyRejected.
+  Bytes open;
+  put32(open, 0);
+  const std::string policy = "http://opcfoundation.org/UA/SecurityPolicy#Basic256Sha256";
+  put32(open, static_cast<uint32_t>(policy.size()));
+  open.insert(open.end(), policy.begin(), policy.end());
+  for (int i = 0; i < 4; ++i) put32(open, i < 2 ? 0xFFFFFFFF : 1);
+  ASSERT_TRUE(steady.send(message("OPN", open)));
+  Bytes refused = receiveMessage(steady);
+  ASSERT_EQ(typeOf(refused), "ERR");
+  EXPECT_EQ(get32(refused, 8), 0x80550000u);
+  EXPECT_EQ(server->stop(), 0) << server->errorOutput();
+}
+
+TEST(OpcuaE2e, BadEndpointIsAClearError) {
+  std::string out;
+  int status = virtcom::e2e::shell("cd '" + kDataDir + "' && '" + kExe + "' exec opcua/GVL.st opcua/MAIN.st --opcua 127.0.0.1:99999", out);
+  EXPECT_EQ(status, 64) << out;
+  EXPECT_NE(out.find("error: --opcua: "), std::string::npos) << out;
+  out.clear();
+  status = virtcom::e2e::shell("cd '" + kDataDir + "' && '" + kExe + "' exec opcua/GVL.st opcua/MAIN.st --opcua 127.0.0.1:0 --opcua-allow 1.2.3", out);
+  EXPECT_EQ(status, 64) << out;
+  EXPECT_NE(out.find("error: --opcua-allow: "), std::string::npos) << out;
+}
+
+TEST(OpcuaE2e, ServeCellsSoftPlcOverOpcua) {
+  // examples/ads-cell's soft PLC, served while the cell runs: node-opcua reads and browses it.
+  ServerProcess server(kExe, {"serve", "cell.yaml", "--opcua", "127.0.0.1:0"}, VIRTCOM_SOURCE_DIR "/examples/ads-cell",
+                       "opcua: serving opc.tcp://");
+  ASSERT_GT(server.port(), 0) << server.errorOutput();
+  const std::string script =
+      "const u=require('node-opcua-client');(async()=>{const c=u.OPCUAClient.create({endpointMustExist:false,"
+      "connectionStrategy:{maxRetry:0}});await c.connect('opc.tcp://127.0.0.1:" + std::to_string(server.port()) +
+      "');const s=await c.createSession();const b=await s.browse('ns=0;i=85');"
+      "console.log('folders',b.references.map(r=>r.browseName.name).join(','));await s.close();await c.disconnect();})()"
+      ".catch(e=>{console.error(e);process.exit(1);});";
+  std::string output;
+  int status = virtcom::e2e::shell("cd '" + kClientDir + "' && node -e \"" + script + "\"", output);
+  EXPECT_EQ(status, 0) << output;
+  EXPECT_NE(output.find("folders Server,"), std::string::npos) << output;
+  EXPECT_EQ(server.stop(), 0) << server.errorOutput();
+}
+
+TEST(OpcuaE2e, HelpNamesTheOptions) {
+  std::string out;
+  EXPECT_EQ(virtcom::e2e::shell("'" + kExe + "' exec --help", out), 0) << out;
+  for (const char* command : {"exec", "serve"}) {
+    out.clear();
+    EXPECT_EQ(virtcom::e2e::shell("'" + kExe + "' " + command + " --help", out), 0) << out;
+    for (const char* option : {"--opcua ", "--opcua-allow", "--opcua-readonly", "--opcua-max-sessions", "--opcua-max-clients"})
+      EXPECT_NE(out.find(option), std::string::npos) << command << " " << option;
+  }
+}
+
+}  // namespace

@@ -18,8 +18,11 @@ std::string rate(const CoverageRatio& r) {
   return r.total == 0 ? std::string("1") : formatFixed(static_cast<double>(r.hit) / r.total, 4);
 }
 
+// Appended piece by piece: `" " + std::string(name)` trips GCC 12's -Wrestrict false positive.
 std::string attr(std::string_view name, std::string_view value) {
-  return " " + std::string(name) + "=\"" + escapeHtml(value) + "\"";
+  std::string out(" ");
+  out.append(name).append("=\"").append(escapeHtml(value)).append("\"");
+  return out;
 }
 
 struct ClassXml {

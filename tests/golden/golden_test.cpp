@@ -428,7 +428,9 @@ TEST_P(Golden, CoverageChangesNothing) {
   applySets(*plain, h, a.machine().memory());
   applySets(*covered, h, b.machine().memory());
   const uint32_t size = plain->staticSize;  // the stack after it starts later with the counters
-  if (!covered->coverage.probes.empty()) ASSERT_GE(covered->coverage.counterAddress, size);
+  if (!covered->coverage.probes.empty()) {
+    ASSERT_GE(covered->coverage.counterAddress, size);
+  }
   for (int64_t k = 1; started && k <= h.cycles; ++k) {
     const bool ran = a.tick();
     ASSERT_EQ(b.tick(), ran) << "scan " << k << ": " << a.faultText() << " / " << b.faultText();

@@ -15,7 +15,7 @@
 
 namespace virtcom::bench {
 
-StProgram::StProgram(std::string_view fileName, Backend backend) {
+StProgram::StProgram(std::string_view fileName, Backend backend, bool coverage) {
   const std::string path = std::string(VIRTCOM_BENCH_DIR) + "/" + std::string(fileName);
   std::ifstream in(path, std::ios::binary);
   if (!in) {
@@ -26,7 +26,7 @@ StProgram::StProgram(std::string_view fileName, Backend backend) {
   text << in.rdbuf();
   SourceManager sources;
   Diagnostics diags;
-  module_ = st::compileProgram({st::SourceInput{path, text.str()}}, sources, diags);
+  module_ = st::compileProgram({st::SourceInput{path, text.str()}}, sources, diags, {.coverage = coverage});
   if (!module_) {
     error_ = "compile error:\n" + diags.render(sources);
     return;

@@ -30,7 +30,8 @@ class StProgram {
   // Backend::Aot also to machine code) and cold starts a runtime on a virtual clock. On any
   // failure ok() is false and error() says why (rendered diagnostics, the C compiler's
   // complaint or the fault text). Allocates; never throws on bad input.
-  explicit StProgram(std::string_view fileName, Backend backend = Backend::Interp);
+  // `coverage`: compiled with coverage probes (docs/coverage.md), to measure what they cost.
+  explicit StProgram(std::string_view fileName, Backend backend = Backend::Interp, bool coverage = false);
 
   bool ok() const { return error_.empty(); }
   const std::string& error() const { return error_; }

@@ -56,6 +56,7 @@ std::string wideOperand(const Module& m, uint32_t pc, const Instr& ins, WideOper
       return bx < static_cast<uint32_t>(NativeFb::Count_) ? std::string(nativeFbName(static_cast<NativeFb>(bx)))
                                                           : "fb#" + std::to_string(bx);
     case WideOperand::Jump: return pcText(branchTarget(pc, ins));
+    case WideOperand::Counter: return "#" + std::to_string(m.coverage.counterAt(bx));
     case WideOperand::Fault:
       return std::to_string(bx) + " (" +
              std::string(bx <= static_cast<uint32_t>(FaultKind::SubrangeViolation) ? faultText(static_cast<FaultKind>(bx))

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bytecode/instruction.hpp"
+#include "core/coverage.hpp"
 #include "core/iec_value.hpp"
 #include "core/source.hpp"
 
@@ -123,6 +124,33 @@ struct ProcessArea {
   uint32_t size = 0;
 };
 
+// One coverage probe (docs/coverage.md): a COVER instruction the compiler placed when asked to
+// (st::CompileOptions::coverage), and what its counter counts.
+struct CoverageProbe {
+  uint32_t pou = 0;       // index into Module::pous
+  SourceLocation loc;     // the statement; for a branch its IF/CASE; for SFC the step/transition
+  CoverageKind kind = CoverageKind::Statement;
+  uint16_t arm = 0;       // Branch: the arm's index in its decision
+  uint16_t arms = 0;      // Branch: how many arms the decision has (an implicit ELSE counts)
+  std::string name;       // Step, Transition: the element's name
+};
+
+// The probes of a module and their counters: probe i counts in the 8 bytes (u64, little endian)
+// at counterAddress + 8 * i of the memory image, zero in the initial image and kept over a cold
+// start (vm::Machine::coldStart), so a run restarted (power loss) keeps counting.
+struct CoverageTable {
+  uint32_t counterAddress = 0;
+  std::vector<CoverageProbe> probes;  // empty: compiled without coverage
+  static constexpr uint32_t kNoCounter = 0xffffffffu;
+  // The probe whose counter is at `address`, or kNoCounter.
+  uint32_t counterAt(uint32_t address) const {
+    if (address < counterAddress || (address - counterAddress) % 8 != 0) return kNoCounter;
+    const uint32_t i = (address - counterAddress) / 8;
+    return i < probes.size() ? i : kNoCounter;
+  }
+  uint32_t counterBytes() const { return static_cast<uint32_t>(probes.size() * 8); }
+};
+
 struct Module {
   std::vector<Instr> code;
   std::vector<uint64_t> constants;
@@ -150,6 +178,7 @@ struct Module {
   // Init POU run once at cold start after the image is loaded (FB_init calls); kNoPou if none.
   static constexpr uint32_t kNoPou = 0xffffffffu;
   uint32_t initPou = kNoPou;
+  CoverageTable coverage;
 
   uint32_t memorySize() const { return staticSize + stackSize; }
   // Source location of the statement containing pc, or an empty location.

@@ -61,6 +61,7 @@ OperandRoles operandRoles(Op op) {
     case Op::CALLN: return wide(O::Reg, W::Native);
     case Op::CALLFB: return wide(O::Reg, W::NativeFb);
     case Op::TRAP: return wide(O::None, W::Fault);
+    case Op::COVER: return wide(O::None, W::Counter, 8);
     case Op::Count_: break;
   }
   return {};
@@ -114,6 +115,11 @@ class Verifier {
     for (const ProcessArea* a : {&m_.inputs, &m_.outputs, &m_.memory})
       if (a->size && !inStatic(a->address, a->size)) return fail("process image area outside static memory");
     if (m_.initPou != Module::kNoPou && m_.initPou >= m_.pous.size()) return fail("init pou index out of range");
+    const CoverageTable& cov = m_.coverage;
+    if (!cov.probes.empty() && !inStatic(cov.counterAddress, uint64_t{8} * cov.probes.size()))
+      return fail("coverage counters outside static memory");
+    for (const CoverageProbe& p : cov.probes)
+      if (p.pou >= m_.pous.size()) return fail("coverage probe of pou index " + std::to_string(p.pou) + " out of range");
     return true;
   }
 
@@ -262,6 +268,9 @@ class Verifier {
         return bx < static_cast<uint32_t>(NativeFb::Count_) ||
                failAt(pou, pc, "native FB index " + std::to_string(bx) + " out of range");
       case W::Jump: return targetOk(pou, pc, branchTarget(pc, ins));
+      case W::Counter:
+        return m_.coverage.counterAt(bx) < m_.coverage.probes.size() ||
+               failAt(pou, pc, "address " + std::to_string(bx) + " is no coverage counter");
       case W::Fault:
         return (bx >= 1 && bx <= static_cast<uint32_t>(FaultKind::SubrangeViolation)) ||
                failAt(pou, pc, "trap kind " + std::to_string(bx) + " unknown");

@@ -20,7 +20,8 @@ enum class Operand : uint8_t {
   Index,     // an index into Module::indexes (INDEX)
   Branch,    // a signed 16-bit jump offset whose target lies inside the POU (fused compare-and-branch)
 };
-enum class WideOperand : uint8_t { None, SImm, Imm, Const, Abs, Pou, Native, NativeFb, Jump, Fault };
+// Counter: the address of one of Module::coverage's counters (COVER).
+enum class WideOperand : uint8_t { None, SImm, Imm, Const, Abs, Pou, Native, NativeFb, Jump, Fault, Counter };
 
 struct OperandRoles {
   Operand a = Operand::None, b = Operand::None, c = Operand::None;

@@ -18,6 +18,7 @@
 #include "core/source.hpp"
 #include "core/tag_bus.hpp"
 #include "core/trace.hpp"
+#include "lang/st/compiler.hpp"
 #include "plant/device.hpp"
 #include "plant/world.hpp"
 
@@ -129,7 +130,9 @@ void detachSoftPlc(Cell& cell);
 // wiring and checks everything (unknown keys, units, PLC variables that do not exist or have an
 // incompatible type, duplicate names). All problems are reported in one pass; returns null if
 // there was any error. `sources` keeps the texts for rendering diagnostics.
-std::unique_ptr<Cell> loadCell(const std::string& path, SourceManager& sources, Diagnostics& diags);
+// `plcOptions` are the PLC sources' compile options (e.g. coverage for `run --coverage`).
+std::unique_ptr<Cell> loadCell(const std::string& path, SourceManager& sources, Diagnostics& diags,
+                               st::CompileOptions plcOptions = {});
 
 // Parses "MAIN.count >= 3" against the module (also used by `--until`). Reports through `diags`.
 Condition parseCondition(const bc::Module& m, const std::string& text, SourceLocation loc, Diagnostics& diags);

@@ -42,7 +42,8 @@ const char* dirText(plant::PortDir d) { return d == plant::PortDir::In ? "input"
 
 class Loader {
  public:
-  Loader(SourceManager& sources, Diagnostics& diags) : sources_(sources), diags_(diags) {}
+  Loader(SourceManager& sources, Diagnostics& diags, st::CompileOptions plcOptions)
+      : sources_(sources), diags_(diags), plcOptions_(plcOptions) {}
 
   std::unique_ptr<Cell> load(const std::string& path) {
     auto cell = std::make_unique<Cell>();
@@ -195,7 +196,7 @@ class Loader {
     if (diags_.hasErrors()) return false;
     if (inputs.empty()) return true;
     plcFiles_.first = static_cast<uint32_t>(sources_.fileCount());
-    cell.module = st::compileProgram(inputs, sources_, diags_);
+    cell.module = st::compileProgram(inputs, sources_, diags_, plcOptions_);
     plcFiles_.second = static_cast<uint32_t>(sources_.fileCount());
     if (!cell.module) return false;
     for (auto& t : cell.module->tasks)
@@ -482,12 +483,14 @@ class Loader {
     bool cycleDone = false;  // else recorded
   };
   std::vector<ExternalRunVariable> externalRun_;  // `run:` variables of the PLC behind `plc: ads:`
+  st::CompileOptions plcOptions_;
 };
 
 }  // namespace
 
-std::unique_ptr<Cell> loadCell(const std::string& path, SourceManager& sources, Diagnostics& diags) {
-  Loader loader(sources, diags);
+std::unique_ptr<Cell> loadCell(const std::string& path, SourceManager& sources, Diagnostics& diags,
+                               st::CompileOptions plcOptions) {
+  Loader loader(sources, diags, plcOptions);
   auto cell = loader.load(path);
   diags.sortByLocation();
   // The PLC program's compile errors first: they are the cause the user must read first.

@@ -7,10 +7,12 @@
 #include "cli/ads_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "cli/coverage_options.hpp"
 #include "cli/plc_backend.hpp"
 #include "cli/modbus_options.hpp"
 #include "cli/opcua_options.hpp"
 #include "cli/rule_trace.hpp"
+#include "bytecode/coverage.hpp"
 #include "lang/sfc/step_monitor.hpp"
 #include "plc/retain_file.hpp"
 #include "plc/runtime.hpp"
@@ -40,6 +42,7 @@ struct ExecOptions {
   OpcuaServeOptions opcua;
   std::string retainFile;   // warm start: RETAIN/PERSISTENT variables loaded from and saved to it
   std::string backend = "auto";
+  CoverageOptions coverage;
 };
 
 bool resolveAll(const bc::Module& m, const std::vector<std::string>& names, std::vector<bc::VarRef>& out) {
@@ -100,7 +103,7 @@ std::expected<std::unique_ptr<proto::modbus::Server>, std::string> startModbus(c
 ExitCode runExec(const ExecOptions& o) {
   SourceManager sources;
   Diagnostics diags;
-  auto module = compileFiles(o.files, sources, diags);
+  auto module = compileFiles(o.files, sources, diags, true, o.coverage.compileOptions());
   if (!module) return ExitCode::InputError;
   if (!o.cycleTime.empty()) {
     auto ns = parseDurationNs(o.cycleTime);
@@ -252,6 +255,11 @@ ExitCode runExec(const ExecOptions& o) {
   }
   for (size_t i = 0; i < o.prints.size(); ++i)
     std::cout << o.prints[i] << " = " << bc::formatValue(*module, printRefs[i], runtime.machine().memory()) << "\n";
+  // Also after a fault: what ran up to it is covered.
+  if (o.coverage.enabled() &&
+      !writeCoverage(o.coverage, bc::collectCoverage(*module, runtime.machine().memory()), "exec", std::cerr) &&
+      exitCode == ExitCode::Ok)
+    exitCode = ExitCode::Usage;
   if (o.stats) {
     for (size_t t = 0; t < module->tasks.size(); ++t) {
       const auto& s = runtime.stats(t);
@@ -282,6 +290,7 @@ void addExecCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--budget", o->budget, "watchdog: max backward jumps + calls per task scan (default 50000000)");
   addBackendOption(*cmd, o->backend);
+  addCoverageOptions(*cmd, o->coverage);
   cmd->add_flag("--stats", o->stats, "print per-task scan statistics to stderr");
   cmd->add_option("--modbus", o->modbus, "serve the process image over Modbus TCP on HOST:PORT (OpenPLC mapping, see docs/modbus.md); implies --speed 1");
   cmd->add_flag("--modbus-writable-inputs", o->modbusWritableInputs, "let --modbus clients write the inputs: holding register 8192+n is %IWn (and the %IX bits in it); off by default");

@@ -7,10 +7,12 @@
 #include <optional>
 #include <thread>
 
+#include "bytecode/coverage.hpp"
 #include "cell/cell.hpp"
 #include "cli/commands.hpp"
 #include "cli/ads_client.hpp"
 #include "cli/common.hpp"
+#include "cli/coverage_options.hpp"
 #include "cli/plc_backend.hpp"
 #include "cli/hmi_options.hpp"
 #include "cli/history_options.hpp"
@@ -46,6 +48,7 @@ struct RunOptions {
   size_t traceWindow = kDefaultTraceWindow;
   HmiServeOptions hmi;  // --hmi: watch and steer the run in a browser
   HistoryRecordOptions history;
+  CoverageOptions coverage;
 };
 
 // Prints every signal change as it happens (single-step mode).
@@ -181,15 +184,15 @@ ExitCode runCell(const RunOptions& o) {
     hmiBinding = *binding;
   }
   SourceManager sources;
-  auto cell = loadCellFile(o.cellFile, sources);
+  auto cell = loadCellFile(o.cellFile, sources, o.coverage.compileOptions());
   if (!cell) return ExitCode::InputError;
   if (!cell->module && !cell->plcModbus && !cell->plcAds) {
     std::cerr << "error: " << o.cellFile << ": the cell has no controller: add 'plc: sources' (the soft PLC), 'plc: modbus' or "
                  "'plc: ads' (an external PLC), or serve it to a PLC with virtcom serve\n";
     return ExitCode::Usage;
   }
-  if (!cell->module && (!o.until.empty() || !o.sets.empty() || o.traceRules)) {
-    std::cerr << "error: --until, --set and --trace-rules need the soft PLC, but the controller of " << o.cellFile
+  if (!cell->module && (!o.until.empty() || !o.sets.empty() || o.traceRules || o.coverage.enabled())) {
+    std::cerr << "error: --until, --set, --trace-rules and --coverage need the soft PLC, but the controller of " << o.cellFile
               << " is an external PLC\n";
     return ExitCode::Usage;
   }
@@ -290,6 +293,7 @@ ExitCode runCell(const RunOptions& o) {
   stopOnSignals();
   RunEnd end = RunEnd::Completed;
   bool ok = true, historyOk = true;
+  CoverageData covered;  // over every run of this command (an HMI reset starts another)
   // One run, or with the HMI one per reset: a reset (during the run, or after its end while the
   // page stays up) starts again from the cell file's initial state, as a new run.
   for (bool first = true;; first = false) {
@@ -303,6 +307,7 @@ ExitCode runCell(const RunOptions& o) {
       }
       end = o.step ? stepInteractively(simulation, simulation.trace()) : simulation.run();
       if (backend) backend->logRun(simulation.plc().tierStats());
+      if (o.coverage.enabled()) covered.merge(bc::collectCoverage(*cell->module, simulation.plc().machine().memory()));
     }
     bool reset = hmi && hmi->resetRequested();
     if (!reset) {
@@ -328,6 +333,7 @@ ExitCode runCell(const RunOptions& o) {
     std::cerr << "hmi: reset: the run starts again\n";
   }
   if (hmi) hmi->stop();
+  if (o.coverage.enabled()) ok = writeCoverage(o.coverage, covered, cell->name, std::cerr) && ok;
   if (!ok) return ExitCode::Usage;
   if (*recorder && !reportRecording(o.history, **recorder)) return ExitCode::HistoryError;
   if (!historyOk) return ExitCode::HistoryError;
@@ -357,6 +363,7 @@ void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
       ->check(CLI::IsMember({"event", "tick"}));
   addTraceWindowOption(*cmd, o->traceWindow);
   addHistoryOptions(cmd, o->history);
+  addCoverageOptions(*cmd, o->coverage);
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table (the faults and how the run ended still go to stderr)");
   cmd->add_flag("--step", o->step, "single step: advance one PLC tick per line read from stdin, printing changed signals");
   addHmiOptions(cmd, o->hmi, "--hmi");

@@ -47,8 +47,8 @@ std::unique_ptr<bc::Module> compileWith(const std::vector<std::string>& paths, S
 }  // namespace
 
 std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, SourceManager& sources,
-                                         Diagnostics& diags, bool printWarnings) {
-  return compileWith(paths, sources, diags, printWarnings, {});
+                                         Diagnostics& diags, bool printWarnings, st::CompileOptions options) {
+  return compileWith(paths, sources, diags, printWarnings, options);
 }
 
 std::unique_ptr<bc::Module> compileLibraryFiles(const std::vector<std::string>& paths, SourceManager& sources,
@@ -56,9 +56,10 @@ std::unique_ptr<bc::Module> compileLibraryFiles(const std::vector<std::string>& 
   return compileWith(paths, sources, diags, true, {.library = true});
 }
 
-std::unique_ptr<cell::Cell> loadCellFile(const std::string& path, SourceManager& sources) {
+std::unique_ptr<cell::Cell> loadCellFile(const std::string& path, SourceManager& sources,
+                                         st::CompileOptions plcOptions) {
   Diagnostics diags;
-  auto cell = cell::loadCell(path, sources, diags);
+  auto cell = cell::loadCell(path, sources, diags, plcOptions);
   std::cerr << diags.render(sources);
   return cell;
 }

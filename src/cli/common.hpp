@@ -17,7 +17,8 @@ namespace virtcom::cli {
 
 // Reads and compiles the files; prints diagnostics to stderr. Null on a read or compile error.
 std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, SourceManager& sources,
-                                         Diagnostics& diags, bool printWarnings = true);
+                                         Diagnostics& diags, bool printWarnings = true,
+                                         st::CompileOptions options = {});
 
 // The help text of every command's FILES argument.
 inline constexpr const char* kSourceFilesHelp =
@@ -32,7 +33,8 @@ std::optional<std::vector<st::SourceInput>> readSources(const std::vector<std::s
 std::optional<ad::Program> readDiagramFile(const std::string& path);
 
 // Loads a cell file and prints its diagnostics to stderr. Null on any error.
-std::unique_ptr<cell::Cell> loadCellFile(const std::string& path, SourceManager& sources);
+std::unique_ptr<cell::Cell> loadCellFile(const std::string& path, SourceManager& sources,
+                                         st::CompileOptions plcOptions = {});
 
 // Applies one `--set NAME=VALUE` to a PLC image. Located inputs (%I) are also written into
 // the external input image (when given) so the next scan's input copy keeps the value.

@@ -31,7 +31,8 @@ Runtime::Runtime(const bc::Module& module, Clock& clock, RuntimeOptions options)
   std::stable_sort(taskOrder_.begin(), taskOrder_.end(),
                    [&](size_t a, size_t b) { return module.tasks[a].priority < module.tasks[b].priority; });
   machine_.setBudget(options_.instructionBudget);
-  if (options_.skipRepeatedScans && module.tasks.size() == 1)
+  // A scan of a program compiled with coverage counts its statements: it never repeats the last.
+  if (options_.skipRepeatedScans && module.tasks.size() == 1 && module.coverage.probes.empty())
     shadow_.resize(module.writableEnd ? module.writableEnd : module.staticSize);
 }
 

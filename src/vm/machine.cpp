@@ -34,9 +34,13 @@ Machine::Machine(const bc::Module& m)
 }
 
 bool Machine::coldStart() {
+  // Coverage counters outlive a cold start: a run restarted after a power loss goes on counting.
+  const auto counters = memory_.begin() + m_.coverage.counterAddress;
+  const std::vector<uint8_t> counted(counters, counters + m_.coverage.counterBytes());
   std::fill(memory_.begin(), memory_.end(), 0);
   size_t n = std::min<size_t>({m_.initialImage.size(), m_.staticSize, memory_.size()});
   std::memcpy(memory_.data(), m_.initialImage.data(), n);
+  std::copy(counted.begin(), counted.end(), counters);
   sp_ = m_.staticSize;
   fault_ = FaultInfo{};
   fault_.callStack.reserve(m_.maxCallDepth);
@@ -424,6 +428,7 @@ bool Machine::execute(uint32_t pou, const uint32_t startSp) {
       ip = code + f.returnPc;
     }
     VM_NEXT();
+  VM_CASE(COVER) storeLe<uint64_t>(mem + INS->bx(), loadLe<uint64_t>(mem + INS->bx()) + 1); VM_NEXT();
   VM_CASE(TRAP) {
     const uint32_t kind = INS->bx();
     executed_ += executed;

@@ -174,7 +174,8 @@ void checkScan(const bc::Module& module, const Header& h, int64_t scan, const st
 void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.name; }
 
 // The case's files and its LIB: files, compiled together. Null on compile errors.
-std::unique_ptr<bc::Module> compileCase(const GoldenCase& c, const Header& h, SourceManager& sources, Diagnostics& diags) {
+std::unique_ptr<bc::Module> compileCase(const GoldenCase& c, const Header& h, SourceManager& sources, Diagnostics& diags,
+                                        st::CompileOptions options = {}) {
   std::vector<st::SourceInput> inputs;
   for (const auto& f : c.files) inputs.push_back({fs::relative(f, kRoot).string(), readFile(f)});
   for (const auto& lib : h.libs) {
@@ -185,7 +186,7 @@ std::unique_ptr<bc::Module> compileCase(const GoldenCase& c, const Header& h, So
     }
     inputs.push_back({"lib/" + lib, readFile(libFile)});
   }
-  return st::compileProgram(inputs, sources, diags);
+  return st::compileProgram(inputs, sources, diags, options);
 }
 
 void setCycleTime(bc::Module& module, const Header& h) {
@@ -401,6 +402,79 @@ TEST_P(Golden, TierSwitchIsInvisible) {
   std::thread publisher([&] { handoff->publish(compiled.code); });
   expectTieringInvisible(*module, h, handoff);
   publisher.join();
+}
+
+// Coverage probes change nothing a program does (docs/coverage.md): compiled with coverage,
+// every program computes the same variables scan by scan (the static image up to the counters,
+// which come last) and faults alike; compiled without it, it holds no probe.
+TEST_P(Golden, CoverageChangesNothing) {
+  const GoldenCase& c = GetParam();
+  Header h = parseHeader(readFile(c.headerFile));
+  if (h.expectErrors) GTEST_SKIP() << "does not compile";
+  SourceManager plainSources, coveredSources;
+  Diagnostics plainDiags, coveredDiags;
+  auto plain = compileCase(c, h, plainSources, plainDiags);
+  auto covered = compileCase(c, h, coveredSources, coveredDiags, {.coverage = true});
+  ASSERT_NE(plain, nullptr) << plainDiags.render(plainSources);
+  ASSERT_NE(covered, nullptr) << coveredDiags.render(coveredSources);
+  EXPECT_TRUE(plain->coverage.probes.empty());
+  EXPECT_TRUE(std::none_of(plain->code.begin(), plain->code.end(), [](const bc::Instr& i) { return i.op == bc::Op::COVER; }));
+  setCycleTime(*plain, h);
+  setCycleTime(*covered, h);
+  VirtualClock plainClock, coveredClock;
+  plc::Runtime a(*plain, plainClock, runtimeOptions()), b(*covered, coveredClock, runtimeOptions());
+  const bool started = a.coldStart();
+  ASSERT_EQ(b.coldStart(), started) << b.faultText();
+  applySets(*plain, h, a.machine().memory());
+  applySets(*covered, h, b.machine().memory());
+  const uint32_t size = plain->staticSize;  // the stack after it starts later with the counters
+  if (!covered->coverage.probes.empty()) {
+    ASSERT_GE(covered->coverage.counterAddress, size);
+  }
+  for (int64_t k = 1; started && k <= h.cycles; ++k) {
+    const bool ran = a.tick();
+    ASSERT_EQ(b.tick(), ran) << "scan " << k << ": " << a.faultText() << " / " << b.faultText();
+    const uint8_t* x = a.machine().memory();
+    const auto diff = std::mismatch(x, x + size, b.machine().memory());
+    ASSERT_EQ(diff.first, x + size) << "memory differs at address " << (diff.first - x) << " after scan " << k;
+    if (!ran) break;
+  }
+  EXPECT_EQ(b.faultText(), a.faultText());
+}
+
+// Probes between a comparison and its branch would stop the peephole pass fusing them, probes
+// are machine code on the AOT backend: the counters (in the memory image) and everything else
+// must match the interpreter after every scan. Statements and charts only (each case is a C
+// compile).
+TEST_P(Golden, CoverageSameOnAot) {
+  const GoldenCase& c = GetParam();
+  if (c.name.rfind("statements/", 0) != 0 && c.name.rfind("sfc/", 0) != 0) GTEST_SKIP() << "statements/ and sfc/ only";
+  Header h = parseHeader(readFile(c.headerFile));
+  if (h.expectErrors) GTEST_SKIP() << "does not compile";
+  SourceManager sources;
+  Diagnostics diags;
+  auto module = compileCase(c, h, sources, diags, {.coverage = true});
+  ASSERT_NE(module, nullptr) << diags.render(sources);
+  ASSERT_FALSE(module->coverage.probes.empty());
+  setCycleTime(*module, h);
+  const aot::CompileResult compiled = compileAot(*module);
+  ASSERT_TRUE(compiled.code) << compiled.error;
+  VirtualClock interpClock, aotClock;
+  plc::Runtime interp(*module, interpClock, runtimeOptions()), native(*module, aotClock, runtimeOptions());
+  native.machine().useCompiled(compiled.code);
+  const bool started = interp.coldStart();
+  ASSERT_EQ(native.coldStart(), started);
+  applySets(*module, h, interp.machine().memory());
+  applySets(*module, h, native.machine().memory());
+  const uint32_t size = interp.machine().memorySize();
+  for (int64_t k = 1; started && k <= h.cycles; ++k) {
+    const bool ran = interp.tick();
+    ASSERT_EQ(native.tick(), ran) << "scan " << k;
+    const uint8_t* a = interp.machine().memory();
+    const auto diff = std::mismatch(a, a + size, native.machine().memory());
+    ASSERT_EQ(diff.first, a + size) << "memory differs at address " << (diff.first - a) << " after scan " << k;
+    if (!ran) break;
+  }
 }
 
 std::string caseName(const ::testing::TestParamInfo<GoldenCase>& info) {

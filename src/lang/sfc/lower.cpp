@@ -37,7 +37,9 @@ bool wantsTransientChaining(const st::Pou& pou) {
 class Lowering {
  public:
   Lowering(Chart& chart, const detail::ResolvedChart& r, st::Pou& pou, st::NodeId& nextNodeId)
-      : chart_(chart), r_(r), pou_(pou), b_(nextNodeId), chaining_(wantsTransientChaining(pou)) {}
+      : chart_(chart), r_(r), pou_(pou), b_(nextNodeId), chaining_(wantsTransientChaining(pou)) {
+    b_.generated(true);
+  }
 
   void run() {
     collectActions();
@@ -119,8 +121,28 @@ class Lowering {
     return b_.call("LTIME_TO_TIME", b_.binary(BinaryOp::Sub, b_.name("__sfc_now"), b_.name(startVar)));
   }
 
+  // `st.cover`: the statement coverage counts as the activation of step k / the firing of
+  // transition t (docs/coverage.md).
+  void markStep(st::Stmt& st, size_t k) {
+    st.cover = st::CoverRole::StepActivated;
+    st.coverName = chart_.steps[k].name;
+    st.coverLoc = chart_.steps[k].loc;
+  }
+  void markTransition(st::Stmt& st, size_t t) {
+    const Transition& tr = chart_.transitions[t];
+    st.cover = st::CoverRole::TransitionFired;
+    st.coverLoc = tr.loc;
+    st.coverName = tr.name;
+    if (!st.coverName.empty()) return;
+    // An unnamed transition is known by the steps it links: "Fill,Mix->Drain".
+    for (size_t k : r_.from[t]) st.coverName += (st.coverName.empty() ? "" : ",") + stepName(k);
+    st.coverName += "->";
+    for (size_t i = 0; i < r_.to[t].size(); ++i) st.coverName += (i ? "," : "") + stepName(r_.to[t][i]);
+  }
+
   void activate(size_t k, st::StmtList& out) {
     out.push_back(b_.assign(stepX(k), b_.boolLit(true)));
+    markStep(*out.back(), k);
     out.push_back(b_.assign(stepT(k), b_.timeLit(0)));
     out.push_back(b_.assign(b_.name(hiddenName("s", k, "_start")), b_.name("__sfc_now")));
     if (risingFlag_.count(k)) out.push_back(b_.assign(b_.name(hiddenName("s", k, "_new")), b_.boolLit(true)));
@@ -176,6 +198,7 @@ class Lowering {
       b_.at(chart_.transitions[t].loc);
       st::StmtList body;
       for (size_t k : r_.from[t]) deactivate(k, body);
+      if (!body.empty()) markTransition(*body.front(), t);
       out.push_back(b_.ifThen(b_.name(hiddenName("t", t)), std::move(body)));
     }
     for (size_t t : r_.priorityOrder) {

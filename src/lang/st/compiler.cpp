@@ -106,6 +106,7 @@ void addConfigCallers(std::vector<CompilationUnit>& units) {
           stmt->kind = StmtKind::Call;
           stmt->loc = p.loc;
           stmt->expr = std::move(call);
+          stmt->cover = CoverRole::Generated;  // the CONFIGURATION's call, not a statement written
           auto caller = std::make_unique<Pou>();
           caller->kind = PouKind::Program;
           caller->name = configCallerName(p.instanceName);
@@ -115,6 +116,16 @@ void addConfigCallers(std::vector<CompilationUnit>& units) {
           caller->body.push_back(std::move(stmt));
           unit.pous.push_back(std::move(caller));
         }
+}
+
+// The coverage counters (8 bytes each) go into the static image after everything else, and
+// every COVER's Bx, the probe's index so far, becomes its counter's address.
+void placeCoverageCounters(bc::Module& module, ImageBuilder& image) {
+  bc::CoverageTable& table = module.coverage;
+  if (table.probes.empty()) return;
+  table.counterAddress = image.allocate(table.counterBytes(), 8);
+  for (bc::Instr& ins : module.code)
+    if (ins.op == bc::Op::COVER) ins = bc::Instr::abx(bc::Op::COVER, 0, table.counterAddress + 8 * ins.bx());
 }
 
 }  // namespace
@@ -184,7 +195,7 @@ std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& input
     module->pous.push_back(info);
   }
   if (initPou) module->initPou = initPou->bcIndex;
-  CompileContext ctx{model, types, declarer, *module, image, diags};
+  CompileContext ctx{model, types, declarer, *module, image, diags, options.coverage};
   for (auto& p : model.pous) {
     if (!hasCode(*p)) continue;
     PouCompiler pc(ctx, *p);
@@ -196,6 +207,7 @@ std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& input
     return nullptr;
   }
   declarer.buildTemplates();
+  placeCoverageCounters(*module, image);
   for (auto& p : model.pous) {
     if (!hasCode(*p)) continue;
     module->pous[p->bcIndex].frameSize = p->frameSize;

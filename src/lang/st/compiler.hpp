@@ -32,6 +32,11 @@ struct CompileOptions {
   // Library mode (`virtcom check`, `export`): files holding only FUNCTIONs, FBs, types and
   // global variable lists compile (every POU is checked) instead of failing with E217.
   bool library = false;
+  // Code coverage (docs/coverage.md): a COVER probe at every statement of the user's POUs, at
+  // the entry of every IF/CASE arm (the implicit ELSE included) and at every SFC step activation
+  // and transition firing, counting in module.coverage's counters. Off, the code is exactly the
+  // code compiled without this option.
+  bool coverage = false;
 };
 
 // Compiles every file as one program (plus the standard library). All diagnostics go to `diags`

@@ -164,6 +164,11 @@ struct CaseBranch {
   SourceLocation loc;
 };
 
+// What a statement is to PLC code coverage (docs/coverage.md). The user's statements count by
+// line; those a lowering generated (an SFC's bookkeeping) do not, except the one that marks a
+// step's activation or a transition's firing, which counts under the element's name.
+enum class CoverRole : uint8_t { Source, Generated, StepActivated, TransitionFired };
+
 struct Stmt {
   StmtKind kind = StmtKind::Empty;
   SourceLocation loc;
@@ -174,6 +179,9 @@ struct Stmt {
   StmtList body;
   StmtList elseBody;
   bool hasElse = false;
+  CoverRole cover = CoverRole::Source;
+  std::string coverName;    // StepActivated, TransitionFired: the step's or transition's name
+  SourceLocation coverLoc;  // ... and where the chart declares it
 };
 
 // ---- Declarations -----------------------------------------------------------------------

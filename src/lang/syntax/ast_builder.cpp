@@ -15,6 +15,7 @@ StmtPtr AstBuilder::stmt(StmtKind kind) {
   s->kind = kind;
   s->loc = loc_;
   s->id = ++nextNodeId_;
+  s->cover = role_;
   return s;
 }
 

@@ -14,6 +14,9 @@ class AstBuilder {
  public:
   explicit AstBuilder(NodeId& nextNodeId) : nextNodeId_(nextNodeId) {}
   void at(SourceLocation loc) { loc_ = loc; }
+  // Statements built from now on are bookkeeping of a lowering, not code the user wrote: code
+  // coverage does not count them by line (CoverRole::Generated).
+  void generated(bool on) { role_ = on ? CoverRole::Generated : CoverRole::Source; }
 
   ExprPtr name(std::string_view text);
   ExprPtr member(std::string_view base, std::string_view field);  // base.field
@@ -50,6 +53,7 @@ class AstBuilder {
 
   NodeId& nextNodeId_;
   SourceLocation loc_;
+  CoverRole role_ = CoverRole::Source;
 };
 
 }  // namespace virtcom::st

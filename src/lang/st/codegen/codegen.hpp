@@ -17,6 +17,7 @@ struct CompileContext {
   bc::Module& module;
   ImageBuilder& image;
   Diagnostics& diags;
+  bool coverage = false;  // emit coverage probes (CompileOptions::coverage)
 };
 
 inline constexpr uint16_t kAbsolute = 0xffff;  // Place::base for absolute addresses
@@ -160,6 +161,13 @@ class PouCompiler {
   void jumpOut(const Stmt& s);
   uint16_t condition(const Expr& e);
 
+  // Coverage probes (codegen_coverage.cpp), emitted only while covering_.
+  bool coversPou() const;
+  void probe(CoverageKind kind, SourceLocation loc, uint16_t arm = 0, uint16_t arms = 0, std::string name = {});
+  void coverStatement(const Stmt& s);
+  // The number of arms of IF/CASE `s` whose entries are probed (implicit ELSE included), 0 if none are.
+  uint16_t probedArms(const Stmt& s, size_t explicitArms) const;
+
   // Expressions (codegen_expr.cpp)
   Value literal(const Expr& e, TypeId expected);
   Value unary(const Expr& e, TypeId expected);
@@ -228,6 +236,7 @@ class PouCompiler {
   uint32_t tempMax_ = 0;
   std::vector<Loop> loops_;
   std::vector<uint32_t> returns_;
+  bool covering_ = false;
 };
 
 // Helpers shared by the codegen files.

@@ -27,7 +27,9 @@ void PouCompiler::compile() {
     const StmtList frameInits = buildFrameInitCalls(model(), types(), pou_);
     statements(frameInits);
     edgeInputs();
+    covering_ = coversPou();
     statements(pou_.ast->body);
+    covering_ = false;
   }
   uint32_t end = here();
   for (uint32_t r : returns_) patchJump(r, end);
@@ -73,6 +75,7 @@ void PouCompiler::statement(const Stmt& s) {
   uint16_t mark = regMark();
   uint32_t tempMark = tempTop_;
   if (s.kind != StmtKind::Empty) ctx_.module.lines.push_back({here(), s.loc});
+  if (covering_) coverStatement(s);
   switch (s.kind) {
     case StmtKind::Assign:
     case StmtKind::SetAssign:
@@ -150,17 +153,23 @@ uint16_t PouCompiler::condition(const Expr& e) {
   return toReg(v);
 }
 
+// With coverage each arm starts with its probe; without ELSE the implicit one gets a probe too,
+// reached only when no condition held (the last arm then jumps over it).
 void PouCompiler::ifStatement(const Stmt& s) {
+  const uint16_t arms = probedArms(s, s.branches.size());
   std::vector<uint32_t> toEnd;
+  uint16_t arm = 0;
   for (const auto& branch : s.branches) {
     uint16_t mark = regMark();
     uint16_t c = condition(*branch.cond);
     uint32_t skip = emitJump(Op::JZ, c);
     freeRegs(mark);
+    if (arms) probe(CoverageKind::Branch, s.loc, arm++, arms);
     statements(branch.body);
-    if (&branch != &s.branches.back() || s.hasElse) toEnd.push_back(emitJump(Op::JMP, 0));
+    if (&branch != &s.branches.back() || s.hasElse || arms) toEnd.push_back(emitJump(Op::JMP, 0));
     patchJump(skip, here());
   }
+  if (arms) probe(CoverageKind::Branch, s.loc, arm, arms);
   if (s.hasElse) statements(s.elseBody);
   for (uint32_t j : toEnd) patchJump(j, here());
 }
@@ -188,6 +197,8 @@ void PouCompiler::caseStatement(const Stmt& s) {
     }
     return v.c.i;
   };
+  const uint16_t arms = probedArms(s, s.cases.size());
+  uint16_t arm = 0;
   std::vector<uint32_t> toEnd;
   for (const auto& branch : s.cases) {
     // One label: jump over the body unless it matches; several: jump into the body if any matches.
@@ -218,10 +229,12 @@ void PouCompiler::caseStatement(const Stmt& s) {
     }
     if (!single) toNext.push_back(emitJump(Op::JMP, 0));
     for (uint32_t j : toBody) patchJump(j, here());
+    if (arms) probe(CoverageKind::Branch, s.loc, arm++, arms);
     statements(branch.body);
-    if (&branch != &s.cases.back() || s.hasElse) toEnd.push_back(emitJump(Op::JMP, 0));
+    if (&branch != &s.cases.back() || s.hasElse || arms) toEnd.push_back(emitJump(Op::JMP, 0));
     for (uint32_t j : toNext) patchJump(j, here());
   }
+  if (arms) probe(CoverageKind::Branch, s.loc, arm, arms);
   if (s.hasElse) statements(s.elseBody);
   for (uint32_t j : toEnd) patchJump(j, here());
 }

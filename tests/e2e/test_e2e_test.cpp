@@ -1,5 +1,6 @@
 // End-to-end tests of `virtcom test` (docs/scenarios.md): the built binary runs the gearbox
-// cell's commissioning test plan (examples/gearbox-cell/tests) and the scenarios of
+// cell's commissioning test plan (examples/gearbox-cell/tests), the drives' fault handling
+// (examples/drives/tests) and the scenarios of
 // tests/e2e/data/scenarios/suite (one passing, a table with a failing row, one that cannot run),
 // and is checked on its exit status, its lines, the JUnit XML (validated by xmllint against
 // tests/e2e/data/scenarios/junit.xsd), the reports of failing cases, and on giving the same
@@ -56,6 +57,15 @@ TEST_F(TestCommand, GearboxCommissioningPlanPasses) {
   EXPECT_NE(out.find("collided in SharedTable"), std::string::npos) << out;
   EXPECT_NE(out.find("7 scenario(s): 5 passed, 0 failed, 2 failed as expected (xfail)"), std::string::npos) << out;
   expectValidJunit(path("plan.xml"));
+}
+
+TEST_F(TestCommand, DrivesFaultHandlingPlanPasses) {
+  std::string out;
+  ASSERT_EQ(test("examples/drives/tests --jobs 2", out), 0) << out;
+  for (const char* drive : {"g120", "g120_352", "pf525", "pf750"})
+    EXPECT_NE(out.find(std::string("PASS  fault recovered[drive=") + drive + "]"), std::string::npos) << drive << "\n" << out;
+  EXPECT_NE(out.find("PASS  comm loss in the backward phase"), std::string::npos) << out;
+  EXPECT_NE(out.find("6 scenario(s): 6 passed, 0 failed"), std::string::npos) << out;
 }
 
 TEST_F(TestCommand, FailuresGiveTheAssertionTimeAndValuesReportsAndExitStatus) {

@@ -35,6 +35,7 @@ const ErrorCase kErrors[] = {
     {"UnknownAssertion", "expect:\n  - {sometimes: MAIN.failed}\n", "test.yaml:3:5: error[C010]: an assertion is one of: at + that"},
     {"StepWithoutTime", "steps:\n  - {set: {MAIN.start: TRUE}}\n", "test.yaml:3:5: error[C010]: a step has either 'at: TIME' or 'when: CONDITION'"},
     {"UnknownDevice", "faults:\n  - {device: Clamb, error_code: 90}\n", "test.yaml:3:14: error[C010]: no device named 'Clamb' (the cell has: Clamp, PartSensor)"},
+    {"StuckOutputNotABit", "faults:\n  - {device: PartSensor, stuck_output: 2}\n", "test.yaml:3:5: error[C010]: 'stuck_output' must be 0 or 1 (or -1: not stuck)"},
     {"BadValue", "set: {MAIN.start: 7}\n", "test.yaml:2:19: error[C060]: 'MAIN.start': "},
     {"UnknownVariableInSet", "set: {MAIN.begin: TRUE}\n", "test.yaml:2:7: error[C060]: the PLC has no variable 'MAIN.begin'"},
     {"TimeWithoutUnit", "steps:\n  - {at: 2, set: {MAIN.start: TRUE}}\n", "test.yaml:3:10: error[C010]: 'at': '2' needs a unit"},

@@ -134,6 +134,16 @@ void detachSoftPlc(Cell& cell);
 std::unique_ptr<Cell> loadCell(const std::string& path, SourceManager& sources, Diagnostics& diags,
                                st::CompileOptions plcOptions = {});
 
+// The generic keys of a device's `faults:` entry (error_code, at_command, extra_delay,
+// done_stuck, stuck_output) as a plan; at_command defaults to `defaultAtCommand` when an
+// error_code is given (0: every command fails). Reports through `f`; shared by the cell file and
+// scenario files (docs/scenarios.md), which change a plan in the middle of a run.
+plant::FaultPlan readFaultPlan(ConfigReader& f, uint32_t defaultAtCommand);
+// A device's whole `faults:` entry into its plan, with its type's own keys (drives: `inject`,
+// `comm_loss`); rejects unknown keys. The caller marks keys of its own (a scenario's `device`)
+// read first.
+void readDeviceFaults(plant::Device& d, ConfigReader& f);
+
 // Parses "MAIN.count >= 3" against the module (also used by `--until`). Reports through `diags`.
 Condition parseCondition(const bc::Module& m, const std::string& text, SourceLocation loc, Diagnostics& diags);
 bool evaluate(const Condition& c, const uint8_t* memory);

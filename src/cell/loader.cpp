@@ -359,14 +359,7 @@ class Loader {
 
   void readFaults(plant::Device& d, const ConfigNode& node) {
     ConfigReader f(node, diags_, "'faults'");
-    plant::FaultPlan& p = d.faults();
-    p.errorCode = static_cast<int32_t>(f.optInt("error_code", 0));
-    p.errorAtCommand = static_cast<uint32_t>(f.optInt("at_command", p.errorCode ? 1 : 0));
-    p.extraDelayNs = static_cast<int64_t>(f.optQuantity("extra_delay", Dimension::Time, 0) * 1e9 + 0.5);
-    p.doneStuck = f.optBool("done_stuck", false);
-    p.stuckOutput = static_cast<int>(f.optInt("stuck_output", -1));
-    d.readFaults(f);
-    f.rejectUnknownKeys();
+    readDeviceFaults(d, f);
   }
 
   void bindPorts(Cell& cell, plant::Device& d, const ConfigNode* wiring, const ConfigNode& deviceNode) {
@@ -487,6 +480,23 @@ class Loader {
 };
 
 }  // namespace
+
+plant::FaultPlan readFaultPlan(ConfigReader& f, uint32_t defaultAtCommand) {
+  plant::FaultPlan p;
+  p.errorCode = static_cast<int32_t>(f.optInt("error_code", 0));
+  p.errorAtCommand = static_cast<uint32_t>(f.optInt("at_command", p.errorCode ? defaultAtCommand : 0));
+  p.extraDelayNs = static_cast<int64_t>(f.optQuantity("extra_delay", Dimension::Time, 0) * 1e9 + 0.5);
+  p.doneStuck = f.optBool("done_stuck", false);
+  p.stuckOutput = static_cast<int>(f.optInt("stuck_output", -1));
+  if (p.stuckOutput < -1 || p.stuckOutput > 1) f.error(f.node().loc(), "'stuck_output' must be 0 or 1 (or -1: not stuck)");
+  return p;
+}
+
+void readDeviceFaults(plant::Device& d, ConfigReader& f) {
+  d.faults() = readFaultPlan(f, 1);
+  d.readFaults(f);
+  f.rejectUnknownKeys();
+}
 
 std::unique_ptr<Cell> loadCell(const std::string& path, SourceManager& sources, Diagnostics& diags,
                                st::CompileOptions plcOptions) {

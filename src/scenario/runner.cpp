@@ -1,0 +1,108 @@
+// One scenario case, from its file to its verdict.
+#include "scenario/runner.hpp"
+
+#include <filesystem>
+
+#include "core/cell_diagnostic_codes.hpp"
+#include "core/clock.hpp"
+#include "scenario/bind.hpp"
+#include "scenario/checker.hpp"
+#include "scenario/scenario_file.hpp"
+#include "scenario/stimuli.hpp"
+
+namespace virtcom::scenario {
+
+const char* verdictName(Verdict v) {
+  switch (v) {
+    case Verdict::Pass: return "PASS";
+    case Verdict::Fail: return "FAIL";
+    case Verdict::Error: return "ERROR";
+    case Verdict::ExpectedFail: return "XFAIL";
+    case Verdict::UnexpectedPass: return "XPASS";
+  }
+  return "?";
+}
+
+bool verdictFails(Verdict v) { return v == Verdict::Fail || v == Verdict::Error || v == Verdict::UnexpectedPass; }
+
+namespace {
+
+// The scenario's cell and plan, or null with the diagnostics in `diags`.
+std::unique_ptr<cell::Cell> loadScenario(const CaseSpec& spec, SourceManager& sources, Diagnostics& diags, Plan& plan) {
+  ScenarioFile file;
+  if (!readScenarioFile(spec.file, sources, diags, file)) return nullptr;
+  ConfigNode root = spec.row < file.rows.size() ? substituteParameters(file.root, file.rows[spec.row], diags) : file.root;
+  if (diags.hasErrors()) return nullptr;
+  ConfigReader top(root, diags, "the scenario");
+  top.optString("name", "");
+  top.optString("description", "");
+  const std::string cellName = top.requireString("cell");
+  if (cellName.empty()) return nullptr;
+  const std::filesystem::path cellPath = (std::filesystem::path(spec.file).parent_path() / cellName).lexically_normal();
+  auto cell = cell::loadCell(cellPath.string(), sources, diags);
+  if (!cell) return nullptr;
+  if (!cell->module) {
+    diags.error(celldiag::C060, root.find("cell")->loc(), "the cell '" + cellName + "' has no soft PLC ('plc: sources'): scenarios drive the soft PLC");
+    return nullptr;
+  }
+  plan = bindScenario(top, *cell);
+  if (diags.hasErrors()) return nullptr;
+  return cell;
+}
+
+std::string renderFailure(const Failure& f, const Assertion& a, const SourceManager& sources) {
+  return sources.path(f.loc.fileId) + ":" + std::to_string(f.loc.line) + ": " + a.what + ": at " + formatSeconds(f.timeNs) + ": " +
+         f.message;
+}
+
+const Assertion& assertionAt(const Plan& plan, SourceLocation loc) {
+  for (const Assertion& a : plan.assertions)
+    if (a.loc.fileId == loc.fileId && a.loc.line == loc.line && a.loc.col == loc.col) return a;
+  return plan.assertions.front();
+}
+
+}  // namespace
+
+CaseResult runCase(const CaseSpec& spec, const CaseOptions& options) {
+  const int64_t startedNs = monotonicNowNs();
+  CaseResult result;
+  result.spec = spec;
+  SourceManager sources;
+  Diagnostics diags;
+  Plan plan;
+  auto cell = loadScenario(spec, sources, diags, plan);
+  if (!cell) {
+    diags.sortByLocation();
+    result.messages.push_back(diags.render(sources));
+    result.wallNs = monotonicNowNs() - startedNs;
+    return result;
+  }
+  Stimuli stimuli(plan, *cell);
+  Checker checker(plan, *cell);
+  sim::SimOptions o;
+  o.preset = [&stimuli](plc::Runtime& plc) { stimuli.preset(plc); };
+  if (!plan.steps.empty()) o.beforeScan = [&stimuli](plc::Runtime& plc) { stimuli.beforeScan(plc); };
+  o.traceSinks.push_back(&checker);
+  // A failed case's report shows every signal; a passing case keeps none (bounded memory).
+  o.keepAllChanges = options.keepFailedCell;
+  if (options.hooks.beforeRun) options.hooks.beforeRun(*cell, o);
+  {
+    sim::Simulation simulation(*cell, o);
+    checker.attach(&simulation.plc());
+    simulation.run();
+    if (options.hooks.afterRun) options.hooks.afterRun(simulation);
+  }
+  const Trace& trace = cell->trace;
+  result.virtualNs = trace.endNs;
+  result.runEnd = std::string(runEndName(trace.end)) + ": " + trace.endMessage;
+  for (const Failure& f : checker.failures()) result.messages.push_back(renderFailure(f, assertionAt(plan, f.loc), sources));
+  const bool failed = !result.messages.empty();
+  if (plan.xfail.empty()) result.verdict = failed ? Verdict::Fail : Verdict::Pass;
+  else result.verdict = failed ? Verdict::ExpectedFail : Verdict::UnexpectedPass;
+  if (result.verdict == Verdict::UnexpectedPass) result.messages.push_back("expected to fail (xfail: " + plan.xfail + "), but every assertion held");
+  if (options.keepFailedCell && verdictFails(result.verdict)) result.cell = std::move(cell);
+  result.wallNs = monotonicNowNs() - startedNs;
+  return result;
+}
+
+}  // namespace virtcom::scenario

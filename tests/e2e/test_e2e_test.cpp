@@ -1,0 +1,128 @@
+// End-to-end tests of `virtcom test` (docs/scenarios.md): the built binary runs the gearbox
+// cell's commissioning test plan (examples/gearbox-cell/tests), the drives' fault handling
+// (examples/drives/tests) and the scenarios of
+// tests/e2e/data/scenarios/suite (one passing, a table with a failing row, one that cannot run),
+// and is checked on its exit status, its lines, the JUnit XML (validated by xmllint against
+// tests/e2e/data/scenarios/junit.xsd), the reports of failing cases, and on giving the same
+// results with --jobs 1 and --jobs 2.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <regex>
+#include <string>
+
+#include "shell_command.hpp"
+#include "support/read_file.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using virtcom::e2e::shell;
+using virtcom::test::readFile;
+
+const std::string kExe = VIRTCOM_EXE;
+const std::string kSource = VIRTCOM_SOURCE_DIR;
+const std::string kSuite = "tests/e2e/data/scenarios/suite";
+const std::string kXsd = kSource + "/tests/e2e/data/scenarios/junit.xsd";
+
+class TestCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("virtcom-test-e2e-" + std::to_string(getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  // Runs `virtcom test ARGS` in the source tree (short relative paths in the output).
+  int test(const std::string& args, std::string& out) { return shell("cd " + kSource + " && " + kExe + " test " + args, out); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  void expectValidJunit(const std::string& file) {
+    std::string out;
+    EXPECT_EQ(shell("xmllint --noout --schema " + kXsd + " " + file, out), 0) << out << readFile(file);
+  }
+  fs::path dir_;
+};
+
+TEST_F(TestCommand, GearboxCommissioningPlanPasses) {
+  std::string out;
+  ASSERT_EQ(test("examples/gearbox-cell/tests --jobs 2 --junit " + path("plan.xml"), out), 0) << out;
+  EXPECT_NE(out.find("PASS  cycle time[sequence=1,min=99.75 s,max=100.75 s,robot2=15.5 kJ]"), std::string::npos) << out;
+  EXPECT_NE(out.find("PASS  cycle time[sequence=3,"), std::string::npos) << out;
+  EXPECT_NE(out.find("PASS  press error mid-cycle"), std::string::npos) << out;
+  EXPECT_NE(out.find("PASS  screwer without a stud"), std::string::npos) << out;
+  EXPECT_NE(out.find("XFAIL  Robot2 done never arrives"), std::string::npos) << out;
+  EXPECT_NE(out.find("XFAIL  sequence 4 collides"), std::string::npos) << out;
+  EXPECT_NE(out.find("collided in SharedTable"), std::string::npos) << out;
+  EXPECT_NE(out.find("7 scenario(s): 5 passed, 0 failed, 2 failed as expected (xfail)"), std::string::npos) << out;
+  expectValidJunit(path("plan.xml"));
+}
+
+TEST_F(TestCommand, DrivesFaultHandlingPlanPasses) {
+  std::string out;
+  ASSERT_EQ(test("examples/drives/tests --jobs 2", out), 0) << out;
+  for (const char* drive : {"g120", "g120_352", "pf525", "pf750"})
+    EXPECT_NE(out.find(std::string("PASS  fault recovered[drive=") + drive + "]"), std::string::npos) << drive << "\n" << out;
+  EXPECT_NE(out.find("PASS  comm loss in the backward phase"), std::string::npos) << out;
+  EXPECT_NE(out.find("6 scenario(s): 6 passed, 0 failed"), std::string::npos) << out;
+}
+
+TEST_F(TestCommand, FailuresGiveTheAssertionTimeAndValuesReportsAndExitStatus) {
+  std::string out;
+  ASSERT_EQ(test(kSuite + " --jobs 2 --junit " + path("suite.xml") + " --report-dir " + path("reports"), out), 5) << out;
+  EXPECT_NE(out.find("ERROR  broken scenario"), std::string::npos) << out;
+  EXPECT_NE(out.find("broken.yaml:5:32: error[C061]: condition 'MAIN.parts = 1 AND MAIN.stat = 3'"), std::string::npos) << out;
+  EXPECT_NE(out.find("PASS  clamp passes"), std::string::npos) << out;
+  EXPECT_NE(out.find("PASS  clamp too slow[at=0.5 s,state=1]"), std::string::npos) << out;
+  EXPECT_NE(out.find("FAIL  clamp too slow[at=0.8 s,state=2]"), std::string::npos) << out;
+  EXPECT_NE(out.find("clamp_too_slow.yaml:10: at 0.8 s that MAIN.state = 2: at 0.8 s: 'MAIN.state = 2' is false (MAIN.state = 1)"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("4 scenario(s): 2 passed, 2 failed"), std::string::npos) << out;
+  expectValidJunit(path("suite.xml"));
+  const std::string xml = readFile(path("suite.xml"));
+  EXPECT_NE(xml.find("tests=\"4\" failures=\"1\" errors=\"1\" skipped=\"0\""), std::string::npos) << xml;
+  // The failing cases' reports, the passing ones' not.
+  EXPECT_TRUE(fs::exists(path("reports/clamp_too_slow_at_0.8_s_state_2_.html")));
+  const std::string vcd = readFile(path("reports/clamp_too_slow_at_0.8_s_state_2_.vcd"));
+  EXPECT_NE(vcd.find("$scope module Clamp $end"), std::string::npos) << vcd;
+  EXPECT_NE(vcd.find(" busy $end"), std::string::npos) << vcd;
+  EXPECT_FALSE(fs::exists(path("reports/clamp_passes.html")));
+}
+
+TEST_F(TestCommand, ResultsDoNotDependOnJobs) {
+  std::string one, two;
+  test(kSuite + " examples/gearbox-cell/tests --jobs 1 --junit " + path("one.xml") + " --report-dir " + path("one"), one);
+  test(kSuite + " examples/gearbox-cell/tests --jobs 2 --junit " + path("two.xml") + " --report-dir " + path("two"), two);
+  EXPECT_EQ(one, two);
+  const std::regex time(" time=\"[0-9.]+\"");
+  EXPECT_EQ(std::regex_replace(readFile(path("one.xml")), time, ""), std::regex_replace(readFile(path("two.xml")), time, ""));
+  size_t reports = 0;
+  for (const auto& entry : fs::directory_iterator(path("one"))) {
+    EXPECT_EQ(readFile(entry.path().string()), readFile(path("two/" + entry.path().filename().string()))) << entry.path();
+    ++reports;
+  }
+  EXPECT_EQ(reports, 2u);  // the failing row's HTML and VCD
+}
+
+TEST_F(TestCommand, FilterSelectsCasesByName) {
+  std::string out;
+  ASSERT_EQ(test(kSuite + " --filter 'clamp too*state=1]'", out), 0) << out;
+  EXPECT_NE(out.find("1 scenario(s): 1 passed, 0 failed"), std::string::npos) << out;
+  out.clear();
+  EXPECT_EQ(test(kSuite + " --filter 'nothing*'", out), 64) << out;
+  EXPECT_NE(out.find("error: no scenario found matching --filter 'nothing*'"), std::string::npos) << out;
+  out.clear();
+  EXPECT_EQ(test("no/such/dir", out), 64) << out;
+  EXPECT_NE(out.find("'no/such/dir' is neither a scenario file nor a directory"), std::string::npos) << out;
+}
+
+TEST_F(TestCommand, HelpNamesEveryOption) {
+  std::string out;
+  ASSERT_EQ(test("--help", out), 0) << out;
+  for (const char* option : {"--junit", "--jobs", "--filter", "--report-dir", "--verbose", "docs/scenarios.md"})
+    EXPECT_NE(out.find(option), std::string::npos) << option << "\n" << out;
+}
+
+}  // namespace

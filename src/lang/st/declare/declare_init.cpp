@@ -540,6 +540,14 @@ void Declarer::applyInit(TypeId type, uint8_t* dst, const Expr& init, const PouS
     }
     return;
   }
+  if (v->kind == ConstValue::Kind::String && types_.isChar(type)) {
+    v = characterConstant(*v, d.elem);  // c : CHAR := 'a';
+    if (!v) {
+      diags_.error(diag::E116, init.loc, "a " + d.name + " starts from a literal of exactly one character (" +
+                                             (d.elem == ElemType::Wchar ? "\"a\"" : "'a'") + ")");
+      return;
+    }
+  }
   if (v->kind == ConstValue::Kind::String) {
     diags_.error(diag::E116, init.loc, "a string cannot initialise a " + d.name);
     return;

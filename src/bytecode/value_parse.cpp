@@ -153,18 +153,26 @@ Error parseTime(std::string_view s, ElemType t, int64_t& out) {
 }
 
 LiteralFamily dateFamily(ElemType t) {
-  return t == ElemType::Date ? LiteralFamily::Date : t == ElemType::Tod ? LiteralFamily::Tod : LiteralFamily::Dt;
+  switch (t) {
+    case ElemType::Date: return LiteralFamily::Date;
+    case ElemType::Tod: return LiteralFamily::Tod;
+    case ElemType::Ldate: return LiteralFamily::Ldate;
+    case ElemType::Ltod: return LiteralFamily::Ltod;
+    case ElemType::Ldt: return LiteralFamily::Ldt;
+    default: return LiteralFamily::Dt;
+  }
 }
 
-// D#2024-01-02, TOD#12:30:00.5, DT#2024-01-02-12:30:00 (bodies as core/iec_literal reads them),
-// or the raw 32-bit number.
+// D#2024-01-02, TOD#12:30:00.5, DT#2024-01-02-12:30:00, LDT#... (bodies as core/iec_literal
+// reads them), or the raw number (32 bits, 64 for the long types).
 Error parseDateLike(std::string_view s, ElemType t, uint64_t& out) {
   const std::string_view original = s;
   const LiteralFamily family = dateFamily(t);
-  if (!stripFamilyPrefix(s, family)) return parseRangedInteger(s, elemTypeInfo(t).name, false, 32, out);
+  const bool isLong = elemTypeInfo(t).sizeBytes == 8;
+  if (!stripFamilyPrefix(s, family)) return parseRangedInteger(s, elemTypeInfo(t).name, isLong, isLong ? 64 : 32, out);
   int64_t v = 0;
   LiteralError why;
-  if (!decodeLiteralBody(s, family, v, why) || v < 0 || v > UINT32_MAX)
+  if (!decodeLiteralBody(s, family, v, why) || v < 0 || (!isLong && v > UINT32_MAX))
     return "invalid " + std::string(elemTypeInfo(t).name) + " literal '" + std::string(original) + "'";
   out = static_cast<uint64_t>(v);
   return {};
@@ -243,6 +251,26 @@ void writeWstring(const TypeDesc& t, const std::string& text, uint8_t* p) {
   std::memset(p + 2 * n, 0, 2 * (cap + 1 - n));
 }
 
+// CHAR from 'a' (or '$41'), WCHAR from "a" (or "$00E4"): exactly one character.
+Error writeChar(ElemType t, std::string_view s, uint8_t* p) {
+  const bool wide = t == ElemType::Wchar;
+  std::string text;
+  if (Error e = unquote(s, wide ? '"' : '\'', text); !e.empty()) return e;
+  const std::string oneCharacter = wide ? "a WCHAR is one character, as \"a\"" : "a CHAR is one character, as 'a'";
+  if (!wide) {
+    if (text.size() != 1) return oneCharacter + ", found " + std::string(s);
+    *p = static_cast<uint8_t>(text[0]);
+    return {};
+  }
+  TypeDesc twoUnits;
+  twoUnits.stringLength = 2;
+  uint8_t units[6] = {};
+  writeWstring(twoUnits, text, units);
+  if (text.empty() || units[2] != 0 || units[3] != 0) return oneCharacter + ", found " + std::string(s);
+  std::memcpy(p, units, 2);
+  return {};
+}
+
 Error writeElementary(const TypeDesc& t, std::string_view s, uint8_t* p) {
   const ElemTypeInfo& info = elemTypeInfo(t.elem);
   switch (info.kind) {
@@ -282,9 +310,10 @@ Error writeElementary(const TypeDesc& t, std::string_view s, uint8_t* p) {
     case ElemKind::Date: {
       uint64_t v = 0;
       if (Error e = parseDateLike(s, t.elem, v); !e.empty()) return e;
-      storeLe(p, v, 4);
+      storeLe(p, v, info.sizeBytes);
       return {};
     }
+    case ElemKind::Char: return writeChar(t.elem, s, p);
     case ElemKind::Text: break;
   }
   return "cannot write " + t.name + " from text";

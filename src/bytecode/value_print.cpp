@@ -81,6 +81,15 @@ class Formatter {
       case ElemType::Date: out_ += formatDate(static_cast<int64_t>(loadUnsigned(p, 4))); return;
       case ElemType::Tod: out_ += formatTimeOfDay(static_cast<int64_t>(loadUnsigned(p, 4))); return;
       case ElemType::Dt: out_ += formatDateAndTime(static_cast<int64_t>(loadUnsigned(p, 4))); return;
+      case ElemType::Ldate: out_ += formatLdate(loadSigned(p, 8)); return;
+      case ElemType::Ltod: out_ += formatLtod(loadSigned(p, 8)); return;
+      case ElemType::Ldt: out_ += formatLdt(loadSigned(p, 8)); return;
+      case ElemType::Char: out_ += quoteString(std::string_view(reinterpret_cast<const char*>(p), 1)); return;
+      case ElemType::Wchar:
+        out_ += '"';
+        wideChar(static_cast<unsigned>(loadUnsigned(p, 2)));
+        out_ += '"';
+        return;
       case ElemType::String:
       case ElemType::Wstring: return text(t, p);
       default: break;

@@ -125,11 +125,19 @@ bool decodeDate(std::string_view body, int64_t& seconds, LiteralError& why) {
   return true;
 }
 
-// hh:mm[:ss[.fff]] to milliseconds since midnight.
-bool decodeTimeOfDay(std::string_view body, int64_t& ms, LiteralError& why) {
+namespace {
+
+// 64-bit nanoseconds since 1970 end in April 2262.
+bool failBeyondLdt(LiteralError& why) {
+  why = {LiteralError::Kind::TooLarge, "beyond LDT#2262-04-11-23:47:16.854775807, the last of 64-bit nanoseconds", {}};
+  return false;
+}
+
+// hh:mm[:ss[.fffffffff]] to nanoseconds since midnight (digits beyond 1 ns are ignored).
+bool decodeClockNs(std::string_view body, int64_t& ns, LiteralError& why) {
   std::string_view parts[3];
   size_t n = splitParts(body, ':', parts, 3);
-  uint64_t h = 0, m = 0, s = 0, fracMs = 0;
+  uint64_t h = 0, m = 0, s = 0, fracNs = 0;
   if (n < 2 || n > 3 || !parseDecimal(parts[0], h) || !parseDecimal(parts[1], m)) return fail(why, "expected hh:mm:ss");
   if (n == 3) {
     std::string_view secPart = parts[2];
@@ -137,29 +145,48 @@ bool decodeTimeOfDay(std::string_view body, int64_t& ms, LiteralError& why) {
     if (!parseDecimal(secPart.substr(0, dot), s)) return fail(why, "expected hh:mm:ss");
     if (dot != std::string_view::npos) {
       std::string_view frac = secPart.substr(dot + 1);
-      uint64_t scale = 100;
+      uint64_t scale = 100'000'000;
       for (char c : frac) {
         if (!isAsciiDigit(c)) return fail(why, "malformed fraction of a second");
-        fracMs += static_cast<uint64_t>(c - '0') * scale;
+        fracNs += static_cast<uint64_t>(c - '0') * scale;
         scale /= 10;
       }
     }
   }
   if (h > 23 || m > 59 || s > 59) return fail(why, "no such time of day");
-  ms = static_cast<int64_t>(((h * 60 + m) * 60 + s) * 1000 + fracMs);
+  ns = static_cast<int64_t>(((h * 60 + m) * 60 + s) * 1'000'000'000 + fracNs);
+  return true;
+}
+
+// yyyy-mm-dd-hh:mm:ss[.f] to nanoseconds since 1970.
+bool decodeDateAndTimeNs(std::string_view body, int64_t& ns, LiteralError& why) {
+  size_t dash = std::string_view::npos, count = 0;
+  for (size_t i = 0; i < body.size() && count < 3; ++i)
+    if (body[i] == '-' && ++count == 3) dash = i;
+  if (dash == std::string_view::npos) return fail(why, "expected yyyy-mm-dd-hh:mm:ss");
+  int64_t daySeconds = 0, clock = 0;
+  if (!decodeDate(body.substr(0, dash), daySeconds, why) || !decodeClockNs(body.substr(dash + 1), clock, why))
+    return false;
+  if (__builtin_mul_overflow(daySeconds, int64_t{1'000'000'000}, &ns) || __builtin_add_overflow(ns, clock, &ns))
+    return failBeyondLdt(why);
+  return true;
+}
+
+}  // namespace
+
+// hh:mm[:ss[.fff]] to milliseconds since midnight.
+bool decodeTimeOfDay(std::string_view body, int64_t& ms, LiteralError& why) {
+  int64_t ns = 0;
+  if (!decodeClockNs(body, ns, why)) return false;
+  ms = ns / 1'000'000;
   return true;
 }
 
 // yyyy-mm-dd-hh:mm:ss[.f] to seconds since 1970 (the fraction is dropped: DT counts seconds).
 bool decodeDateAndTime(std::string_view body, int64_t& seconds, LiteralError& why) {
-  size_t dash = std::string_view::npos, count = 0;
-  for (size_t i = 0; i < body.size() && count < 3; ++i)
-    if (body[i] == '-' && ++count == 3) dash = i;
-  if (dash == std::string_view::npos) return fail(why, "expected yyyy-mm-dd-hh:mm:ss");
-  int64_t daySeconds = 0, ms = 0;
-  if (!decodeDate(body.substr(0, dash), daySeconds, why) || !decodeTimeOfDay(body.substr(dash + 1), ms, why))
-    return false;
-  seconds = daySeconds + ms / 1000;
+  int64_t ns = 0;
+  if (!decodeDateAndTimeNs(body, ns, why)) return false;
+  seconds = ns / 1'000'000'000;
   return true;
 }
 
@@ -177,6 +204,12 @@ bool decodeLiteralBody(std::string_view body, LiteralFamily family, int64_t& val
     case LiteralFamily::Date: return decodeDate(body, value, why);
     case LiteralFamily::Tod: return decodeTimeOfDay(body, value, why);
     case LiteralFamily::Dt: return decodeDateAndTime(body, value, why);
+    case LiteralFamily::Ldate:
+      if (!decodeDate(body, value, why)) return false;
+      if (__builtin_mul_overflow(value, int64_t{1'000'000'000}, &value)) return failBeyondLdt(why);
+      return true;
+    case LiteralFamily::Ltod: return decodeClockNs(body, value, why);
+    case LiteralFamily::Ldt: return decodeDateAndTimeNs(body, value, why);
     case LiteralFamily::None: break;
   }
   return fail(why, "not a time or date literal");
@@ -191,7 +224,9 @@ LiteralFamily literalFamily(std::string_view prefix) {
       {"T", LiteralFamily::Time},  {"TIME", LiteralFamily::Time},         {"LT", LiteralFamily::Ltime},
       {"LTIME", LiteralFamily::Ltime}, {"D", LiteralFamily::Date},         {"DATE", LiteralFamily::Date},
       {"TOD", LiteralFamily::Tod}, {"TIME_OF_DAY", LiteralFamily::Tod},   {"DT", LiteralFamily::Dt},
-      {"DATE_AND_TIME", LiteralFamily::Dt},
+      {"DATE_AND_TIME", LiteralFamily::Dt}, {"LDATE", LiteralFamily::Ldate}, {"LD", LiteralFamily::Ldate},
+      {"LTOD", LiteralFamily::Ltod}, {"LTIME_OF_DAY", LiteralFamily::Ltod}, {"LDT", LiteralFamily::Ldt},
+      {"LDATE_AND_TIME", LiteralFamily::Ldt},
   };
   for (const Entry& e : kEntries)
     if (iequalsAscii(e.prefix, prefix)) return e.family;

@@ -22,10 +22,11 @@ struct LiteralError {
   std::string_view quoted;
 };
 
-enum class LiteralFamily { None, Time, Ltime, Date, Tod, Dt };
+enum class LiteralFamily { None, Time, Ltime, Date, Tod, Dt, Ldate, Ltod, Ldt };
 
 // The family of a literal prefix: T, TIME, LT, LTIME, D, DATE, TOD, TIME_OF_DAY, DT,
-// DATE_AND_TIME (any case); None for others (INT, a type name).
+// DATE_AND_TIME, LDATE, LD, LTOD, LTIME_OF_DAY, LDT, LDATE_AND_TIME (any case); None for others
+// (INT, a type name).
 LiteralFamily literalFamily(std::string_view prefix);
 
 // `1h2m3s4ms`, `-1.5s`, `1_000ms`: the magnitude in nanoseconds (must fit in int64) and sign.
@@ -37,7 +38,8 @@ bool decodeTimeOfDay(std::string_view body, int64_t& ms, LiteralError& why);
 // yyyy-mm-dd-hh:mm:ss[.f] to seconds since 1970 (the fraction is dropped: DT counts seconds).
 bool decodeDateAndTime(std::string_view body, int64_t& seconds, LiteralError& why);
 // Any body of `family` to its value: TIME (truncated toward zero) and TOD in milliseconds,
-// LTIME in nanoseconds, DATE and DT in seconds since 1970. Refuses LiteralFamily::None.
+// LTIME in nanoseconds, DATE and DT in seconds since 1970, LDATE and LDT in nanoseconds since
+// 1970, LTOD in nanoseconds since midnight (fractions down to 1 ns). Refuses LiteralFamily::None.
 bool decodeLiteralBody(std::string_view body, LiteralFamily family, int64_t& value, LiteralError& why);
 
 // Digits of `base` (2..36, letters in either case), underscores ignored anywhere; false if

@@ -11,6 +11,8 @@ namespace virtcom {
 bool elemTypeByName(std::string_view name, ElemType& out) {
   if (iequalsAscii(name, "TOD")) { out = ElemType::Tod; return true; }
   if (iequalsAscii(name, "DT")) { out = ElemType::Dt; return true; }
+  if (iequalsAscii(name, "LTOD")) { out = ElemType::Ltod; return true; }
+  if (iequalsAscii(name, "LDT")) { out = ElemType::Ldt; return true; }
   for (size_t i = 0; i < std::size(kElemTypeInfo); ++i) {
     if (iequalsAscii(name, kElemTypeInfo[i].name)) {
       out = static_cast<ElemType>(i);
@@ -27,6 +29,32 @@ bool isIntegerKind(ElemKind k) {
 uint32_t bitWidth(ElemType t) {
   if (t == ElemType::Bool) return 1;
   return elemTypeInfo(t).sizeBytes * 8;
+}
+
+int64_t timeUnitNs(ElemType t) {
+  switch (t) {
+    case ElemType::Time:
+    case ElemType::Tod: return 1'000'000;
+    case ElemType::Date:
+    case ElemType::Dt: return 1'000'000'000;
+    case ElemType::Ltime:
+    case ElemType::Ldate:
+    case ElemType::Ltod:
+    case ElemType::Ldt: return 1;
+    default: return 0;
+  }
+}
+
+DatePart datePart(ElemType t) {
+  switch (t) {
+    case ElemType::Date:
+    case ElemType::Ldate: return DatePart::Day;
+    case ElemType::Tod:
+    case ElemType::Ltod: return DatePart::Clock;
+    case ElemType::Dt:
+    case ElemType::Ldt: return DatePart::Both;
+    default: return DatePart::None;
+  }
 }
 
 namespace {
@@ -124,18 +152,21 @@ static void addDate(TextBuf& out, int64_t seconds) {
   out.addNumber(d, 2);
 }
 
-// A TOD beyond a day (it is a 32-bit count of milliseconds) shows its time within the day.
-static void addClock(TextBuf& out, int64_t ms) {
-  int64_t msOfDay = ((ms % 86400000) + 86400000) % 86400000;
-  int64_t s = msOfDay / 1000;
+constexpr int64_t kNsPerDay = 86'400'000'000'000;
+
+// A TOD beyond a day (it is a 32-bit count of milliseconds) shows its time within the day;
+// the fraction of a second has as many digits as it needs (none, up to 9 for LTOD).
+static void addClock(TextBuf& out, int64_t ns) {
+  int64_t nsOfDay = ((ns % kNsPerDay) + kNsPerDay) % kNsPerDay;
+  int64_t s = nsOfDay / 1'000'000'000;
   out.addNumber(static_cast<uint64_t>(s / 3600), 2);
   out.add(":");
   out.addNumber(static_cast<uint64_t>((s / 60) % 60), 2);
   out.add(":");
   out.addNumber(static_cast<uint64_t>(s % 60), 2);
-  if (int64_t frac = msOfDay % 1000) {
+  if (int64_t frac = nsOfDay % 1'000'000'000) {
     out.add(".");
-    out.addNumber(static_cast<uint64_t>(frac), 3);
+    out.addNumber(static_cast<uint64_t>(frac), 9);
     while (out.p[out.n - 1] == '0') --out.n;
   }
 }
@@ -150,7 +181,7 @@ size_t formatDateInto(char* buf, int64_t seconds) {
 size_t formatTimeOfDayInto(char* buf, int64_t ms) {
   TextBuf out{buf};
   out.add("TOD#");
-  addClock(out, ms);
+  addClock(out, ms * 1'000'000);
   return out.n;
 }
 
@@ -159,7 +190,33 @@ size_t formatDateAndTimeInto(char* buf, int64_t seconds) {
   out.add("DT#");
   addDate(out, seconds);
   out.add("-");
-  addClock(out, (seconds % 86400) * 1000);
+  addClock(out, (seconds % 86400) * 1'000'000'000);
+  return out.n;
+}
+
+// The long date types count nanoseconds; their dates are the floor of the day.
+static int64_t floorSeconds(int64_t ns) { return ns / 1'000'000'000 - (ns % 1'000'000'000 < 0 ? 1 : 0); }
+
+size_t formatLdateInto(char* buf, int64_t ns) {
+  TextBuf out{buf};
+  out.add("LDATE#");
+  addDate(out, floorSeconds(ns));
+  return out.n;
+}
+
+size_t formatLtodInto(char* buf, int64_t ns) {
+  TextBuf out{buf};
+  out.add("LTOD#");
+  addClock(out, ns);
+  return out.n;
+}
+
+size_t formatLdtInto(char* buf, int64_t ns) {
+  TextBuf out{buf};
+  out.add("LDT#");
+  addDate(out, floorSeconds(ns));
+  out.add("-");
+  addClock(out, ns);
   return out.n;
 }
 
@@ -184,6 +241,9 @@ size_t formatLrealInto(char* buf, double v) { return formatFloatInto(buf, v); }
 std::string formatDate(int64_t seconds) { return asString(formatDateInto, seconds); }
 std::string formatTimeOfDay(int64_t ms) { return asString(formatTimeOfDayInto, ms); }
 std::string formatDateAndTime(int64_t seconds) { return asString(formatDateAndTimeInto, seconds); }
+std::string formatLdate(int64_t ns) { return asString(formatLdateInto, ns); }
+std::string formatLtod(int64_t ns) { return asString(formatLtodInto, ns); }
+std::string formatLdt(int64_t ns) { return asString(formatLdtInto, ns); }
 std::string formatReal(float v) { return asString(formatRealInto, v); }
 std::string formatLreal(double v) { return asString(formatLrealInto, v); }
 

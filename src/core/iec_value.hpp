@@ -7,7 +7,7 @@
 
 namespace virtcom {
 
-enum class ElemKind : uint8_t { Bool, Bits, Signed, Unsigned, Float, Duration, Date, Text };
+enum class ElemKind : uint8_t { Bool, Bits, Signed, Unsigned, Float, Duration, Date, Text, Char };
 
 enum class ElemType : uint8_t {
 #define X(e, name, size, kind) e,
@@ -28,15 +28,25 @@ inline constexpr ElemTypeInfo kElemTypeInfo[] = {
 #undef X
 };
 inline const ElemTypeInfo& elemTypeInfo(ElemType t) { return kElemTypeInfo[static_cast<size_t>(t)]; }
-// Looks up a type keyword (case-insensitive), accepting the aliases TOD and DT. False if unknown.
+// Looks up a type keyword (case-insensitive), accepting the aliases TOD, DT, LTOD and LDT.
+// False if unknown.
 bool elemTypeByName(std::string_view name, ElemType& out);
 
 bool isIntegerKind(ElemKind k);  // Bits, Signed, Unsigned
 inline bool isInteger(ElemType t) { return isIntegerKind(elemTypeInfo(t).kind); }
 inline bool isSignedInt(ElemType t) { return elemTypeInfo(t).kind == ElemKind::Signed; }
+// Held as an unsigned number: bit strings, unsigned integers, CHAR/WCHAR (their code).
+inline bool isZeroExtendedKind(ElemKind k) { return k == ElemKind::Bits || k == ElemKind::Unsigned || k == ElemKind::Char; }
 inline bool isFloat(ElemType t) { return elemTypeInfo(t).kind == ElemKind::Float; }
 // Number of value bits of an integer or bit-string type (BOOL: 1).
 uint32_t bitWidth(ElemType t);
+// Nanoseconds per stored unit of a duration, date or time of day (TIME 1e6, DT 1e9, LDT 1);
+// 0 for every other type. Conversions and date arithmetic scale by it.
+int64_t timeUnitNs(ElemType t);
+// Which part of a point in time a date type holds: DATE/LDATE the day, TOD/LTOD the clock,
+// DT/LDT both; None for the rest.
+enum class DatePart : uint8_t { None, Day, Clock, Both };
+DatePart datePart(ElemType t);
 
 // IEC literal forms, as `virtcom exec --print` shows values.
 std::string formatTimeMs(int64_t ms);        // T#1s500ms, T#0ms, T#-2s
@@ -44,6 +54,9 @@ std::string formatLtimeNs(int64_t ns);       // LTIME#1s5ns
 std::string formatDate(int64_t secondsSince1970);      // D#2024-01-02
 std::string formatTimeOfDay(int64_t msSinceMidnight);  // TOD#12:30:00.5
 std::string formatDateAndTime(int64_t secondsSince1970);  // DT#2024-01-02-12:30:00
+std::string formatLdate(int64_t nsSince1970);     // LDATE#2024-01-02
+std::string formatLtod(int64_t nsSinceMidnight);  // LTOD#12:30:00.000000005
+std::string formatLdt(int64_t nsSince1970);       // LDT#2024-01-02-12:30:00.5
 std::string formatReal(float v);    // shortest round-trip form with a decimal point: 1.5, 2.0, 1E+20
 std::string formatLreal(double v);
 // The same texts written into `buf` (at least kIecTextMax bytes) without allocating, for the
@@ -54,6 +67,9 @@ size_t formatLtimeNsInto(char* buf, int64_t ns);
 size_t formatDateInto(char* buf, int64_t secondsSince1970);
 size_t formatTimeOfDayInto(char* buf, int64_t msSinceMidnight);
 size_t formatDateAndTimeInto(char* buf, int64_t secondsSince1970);
+size_t formatLdateInto(char* buf, int64_t nsSince1970);
+size_t formatLtodInto(char* buf, int64_t nsSinceMidnight);
+size_t formatLdtInto(char* buf, int64_t nsSince1970);
 size_t formatRealInto(char* buf, float v);
 size_t formatLrealInto(char* buf, double v);
 // Quotes a STRING value with IEC $-escapes: 'it$'s'.

@@ -13,7 +13,7 @@ inline double signalNumber(ElemType type, uint64_t raw) {
   if (type == ElemType::Bool) return raw != 0 ? 1.0 : 0.0;
   if (isFloat(type)) return std::bit_cast<double>(raw);
   ElemKind kind = elemTypeInfo(type).kind;
-  if (kind == ElemKind::Unsigned || kind == ElemKind::Bits) return static_cast<double>(raw);
+  if (isZeroExtendedKind(kind)) return static_cast<double>(raw);
   return static_cast<double>(static_cast<int64_t>(raw));
 }
 

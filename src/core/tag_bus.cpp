@@ -15,7 +15,7 @@ TagId TagBus::add(std::string name, ElemType type) {
 double TagBus::getNumber(TagId id) const {
   ElemType t = types_[id];
   if (isFloat(t)) return getReal(id);
-  if (elemTypeInfo(t).kind == ElemKind::Unsigned || elemTypeInfo(t).kind == ElemKind::Bits)
+  if (isZeroExtendedKind(elemTypeInfo(t).kind))
     return static_cast<double>(values_[id]);
   return static_cast<double>(getInt(id));
 }

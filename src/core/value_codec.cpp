@@ -7,10 +7,10 @@ namespace virtcom {
 
 int64_t loadInteger(const uint8_t* p, ElemType t) {
   switch (t) {
-    case ElemType::Bool: case ElemType::Byte: case ElemType::Usint: return *p;
+    case ElemType::Bool: case ElemType::Byte: case ElemType::Usint: case ElemType::Char: return *p;
     case ElemType::Sint: return static_cast<int8_t>(*p);
     case ElemType::Int: { int16_t v; std::memcpy(&v, p, 2); return v; }
-    case ElemType::Word: case ElemType::Uint: { uint16_t v; std::memcpy(&v, p, 2); return v; }
+    case ElemType::Word: case ElemType::Uint: case ElemType::Wchar: { uint16_t v; std::memcpy(&v, p, 2); return v; }
     case ElemType::Dint: case ElemType::Time: { int32_t v; std::memcpy(&v, p, 4); return v; }
     case ElemType::Dword: case ElemType::Udint: case ElemType::Date: case ElemType::Tod: case ElemType::Dt: {
       uint32_t v; std::memcpy(&v, p, 4); return v;

@@ -191,7 +191,7 @@ std::string signalText(ElemType type, uint64_t raw) {
   if (type == ElemType::Bool) return raw != 0 ? "1" : "0";
   if (isFloat(type)) return formatShortest(std::bit_cast<double>(raw));
   ElemKind kind = elemTypeInfo(type).kind;
-  if (kind == ElemKind::Unsigned || kind == ElemKind::Bits) return std::to_string(raw);
+  if (isZeroExtendedKind(kind)) return std::to_string(raw);
   if (kind == ElemKind::Text) return {};
   return std::to_string(static_cast<int64_t>(raw));
 }

@@ -17,7 +17,8 @@ VcdKind vcdKind(ElemType t) {
   if (isFloat(t)) return VcdKind::Real;
   switch (elemTypeInfo(t).kind) {
     case ElemKind::Bits:
-    case ElemKind::Unsigned: return VcdKind::Vector;
+    case ElemKind::Unsigned:
+    case ElemKind::Char: return VcdKind::Vector;
     case ElemKind::Signed:
     case ElemKind::Duration:
     case ElemKind::Date: return VcdKind::Integer;

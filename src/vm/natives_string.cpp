@@ -382,4 +382,38 @@ FaultKind native_STR_TO_F(uint64_t* a, const NativeContext& c) {
   return FaultKind::None;
 }
 
+FaultKind native_STR_FROM_LDATE(uint64_t* a, const NativeContext& c) { return writeFormatted(a, c, formatLdateInto, asI(a[2])); }
+FaultKind native_STR_FROM_LTOD(uint64_t* a, const NativeContext& c) { return writeFormatted(a, c, formatLtodInto, asI(a[2])); }
+FaultKind native_STR_FROM_LDT(uint64_t* a, const NativeContext& c) { return writeFormatted(a, c, formatLdtInto, asI(a[2])); }
+FaultKind native_STR_TO_LDATE(uint64_t* a, const NativeContext& c) { return timeOrDateFromText<LiteralFamily::Ldate>(a, c); }
+FaultKind native_STR_TO_LTOD(uint64_t* a, const NativeContext& c) { return timeOrDateFromText<LiteralFamily::Ltod>(a, c); }
+FaultKind native_STR_TO_LDT(uint64_t* a, const NativeContext& c) { return timeOrDateFromText<LiteralFamily::Ldt>(a, c); }
+
+namespace {
+
+// CHAR_TO_STRING / WCHAR_TO_WSTRING: a text of the one character (the NUL character ends a
+// text, so CHAR#0 gives the empty text).
+template <unsigned W>
+FaultKind fromCharacter(uint64_t* a, const NativeContext& c) {
+  const uint32_t unit = static_cast<uint32_t>(a[2] & (W == 1 ? 0xFFu : 0xFFFFu));
+  return withDst<W, 0>(a, c, [unit](Out<W>& out, const Text<W>*) {
+    if (unit != 0) out.appendUnit(unit);
+  });
+}
+
+template <unsigned W>
+FaultKind firstCharacter(uint64_t* a, const NativeContext& c) {
+  Text<W> s;
+  if (!readText<W>(c, a[0], s)) return FaultKind::InvalidPointer;
+  a[0] = s.len > 0 ? unitAt<W>(s.p, 0) : 0;
+  return FaultKind::None;
+}
+
+}  // namespace
+
+FaultKind native_STR_FROM_CHAR(uint64_t* a, const NativeContext& c) { return fromCharacter<1>(a, c); }
+FaultKind native_WSTR_FROM_WCHAR(uint64_t* a, const NativeContext& c) { return fromCharacter<2>(a, c); }
+FaultKind native_STR_TO_CHAR(uint64_t* a, const NativeContext& c) { return firstCharacter<1>(a, c); }
+FaultKind native_WSTR_TO_WCHAR(uint64_t* a, const NativeContext& c) { return firstCharacter<2>(a, c); }
+
 }  // namespace virtcom::vm

@@ -240,6 +240,11 @@ std::string timeFunctions() {
       {"SUB_DT_DT", "TIME", "DT", "DT", "-"},          {"MUL_TIME", "TIME", "TIME", "LREAL", "*"},
       {"MUL_LTIME", "LTIME", "LTIME", "LREAL", "*"},   {"DIV_TIME", "TIME", "TIME", "LREAL", "/"},
       {"DIV_LTIME", "LTIME", "LTIME", "LREAL", "/"},
+      // IEC 61131-3 ed. 3: the same on the long types, in nanoseconds
+      {"ADD_LTOD_LTIME", "LTOD", "LTOD", "LTIME", "+"}, {"ADD_LDT_LTIME", "LDT", "LDT", "LTIME", "+"},
+      {"SUB_LDATE_LDATE", "LTIME", "LDATE", "LDATE", "-"}, {"SUB_LTOD_LTIME", "LTOD", "LTOD", "LTIME", "-"},
+      {"SUB_LTOD_LTOD", "LTIME", "LTOD", "LTOD", "-"}, {"SUB_LDT_LTIME", "LDT", "LDT", "LTIME", "-"},
+      {"SUB_LDT_LDT", "LTIME", "LDT", "LDT", "-"},
   };
   std::string out;
   for (const Row& r : kRows) {
@@ -253,6 +258,10 @@ std::string timeFunctions() {
 FUNCTION CONCAT_DATE_TOD : DT
 VAR_INPUT IN1 : DATE; IN2 : TOD; END_VAR
 CONCAT_DATE_TOD := DATE_TO_DT(IN1) + TOD_TO_TIME(IN2);
+END_FUNCTION
+FUNCTION CONCAT_LDATE_LTOD : LDT
+VAR_INPUT IN1 : LDATE; IN2 : LTOD; END_VAR
+CONCAT_LDATE_LTOD := LDATE_TO_LDT(IN1) + LTOD_TO_LTIME(IN2);
 END_FUNCTION
 )ST";
   return out;

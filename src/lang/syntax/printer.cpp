@@ -84,6 +84,9 @@ std::string literal(const Expr& e) {
       auto v = static_cast<int64_t>(e.intValue);
       if (e.typePrefix == "TOD") return formatTimeOfDay(v);
       if (e.typePrefix == "DT") return formatDateAndTime(v);
+      if (e.typePrefix == "LDATE") return formatLdate(v);
+      if (e.typePrefix == "LTOD") return formatLtod(v);
+      if (e.typePrefix == "LDT") return formatLdt(v);
       return formatDate(v);
     }
     case ExprKind::EnumLit: return e.typePrefix + "#" + e.text;

@@ -20,6 +20,9 @@ std::optional<Native> textParser(const TypeTable& t, TypeId to) {
   if (t.isElem(to, ElemType::Date)) return Native::STR_TO_DATE;
   if (t.isElem(to, ElemType::Tod)) return Native::STR_TO_TOD;
   if (t.isElem(to, ElemType::Dt)) return Native::STR_TO_DT;
+  if (t.isElem(to, ElemType::Ldate)) return Native::STR_TO_LDATE;
+  if (t.isElem(to, ElemType::Ltod)) return Native::STR_TO_LTOD;
+  if (t.isElem(to, ElemType::Ldt)) return Native::STR_TO_LDT;
   return std::nullopt;
 }
 
@@ -33,6 +36,9 @@ Native textWriter(const TypeTable& t, TypeId from) {
   if (t.isElem(from, ElemType::Date)) return Native::STR_FROM_DATE;
   if (t.isElem(from, ElemType::Tod)) return Native::STR_FROM_TOD;
   if (t.isElem(from, ElemType::Dt)) return Native::STR_FROM_DT;
+  if (t.isElem(from, ElemType::Ldate)) return Native::STR_FROM_LDATE;
+  if (t.isElem(from, ElemType::Ltod)) return Native::STR_FROM_LTOD;
+  if (t.isElem(from, ElemType::Ldt)) return Native::STR_FROM_LDT;
   return t.isSignedInt(from) ? Native::STR_FROM_I : Native::STR_FROM_U;
 }
 
@@ -66,6 +72,10 @@ Value fromText(BuiltinCall& c, const Value& v, TypeId to) {
   if (t.isString(to) && fromWide == t.isWideString(to)) return v;
   if (t.isString(to)) return pc.stringResult(fromWide ? Native::STR_FROM_WSTR : Native::WSTR_FROM_STR, {pc.toReg(v)}, to);
   uint16_t s = pc.toReg(v);
+  if (t.isChar(to)) {  // the first character (STRING_TO_CHAR, WSTRING_TO_WCHAR, STRING_TO_WCHAR, ...)
+    const TypeId unit = elemId(fromWide ? ElemType::Wchar : ElemType::Char);
+    return pc.convert(pc.callNative(fromWide ? Native::WSTR_TO_WCHAR : Native::STR_TO_CHAR, {s}, unit), to, c.loc());
+  }
   if (t.isReal(to)) return pc.convert(pc.callNative(Native::STR_TO_F, {s}, elemId(ElemType::Lreal)), to, c.loc());
   if (auto parse = textParser(t, to)) return pc.callNative(*parse, {s}, to);
   return pc.convert(pc.callNative(Native::STR_TO_I, {s}, elemId(ElemType::Lint)), to, c.loc());
@@ -77,7 +87,8 @@ Value emitConversion(BuiltinCall& c) {
   TypeTable& t = c.types();
   PouCompiler& pc = c.pc;
   const ConversionTypes& conv = c.fn.conversion;
-  Value v = c.arg(0);
+  // CHAR_TO_BYTE('a'): a literal where a character is expected is one (as in an assignment)
+  Value v = c.arg(0, conv.from && elemTypeInfo(*conv.from).kind == ElemKind::Char ? elemId(*conv.from) : kNoType);
   if (!v.ok()) return v;
   // STRING(255) is registered before the source check and WSTRING(255) after it: the order
   // the module's type table has always had.
@@ -85,6 +96,12 @@ Value emitConversion(BuiltinCall& c) {
   if (conv.from && !checkSource(c, v)) return Value::error();
   if (conv.to == ElemType::Wstring) to = t.stringOf(kStringResultLength, true);
   if (isStringValue(t, v)) return fromText(c, v, to);
+  if (t.isChar(v.type) && t.isString(to)) {  // a text of the one character, then its width
+    const bool wide = t.isElem(v.type, ElemType::Wchar);
+    uint16_t x = pc.toReg(v);
+    Value one = pc.stringResult(wide ? Native::WSTR_FROM_WCHAR : Native::STR_FROM_CHAR, {x}, t.stringOf(1, wide));
+    return fromText(c, one, to);
+  }
   if (t.isString(to)) {
     uint16_t x = pc.toReg(v);
     return pc.stringResult(textWriter(t, v.type), {x}, to);

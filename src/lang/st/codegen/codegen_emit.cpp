@@ -14,10 +14,10 @@ using bc::Op;
 
 bc::Op loadOp(ElemType e) {
   switch (e) {
-    case ElemType::Bool: case ElemType::Byte: case ElemType::Usint: return Op::LD_U8;
+    case ElemType::Bool: case ElemType::Byte: case ElemType::Usint: case ElemType::Char: return Op::LD_U8;
     case ElemType::Sint: return Op::LD_I8;
     case ElemType::Int: return Op::LD_I16;
-    case ElemType::Word: case ElemType::Uint: return Op::LD_U16;
+    case ElemType::Word: case ElemType::Uint: case ElemType::Wchar: return Op::LD_U16;
     case ElemType::Dint: case ElemType::Time: return Op::LD_I32;
     case ElemType::Dword: case ElemType::Udint: case ElemType::Date: case ElemType::Tod: case ElemType::Dt: return Op::LD_U32;
     case ElemType::Real: return Op::LD_F32;
@@ -272,6 +272,38 @@ static bool hasExtension(const TypeTable& t, TypeId type) {
   return bitWidth(e) < 64 && e != ElemType::Bool;
 }
 
+namespace {
+
+struct TimeScaling {
+  int64_t unitsPerDay = 0;  // non-zero: split the day (in the source's unit) first
+  bool keepClock = false;   // ... and keep the time of day (else the midnight)
+  int64_t multiply = 1;
+  int64_t divide = 1;
+};
+
+// How a duration or date changes its unit: DT (seconds) to TOD (ms since midnight) keeps the
+// clock (mod a day) and multiplies by 1000, LDT to LDATE drops the clock, DATE to LDATE
+// multiplies by 1e9, LTIME to TIME divides by 1e6. Conversions between durations and dates,
+// and those that would invent a part (TOD to DT, DATE to TOD), copy the number as it is.
+TimeScaling timeScaling(ElemType from, ElemType to) {
+  const int64_t fu = timeUnitNs(from), tu = timeUnitNs(to);
+  const DatePart fp = datePart(from), tp = datePart(to);
+  const bool durations = fp == DatePart::None && tp == DatePart::None;
+  const bool dates = fp != DatePart::None && tp != DatePart::None && (fp == tp || fp == DatePart::Both ||
+                                                                      (fp == DatePart::Day && tp == DatePart::Both));
+  TimeScaling s;
+  if (from == to || fu == 0 || tu == 0 || !(durations || dates)) return s;
+  if (fp == DatePart::Both && (tp == DatePart::Day || tp == DatePart::Clock)) {
+    s.unitsPerDay = 86'400'000'000'000 / fu;
+    s.keepClock = tp == DatePart::Clock;
+  }
+  if (fu > tu) s.multiply = fu / tu;
+  if (tu > fu) s.divide = tu / fu;
+  return s;
+}
+
+}  // namespace
+
 uint16_t PouCompiler::normalize(uint16_t reg, TypeId type) {
   if (!hasExtension(types(), type)) return reg;
   ElemType e = types().storageElem(type);
@@ -338,14 +370,15 @@ Value PouCompiler::convert(Value v, TypeId to, SourceLocation loc) {
       return c;
     }
     int64_t i = v.c.kind == ConstValue::Kind::Real ? static_cast<int64_t>(std::llround(v.c.f)) : v.c.i;
-    if (from != kNoType && t.isElem(from, ElemType::Time) && t.isElem(to, ElemType::Ltime)) i *= 1'000'000;
-    if (from != kNoType && t.isElem(from, ElemType::Ltime) && t.isElem(to, ElemType::Time)) i /= 1'000'000;
-    // DT (seconds) splits into DATE (seconds at midnight) and TOD (ms since midnight), as the
-    // code emitted below does at run time.
-    if (from != kNoType && t.storageElem(from) == ElemType::Dt &&
-        (t.storageElem(to) == ElemType::Tod || t.storageElem(to) == ElemType::Date)) {
-      const int64_t rem = static_cast<int64_t>(static_cast<uint64_t>(i) % 86400);
-      i = t.storageElem(to) == ElemType::Tod ? rem * 1000 : i - rem;
+    // The same steps as the code emitted below at run time.
+    if (from != kNoType) {
+      const TimeScaling s = timeScaling(t.storageElem(from), t.storageElem(to));
+      if (s.unitsPerDay) {
+        const int64_t rem = static_cast<int64_t>(static_cast<uint64_t>(i) % static_cast<uint64_t>(s.unitsPerDay));
+        i = s.keepClock ? rem : i - rem;
+      }
+      if (s.multiply > 1) i *= s.multiply;
+      if (s.divide > 1) i /= s.divide;
     }
     // wrap to the target width
     ElemType e = t.storageElem(to);
@@ -389,7 +422,9 @@ Value PouCompiler::convert(Value v, TypeId to, SourceLocation loc) {
     return regValue(to, out);
   }
   if (!fromReal && toReal) {
-    bool unsignedSrc = !(isSignedInt(fe) || fe == ElemType::Time || fe == ElemType::Ltime);
+    // TIME and the 64-bit durations and dates are signed; DATE, TOD, DT unsigned 32-bit.
+    bool signedTime = timeUnitNs(fe) != 0 && (fe == ElemType::Time || elemTypeInfo(fe).sizeBytes == 8);
+    bool unsignedSrc = !(isSignedInt(fe) || signedTime);
     emit(unsignedSrc ? Op::U2F : Op::I2F, out, r, 0);
     if (te == ElemType::Real) emit(Op::RND_F32, out, out, 0);
     return regValue(to, out);
@@ -399,28 +434,23 @@ Value PouCompiler::convert(Value v, TypeId to, SourceLocation loc) {
     normalize(out, to);
     return regValue(to, out);
   }
-  // DT (seconds) splits into DATE (seconds at midnight) and TOD (ms since midnight)
-  if (fe == ElemType::Dt && (te == ElemType::Tod || te == ElemType::Date)) {
-    uint16_t day = loadConstInt(86400), rem = allocReg();
-    emit(Op::MOD_U, rem, r, day);
-    if (te == ElemType::Tod) {
-      emit(Op::MUL, out, rem, loadConstInt(1000));
+  // integer-like to integer-like; durations and dates change their unit (timeScaling)
+  const TimeScaling s = timeScaling(fe, te);
+  if (s.unitsPerDay) {
+    uint16_t rem = allocReg();
+    emit(Op::MOD_U, rem, r, loadConstInt(s.unitsPerDay));
+    if (s.keepClock) {
+      r = rem;
     } else {
-      emit(Op::SUB, out, r, rem);
+      uint16_t day = allocReg();
+      emit(Op::SUB, day, r, rem);
+      r = day;
     }
-    normalize(out, to);
-    return regValue(to, out);
   }
-  // integer-like to integer-like
-  int64_t scale = 0;
-  if (fe == ElemType::Time && te == ElemType::Ltime) scale = 1'000'000;
-  if (fe == ElemType::Ltime && te == ElemType::Time) scale = -1'000'000;
-  if (scale > 0) {
-    uint16_t k = loadConstInt(scale);
-    emit(Op::MUL, out, r, k);
-  } else if (scale < 0) {
-    uint16_t k = loadConstInt(-scale);
-    emit(Op::DIV_I, out, r, k);
+  if (s.multiply > 1) {
+    emit(Op::MUL, out, r, loadConstInt(s.multiply));
+  } else if (s.divide > 1) {
+    emit(Op::DIV_I, out, r, loadConstInt(s.divide));
   } else {
     emit(Op::MOV, out, r, 0);
   }
@@ -451,6 +481,18 @@ Value PouCompiler::coerce(Value v, TypeId to, SourceLocation loc) {
     }
     if (t.isReal(to)) return convert(v, to, loc);
     if (t.isBool(to) && v.c.kind == ConstValue::Kind::Int && (v.c.i == 0 || v.c.i == 1)) return convert(v, to, loc);
+  }
+  if (t.isChar(to) && v.kind == Value::Kind::Const && v.c.kind == ConstValue::Kind::String) {
+    if (auto ch = characterConstant(v.c, t[to].elem)) {
+      Value out = v;
+      out.c = *ch;
+      out.type = to;
+      return out;
+    }
+    diags().error(diag::E202, loc, "a " + describe(t, to) + " takes a literal of exactly one character (" +
+                                       (t[to].elem == ElemType::Wchar ? "\"a\"" : "'a'") + "), found a string of " +
+                                       std::to_string(v.c.s.size()) + " bytes");
+    return Value::error();
   }
   if (v.type == kNoType) {
     diags().error(diag::E202, loc, "expression has no value");

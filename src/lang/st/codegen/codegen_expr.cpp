@@ -47,6 +47,13 @@ Value PouCompiler::literal(const Expr& e, TypeId expected) {
       }
       break;
     case ExprKind::StringLit: {
+      if (expected != kNoType && types().isChar(expected))
+        if (auto ch = characterConstant(*c, types()[expected].elem)) {
+          v.c = *ch;
+          v.type = ch->type;
+          break;
+        }
+      if (c->kind == ConstValue::Kind::Int) break;  // CHAR#'a'
       size_t chars = e.wide ? utf8ToUtf16(c->s).size() : c->s.size();
       uint32_t len = static_cast<uint32_t>(std::max<size_t>(chars, 1));
       v.type = types().stringOf(len, e.wide);
@@ -741,16 +748,20 @@ Value PouCompiler::compare(const Expr& e, Value a, Value b) {
   return regValue(boolT, out);
 }
 
-// DATE/DT hold seconds and TOD milliseconds; TIME is milliseconds.
+// DATE/DT hold seconds and TOD milliseconds; TIME is milliseconds. The IEC ed. 3 long types
+// (LDATE, LTOD, LDT) and LTIME all count nanoseconds: their differences are LTIME, and they
+// move by an LTIME (a TIME operand widens to it).
 Value PouCompiler::dateArithmetic(const Expr& e, Value a, Value b) {
   TypeTable& t = types();
-  TypeId timeT = TypeTable::elem(ElemType::Time);
-  auto secondsBased = [&](TypeId x) { return t.isElem(x, ElemType::Date) || t.isElem(x, ElemType::Dt); };
+  const bool isLong = t.isDateLike(a.type) && t[a.type].size == 8;
+  TypeId timeT = TypeTable::elem(isLong ? ElemType::Ltime : ElemType::Time);
+  // the date's unit in units of its duration type: 1000 for DATE/DT (s vs ms), else 1
+  const int64_t ratio = t.isDateLike(a.type) ? timeUnitNs(t[a.type].elem) / timeUnitNs(t[timeT].elem) : 1;
   bool sub = e.binaryOp == BinaryOp::Sub;
   if (sub && a.type == b.type && t.isDateLike(a.type)) {
     uint16_t x = toReg(a), y = toReg(b), r = allocReg();
     emit(Op::SUB, r, x, y);
-    if (secondsBased(a.type)) emit(Op::MUL, r, r, loadConstInt(1000));
+    if (ratio > 1) emit(Op::MUL, r, r, loadConstInt(ratio));
     normalize(r, timeT);
     return regValue(timeT, r);
   }
@@ -758,8 +769,8 @@ Value PouCompiler::dateArithmetic(const Expr& e, Value a, Value b) {
     Value tb = coerce(b, timeT, e.rhs ? e.rhs->loc : e.loc);
     if (!tb.ok()) return tb;
     uint16_t x = toReg(a), y = toReg(tb), r = allocReg();
-    if (secondsBased(a.type)) {
-      uint16_t k = loadConstInt(1000), q = allocReg();
+    if (ratio > 1) {
+      uint16_t k = loadConstInt(ratio), q = allocReg();
       emit(Op::DIV_I, q, y, k);
       y = q;
     }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "lang/st/parse/lexer.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 
 namespace virtcom::st {
@@ -21,6 +22,22 @@ static ConstValue intValue(int64_t i) {
   v.kind = ConstValue::Kind::Int;
   v.i = i;
   return v;
+}
+
+std::optional<ConstValue> characterConstant(const ConstValue& v, ElemType charType) {
+  if (v.kind != ConstValue::Kind::String) return std::nullopt;
+  int64_t code = 0;
+  if (charType == ElemType::Wchar) {
+    const std::u16string units = utf8ToUtf16(v.s);
+    if (units.size() != 1) return std::nullopt;
+    code = units[0];
+  } else {
+    if (v.s.size() != 1) return std::nullopt;
+    code = static_cast<unsigned char>(v.s[0]);
+  }
+  ConstValue c = intValue(code);
+  c.type = TypeTable::elem(charType);
+  return c;
 }
 
 static ConstValue realValue(double f) {
@@ -121,8 +138,10 @@ std::optional<ConstValue> evalConst(const Expr& e, const ConstContext& ctx, Diag
     }
     case ExprKind::DateLit: {
       ConstValue v = intValue(static_cast<int64_t>(e.intValue));
-      std::string p = upper(e.typePrefix);
-      v.type = TypeTable::elem(p == "TOD" ? ElemType::Tod : p == "DT" ? ElemType::Dt : ElemType::Date);
+      // The lexer names the type: DATE, TOD, DT, LDATE, LTOD, LDT.
+      ElemType t = ElemType::Date;
+      elemTypeByName(e.typePrefix, t);
+      v.type = TypeTable::elem(t);
       return v;
     }
     case ExprKind::RealLit: {
@@ -135,7 +154,13 @@ std::optional<ConstValue> evalConst(const Expr& e, const ConstContext& ctx, Diag
       ConstValue v;
       v.kind = ConstValue::Kind::String;
       v.s = e.text;
-      return v;
+      ElemType t;
+      if (e.typePrefix.empty() || !elemTypeByName(e.typePrefix, t) || elemTypeInfo(t).kind != ElemKind::Char) return v;
+      if (auto c = characterConstant(v, t)) return c;  // CHAR#'a', WCHAR#"a"
+      if (!quiet)
+        diags.error(diag::E013, e.loc, e.typePrefix + "# needs a literal of exactly one character, as " +
+                                           (t == ElemType::Wchar ? "WCHAR#\"a\"" : "CHAR#'a'"));
+      return std::nullopt;
     }
     case ExprKind::EnumLit: {
       if (auto v = ctx.lookupEnum(e.typePrefix, e.text)) return v;

@@ -25,6 +25,11 @@ std::optional<ConstValue> evalConst(const Expr& e, const ConstContext& ctx, Diag
 std::optional<ConstValue> foldBinary(BinaryOp op, const ConstValue& a, const ConstValue& b, bool real);
 std::optional<ConstValue> foldUnary(UnaryOp op, const ConstValue& a, bool real);
 
+// A string literal of exactly one character as a CHAR (its byte) or WCHAR (its UTF-16 code
+// unit) constant, typed; nullopt for any other value. IEC 61131-3 ed. 3 types 'a' and "a" by
+// their context: this is where a one-character literal becomes a character.
+std::optional<ConstValue> characterConstant(const ConstValue& v, ElemType charType);
+
 // The constant as an integer / real (converting between the two).
 int64_t constAsInt(const ConstValue& v);
 double constAsReal(const ConstValue& v);

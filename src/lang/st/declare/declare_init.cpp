@@ -468,6 +468,20 @@ bool Declarer::checkRange(TypeId type, const ConstValue& v, SourceLocation loc) 
   return ok;
 }
 
+// A date or duration literal of another unit (DT#... for an LDT: seconds, not nanoseconds)
+// would be stored unconverted; only TIME -> LTIME is scaled (writeScalar).
+static bool initialTimeFits(const TypeTable& types, Diagnostics& diags, TypeId type, const ConstValue& v,
+                            SourceLocation loc) {
+  if (v.type == kNoType || v.type == type || !types.isElementary(type) || !types.isElementary(v.type)) return true;
+  const ElemType to = types[type].elem, from = types[v.type].elem;
+  const int64_t tu = timeUnitNs(to), fu = timeUnitNs(from);
+  if (tu == 0 || fu == 0 || tu == fu || (from == ElemType::Time && to == ElemType::Ltime)) return true;
+  diags.error(diag::E116, loc, "initial value: a " + types.name(v.type) + " literal counts in other units than " +
+                                   types.name(type) + "; write a literal of type " + types.name(type) +
+                                   " or convert in code (" + types.name(v.type) + "_TO_" + types.name(type) + ")");
+  return false;
+}
+
 void Declarer::applyInit(TypeId type, uint8_t* dst, const Expr& init, const PouSym* pou) {
   const bc::TypeDesc& d = types_[type];
   if (init.kind == ExprKind::ArrayInit) {
@@ -540,6 +554,14 @@ void Declarer::applyInit(TypeId type, uint8_t* dst, const Expr& init, const PouS
     }
     return;
   }
+  if (v->kind == ConstValue::Kind::String && types_.isChar(type)) {
+    v = characterConstant(*v, d.elem);  // c : CHAR := 'a';
+    if (!v) {
+      diags_.error(diag::E116, init.loc, "a " + d.name + " starts from a literal of exactly one character (" +
+                                             (d.elem == ElemType::Wchar ? "\"a\"" : "'a'") + ")");
+      return;
+    }
+  }
   if (v->kind == ConstValue::Kind::String) {
     diags_.error(diag::E116, init.loc, "a string cannot initialise a " + d.name);
     return;
@@ -554,6 +576,7 @@ void Declarer::applyInit(TypeId type, uint8_t* dst, const Expr& init, const PouS
     if (bits < 64) v->i &= static_cast<int64_t>((uint64_t(1) << bits) - 1);
     if (types_.isSignedInt(type) && bits < 64 && (v->i >> (bits - 1)) & 1) v->i -= int64_t(1) << bits;
   }
+  if (!initialTimeFits(types_, diags_, type, *v, init.loc)) return;
   checkRange(type, *v, init.loc);
   writeScalar(type, dst, *v, -1);
 }

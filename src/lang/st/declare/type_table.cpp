@@ -123,6 +123,10 @@ bool TypeTable::isDateLike(TypeId t) const {
   return isElementary(t) && elemTypeInfo(types_[t].elem).kind == ElemKind::Date;
 }
 
+bool TypeTable::isChar(TypeId t) const {
+  return isElementary(t) && elemTypeInfo(types_[t].elem).kind == ElemKind::Char;
+}
+
 ElemType TypeTable::storageElem(TypeId t) const {
   const bc::TypeDesc& d = types_[t];
   switch (d.kind) {
@@ -182,6 +186,12 @@ Conversion classifyConversion(const TypeTable& types, TypeId from, TypeId to) {
   if (types.isReal(from) && types.isInteger(to)) return Conversion::Narrowing;
   if (types.isTimeLike(from) && types.isTimeLike(to))
     return f == ElemType::Time ? Conversion::Widening : Conversion::Narrowing;
+  // IEC 61131-3 ed. 3 (table 12): DATE to LDATE, TOD to LTOD, DT to LDT and CHAR to WCHAR
+  // are implicit; the other way loses the fraction / the high byte.
+  if (types.isDateLike(from) && types.isDateLike(to) && datePart(f) == datePart(t))
+    return elemTypeInfo(f).sizeBytes < elemTypeInfo(t).sizeBytes ? Conversion::Widening : Conversion::Narrowing;
+  if (types.isChar(from) && types.isChar(to))
+    return f == ElemType::Char ? Conversion::Widening : Conversion::Narrowing;
   return Conversion::Invalid;
 }
 

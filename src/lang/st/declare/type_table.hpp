@@ -39,7 +39,8 @@ class TypeTable {
   bool isReal(TypeId t) const;         // REAL, LREAL
   bool isNumeric(TypeId t) const { return isInteger(t) || isReal(t); }
   bool isTimeLike(TypeId t) const;     // TIME, LTIME
-  bool isDateLike(TypeId t) const;     // DATE, TOD, DT
+  bool isDateLike(TypeId t) const;     // DATE, TOD, DT, LDATE, LTOD, LDT
+  bool isChar(TypeId t) const;         // CHAR, WCHAR
   bool isString(TypeId t) const { return types_[t].kind == bc::TypeKind::String; }
   bool isWideString(TypeId t) const { return isString(t) && types_[t].elem == ElemType::Wstring; }
   bool isEnum(TypeId t) const { return types_[t].kind == bc::TypeKind::Enum; }

@@ -188,6 +188,9 @@ class Lexer {
       case LiteralFamily::Date: return lexDateLike(start, loc, LiteralFamily::Date, "DATE");
       case LiteralFamily::Tod: return lexDateLike(start, loc, LiteralFamily::Tod, "TOD");
       case LiteralFamily::Dt: return lexDateLike(start, loc, LiteralFamily::Dt, "DT");
+      case LiteralFamily::Ldate: return lexDateLike(start, loc, LiteralFamily::Ldate, "LDATE");
+      case LiteralFamily::Ltod: return lexDateLike(start, loc, LiteralFamily::Ltod, "LTOD");
+      case LiteralFamily::Ldt: return lexDateLike(start, loc, LiteralFamily::Ldt, "LDT");
       case LiteralFamily::None: break;
     }
     Token& t = emit(Tok::TypedPrefix, start, loc);

@@ -312,12 +312,12 @@ ExprPtr Parser::parseTypedLiteral() {
       break;
     case Tok::RealLiteral: fits = elemKind == ElemKind::Float; break;
     case Tok::KwTrue: case Tok::KwFalse: fits = elemKind == ElemKind::Bool; break;
-    case Tok::StringLiteral: case Tok::WStringLiteral: fits = elemKind == ElemKind::Text; break;
+    case Tok::StringLiteral: case Tok::WStringLiteral: fits = elemKind == ElemKind::Text || elemKind == ElemKind::Char; break;
     default:
       errorExpected("a literal", "after '" + prefix + "#'");
       return errorExpr(loc);
   }
-  if (!fits || (negative && (elemKind == ElemKind::Bool || elemKind == ElemKind::Text))) {
+  if (!fits || (negative && (elemKind == ElemKind::Bool || elemKind == ElemKind::Text || elemKind == ElemKind::Char))) {
     error(diag::E013, "'" + std::string(valueTok.text) + "' is not a valid " + std::string(elemTypeInfo(type).name) + " literal");
     advance();
     return errorExpr(loc);

@@ -15,9 +15,11 @@ uint32_t adsTypeOf(ElemType e) {
   switch (e) {
     case ElemType::Bool: return adst::kBit;
     case ElemType::Byte:
-    case ElemType::Usint: return adst::kUint8;
+    case ElemType::Usint:
+    case ElemType::Char: return adst::kUint8;
     case ElemType::Word:
-    case ElemType::Uint: return adst::kUint16;
+    case ElemType::Uint:
+    case ElemType::Wchar: return adst::kUint16;
     case ElemType::Dword:
     case ElemType::Udint:
     case ElemType::Time:
@@ -26,7 +28,10 @@ uint32_t adsTypeOf(ElemType e) {
     case ElemType::Dt: return adst::kUint32;
     case ElemType::Lword:
     case ElemType::Ulint:
-    case ElemType::Ltime: return adst::kUint64;
+    case ElemType::Ltime:
+    case ElemType::Ldate:
+    case ElemType::Ltod:
+    case ElemType::Ldt: return adst::kUint64;
     case ElemType::Sint: return adst::kInt8;
     case ElemType::Int: return adst::kInt16;
     case ElemType::Dint: return adst::kInt32;

@@ -29,14 +29,14 @@ void send(const Response& from, httplib::Response& to) {
 
 }  // namespace
 
-HttpServer::HttpServer(Api& api, std::vector<uint32_t> allowedPeers)
-    : api_(api), allowedPeers_(std::move(allowedPeers)), server_(std::make_unique<httplib::Server>()) {}
+HttpServer::HttpServer(Api& api, proto::net::PeerPolicy peers)
+    : api_(api), peers_(std::move(peers)), server_(std::make_unique<httplib::Server>()) {}
 
 HttpServer::~HttpServer() { stop(); }
 
 std::expected<std::unique_ptr<HttpServer>, std::string> HttpServer::start(Api& api, const Endpoint& at,
-                                                                          std::vector<uint32_t> allowedPeers) {
-  std::unique_ptr<HttpServer> s(new HttpServer(api, std::move(allowedPeers)));
+                                                                          proto::net::PeerPolicy peers) {
+  std::unique_ptr<HttpServer> s(new HttpServer(api, std::move(peers)));
   s->server_->new_task_queue = [] { return new httplib::ThreadPool(kPoolThreads); };
   s->server_->set_write_timeout(std::chrono::seconds(5));  // a stalled viewer ends its own stream
   s->route();
@@ -56,9 +56,10 @@ void HttpServer::stop() {
 
 void HttpServer::route() {
   server_->set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-    if (allowedPeers_.empty()) return httplib::Server::HandlerResponse::Unhandled;
+    if (peers_.allowed().empty()) return httplib::Server::HandlerResponse::Unhandled;
     auto peer = parseIpv4(req.remote_addr);
-    if (peer && std::ranges::find(allowedPeers_, *peer) != allowedPeers_.end()) return httplib::Server::HandlerResponse::Unhandled;
+    if (peer && peers_.allows(*peer)) return httplib::Server::HandlerResponse::Unhandled;
+    if (peer) peers_.logRefusal(*peer, proto::net::Refusal::NotAllowed);
     send(errorResponse(403, "this address is not in --http-allow"), res);
     return httplib::Server::HandlerResponse::Handled;
   });

@@ -10,10 +10,10 @@
 #include <memory>
 #include <string>
 #include <thread>
-#include <vector>
 
 #include "core/endpoint.hpp"
 #include "hmi/api.hpp"
+#include "proto/net/peer_policy.hpp"
 
 namespace httplib {
 class Server;
@@ -28,9 +28,9 @@ class HttpServer {
   static constexpr int kHeartbeatMs = 2000;   // an SSE comment when nothing changed: finds dead peers
 
   // Binds `at` (port 0: a free port) and serves `api` (which must outlive the server) to the peers
-  // of `allowedPeers` (IPv4, host byte order; empty: any). Error text if it cannot bind.
+  // `peers` allows (docs/security.md; others get 403, logged). Error text if it cannot bind.
   static std::expected<std::unique_ptr<HttpServer>, std::string> start(Api& api, const Endpoint& at,
-                                                                      std::vector<uint32_t> allowedPeers);
+                                                                      proto::net::PeerPolicy peers);
   ~HttpServer();  // stop()
   HttpServer(const HttpServer&) = delete;
   HttpServer& operator=(const HttpServer&) = delete;
@@ -40,11 +40,11 @@ class HttpServer {
   void stop();
 
  private:
-  HttpServer(Api& api, std::vector<uint32_t> allowedPeers);
+  HttpServer(Api& api, proto::net::PeerPolicy peers);
   void route();
 
   Api& api_;
-  std::vector<uint32_t> allowedPeers_;
+  proto::net::PeerPolicy peers_;
   std::unique_ptr<httplib::Server> server_;
   std::thread listener_;
   Endpoint bound_;

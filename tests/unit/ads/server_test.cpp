@@ -85,7 +85,7 @@ TEST(AdsServerAllowList, RefusedPeerIsClosed) {
   SymbolTable table = makeTable();
   ServerConfig config;
   config.listen.port = 0;
-  config.allowedPeers = {0x0a000001};  // 10.0.0.1: not loopback
+  config.peers = net::PeerPolicy({net::Ipv4Net{0x0a000001}}, {}, "ads", "--ads-allow");  // 10.0.0.1: not loopback
   auto server = Server::start(config, table);
   ASSERT_TRUE(server);
   LoopbackClient c((*server)->endpoint().port);

@@ -4,6 +4,7 @@ JOBS       ?= $(shell nproc)
 BUILD      ?= build/release
 TESTBUILD  ?= build/asan
 FUZZBUILD  ?= build/fuzz
+FUZZ_SECONDS ?= 600
 CMAKE_GEN  := -G Ninja
 # ccache (Debian) keeps rebuilds cheap, also across clones: paths are hashed relative to the checkout.
 export CCACHE_BASEDIR := $(CURDIR)
@@ -15,7 +16,7 @@ APT_PACKAGES := build-essential cmake ninja-build g++ clang libclang-rt-14-dev \
                 libyaml-dev nlohmann-json3-dev libpugixml-dev libcpp-httplib-dev chromium libmodbus-dev mbpoll pkg-config nodejs ccache \
                 libsqlite3-dev libgraphviz-dev lcov libxml2-utils
 
-.PHONY: all deps build test demo bench fuzz clean
+.PHONY: all deps build test demo bench fuzz fuzz-build clean
 
 all: build
 
@@ -34,12 +35,14 @@ build: deps
 	@cmake -S . -B $(BUILD) $(CMAKE_GEN) $(LAUNCHER) -DCMAKE_BUILD_TYPE=Release >/dev/null
 	@cmake --build $(BUILD) -j $(JOBS)
 
-test: deps
-	@cmake -S . -B $(TESTBUILD) $(CMAKE_GEN) $(LAUNCHER) -DCMAKE_BUILD_TYPE=Debug -DVIRTCOM_SANITIZE=ON >/dev/null
-	@cmake --build $(TESTBUILD) -j $(JOBS)
+fuzz-build: deps
 	@cmake -S . -B $(FUZZBUILD) $(CMAKE_GEN) $(LAUNCHER) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DVIRTCOM_FUZZ_ONLY=ON >/dev/null
 	@cmake --build $(FUZZBUILD) -j $(JOBS)
+
+test: deps fuzz-build
+	@cmake -S . -B $(TESTBUILD) $(CMAKE_GEN) $(LAUNCHER) -DCMAKE_BUILD_TYPE=Debug -DVIRTCOM_SANITIZE=ON >/dev/null
+	@cmake --build $(TESTBUILD) -j $(JOBS)
 	@# The npm ads-client and node-opcua-client for the ADS and OPC UA e2e tests and playwright-core for the HMI's browser tests
 	@# (Debian's nodejs may come without npm).
 	@command -v npm >/dev/null 2>&1 || { SUDO=""; [ "$$(id -u)" -ne 0 ] && SUDO=sudo; \
@@ -64,6 +67,12 @@ demo: build
 bench: build
 	@$(BUILD)/bench/virtcom_bench --benchmark_counters_tabular=true
 	@$(BUILD)/bench/virtcom_modbus_bench
+
+# Every fuzz target (or those of FUZZ_TARGETS) for FUZZ_SECONDS (default 600) each on the
+# checked-in corpus (grown corpora kept in build/fuzz-campaign); prints executions, coverage and
+# findings (docs/security.md).
+fuzz: fuzz-build
+	@FUZZ_BUILD_DIR=$(abspath $(FUZZBUILD)) FUZZ_TARGETS="$(FUZZ_TARGETS)" bash tests/fuzz/run_fuzz_campaign.sh $(FUZZ_SECONDS) build/fuzz-campaign
 
 clean:
 	rm -rf build

@@ -9,23 +9,21 @@ namespace virtcom::cli {
 
 namespace {
 
-// Splits "--ads-allow A,B,..." into IPv4 peers (4 numbers) and AmsNetIds (6 numbers).
-std::string parseAdsAllow(std::string_view text, proto::ads::ServerConfig& config) {
+// Splits "--ads-allow A,B,..." into client AmsNetIds (6 numbers), kept in `config`, and the
+// IPv4 peers and networks (ADDRESS[/BITS]), returned as the peer policy's allow-list text.
+std::string splitAdsAllow(std::string_view text, proto::ads::ServerConfig& config) {
+  std::string peers;
   while (!text.empty()) {
     auto comma = text.find(',');
     std::string_view item = text.substr(0, comma);
-    if (auto id = proto::ads::parseNetId(item)) {
+    if (auto id = proto::ads::parseNetId(item))
       config.allowedNetIds.push_back(*id);
-    } else if (auto ip = proto::net::parseIpv4(item)) {
-      config.allowedPeers.push_back(*ip);
-    } else if (!item.empty()) {
-      return "'" + std::string(item) + "' is neither an IPv4 address nor an AmsNetId (a.b.c.d.e.f)";
-    }
+    else if (!item.empty())
+      peers.append(peers.empty() ? "" : ",").append(item);
     if (comma == std::string_view::npos) break;
     text.remove_prefix(comma + 1);
   }
-  if (config.allowedPeers.empty() && config.allowedNetIds.empty()) return "the allow-list names no address";
-  return "";
+  return peers;
 }
 
 }  // namespace
@@ -33,13 +31,18 @@ std::string parseAdsAllow(std::string_view text, proto::ads::ServerConfig& confi
 void addAdsServeOptions(CLI::App* cmd, AdsServeOptions& o) {
   cmd->add_option("--ads", o.listen, "serve the PLC over ADS (AMS/TCP, TwinCAT 3 runtime on AMS port 851) on HOST:PORT, e.g. 127.0.0.1:48898 (see docs/ads.md); implies --speed 1");
   cmd->add_option("--ads-netid", o.netId, "AmsNetId of the --ads server (default 127.0.0.1.1.1; 127.0.0.1.1.1 is always accepted too)");
-  cmd->add_option("--ads-allow", o.allow, "comma-separated IPv4 peers and/or client AmsNetIds allowed to use --ads (default: any)");
+  cmd->add_option("--ads-allow", o.allow,
+                  "comma-separated IPv4 peers (ADDRESS or ADDRESS/BITS) and/or client AmsNetIds allowed to use --ads (needed to bind "
+                  "beyond loopback; see docs/security.md)");
   cmd->add_flag("--ads-readonly", o.readOnly, "refuse every ADS write and RUN/STOP request (error 0x704)");
+  cmd->add_option("--ads-route-password", o.routePassword,
+                  "the password a UDP add route (pyads add_route_to_plc, TwinCAT's Add Route dialog) must carry; without it every "
+                  "add route is refused (0x704). An accepted route lets its AmsNetId and address in (see docs/ads.md, Routes)");
   cmd->add_option("--ads-discovery", o.discovery,
                   "UDP port of the ADS discovery service (identify, add route: adstool HOST netid, pyads add_route_to_plc) on the --ads address; 0 picks a free port, 'off' disables it (default 48899)");
 }
 
-std::expected<std::unique_ptr<proto::ads::PlcServer>, std::string> startAdsServer(const AdsServeOptions& o,
+std::expected<std::unique_ptr<proto::ads::PlcServer>, std::string> startAdsServer(const AdsServeOptions& o, const PeerFlags& peers,
                                                                                   const bc::Module& module) {
   namespace ads = proto::ads;
   auto endpoint = proto::net::parseEndpoint(o.listen);
@@ -47,15 +50,18 @@ std::expected<std::unique_ptr<proto::ads::PlcServer>, std::string> startAdsServe
   ads::ServerConfig config;
   config.listen = *endpoint;
   config.device.readOnly = o.readOnly;
+  config.routePassword = o.routePassword;
   if (!o.netId.empty()) {
     auto id = ads::parseNetId(o.netId);
     if (!id) return std::unexpected("--ads-netid: " + id.error());
     config.device.netId = *id;
   }
-  if (!o.allow.empty()) {
-    std::string problem = parseAdsAllow(o.allow, config);
-    if (!problem.empty()) return std::unexpected("--ads-allow: " + problem);
-  }
+  const std::string peerList = splitAdsAllow(o.allow, config);
+  if (!o.allow.empty() && peerList.empty() && config.allowedNetIds.empty())
+    return std::unexpected(std::string("--ads-allow: the allow-list names no address"));
+  auto policy = peerPolicy(*endpoint, peers, "ads", "--ads", "--ads-allow", peerList, !config.allowedNetIds.empty());
+  if (!policy) return std::unexpected(policy.error());
+  config.peers = std::move(*policy);
   if (o.discovery == "off") {
     config.discoveryPort.reset();
   } else {

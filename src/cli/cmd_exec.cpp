@@ -36,7 +36,9 @@ struct ExecOptions {
   uint64_t budget = 50'000'000;
   bool stats = false;
   std::string modbus;       // HOST:PORT to serve Modbus TCP on; empty: no server
-  std::string modbusAllow;  // comma-separated peer addresses; empty: any
+  std::string modbusAllow;  // --modbus-allow: comma-separated peers; empty: any (loopback only)
+  bool modbusReadOnly = false;
+  PeerFlags peers;          // --allow-any-peer and the limits, for every server of the command
   bool modbusWritableInputs = false;  // %IW also as holding registers 8192.. (docs/modbus.md)
   AdsServeOptions ads;
   OpcuaServeOptions opcua;
@@ -85,9 +87,10 @@ proto::modbus::ImageView modbusView(plc::Runtime& runtime) {
 
 std::expected<std::unique_ptr<proto::modbus::Server>, std::string> startModbus(const ExecOptions& o, plc::Runtime& runtime) {
   namespace mb = proto::modbus;
-  auto settings = modbusServerConfig(o.modbus, o.modbusAllow);
+  auto settings = modbusServerConfig(o.modbus, o.modbusAllow, o.peers);
   if (!settings) return std::unexpected(settings.error());
   mb::ServerConfig config = *settings;
+  config.readOnly = o.modbusReadOnly;
   const bc::Module& m = runtime.module();
   mb::ImageShape shape;
   shape.inputs = m.inputs.size;
@@ -197,7 +200,7 @@ ExitCode runExec(const ExecOptions& o) {
   }
   std::unique_ptr<proto::ads::PlcServer> ads;
   if (o.ads.enabled()) {
-    auto server = startAdsServer(o.ads, *module);
+    auto server = startAdsServer(o.ads, o.peers, *module);
     if (!server) {
       std::cerr << "error: " << server.error() << "\n";
       return ExitCode::Usage;
@@ -208,7 +211,7 @@ ExitCode runExec(const ExecOptions& o) {
   }
   std::unique_ptr<OpcuaPlcServer> opcua;
   if (o.opcua.enabled()) {
-    auto server = startOpcuaServer(o.opcua, *module);
+    auto server = startOpcuaServer(o.opcua, o.peers, *module);
     if (!server) {
       std::cerr << "error: " << server.error() << "\n";
       return ExitCode::Usage;
@@ -294,9 +297,10 @@ void addExecCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_flag("--stats", o->stats, "print per-task scan statistics to stderr");
   cmd->add_option("--modbus", o->modbus, "serve the process image over Modbus TCP on HOST:PORT (OpenPLC mapping, see docs/modbus.md); implies --speed 1");
   cmd->add_flag("--modbus-writable-inputs", o->modbusWritableInputs, "let --modbus clients write the inputs: holding register 8192+n is %IWn (and the %IX bits in it); off by default");
-  cmd->add_option("--modbus-allow", o->modbusAllow, "comma-separated IPv4 peers allowed to connect to --modbus (default: any)");
+  addModbusServeOptions(cmd, o->modbusAllow, o->modbusReadOnly);
   addAdsServeOptions(cmd, o->ads);
   addOpcuaServeOptions(cmd, o->opcua);
+  addPeerFlags(cmd, o->peers, true);
   cmd->add_option("--retain-file", o->retainFile, "warm start: load the RETAIN/PERSISTENT variables from this file after the cold start (if it exists) and save them to it when the run ends without a fault");
   cmd->callback([o, setExit] { setExit(runExec(*o)); });
 }

@@ -30,6 +30,7 @@ struct HistoryOptions {
   std::string csv, vcd, html, json;
   std::vector<std::string> signals;
   HmiServeOptions http;  // --http: browse in the web HMI
+  PeerFlags peers;       // --allow-any-peer
   std::string cell;      // --cell: the cell file the page draws (default: the run's)
   bool exports() const { return !csv.empty() || !vcd.empty() || !html.empty() || !json.empty(); }
 };
@@ -115,7 +116,7 @@ bool exportRun(const HistoryOptions& o, history::HistoryReader& reader, const hi
 ExitCode browseHistory(const HistoryOptions& o, history::HistoryReader& reader) {
   HmiServeOptions http = o.http;
   http.readOnly = true;  // nothing to write: no token is made up
-  auto binding = checkHmiOptions(http, "--http");
+  auto binding = checkHmiOptions(http, o.peers, "--http");
   if (!binding) {
     std::cerr << "error: " << binding.error() << "\n";
     return ExitCode::Usage;
@@ -146,7 +147,7 @@ ExitCode browseHistory(const HistoryOptions& o, history::HistoryReader& reader) 
   hmi::Api page(*cell, live, prepared.hasPlc() ? prepared.plc().baseTickNs() : cell->run.plcCycleNs, binding->access);
   page.attachHistory(**api, true);
   stopOnSignals();
-  auto server = hmi::HttpServer::start(page, binding->at, binding->allowedPeers);
+  auto server = hmi::HttpServer::start(page, binding->at, binding->peers);
   if (!server) {
     std::cerr << "error: --http: " << server.error() << "\n";
     return ExitCode::Usage;
@@ -165,7 +166,7 @@ ExitCode showHistory(const HistoryOptions& o) {
     std::cerr << "error: --http browses the history in the web HMI: it takes no --csv, --vcd, --report, --json, --from, --to or --signal\n";
     return ExitCode::Usage;
   }
-  if (!o.http.enabled() && (!o.cell.empty() || !o.http.allow.empty() || o.http.anyPeer)) {
+  if (!o.http.enabled() && (!o.cell.empty() || !o.http.allow.empty() || o.peers.anyPeer)) {
     std::cerr << "error: --cell, --http-allow and --allow-any-peer go with --http\n";
     return ExitCode::Usage;
   }
@@ -216,6 +217,7 @@ void addHistoryCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_option("--signal", o->signals, "signal shown in the report's timeline (repeatable); default: those of the recorded run");
   addHttpOptions(cmd, o->http, "--http",
                  "browse the runs in the web HMI instead (their Gantt chart, trends and layout over time, read-only)");
+  addPeerFlags(cmd, o->peers, false);
   cmd->add_option("--cell", o->cell, "with --http: the cell file whose layout the page draws (default: the one the run recorded)");
   cmd->callback([o, setExit] { setExit(showHistory(*o)); });
 }

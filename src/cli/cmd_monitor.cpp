@@ -42,6 +42,7 @@ struct MonitorOptions {
   bool quiet = false;
   size_t traceWindow = kDefaultTraceWindow;
   HmiServeOptions hmi;
+  PeerFlags peers;  // --allow-any-peer
   HistoryRecordOptions history;
 };
 
@@ -273,7 +274,7 @@ ExitCode monitorCell(const MonitorOptions& o) {
     // pausing would only stop the polls.
     HmiServeOptions watchOnly = o.hmi;
     watchOnly.readOnly = true;
-    auto binding = checkHmiOptions(watchOnly, "--http");
+    auto binding = checkHmiOptions(watchOnly, o.peers, "--http");
     if (!binding) {
       std::cerr << "error: " << binding.error() << "\n";
       return ExitCode::Usage;
@@ -377,6 +378,7 @@ void addMonitorCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_flag("--quiet", o->quiet, "do not print the summary and the model comparison when stopped");
   addTraceWindowOption(*cmd, o->traceWindow);
   addHmiOptions(cmd, o->hmi, "--http");  // always read-only here (--hmi-readonly is implied)
+  addPeerFlags(cmd, o->peers, false);
   addHistoryOptions(cmd, o->history);
   cmd->callback([o, setExit] { setExit(monitorCell(*o)); });
 }

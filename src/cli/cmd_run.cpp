@@ -47,6 +47,7 @@ struct RunOptions {
   std::string timeMode = "event";  // --time-mode: jump over idle ticks, or step every tick
   size_t traceWindow = kDefaultTraceWindow;
   HmiServeOptions hmi;  // --hmi: watch and steer the run in a browser
+  PeerFlags peers;      // --allow-any-peer
   HistoryRecordOptions history;
   CoverageOptions coverage;
 };
@@ -176,7 +177,7 @@ ExitCode runCell(const RunOptions& o) {
       std::cerr << "error: --step and --hmi both step the run: the HMI has its own single step\n";
       return ExitCode::Usage;
     }
-    auto binding = checkHmiOptions(o.hmi, "--hmi");
+    auto binding = checkHmiOptions(o.hmi, o.peers, "--hmi");
     if (!binding) {
       std::cerr << "error: " << binding.error() << "\n";
       return ExitCode::Usage;
@@ -367,6 +368,7 @@ void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table (the faults and how the run ended still go to stderr)");
   cmd->add_flag("--step", o->step, "single step: advance one PLC tick per line read from stdin, printing changed signals");
   addHmiOptions(cmd, o->hmi, "--hmi");
+  addPeerFlags(cmd, o->peers, false);
   cmd->add_flag("--trace-rules", o->traceRules,
                 "print the activity-diagram rules whose IF held, after every PLC tick: scan N  Supply rule 3 fired: Valve := FALSE");
   cmd->callback([o, setExit] { setExit(runCell(*o)); });

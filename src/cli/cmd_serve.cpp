@@ -41,7 +41,9 @@ struct ServeOptions {
   bool quiet = false;
   std::string json;         // the JSON report, written when stopped; empty: none
   std::string modbus;       // HOST:PORT; empty: no Modbus server
-  std::string modbusAllow;  // comma-separated peer addresses; empty: any
+  std::string modbusAllow;  // --modbus-allow: comma-separated peers; empty: any (loopback only)
+  bool modbusReadOnly = false;
+  PeerFlags peers;          // --allow-any-peer and the limits, for every server of the command
   AdsServeOptions ads;      // the soft PLC over ADS
   OpcuaServeOptions opcua;  // the soft PLC's variables over OPC UA
   HmiServeOptions hmi;      // the web HMI (--http)
@@ -54,9 +56,10 @@ using Bridges = std::vector<std::unique_ptr<BusBridge>>;
 
 std::expected<std::unique_ptr<BusBridge>, std::string> startModbus(const ServeOptions& o, const cell::Cell& cell) {
   namespace mb = proto::modbus;
-  auto settings = modbusServerConfig(o.modbus, o.modbusAllow);
+  auto settings = modbusServerConfig(o.modbus, o.modbusAllow, o.peers);
   if (!settings) return std::unexpected(settings.error());
   mb::ServerConfig config = *settings;
+  config.readOnly = o.modbusReadOnly;
   auto server = mb::SignalServer::start(config, cell.modbus);
   if (!server) return std::unexpected("--modbus: " + server.error());
   std::cerr << "modbus: serving on " << mb::formatEndpoint((*server)->endpoint()) << " (" << cell.modbus.entries.size()
@@ -94,7 +97,7 @@ ExitCode serveCell(const ServeOptions& o) {
   }
   std::optional<HmiBinding> hmiBinding;
   if (o.hmi.enabled()) {
-    auto binding = checkHmiOptions(o.hmi, "--http");
+    auto binding = checkHmiOptions(o.hmi, o.peers, "--http");
     if (!binding) {
       std::cerr << "error: " << binding.error() << "\n";
       return ExitCode::Usage;
@@ -138,7 +141,7 @@ ExitCode serveCell(const ServeOptions& o) {
   }
   std::unique_ptr<proto::ads::PlcServer> ads;
   if (o.ads.enabled()) {
-    auto server = startAdsServer(o.ads, *cell->module);
+    auto server = startAdsServer(o.ads, o.peers, *cell->module);
     if (!server) {
       std::cerr << "error: " << server.error() << "\n";
       return ExitCode::Usage;
@@ -147,7 +150,7 @@ ExitCode serveCell(const ServeOptions& o) {
   }
   std::unique_ptr<OpcuaPlcServer> opcua;
   if (o.opcua.enabled()) {
-    auto server = startOpcuaServer(o.opcua, *cell->module);
+    auto server = startOpcuaServer(o.opcua, o.peers, *cell->module);
     if (!server) {
       std::cerr << "error: " << server.error() << "\n";
       return ExitCode::Usage;
@@ -253,9 +256,10 @@ void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--modbus", o->modbus, "serve the signals over Modbus TCP on HOST:PORT (e.g. 127.0.0.1:1502; see docs/modbus.md)");
-  cmd->add_option("--modbus-allow", o->modbusAllow, "comma-separated IPv4 peers allowed to connect to --modbus (default: any)");
+  addModbusServeOptions(cmd, o->modbusAllow, o->modbusReadOnly);
   addAdsServeOptions(cmd, o->ads);
   addOpcuaServeOptions(cmd, o->opcua);
+  addPeerFlags(cmd, o->peers, true);
   addHmiOptions(cmd, o->hmi, "--http");
   cmd->add_option("--speed", o->speed, "pace factor against the wall clock (default 1 = real time)")->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);

@@ -10,10 +10,6 @@ namespace virtcom::cli {
 
 namespace {
 
-constexpr uint32_t kLoopbackNet = 0x7f000000;  // 127.0.0.0/8
-
-bool isLoopback(uint32_t ipv4) { return (ipv4 & 0xff000000u) == kLoopbackNet; }
-
 // 128 random bits as hex: the write token when none was given.
 std::string randomToken() {
   std::random_device random;
@@ -36,8 +32,9 @@ std::function<void(plc::Runtime&)> chain(std::function<void(plc::Runtime&)> befo
 
 void addHttpOptions(CLI::App* cmd, HmiServeOptions& o, const std::string& listenFlag, const std::string& what) {
   cmd->add_option(listenFlag, o.listen, what + " on HOST:PORT, e.g. 127.0.0.1:8080 (port 0: a free port, printed; see docs/hmi.md)");
-  cmd->add_option("--http-allow", o.allow, "comma-separated IPv4 peers allowed to use the HMI (needed to bind beyond loopback)");
-  cmd->add_flag("--allow-any-peer", o.anyPeer, "let every peer use an HMI bound beyond loopback (instead of --http-allow)");
+  cmd->add_option("--http-allow", o.allow,
+                  "comma-separated IPv4 peers (ADDRESS or ADDRESS/BITS) allowed to use the HMI (needed to bind beyond loopback; see "
+                  "docs/security.md)");
 }
 
 void addHmiOptions(CLI::App* cmd, HmiServeOptions& o, const std::string& listenFlag) {
@@ -47,23 +44,17 @@ void addHmiOptions(CLI::App* cmd, HmiServeOptions& o, const std::string& listenF
   cmd->add_flag("--hmi-paused", o.paused, "start paused: the first tick waits for run or step from the HMI");
 }
 
-std::expected<HmiBinding, std::string> checkHmiOptions(const HmiServeOptions& o, const std::string& listenFlag) {
+std::expected<HmiBinding, std::string> checkHmiOptions(const HmiServeOptions& o, const PeerFlags& peers, const std::string& listenFlag) {
   HmiBinding b;
   auto at = parseEndpoint(o.listen);
   if (!at) return std::unexpected(listenFlag + ": " + at.error());
   b.at = *at;
-  if (!o.allow.empty()) {
-    auto peers = parseAllowList(o.allow);
-    if (!peers) return std::unexpected("--http-allow: " + peers.error());
-    b.allowedPeers = *peers;
-  }
+  auto policy = peerPolicy(b.at, peers, "http", listenFlag, "--http-allow", o.allow);
+  if (!policy) return std::unexpected(policy.error());
+  b.peers = std::move(*policy);
   b.access.readOnly = o.readOnly;
   b.access.token = o.token;
-  if (!isLoopback(b.at.ipv4)) {
-    if (b.allowedPeers.empty() && !o.anyPeer)
-      return std::unexpected(listenFlag + ": " + formatIpv4(b.at.ipv4) +
-                             " is reachable beyond this machine: name the browsers' addresses with --http-allow A,B (or "
-                             "--allow-any-peer), or bind 127.0.0.1");
+  if (!proto::net::isLoopback(b.at.ipv4)) {
     if (b.access.token.empty() && !o.readOnly) {
       b.access.token = randomToken();
       b.tokenGenerated = true;
@@ -104,7 +95,7 @@ std::expected<void, std::string> LiveHmi::serve(const HmiBinding& binding, sim::
     history_ = std::move(*history);
     api_->attachHistory(*history_, false);
   }
-  auto server = hmi::HttpServer::start(*api_, binding.at, binding.allowedPeers);
+  auto server = hmi::HttpServer::start(*api_, binding.at, binding.peers);
   if (!server) return std::unexpected(server.error());
   server_ = std::move(*server);
   std::cerr << "hmi: serving http://" << formatEndpoint(server_->bound()) << "/ ("

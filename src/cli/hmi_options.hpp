@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/peer_options.hpp"
 #include "hmi/api.hpp"
 #include "hmi/http_server.hpp"
 #include "cli/sfc_mirror.hpp"
@@ -20,31 +21,31 @@ namespace virtcom::cli {
 
 struct HmiServeOptions {
   std::string listen;     // HOST:PORT; empty: no HMI
-  std::string allow;      // --http-allow: IPv4 peers
-  bool anyPeer = false;   // --allow-any-peer
+  std::string allow;      // --http-allow: IPv4 peers or networks
   std::string token;      // --hmi-token
   bool readOnly = false;  // --hmi-readonly
   bool paused = false;    // --hmi-paused
   bool enabled() const { return !listen.empty(); }
 };
 
-// Adds `listenFlag` (--http or --hmi), --http-allow, --allow-any-peer, --hmi-token,
-// --hmi-readonly and --hmi-paused to `cmd`.
+// Adds `listenFlag` (--http or --hmi), --http-allow, --hmi-token, --hmi-readonly and
+// --hmi-paused to `cmd` (the command adds --allow-any-peer: addPeerFlags).
 void addHmiOptions(CLI::App* cmd, HmiServeOptions& o, const std::string& listenFlag);
-// Adds where and to whom the page is served: `listenFlag` (described by `what`), --http-allow
-// and --allow-any-peer (what `virtcom history --http`, which only reads, takes of the above).
+// Adds where and to whom the page is served: `listenFlag` (described by `what`) and --http-allow
+// (what `virtcom history --http`, which only reads, takes of the above).
 void addHttpOptions(CLI::App* cmd, HmiServeOptions& o, const std::string& listenFlag, const std::string& what);
 
 // Where and to whom the HMI is served, checked before the cell is loaded.
 struct HmiBinding {
   Endpoint at;
-  std::vector<uint32_t> allowedPeers;  // empty: any
+  proto::net::PeerPolicy peers;
   hmi::WriteAccess access;
   bool tokenGenerated = false;         // printed at start-up
 };
-// Error text naming the option at fault. Beyond loopback: an allow-list (or --allow-any-peer) is
-// required, and writing needs a token (generated when --hmi-token is not given).
-std::expected<HmiBinding, std::string> checkHmiOptions(const HmiServeOptions& o, const std::string& listenFlag);
+// Error text naming the option at fault. Beyond loopback: an allow-list (or --allow-any-peer in
+// `peers`) is required (docs/security.md), and writing needs a token (generated when --hmi-token
+// is not given).
+std::expected<HmiBinding, std::string> checkHmiOptions(const HmiServeOptions& o, const PeerFlags& peers, const std::string& listenFlag);
 
 // The HMI of a command's runs: construct before the simulation (it hooks into the options),
 // serve() once the first simulation is constructed, stop() when done. A reset from the page

@@ -4,19 +4,24 @@
 
 namespace virtcom::cli {
 
-std::expected<proto::modbus::ServerConfig, std::string> modbusServerConfig(const std::string& listen,
-                                                                          const std::string& allow) {
+std::expected<proto::modbus::ServerConfig, std::string> modbusServerConfig(const std::string& listen, const std::string& allow,
+                                                                          const PeerFlags& peers) {
   namespace mb = proto::modbus;
   auto endpoint = mb::parseEndpoint(listen);
   if (!endpoint) return std::unexpected("--modbus: " + endpoint.error());
   mb::ServerConfig config;
   config.listen = *endpoint;
-  if (!allow.empty()) {
-    auto peers = mb::parseAllowList(allow);
-    if (!peers) return std::unexpected("--modbus-allow: " + peers.error());
-    config.allowedPeers = *peers;
-  }
+  auto policy = peerPolicy(*endpoint, peers, "modbus", "--modbus", "--modbus-allow", allow);
+  if (!policy) return std::unexpected(policy.error());
+  config.peers = std::move(*policy);
   return config;
+}
+
+void addModbusServeOptions(CLI::App* cmd, std::string& allow, bool& readOnly) {
+  cmd->add_option("--modbus-allow", allow,
+                  "comma-separated IPv4 peers (ADDRESS or ADDRESS/BITS) allowed to connect to --modbus (needed to bind beyond "
+                  "loopback; see docs/security.md)");
+  cmd->add_flag("--modbus-readonly", readOnly, "refuse every Modbus write (exception 01: the write functions are not offered)");
 }
 
 std::unique_ptr<proto::modbus::ClientBridge> startClientBridge(const cell::ModbusClientSettings& s, const std::string& role) {

@@ -11,13 +11,15 @@ void addOpcuaServeOptions(CLI::App* cmd, OpcuaServeOptions& o) {
   cmd->add_option("--opcua", o.listen,
                   "serve the PLC's variables over OPC UA (opc.tcp, security None, anonymous) on HOST:PORT, e.g. 127.0.0.1:4840 "
                   "(see docs/opcua.md); implies --speed 1");
-  cmd->add_option("--opcua-allow", o.allow, "comma-separated IPv4 peers allowed to use --opcua (default: any)");
+  cmd->add_option("--opcua-allow", o.allow,
+                  "comma-separated IPv4 addresses or networks (10.0.0.0/8) allowed to use --opcua (default: any; required beyond "
+                  "loopback unless --allow-any-peer; docs/security.md)");
   cmd->add_flag("--opcua-readonly", o.readOnly, "refuse every OPC UA write (BadUserAccessDenied)");
   cmd->add_option("--opcua-max-sessions", o.maxSessions, "sessions open at once on --opcua (default 32)")->check(CLI::Range(1, 10000));
-  cmd->add_option("--opcua-max-clients", o.maxClients, "TCP connections open at once on --opcua (default 32)")->check(CLI::Range(1, 10000));
 }
 
-std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions& o, const bc::Module& module) {
+std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions& o, const PeerFlags& peers,
+                                                                              const bc::Module& module) {
   namespace ua = proto::opcua;
   auto endpoint = proto::net::parseEndpoint(o.listen);
   if (!endpoint) return std::unexpected("--opcua: " + endpoint.error());
@@ -25,12 +27,9 @@ std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(con
   config.listen = *endpoint;
   config.readOnly = o.readOnly;
   config.maxSessions = o.maxSessions;
-  config.maxClients = o.maxClients;
-  if (!o.allow.empty()) {
-    auto peers = proto::net::parseAllowList(o.allow);
-    if (!peers) return std::unexpected("--opcua-allow: " + peers.error());
-    config.allowedPeers = *peers;
-  }
+  auto policy = peerPolicy(*endpoint, peers, "opcua", "--opcua", "--opcua-allow", o.allow);
+  if (!policy) return std::unexpected(policy.error());
+  config.peers = std::move(*policy);
   std::unique_ptr<OpcuaPlcServer> s(new OpcuaPlcServer(proto::ads::buildSymbolTable(module)));
   auto server = ua::Server::start(config, s->table_);
   if (!server) return std::unexpected("--opcua: " + server.error());

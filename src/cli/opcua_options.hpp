@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bytecode/module.hpp"
+#include "cli/peer_options.hpp"
 #include "plc/runtime.hpp"
 #include "proto/ads/symbol_table.hpp"
 #include "proto/opcua/server.hpp"
@@ -16,10 +17,9 @@ namespace virtcom::cli {
 
 struct OpcuaServeOptions {
   std::string listen;  // --opcua HOST:PORT; empty: no server
-  std::string allow;   // --opcua-allow: IPv4 peers; empty: any
+  std::string allow;   // --opcua-allow: IPv4 peers or networks; empty: any (loopback only)
   bool readOnly = false;
   size_t maxSessions = 32;
-  size_t maxClients = 32;
   bool enabled() const { return !listen.empty(); }
 };
 
@@ -36,7 +36,8 @@ class OpcuaPlcServer {
   void stop() { server_->stop(); }
 
  private:
-  friend std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions&, const bc::Module&);
+  friend std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions&, const PeerFlags&,
+                                                                                      const bc::Module&);
   explicit OpcuaPlcServer(proto::ads::SymbolTable table) : table_(std::move(table)) {}
   proto::ads::SymbolTable table_;
   std::unique_ptr<proto::opcua::Server> server_;
@@ -44,7 +45,8 @@ class OpcuaPlcServer {
 
 // Checks the options and starts the server over `module` (which must outlive it). The error
 // text names the option at fault ("--opcua: ...").
-std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions& o, const bc::Module& module);
+std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions& o, const PeerFlags& peers,
+                                                                              const bc::Module& module);
 
 // "opcua: serving opc.tcp://127.0.0.1:4840 (security None, anonymous)" on stderr, once the
 // first image is published (e2e tests and scripts wait for it).

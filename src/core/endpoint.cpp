@@ -44,20 +44,37 @@ TextResult<Endpoint> parseEndpoint(std::string_view text) {
   return Endpoint{*ip, static_cast<uint16_t>(port)};
 }
 
-TextResult<std::vector<uint32_t>> parseAllowList(std::string_view text) {
-  std::vector<uint32_t> out;
+TextResult<Ipv4Net> parseIpv4Net(std::string_view text) {
+  const auto slash = text.find('/');
+  auto ip = parseIpv4(text.substr(0, slash));
+  if (!ip) return TextResult<Ipv4Net>::failure(ip.error() + " (expected ADDRESS or ADDRESS/BITS)");
+  if (slash == std::string_view::npos) return Ipv4Net{*ip};
+  std::string_view bitsText = text.substr(slash + 1);
+  unsigned bits = 0;
+  auto [end, ec] = std::from_chars(bitsText.data(), bitsText.data() + bitsText.size(), bits);
+  if (ec != std::errc{} || end != bitsText.data() + bitsText.size() || bits > 32 || bitsText.empty())
+    return TextResult<Ipv4Net>::failure(quotedThen(bitsText, "' is not a prefix length (0-32) in ").append(text));
+  const uint32_t mask = bits == 0 ? 0 : ~uint32_t{0} << (32 - bits);
+  if ((*ip & ~mask) != 0)
+    return TextResult<Ipv4Net>::failure(quotedThen(text, "' has host bits set: the network is ") +
+                                        formatIpv4(*ip & mask) + "/" + std::to_string(bits));
+  return Ipv4Net{*ip, mask};
+}
+
+TextResult<std::vector<Ipv4Net>> parseAllowList(std::string_view text) {
+  std::vector<Ipv4Net> out;
   while (!text.empty()) {
     auto comma = text.find(',');
     std::string_view item = text.substr(0, comma);
     if (!item.empty()) {
-      auto ip = parseIpv4(item);
-      if (!ip) return TextResult<std::vector<uint32_t>>::failure(ip.error());
-      out.push_back(*ip);
+      auto net = parseIpv4Net(item);
+      if (!net) return TextResult<std::vector<Ipv4Net>>::failure(net.error());
+      out.push_back(*net);
     }
     if (comma == std::string_view::npos) break;
     text.remove_prefix(comma + 1);
   }
-  if (out.empty()) return TextResult<std::vector<uint32_t>>::failure(std::string("the allow-list names no address"));
+  if (out.empty()) return TextResult<std::vector<Ipv4Net>>::failure(std::string("the allow-list names no address"));
   return out;
 }
 

@@ -1,6 +1,5 @@
 #include "hmi/http_server.hpp"
 
-#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -15,7 +14,7 @@ constexpr int kWriteTimeoutS = 5;  // a stalled viewer ends its own stream
 
 }  // namespace
 
-HttpServer::HttpServer(Api& api, std::vector<uint32_t> allowedPeers) : api_(api), allowedPeers_(std::move(allowedPeers)) {}
+HttpServer::HttpServer(Api& api, proto::net::PeerPolicy peers) : api_(api), peers_(std::move(peers)) {}
 
 HttpServer::~HttpServer() {
   stop();
@@ -23,10 +22,10 @@ HttpServer::~HttpServer() {
 }
 
 std::expected<std::unique_ptr<HttpServer>, std::string> HttpServer::start(Api& api, const Endpoint& at,
-                                                                          std::vector<uint32_t> allowedPeers) {
+                                                                          proto::net::PeerPolicy peers) {
   auto startListener = bundledModuleSymbol(kHttpModule, kStartHttpListenerSymbol);
   if (!startListener) return std::unexpected(startListener.error());
-  std::unique_ptr<HttpServer> s(new HttpServer(api, std::move(allowedPeers)));
+  std::unique_ptr<HttpServer> s(new HttpServer(api, std::move(peers)));
   const HttpListenerOptions options{formatIpv4(at.ipv4), at.port, kPoolThreads, kWriteTimeoutS};
   s->listener_.reset(reinterpret_cast<StartHttpListener>(*startListener)(*s, options));
   if (!s->listener_) return std::unexpected("cannot listen on " + formatEndpoint(at) + " (address in use or not local?)");
@@ -40,9 +39,11 @@ void HttpServer::stop() {
 }
 
 bool HttpServer::allows(const std::string& peer) {
-  if (allowedPeers_.empty()) return true;
+  if (peers_.allowed().empty()) return true;
   auto ipv4 = parseIpv4(peer);
-  return ipv4 && std::ranges::find(allowedPeers_, *ipv4) != allowedPeers_.end();
+  if (ipv4 && peers_.allows(*ipv4)) return true;
+  if (ipv4) peers_.logRefusal(*ipv4, proto::net::Refusal::NotAllowed);
+  return false;
 }
 
 Response HttpServer::refusal() { return errorResponse(403, "this address is not in --http-allow"); }

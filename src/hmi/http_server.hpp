@@ -10,11 +10,11 @@
 #include <expected>
 #include <memory>
 #include <string>
-#include <vector>
 
 #include "core/endpoint.hpp"
 #include "hmi/api.hpp"
 #include "hmi/http_module.hpp"
+#include "proto/net/peer_policy.hpp"
 
 namespace virtcom::hmi {
 
@@ -25,10 +25,10 @@ class HttpServer final : private HttpHandler {
   static constexpr int kHeartbeatMs = 2000;   // an SSE comment when nothing changed: finds dead peers
 
   // Binds `at` (port 0: a free port) and serves `api` (which must outlive the server) to the peers
-  // of `allowedPeers` (IPv4, host byte order; empty: any). Error text if it cannot bind or the
-  // module cannot be loaded.
+  // `peers` allows (docs/security.md; others get 403, logged). Error text if it cannot bind or
+  // the module cannot be loaded.
   static std::expected<std::unique_ptr<HttpServer>, std::string> start(Api& api, const Endpoint& at,
-                                                                      std::vector<uint32_t> allowedPeers);
+                                                                      proto::net::PeerPolicy peers);
   ~HttpServer() override;  // stop()
   HttpServer(const HttpServer&) = delete;
   HttpServer& operator=(const HttpServer&) = delete;
@@ -38,13 +38,13 @@ class HttpServer final : private HttpHandler {
   void stop();
 
  private:
-  HttpServer(Api& api, std::vector<uint32_t> allowedPeers);
+  HttpServer(Api& api, proto::net::PeerPolicy peers);
   bool allows(const std::string& peer) override;
   Response refusal() override;
   HttpAnswer answer(const Request& request) override;
 
   Api& api_;
-  std::vector<uint32_t> allowedPeers_;
+  proto::net::PeerPolicy peers_;
   std::unique_ptr<HttpListener> listener_;  // its threads call back into this object
   Endpoint bound_;
   std::atomic<bool> stopping_{false};

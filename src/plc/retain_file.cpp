@@ -46,6 +46,11 @@ std::string loadRetainFile(const std::string& path, const bc::Module& m, uint8_t
   restored = 0;
   std::ifstream in(path);
   if (!in) return std::filesystem::exists(path) ? "cannot read " + path : std::string();
+  return loadRetainText(in, path, m, memory, restored);
+}
+
+std::string loadRetainText(std::istream& in, const std::string& path, const bc::Module& m, uint8_t* memory, size_t& restored) {
+  restored = 0;
   std::map<std::string, const RetainedVariable*> byName;
   const std::vector<RetainedVariable> vars = retainedVariables(m);
   for (const auto& v : vars) byName[v.name] = &v;

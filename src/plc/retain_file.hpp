@@ -7,6 +7,7 @@
 // variable keeps its initial value (as CODESYS does when the retain layout changed).
 #include <cstdint>
 #include <cstddef>
+#include <istream>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,9 @@ std::vector<RetainedVariable> retainedVariables(const bc::Module& m);
 // `restored` counts the variables loaded. Empty on success, else why the file cannot be read.
 // (No std::expected here: the clang fuzz build compiles this library too.)
 std::string loadRetainFile(const std::string& path, const bc::Module& m, uint8_t* memory, size_t& restored);
+// The same over the file's text already open as `in`; `path` names it in the error text (the
+// fuzz target feeds it mutated files).
+std::string loadRetainText(std::istream& in, const std::string& path, const bc::Module& m, uint8_t* memory, size_t& restored);
 
 // Writes the retained variables of `memory` to `path` (replacing it). Empty on success.
 std::string saveRetainFile(const std::string& path, const bc::Module& m, const uint8_t* memory);

@@ -161,7 +161,7 @@ void tag(Bytes& r, uint16_t id, const Bytes& data) {
 }
 
 TEST(AdsTwinCatE2e, UdpDiscoveryIdentifiesAndAddsRoutes) {
-  auto server = startServer({"--ads-discovery", "0"});
+  auto server = startServer({"--ads-discovery", "0", "--ads-route-password", "1"});
   ASSERT_GT(server->port(), 0) << server->errorOutput();
   const std::string prefix = "ads: discovery on UDP 127.0.0.1:";
   const size_t at = server->errorOutput().find(prefix);
@@ -176,17 +176,26 @@ TEST(AdsTwinCatE2e, UdpDiscoveryIdentifiesAndAddsRoutes) {
   EXPECT_EQ(Bytes(reply.begin() + 12, reply.begin() + 18), (Bytes{10, 20, 30, 40, 1, 1}));
 
   // Add route as pyads add_route_to_plc sends it: route name, NetId, user, password, host.
-  Bytes add = discoveryRequest(6, 5);
-  tag(add, 12, {'p', 'c', 0});
-  tag(add, 7, {192, 168, 1, 50, 1, 1});
-  tag(add, 13, {'A', 'd', 'm', 'i', 'n', 'i', 's', 't', 'r', 'a', 't', 'o', 'r', 0});
-  tag(add, 2, {'1', 0});
-  tag(add, 5, {'1', '9', '2', '.', '1', '6', '8', '.', '1', '.', '5', '0', 0});
-  reply = udpExchange(udpPort, add);
+  auto addRoute = [](uint8_t password) {
+    Bytes add = discoveryRequest(6, 5);
+    tag(add, 12, {'p', 'c', 0});
+    tag(add, 7, {192, 168, 1, 50, 1, 1});
+    tag(add, 13, {'A', 'd', 'm', 'i', 'n', 'i', 's', 't', 'r', 'a', 't', 'o', 'r', 0});
+    tag(add, 2, {password, 0});
+    tag(add, 5, {'1', '9', '2', '.', '1', '6', '8', '.', '1', '.', '5', '0', 0});
+    return add;
+  };
+  reply = udpExchange(udpPort, addRoute('1'));
   ASSERT_EQ(reply.size(), 32u);  // pyads reads 32 bytes
   EXPECT_EQ(reply[11], 0x80);    // pyads: a reply
   EXPECT_EQ(Bytes(reply.begin() + 26, reply.begin() + 29), (Bytes{4, 0, 0}));  // pyads: accepted
   EXPECT_EQ(AdsLibStyleClient::get32(reply, 28), 0u);                          // AdsLib: status 0
+
+  // The wrong password: refused with 0x704 and logged (docs/security.md).
+  reply = udpExchange(udpPort, addRoute('2'));
+  ASSERT_EQ(reply.size(), 32u);
+  EXPECT_EQ(AdsLibStyleClient::get32(reply, 28), 0x704u);
+  EXPECT_TRUE(server->waitFor("ads: refused 127.0.0.1: wrong or no credentials")) << server->errorOutput();
   EXPECT_EQ(server->stop(), 0) << server->errorOutput();
 }
 

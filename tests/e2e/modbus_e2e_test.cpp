@@ -163,6 +163,41 @@ TEST_F(ModbusWritableInputsE2e, ClientWritesInputsThroughHoldingRegisters) {
   EXPECT_EQ(inBit, 1);
 }
 
+// exec --modbus-readonly: reads as usual, every write function refused with exception 01
+// (docs/security.md).
+class ModbusReadOnlyE2e : public ModbusE2e {
+ protected:
+  std::vector<std::string> execArgs() const override {
+    return {"exec", "modbus_io.st", "--modbus", "127.0.0.1:0", "--modbus-readonly"};
+  }
+};
+
+TEST_F(ModbusReadOnlyE2e, WritesAreRefusedWithIllegalFunctionAndReadsWork) {
+  modbus_t* ctx = connect();
+  ASSERT_NE(ctx, nullptr) << modbus_strerror(errno);
+  EXPECT_GE(awaitRegister(ctx, kCountRegister, 2), 2);
+  EXPECT_EQ(modbus_write_register(ctx, kSetpointRegister, 21), -1);
+  EXPECT_EQ(errno, EMBXILFUN);
+  EXPECT_EQ(modbus_write_bit(ctx, 12, 1), -1);
+  EXPECT_EQ(errno, EMBXILFUN);
+}
+
+// exec --modbus-allow without this machine: the loopback client is closed at once, and the
+// refusal logged with the peer and the reason (docs/security.md).
+class ModbusAllowListE2e : public ModbusE2e {
+ protected:
+  std::vector<std::string> execArgs() const override {
+    return {"exec", "modbus_io.st", "--modbus", "127.0.0.1:0", "--modbus-allow", "10.0.0.0/8"};
+  }
+};
+
+TEST_F(ModbusAllowListE2e, APeerOutsideTheListIsRefusedAndLogged) {
+  LoopbackClient c(static_cast<uint16_t>(port_));
+  ASSERT_TRUE(c.connected());
+  EXPECT_TRUE(c.closedByServer());
+  EXPECT_TRUE(plc_->waitFor("modbus: refused 127.0.0.1: not in --modbus-allow")) << plc_->errorOutput();
+}
+
 TEST_F(ModbusE2e, ManyClientsAndAbruptDisconnectsDoNotStopTheServer) {
   std::vector<modbus_t*> clients;
   for (int i = 0; i < 8; ++i) {

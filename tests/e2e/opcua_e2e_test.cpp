@@ -160,7 +160,7 @@ TEST(OpcuaE2e, HelpNamesTheOptions) {
   for (const char* command : {"exec", "serve"}) {
     out.clear();
     EXPECT_EQ(virtcom::e2e::shell("'" + kExe + "' " + command + " --help", out), 0) << out;
-    for (const char* option : {"--opcua ", "--opcua-allow", "--opcua-readonly", "--opcua-max-sessions", "--opcua-max-clients"})
+    for (const char* option : {"--opcua ", "--opcua-allow", "--opcua-readonly", "--opcua-max-sessions"})
       EXPECT_NE(out.find(option), std::string::npos) << command << " " << option;
   }
 }

@@ -46,7 +46,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   ads::Session session(device);
   std::span<const uint8_t> stream(data, size);
   std::vector<uint8_t> out;
-  (void)ads::answerDiscovery(stream, ads::DiscoveryInfo{{1, 2, 3, 4, 1, 1}, "fuzz", {{5, 6, 7, 8, 1, 1}}}, out);
+  (void)ads::answerDiscovery(stream, ads::DiscoveryInfo{{1, 2, 3, 4, 1, 1}, "fuzz", "1"}, out);
   int64_t now = 0;
   while (true) {
     ads::FrameScan scan = ads::scanFrame(stream, 64 * 1024);

@@ -35,6 +35,8 @@ constexpr uint64_t kFileTimeUnixEpoch = 116'444'736'000'000'000ull;
 
 struct Connection {
   int fd = -1;
+  uint32_t peer = 0;
+  net::RequestBudget budget;
   Session session;
   std::vector<uint8_t> rx, tx;
 };
@@ -80,7 +82,7 @@ void Server::openDiscovery() {
   discovery_ = bound->bound;
   char host[256] = {};
   if (::gethostname(host, sizeof host - 1) != 0) std::strcpy(host, "virtcom");
-  discoveryInfo_ = DiscoveryInfo{config_.device.netId, host, config_.allowedNetIds};
+  discoveryInfo_ = DiscoveryInfo{config_.device.netId, host, config_.routePassword};
   datagram_.resize(kMaxDatagram);
   reply_.reserve(kMaxDatagram);
 }
@@ -92,12 +94,25 @@ void Server::answerDatagrams() {
     ssize_t n = ::recvfrom(udpFd_, datagram_.data(), datagram_.size(), 0, reinterpret_cast<sockaddr*>(&peer), &len);
     if (n < 0) return;  // EAGAIN: all answered (errors of a datagram socket concern one datagram)
     const uint32_t ip = ntohl(peer.sin_addr.s_addr);
-    const auto& allowed = config_.allowedPeers;
-    if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), ip) == allowed.end()) continue;
     reply_.clear();
-    if (!answerDiscovery(std::span<const uint8_t>(datagram_.data(), static_cast<size_t>(n)), discoveryInfo_, reply_)) continue;
+    const auto request = std::span<const uint8_t>(datagram_.data(), static_cast<size_t>(n));
+    const DiscoveryAnswer answer = answerDiscovery(request, discoveryInfo_, reply_);
+    // A peer off the list may only ask for a route: the password decides, as on TwinCAT.
+    const bool listed = config_.peers.allows(ip);
+    if (!answer || (!listed && !answer.addRoute)) continue;
+    if (answer.routeAdded)
+      addRoute(*answer.routeAdded, ip);
+    else if (answer.addRoute)
+      config_.peers.logRefusal(ip, net::Refusal::BadCredentials);
     ::sendto(udpFd_, reply_.data(), reply_.size(), MSG_DONTWAIT, reinterpret_cast<const sockaddr*>(&peer), len);
   }
+}
+
+void Server::addRoute(const AmsNetId& netId, uint32_t ipv4) {
+  auto& ids = config_.allowedNetIds;
+  if (!ids.empty() && std::find(ids.begin(), ids.end(), netId) == ids.end()) ids.push_back(netId);
+  if (!config_.peers.allowed().empty() && !config_.peers.allows(ipv4)) config_.peers.allowed().push_back(net::Ipv4Net{ipv4});
+  config_.peers.log("ads: route added for AmsNetId " + formatNetId(netId) + " at " + net::formatIpv4(ipv4));
 }
 
 size_t Server::applyPendingWrites(const LiveImage& live) {
@@ -140,7 +155,7 @@ void Server::run() {
       FrameScan scan = scanFrame(rest, config_.maxFrameBytes);
       if (scan.status == FrameStatus::Malformed) return false;
       if (scan.status == FrameStatus::NeedMore) break;
-      keep = c.session.handleFrame(rest.first(scan.size), c.tx);
+      keep = c.session.handleFrame(rest.first(scan.size), c.tx, c.budget.take(monotonicNowNs()));
       used += scan.size;
     }
     c.rx.erase(c.rx.begin(), c.rx.begin() + static_cast<ptrdiff_t>(used));
@@ -197,13 +212,17 @@ void Server::run() {
       }
       std::erase_if(clients, [](const auto& c) { return c->fd < 0; });
       if (fds[1].revents & POLLIN) {
-        int fd = io_.acceptClient(config_.allowedPeers, clients.size() >= config_.maxClients);
+        uint32_t peer = 0;
+        int fd = io_.acceptClient(config_.peers, clients.size(), [&](uint32_t ip) {
+          return static_cast<size_t>(std::ranges::count_if(clients, [ip](const auto& c) { return c->peer == ip; }));
+        }, peer);
         if (fd >= 0) {
           int one = 1;
           ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
           // Keepalive finds peers that vanished without a FIN (pulled cable, killed VM).
           ::setsockopt(fd, SOL_SOCKET, SO_KEEPALIVE, &one, sizeof one);
-          clients.push_back(std::make_unique<Connection>(Connection{fd, Session(device_, config_.allowedNetIds), {}, {}}));
+          clients.push_back(std::make_unique<Connection>(Connection{
+              fd, peer, net::RequestBudget(config_.peers.limits().requestsPerSecond), Session(device_, config_.allowedNetIds), {}, {}}));
         }
       }
       connections_.store(clients.size());

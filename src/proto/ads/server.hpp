@@ -22,6 +22,7 @@
 #include "proto/ads/discovery.hpp"
 #include "proto/ads/symbol_table.hpp"
 #include "proto/net/endpoint.hpp"
+#include "proto/net/peer_policy.hpp"
 #include "proto/net/server_thread.hpp"
 
 namespace virtcom::proto::ads {
@@ -30,15 +31,21 @@ inline constexpr uint16_t kAmsTcpPort = 48898;
 
 struct ServerConfig {
   net::Endpoint listen{0x7f000001, kAmsTcpPort};
-  std::vector<uint32_t> allowedPeers;   // IPv4 peers; empty: any peer that can reach `listen`
+  // Who may connect (IPv4 peers; also the UDP discovery's), how many at once, how fast
+  // (docs/security.md); a connection beyond it is accepted and closed at once, a request beyond
+  // the rate answered with ADS error 0x708 (device busy).
+  net::PeerPolicy peers;
   std::vector<AmsNetId> allowedNetIds;  // source NetIds; empty: any (no route check, as on localhost)
   DeviceConfig device;
-  size_t maxClients = 32;               // further connections are accepted and closed at once
   size_t maxFrameBytes = 1024 * 1024;   // a longer AMS/TCP frame closes its connection
   // UDP discovery (identify, add route: discovery.hpp) on listen's address at this port
   // (TwinCAT: kDiscoveryUdpPort; the CLI's default); 0: any free port, nullopt: off. A port that
   // cannot be bound leaves the TCP server running without it (discoveryProblem()).
   std::optional<uint16_t> discoveryPort;
+  // The password a UDP add route must carry (--ads-route-password); empty: every add route is
+  // refused (0x704). An accepted one adds its NetId to allowedNetIds and the sender's address to
+  // the peers' allow-list, when those lists are in use (docs/ads.md, Routes).
+  std::string routePassword;
 };
 
 // The scan thread's memory: the data area the symbol table describes, and the external input
@@ -83,6 +90,8 @@ class Server {
   void openDiscovery();
   // I/O thread, once the UDP socket is readable: answers every datagram waiting.
   void answerDatagrams();
+  // I/O thread: an accepted add route lets `netId` at `ipv4` in (the lists in use grow).
+  void addRoute(const AmsNetId& netId, uint32_t ipv4);
 
   ServerConfig config_;
   std::mutex mutex_;  // guards device_ and every session

@@ -38,7 +38,7 @@ void Session::end() {
   registered_.reset();
 }
 
-bool Session::handleFrame(std::span<const uint8_t> frame, std::vector<uint8_t>& out) {
+bool Session::handleFrame(std::span<const uint8_t> frame, std::vector<uint8_t>& out, bool withinRate) {
   LittleEndianReader in(frame);
   const auto tcpCommand = static_cast<AmsTcpCommand>(in.u16().value_or(0xFFFF));
   in.u32();
@@ -65,11 +65,11 @@ bool Session::handleFrame(std::span<const uint8_t> frame, std::vector<uint8_t>& 
       std::find(allowedNetIds_.begin(), allowedNetIds_.end(), header->source.netId) == allowedNetIds_.end())
     return false;
   if (header->stateFlags & 0x0001) return true;  // a response from the client: nothing to answer
-  answerPacket(*header, frame.subspan(kFrameHeaderSize), out);
+  answerPacket(*header, frame.subspan(kFrameHeaderSize), out, withinRate);
   return true;
 }
 
-void Session::answerPacket(const AmsHeader& h, std::span<const uint8_t> data, std::vector<uint8_t>& out) {
+void Session::answerPacket(const AmsHeader& h, std::span<const uint8_t> data, std::vector<uint8_t>& out, bool withinRate) {
   // AMS-level errors (docs/ads.md, AMS/TCP and the AMS header): no ADS data, the code in the header.
   auto amsError = [&](AdsError e) { writeAmsFrameHeader(out, responseHeader(h, 0, static_cast<uint32_t>(e))); };
   if (h.target.netId != device_.config().netId && h.target.netId != kLocalAliasNetId)
@@ -82,7 +82,8 @@ void Session::answerPacket(const AmsHeader& h, std::span<const uint8_t> data, st
   currentServer_ = h.target;
   reply_.clear();
   LittleEndianWriter(reply_).u32(0);  // result, patched below
-  AdsError result = data.size() < requestBytes(command) ? AdsError::InvalidSize
+  AdsError result = !withinRate                          ? AdsError::DeviceBusy
+                    : data.size() < requestBytes(command) ? AdsError::InvalidSize
                     : h.target.port == kPlcPort        ? plcCommand(h, data)
                                                        : systemCommand(h, data);
   if (result != AdsError::None) {

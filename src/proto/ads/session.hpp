@@ -24,8 +24,9 @@ class Session {
 
   // Answers one complete frame (as scanFrame found it), appending the response to `out`.
   // Returns false when the connection must close: AMS/TCP port close, or a source NetId that
-  // is not allowed (TwinCAT drops a connection without a route the same way).
-  bool handleFrame(std::span<const uint8_t> frame, std::vector<uint8_t>& out);
+  // is not allowed (TwinCAT drops a connection without a route the same way). `withinRate`
+  // false: the client exceeds its request rate and the request is answered with 0x708 (busy).
+  bool handleFrame(std::span<const uint8_t> frame, std::vector<uint8_t>& out, bool withinRate = true);
   // The connection closed: an AMS port this router registered for it (AMS/TCP port connect, as
   // ads-client does) dies with it, and so do that route's handles. Routes of clients with their
   // own router (AdsLib, TwinCAT) keep theirs (handle_table.hpp).
@@ -54,7 +55,7 @@ class Session {
     std::vector<uint8_t> last;
   };
 
-  void answerPacket(const AmsHeader& h, std::span<const uint8_t> data, std::vector<uint8_t>& out);
+  void answerPacket(const AmsHeader& h, std::span<const uint8_t> data, std::vector<uint8_t>& out, bool withinRate);
   AdsError plcCommand(const AmsHeader& h, std::span<const uint8_t> data);
   AdsError systemCommand(const AmsHeader& h, std::span<const uint8_t> data);
 

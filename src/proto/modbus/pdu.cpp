@@ -232,7 +232,7 @@ Result readWriteMultipleRegisters(Context& c) {
 
 const char* functionName(uint8_t code) {
   switch (code) {
-#define MODBUS_FUNCTION(name, value, handler, text) \
+#define MODBUS_FUNCTION(name, value, handler, writes, text) \
   case value: return text;
 #include "proto/modbus/function_codes.def"
 #undef MODBUS_FUNCTION
@@ -261,8 +261,8 @@ size_t handlePdu(std::span<const uint8_t> request, const ImageView& image, EditQ
   Context c{in, image, edits, out};
   Result result = ExceptionCode::IllegalFunction;
   switch (*fc) {
-#define MODBUS_FUNCTION(name, value, handler, text) \
-  case value: result = handler(c); break;
+#define MODBUS_FUNCTION(name, value, handler, writes, text) \
+  case value: result = writes && image.readOnly ? Result(ExceptionCode::IllegalFunction) : handler(c); break;
 #include "proto/modbus/function_codes.def"
 #undef MODBUS_FUNCTION
   }

@@ -34,7 +34,7 @@ inline constexpr uint32_t kLongRegisterEnd = 8192;     // one past %ML1023's las
 inline constexpr uint32_t kInputHoldingBase = 8192;    // %IW0 as a holding register (writableInputs)
 
 enum class FunctionCode : uint8_t {
-#define MODBUS_FUNCTION(name, code, handler, text) name = code,
+#define MODBUS_FUNCTION(name, code, handler, writes, text) name = code,
 #include "proto/modbus/function_codes.def"
 #undef MODBUS_FUNCTION
 };
@@ -60,6 +60,7 @@ struct ImageView {
   Layout layout = Layout::OpenPlc;
   std::span<const uint8_t> readOnlyCoils = {}, readOnlyHolding = {};  // Layout::Tables: bit per coil/register
   bool writableInputs = false;  // Layout::OpenPlc: %IW also as holding registers from kInputHoldingBase
+  bool readOnly = false;        // every writing function refused with exception 01 (--modbus-readonly)
   std::span<uint8_t> bytes(Area a) const {
     switch (a) {
       case Area::Inputs: return inputs;

@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "core/clock.hpp"
 #include "proto/modbus/mbap.hpp"
 
 namespace virtcom::proto::modbus {
@@ -21,9 +22,21 @@ constexpr size_t kMaxUnsentBytes = 64 * 1024;
 
 struct Connection {
   int fd = -1;
+  uint32_t peer = 0;
+  net::RequestBudget budget;
   std::vector<uint8_t> rx;  // received, not yet a whole frame
   std::vector<uint8_t> tx;  // responses not yet sent
 };
+
+// Exception 06 (server busy) to `frame`, a request beyond the connection's request rate.
+size_t answerBusy(std::span<const uint8_t> frame, std::span<uint8_t, kMaxAduSize> response) {
+  std::copy_n(frame.begin(), kMbapHeaderSize, response.begin());
+  response[4] = 0;
+  response[5] = 3;  // MBAP length: unit id, function | 0x80, exception code
+  response[kMbapHeaderSize] = static_cast<uint8_t>(frame[kMbapHeaderSize] | 0x80);
+  response[kMbapHeaderSize + 1] = static_cast<uint8_t>(ExceptionCode::ServerDeviceBusy);
+  return kMbapHeaderSize + 2;
+}
 
 // Reads what is available and answers every whole frame. False: close the connection (peer
 // closed, socket error, or a frame that is not Modbus TCP).
@@ -41,7 +54,8 @@ bool receive(Connection& c, Answer&& answer) {
     FrameScan scan = scanFrame(rest);
     if (scan.status == FrameStatus::Malformed) return false;
     if (scan.status == FrameStatus::NeedMore) break;
-    size_t size = answer(rest.first(scan.size), response);
+    const bool withinRate = c.budget.take(monotonicNowNs());
+    size_t size = withinRate ? answer(rest.first(scan.size), response) : answerBusy(rest.first(scan.size), response);
     c.tx.insert(c.tx.end(), response.begin(), response.begin() + static_cast<ptrdiff_t>(size));
     used += scan.size;
   }
@@ -69,7 +83,7 @@ Server::Server(const ServerConfig& config, ImageShape shape)
       snapshotRegisters_(shape_.registers, 0),
       snapshot_{snapshotInputs_,    snapshotOutputs_,     snapshotMemory_,
                 snapshotRegisters_, shape_.layout,        shape_.readOnlyCoils,
-                shape_.readOnlyHolding, shape_.writableInputs},
+                shape_.readOnlyHolding, shape_.writableInputs, config.readOnly},
       pending_(config.pendingEditCapacity) {}
 
 std::expected<std::unique_ptr<Server>, std::string> Server::start(const ServerConfig& config, ImageShape shape) {
@@ -137,8 +151,11 @@ void Server::run() {
       }
       std::erase_if(clients, [](const Connection& c) { return c.fd < 0; });
       if (fds[1].revents & POLLIN) {
-        int fd = io_.acceptClient(config_.allowedPeers, clients.size() >= config_.maxClients);
-        if (fd >= 0) clients.push_back(Connection{fd, {}, {}});
+        uint32_t peer = 0;
+        int fd = io_.acceptClient(config_.peers, clients.size(), [&](uint32_t ip) {
+          return static_cast<size_t>(std::ranges::count(clients, ip, &Connection::peer));
+        }, peer);
+        if (fd >= 0) clients.push_back(Connection{fd, peer, net::RequestBudget(config_.peers.limits().requestsPerSecond), {}, {}});
       }
     }
   } catch (const std::bad_alloc&) {

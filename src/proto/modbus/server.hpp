@@ -16,6 +16,7 @@
 
 #include "proto/modbus/pdu.hpp"
 #include "proto/net/endpoint.hpp"
+#include "proto/net/peer_policy.hpp"
 #include "proto/net/server_thread.hpp"
 
 namespace virtcom::proto::modbus {
@@ -23,13 +24,14 @@ namespace virtcom::proto::modbus {
 // Endpoints and allow-lists are shared with the ADS server (proto/net).
 using net::Endpoint;
 using net::formatEndpoint;
-using net::parseAllowList;
 using net::parseEndpoint;
 
 struct ServerConfig {
   Endpoint listen{0x7f000001, 1502};
-  std::vector<uint32_t> allowedPeers;  // empty: any peer that can reach `listen`
-  size_t maxClients = 16;              // further connections are accepted and closed at once
+  // Who may connect, how many at once, how fast (docs/security.md); a connection beyond it is
+  // accepted and closed at once, a request beyond the rate answered with exception 06.
+  net::PeerPolicy peers;
+  bool readOnly = false;  // every write refused with exception 01 (ImageView::readOnly)
   // Queued byte edits between two scans; beyond: exception 06. 65536 edits (512 KiB) take a
   // client writing 10 registers per request at more than 300 000 requests/s for a 10 ms scan.
   size_t pendingEditCapacity = 65536;

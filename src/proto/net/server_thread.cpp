@@ -9,9 +9,17 @@
 
 namespace virtcom::proto::net {
 
+namespace {
+
+// Connections waiting for accept(): room for 100 client processes starting at once (the peer
+// policy's defaults admit them, docs/security.md); the kernel caps it at net.core.somaxconn.
+constexpr int kListenBacklog = 128;
+
+}  // namespace
+
 std::expected<void, std::string> ServerThread::start(const Endpoint& at, const std::string& name,
                                                      std::function<void()> loop) {
-  auto listener = listenTcp(at);
+  auto listener = listenTcp(at, kListenBacklog);
   if (!listener) return std::unexpected(listener.error());
   listenFd_ = listener->fd;
   bound_ = listener->bound;
@@ -42,12 +50,11 @@ bool ServerThread::takeStopRequest() {
   return n > 0 && std::find(why, why + n, kWakeStop) != why + n;
 }
 
-int ServerThread::acceptClient(const std::vector<uint32_t>& allowedPeers, bool full) {
-  uint32_t peer = 0;
+int ServerThread::acceptClient(const PeerPolicy& policy, size_t open, const std::function<size_t(uint32_t)>& openFrom,
+                               uint32_t& peer) {
   int fd = acceptPeer(listenFd_, peer);
   if (fd < 0) return -1;
-  bool allowed = allowedPeers.empty() || std::find(allowedPeers.begin(), allowedPeers.end(), peer) != allowedPeers.end();
-  if (allowed && !full) return fd;
+  if (policy.admit(peer, open, openFrom(peer)) == Refusal::None) return fd;
   ::close(fd);
   return -1;
 }

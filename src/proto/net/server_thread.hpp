@@ -7,9 +7,9 @@
 #include <functional>
 #include <string>
 #include <thread>
-#include <vector>
 
 #include "proto/net/endpoint.hpp"
+#include "proto/net/peer_policy.hpp"
 
 namespace virtcom::proto::net {
 
@@ -30,10 +30,10 @@ class ServerThread {
   void wake(uint8_t why);
   // I/O thread, once wakeFd() is readable: empties the pipe; true if stop() was among the wake-ups.
   bool takeStopRequest();
-  // I/O thread, once listenFd() is readable: the accepted connection (non-blocking), or -1 if
-  // there was none or it was refused (closed at once): its peer is not in `allowedPeers` (an
-  // empty list allows every peer) or the server is `full`.
-  int acceptClient(const std::vector<uint32_t>& allowedPeers, bool full);
+  // I/O thread, once listenFd() is readable: the accepted connection (non-blocking) and its
+  // `peer`, or -1 if there was none or `policy` refused it (closed at once, logged) with `open`
+  // connections open, openFrom(peer) of them from that address.
+  int acceptClient(const PeerPolicy& policy, size_t open, const std::function<size_t(uint32_t)>& openFrom, uint32_t& peer);
   // Wakes the loop with kWakeStop and joins the I/O thread. Idempotent.
   void stop();
 

@@ -26,6 +26,7 @@ constexpr size_t kFixedFds = 2;  // the wake-up pipe, the listener
 
 struct Connection {
   int fd = -1;
+  uint32_t peer = 0;  // IPv4
   Channel channel;
   std::vector<uint8_t> rx, tx;
   bool closing = false;  // answered; closed once tx is sent
@@ -143,12 +144,15 @@ void Server::run() {
       }
       std::erase_if(clients, [](const auto& c) { return c->fd < 0; });
       if (fds[1].revents & POLLIN) {
-        int fd = io_.acceptClient(config_.allowedPeers, clients.size() >= config_.maxClients);
+        uint32_t peer = 0;
+        int fd = io_.acceptClient(config_.peers, clients.size(), [&](uint32_t ip) {
+          return static_cast<size_t>(std::ranges::count_if(clients, [ip](const auto& c) { return c->peer == ip; }));
+        }, peer);
         if (fd >= 0) {
           int one = 1;
           ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
           ::setsockopt(fd, SOL_SOCKET, SO_KEEPALIVE, &one, sizeof one);
-          clients.push_back(std::make_unique<Connection>(Connection{fd, Channel(core_), {}, {}, false}));
+          clients.push_back(std::make_unique<Connection>(Connection{fd, peer, Channel(core_), {}, {}, false}));
         }
       }
       connections_.store(clients.size());

@@ -20,8 +20,7 @@ inline constexpr uint16_t kDefaultPort = 4840;
 
 struct ServerConfig {
   Endpoint listen{0x7f000001, kDefaultPort};
-  std::vector<uint32_t> allowedPeers;      // IPv4 peers; empty: any peer that can reach `listen`
-  size_t maxClients = 32;                  // TCP connections; further ones are closed at once
+  net::PeerPolicy peers;                   // who may connect, how many at once, how fast (docs/security.md)
   size_t maxSessions = 32;                 // beyond: BadTooManySessions
   uint32_t maxMessageBytes = 4 * 1024 * 1024;  // a request or response; beyond: BadRequestTooLarge / ERR
   uint32_t receiveBufferBytes = 65536;     // the largest chunk the server takes

@@ -22,6 +22,23 @@ Bytes nextData(LoopbackClient& c) {
   return c.receive(head[26] | head[27] << 8 | head[28] << 16 | head[29] << 24);
 }
 
+// Sends one datagram to the loopback UDP `port` and returns the reply (empty after 5 s).
+Bytes udpExchange(uint16_t port, const Bytes& request) {
+  int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  timeval timeout{5, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(port);
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::sendto(fd, request.data(), request.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
+  Bytes reply(512);
+  ssize_t n = ::recv(fd, reply.data(), reply.size(), 0);
+  ::close(fd);
+  reply.resize(n > 0 ? static_cast<size_t>(n) : 0);
+  return reply;
+}
+
 class ServerTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -85,11 +102,43 @@ TEST(AdsServerAllowList, RefusedPeerIsClosed) {
   SymbolTable table = makeTable();
   ServerConfig config;
   config.listen.port = 0;
-  config.allowedPeers = {0x0a000001};  // 10.0.0.1: not loopback
+  config.peers = net::PeerPolicy({net::Ipv4Net{0x0a000001}}, {}, "ads", "--ads-allow");  // 10.0.0.1: not loopback
   auto server = Server::start(config, table);
   ASSERT_TRUE(server);
   LoopbackClient c((*server)->endpoint().port);
   EXPECT_TRUE(c.closedByServer());
+}
+
+// The route table grows as on TwinCAT: an add route with the password lets its NetId and the
+// sender's address in (docs/security.md, ADS routes).
+TEST(AdsServerRoutes, AnAddRouteWithThePasswordLetsItsNetIdAndAddressIn) {
+  SymbolTable table = makeTable();
+  ServerConfig config;
+  config.listen.port = 0;
+  config.discoveryPort = 0;
+  config.peers = net::PeerPolicy({net::Ipv4Net{0x0a000001}}, {}, "ads", "--ads-allow");
+  config.peers.setLog([](const std::string&) {});
+  config.allowedNetIds = {{1, 2, 3, 4, 1, 1}};
+  config.routePassword = "pw";
+  auto server = Server::start(config, table);
+  ASSERT_TRUE(server) << server.error();
+  (*server)->publishSnapshot(Bytes(64, 0), kAdsStateRun);
+  {
+    LoopbackClient before((*server)->endpoint().port);
+    EXPECT_TRUE(before.closedByServer());
+  }
+  // Add route: NetId tag = the test client's NetId, password tag "pw".
+  Bytes add = u32s({0x71146603, 1, 6, 0, 0, 2});
+  const Bytes netIdTag = {0x07, 0, 6, 0}, passwordTag = {0x02, 0, 3, 0, 'p', 'w', 0};
+  add.insert(add.end(), netIdTag.begin(), netIdTag.end());
+  add.insert(add.end(), kClientNetId.begin(), kClientNetId.end());
+  add.insert(add.end(), passwordTag.begin(), passwordTag.end());
+  Bytes reply = udpExchange((*server)->discoveryEndpoint()->port, add);
+  ASSERT_EQ(reply.size(), 32u);
+  EXPECT_EQ(hex(Bytes(reply.end() - 4, reply.end())), "00 00 00 00");
+  LoopbackClient after((*server)->endpoint().port);
+  ASSERT_TRUE(after.send(amsRequest(kPlcPort, 4, {})));  // ReadState from kClientNetId
+  EXPECT_EQ(hex(nextData(after)), "00 00 00 00 05 00 00 00");
 }
 
 TEST(AdsServerStart, BusyPortIsAnError) {
@@ -114,19 +163,8 @@ TEST(AdsServerStart, DiscoveryOnUdpOrABusyPortWithoutIt) {
   ASSERT_TRUE(first);
   auto udp = (*first)->discoveryEndpoint();
   ASSERT_TRUE(udp);
-  int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
-  timeval timeout{5, 0};
-  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
-  sockaddr_in to{};
-  to.sin_family = AF_INET;
-  to.sin_port = htons(udp->port);
-  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  Bytes identify = u32s({0x71146603, 4, 1, 0, 0, 0});
-  ::sendto(fd, identify.data(), identify.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
-  Bytes reply(512);
-  ssize_t n = ::recv(fd, reply.data(), reply.size(), 0);
-  ::close(fd);
-  ASSERT_GE(n, 20);
+  Bytes reply = udpExchange(udp->port, u32s({0x71146603, 4, 1, 0, 0, 0}));
+  ASSERT_GE(reply.size(), 20u);
   EXPECT_EQ(hex(Bytes(reply.begin(), reply.begin() + 20)), "03 66 14 71 04 00 00 00 01 00 00 80 7f 00 00 01 01 01 10 27");
 
   config.discoveryPort = udp->port;

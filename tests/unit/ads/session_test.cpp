@@ -79,6 +79,13 @@ TEST_F(SessionTest, ReadStateResponseFrame) {
             "00 00 00 00 05 00 00 00");
 }
 
+TEST_F(SessionTest, ARequestBeyondTheRateIsAnsweredDeviceBusy) {
+  Bytes out;
+  ASSERT_TRUE(session.handleFrame(amsRequest(kPlcPort, 4, {}, 7), out, false));  // ReadState
+  // The fixed ReadState layout with result 0x708 (docs/security.md: --max-request-rate).
+  EXPECT_EQ(hex(Bytes(out.end() - 8, out.end())), "08 07 00 00 00 00 00 00");
+}
+
 TEST_F(SessionTest, ReadDeviceInfoNamesThePlcAndTheSystem) {
   EXPECT_EQ(hex(call(kPlcPort, Command::ReadDeviceInfo, {})),
             "00 00 00 00 03 01 b8 0f 50 6c 63 33 30 20 41 70 70 00 00 00 00 00 00 00");

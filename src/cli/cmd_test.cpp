@@ -1,5 +1,6 @@
 // `virtcom test`: run scenario files (docs/scenarios.md) as a test suite: a PASS/FAIL line per
 // case, JUnit XML, and the HTML report and VCD of every failing case.
+#include <cctype>
 #include <filesystem>
 #include <iostream>
 #include <thread>
@@ -22,7 +23,6 @@ struct TestOptions {
   std::string filter;
   std::string reportDir;
   unsigned jobs = 0;  // 0: one per hardware thread
-  bool verbose = false;
 };
 
 // A case's name as a file name: letters, digits, '-', '_' and '.' kept, the rest '_'.
@@ -44,12 +44,11 @@ bool writeCaseReports(const std::string& dir, const scenario::CaseResult& r) {
   return writeFile(stem + ".vcd", report::vcdReport(trace)) && ok;
 }
 
-void printResult(const scenario::CaseResult& r, bool verbose) {
+void printResult(const scenario::CaseResult& r) {
   std::cout << scenario::verdictName(r.verdict) << "  " << r.spec.name << "  (" << r.spec.file;
   if (r.verdict != scenario::Verdict::Error)
     std::cout << ", " << r.runEnd.substr(0, r.runEnd.find(':')) << " at " << static_cast<double>(r.virtualNs) * 1e-9 << " s";
   std::cout << ")\n";
-  if (r.verdict == scenario::Verdict::Pass && !verbose) return;
   for (const std::string& m : r.messages) {
     std::string text = m;
     while (!text.empty() && text.back() == '\n') text.pop_back();
@@ -85,7 +84,7 @@ ExitCode runTests(const TestOptions& o) {
   std::vector<scenario::CaseResult> results;
   bool reportsOk = true;
   scenario::runCases(cases, jobs, options, [&](scenario::CaseResult& r) {
-    printResult(r, o.verbose);
+    printResult(r);
     if (r.cell) {
       reportsOk = writeCaseReports(o.reportDir, r) && reportsOk;
       r.cell.reset();
@@ -116,7 +115,6 @@ void addTestCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--filter", o->filter, "run only the cases whose name or file matches this glob (* and ?), e.g. 'cycle*'");
   cmd->add_option("--report-dir", o->reportDir, "write the HTML report and the VCD of every failing case into this directory");
-  cmd->add_flag("--verbose,-v", o->verbose, "print the details of passing cases too");
   cmd->callback([o, setExit] { setExit(runTests(*o)); });
 }
 

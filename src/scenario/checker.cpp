@@ -148,7 +148,7 @@ void Checker::judgeEnd(const Assertion& a, State& s, const Trace& trace) {
 std::vector<Failure> Checker::failures() const {
   std::vector<Failure> out;
   for (size_t i = 0; i < states_.size(); ++i)
-    if (states_[i].failed) out.push_back({plan_.assertions[i].loc, states_[i].timeNs, states_[i].message});
+    if (states_[i].failed) out.push_back({i, plan_.assertions[i].loc, states_[i].timeNs, states_[i].message});
   return out;
 }
 

@@ -17,6 +17,7 @@ namespace virtcom::scenario {
 
 // A failed assertion: where it is written, when it failed (virtual time) and why, with values.
 struct Failure {
+  size_t assertion = 0;  // index in Plan::assertions
   SourceLocation loc;
   int64_t timeNs = 0;
   std::string message;

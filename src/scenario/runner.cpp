@@ -55,12 +55,6 @@ std::string renderFailure(const Failure& f, const Assertion& a, const SourceMana
          f.message;
 }
 
-const Assertion& assertionAt(const Plan& plan, SourceLocation loc) {
-  for (const Assertion& a : plan.assertions)
-    if (a.loc.fileId == loc.fileId && a.loc.line == loc.line && a.loc.col == loc.col) return a;
-  return plan.assertions.front();
-}
-
 }  // namespace
 
 CaseResult runCase(const CaseSpec& spec, const CaseOptions& options) {
@@ -95,7 +89,7 @@ CaseResult runCase(const CaseSpec& spec, const CaseOptions& options) {
   const Trace& trace = cell->trace;
   result.virtualNs = trace.endNs;
   result.runEnd = std::string(runEndName(trace.end)) + ": " + trace.endMessage;
-  for (const Failure& f : checker.failures()) result.messages.push_back(renderFailure(f, assertionAt(plan, f.loc), sources));
+  for (const Failure& f : checker.failures()) result.messages.push_back(renderFailure(f, plan.assertions[f.assertion], sources));
   const bool failed = !result.messages.empty();
   if (plan.xfail.empty()) result.verdict = failed ? Verdict::Fail : Verdict::Pass;
   else result.verdict = failed ? Verdict::ExpectedFail : Verdict::UnexpectedPass;

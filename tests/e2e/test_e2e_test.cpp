@@ -121,7 +121,7 @@ TEST_F(TestCommand, FilterSelectsCasesByName) {
 TEST_F(TestCommand, HelpNamesEveryOption) {
   std::string out;
   ASSERT_EQ(test("--help", out), 0) << out;
-  for (const char* option : {"--junit", "--jobs", "--filter", "--report-dir", "--verbose", "docs/scenarios.md"})
+  for (const char* option : {"--junit", "--jobs", "--filter", "--report-dir", "docs/scenarios.md"})
     EXPECT_NE(out.find(option), std::string::npos) << option << "\n" << out;
 }
 

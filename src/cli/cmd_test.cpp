@@ -3,10 +3,13 @@
 #include <cctype>
 #include <filesystem>
 #include <iostream>
+#include <mutex>
 #include <thread>
 
 #include "cli/commands.hpp"
+#include "bytecode/coverage.hpp"
 #include "cli/common.hpp"
+#include "cli/coverage_options.hpp"
 #include "report/html_report.hpp"
 #include "report/kpis.hpp"
 #include "report/waveform.hpp"
@@ -23,6 +26,7 @@ struct TestOptions {
   std::string filter;
   std::string reportDir;
   unsigned jobs = 0;  // 0: one per hardware thread
+  CoverageOptions coverage;
 };
 
 // A case's name as a file name: letters, digits, '-', '_' and '.' kept, the rest '_'.
@@ -78,8 +82,20 @@ ExitCode runTests(const TestOptions& o) {
   }
   scenario::CaseOptions options;
   options.keepFailedCell = !o.reportDir.empty();
-  // PLC code coverage (`--coverage`, issue 18) joins here: options.hooks.beforeRun adds a
-  // per-case recorder to the run's options, afterRun merges it; both run on the worker threads.
+  // PLC code coverage: every case's program compiled with probes; its counts, read from the PLC
+  // memory when its run ends (on the worker threads), added to the suite's. Merging adds counts,
+  // so the result does not depend on the order the cases end in (nor on --jobs).
+  CoverageData coverage;
+  std::mutex coverageMutex;
+  if (o.coverage.enabled()) {
+    options.plc = o.coverage.compileOptions();
+    options.hooks.afterRun = [&](sim::Simulation& simulation) {
+      if (!simulation.hasPlc()) return;
+      CoverageData counted = bc::collectCoverage(simulation.plc().module(), simulation.plc().machine().memory());
+      std::lock_guard lock(coverageMutex);
+      coverage.merge(counted);
+    };
+  }
   const unsigned jobs = o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
   std::vector<scenario::CaseResult> results;
   bool reportsOk = true;
@@ -100,6 +116,7 @@ ExitCode runTests(const TestOptions& o) {
   if (expected) std::cout << ", " << expected << " failed as expected (xfail)";
   std::cout << "\n";
   if (!o.junit.empty() && !writeFile(o.junit, scenario::junitXml(results))) return ExitCode::Usage;
+  if (o.coverage.enabled() && !writeCoverage(o.coverage, coverage, "scenarios", std::cerr)) return ExitCode::Usage;
   if (!reportsOk) return ExitCode::Usage;
   return failed ? ExitCode::TestsFailed : ExitCode::Ok;
 }
@@ -115,6 +132,7 @@ void addTestCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--filter", o->filter, "run only the cases whose name or file matches this glob (* and ?), e.g. 'cycle*'");
   cmd->add_option("--report-dir", o->reportDir, "write the HTML report and the VCD of every failing case into this directory");
+  addCoverageOptions(*cmd, o->coverage);
   cmd->callback([o, setExit] { setExit(runTests(*o)); });
 }
 

@@ -28,7 +28,8 @@ bool verdictFails(Verdict v) { return v == Verdict::Fail || v == Verdict::Error 
 namespace {
 
 // The scenario's cell and plan, or null with the diagnostics in `diags`.
-std::unique_ptr<cell::Cell> loadScenario(const CaseSpec& spec, SourceManager& sources, Diagnostics& diags, Plan& plan) {
+std::unique_ptr<cell::Cell> loadScenario(const CaseSpec& spec, const st::CompileOptions& plcOptions, SourceManager& sources,
+                                         Diagnostics& diags, Plan& plan) {
   ScenarioFile file;
   if (!readScenarioFile(spec.file, sources, diags, file)) return nullptr;
   ConfigNode root = spec.row < file.rows.size() ? substituteParameters(file.root, file.rows[spec.row], diags) : file.root;
@@ -39,7 +40,7 @@ std::unique_ptr<cell::Cell> loadScenario(const CaseSpec& spec, SourceManager& so
   const std::string cellName = top.requireString("cell");
   if (cellName.empty()) return nullptr;
   const std::filesystem::path cellPath = (std::filesystem::path(spec.file).parent_path() / cellName).lexically_normal();
-  auto cell = cell::loadCell(cellPath.string(), sources, diags);
+  auto cell = cell::loadCell(cellPath.string(), sources, diags, plcOptions);
   if (!cell) return nullptr;
   if (!cell->module) {
     diags.error(celldiag::C060, root.find("cell")->loc(), "the cell '" + cellName + "' has no soft PLC ('plc: sources'): scenarios drive the soft PLC");
@@ -64,7 +65,7 @@ CaseResult runCase(const CaseSpec& spec, const CaseOptions& options) {
   SourceManager sources;
   Diagnostics diags;
   Plan plan;
-  auto cell = loadScenario(spec, sources, diags, plan);
+  auto cell = loadScenario(spec, options.plc, sources, diags, plan);
   if (!cell) {
     diags.sortByLocation();
     result.messages.push_back(diags.render(sources));

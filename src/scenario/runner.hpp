@@ -32,6 +32,7 @@ struct CaseHooks {
 
 struct CaseOptions {
   bool keepFailedCell = false;  // keep the finished cell (trace with every change) of a failed case
+  st::CompileOptions plc;       // how the cell's PLC program is compiled (e.g. with coverage probes)
   CaseHooks hooks;
 };
 

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <iterator>
 #include <regex>
 #include <string>
 
@@ -118,10 +119,34 @@ TEST_F(TestCommand, FilterSelectsCasesByName) {
   EXPECT_NE(out.find("'no/such/dir' is neither a scenario file nor a directory"), std::string::npos) << out;
 }
 
+// The lines of an lcov tracefile that ran at least once ("DA:LINE,COUNT" with COUNT > 0).
+size_t linesHit(const std::string& info) {
+  const std::regex hit("\nDA:[0-9]+,[1-9]");
+  return static_cast<size_t>(std::distance(std::sregex_iterator(info.begin(), info.end(), hit), std::sregex_iterator()));
+}
+
+// --coverage: every case's counts added up, the same file whatever --jobs; the whole plan
+// reaches lines that one of its cases alone does not; Debian's lcov reads the file.
+TEST_F(TestCommand, CoverageAddsUpEveryCaseWhateverTheJobs) {
+  std::string out;
+  ASSERT_EQ(test("examples/gearbox-cell/tests --jobs 1 --coverage " + path("one.info"), out), 0) << out;
+  EXPECT_NE(out.find("MAIN"), std::string::npos) << "the per-POU summary\n" << out;
+  ASSERT_EQ(test("examples/gearbox-cell/tests --jobs 2 --coverage " + path("two.info") + " --coverage-xml " + path("two.xml"), out), 0)
+      << out;
+  const std::string all = readFile(path("one.info"));
+  EXPECT_EQ(all, readFile(path("two.info")));
+  EXPECT_NE(readFile(path("two.xml")).find("<coverage"), std::string::npos);
+  ASSERT_EQ(test("examples/gearbox-cell/tests --filter 'screwer*' --coverage " + path("screwer.info"), out), 0) << out;
+  EXPECT_GT(linesHit(all), linesHit(readFile(path("screwer.info"))));
+  EXPECT_GT(linesHit(readFile(path("screwer.info"))), 10u);
+  ASSERT_EQ(shell("lcov --summary " + path("one.info"), out), 0) << out;
+  EXPECT_NE(out.find("lines"), std::string::npos) << out;
+}
+
 TEST_F(TestCommand, HelpNamesEveryOption) {
   std::string out;
   ASSERT_EQ(test("--help", out), 0) << out;
-  for (const char* option : {"--junit", "--jobs", "--filter", "--report-dir", "docs/scenarios.md"})
+  for (const char* option : {"--junit", "--jobs", "--filter", "--report-dir", "--coverage", "--coverage-xml", "docs/scenarios.md"})
     EXPECT_NE(out.find(option), std::string::npos) << option << "\n" << out;
 }
 

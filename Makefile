@@ -63,6 +63,7 @@ demo: build
 bench: build
 	@$(BUILD)/bench/virtcom_bench --benchmark_counters_tabular=true
 	@$(BUILD)/bench/virtcom_modbus_bench
+	@$(BUILD)/bench/virtcom_optimise_bench
 
 clean:
 	rm -rf build

@@ -74,7 +74,7 @@ bool writeBest(const OptimiseOptions& o, const optimize::Evaluator& evaluator, c
     html.signals = cell->run.recordVars;
     ok = writeFile(base + ".html", report::htmlReport(cell->trace, report::computeKpis(cell->trace), html)) && ok;
   }
-  return writeFile((std::filesystem::path(o.out) / "comparison.md").string(), table) && ok;
+  return writeFile((std::filesystem::path(o.out) / "comparison.txt").string(), table) && ok;
 }
 
 ExitCode optimise(const OptimiseOptions& o) {
@@ -162,7 +162,7 @@ void addOptimiseCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_option("--jobs", o->jobs, "simulations in parallel (default: every core); never changes the result")->check(CLI::PositiveNumber);
   cmd->add_option("--method", o->method, "auto (default: exhaustive if the distinct candidates fit the budget, else anneal), exhaustive, anneal")
       ->check(CLI::IsMember({"auto", "exhaustive", "anneal"}));
-  cmd->add_option("--out", o->out, "write best-N.st (the job list to paste), best-N.html (its report) and comparison.md into this folder");
+  cmd->add_option("--out", o->out, "write best-N.st (the job list to paste), best-N.html (its report) and comparison.txt into this folder");
   cmd->add_flag("--quiet", o->quiet, "no progress lines on stderr");
   cmd->callback([o, setExit] { setExit(optimise(*o)); });
 }

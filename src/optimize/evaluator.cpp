@@ -21,6 +21,48 @@ std::string seconds(int64_t ns) {
 
 }  // namespace
 
+std::unique_ptr<cell::Cell> runInstance(const cell::CellTemplate& tmpl, const ConfigNode& root, const std::function<void(uint8_t*)>& preset,
+                                        int64_t timeLimitNs, Evaluation& out, const std::function<void(const uint8_t*)>& atEnd) {
+  out = {};
+  SourceManager sources;
+  Diagnostics diags;
+  auto cell = cell::instantiateCell(tmpl, root, sources, diags);
+  if (!cell) {
+    out.reason = "the cell does not load: " + diags.render(sources);
+    return nullptr;
+  }
+  sim::SimOptions options;
+  options.keepAllChanges = false;
+  if (timeLimitNs > 0) options.timeLimitNs = timeLimitNs;
+  options.preset = [&](plc::Runtime& plc) { preset(plc.machine().memory()); };
+  sim::Simulation simulation(*cell, options);
+  out.end = simulation.run();
+  if (atEnd) atEnd(simulation.plc().machine().memory());
+  const report::Kpis kpis = report::computeKpis(cell->trace);
+  const Trace& t = cell->trace;
+  switch (out.end) {
+    case RunEnd::Completed:
+      out.feasible = kpis.collisions == 0 && kpis.errors == 0;
+      if (!out.feasible) out.reason = "completed with " + std::to_string(kpis.collisions) + " collision(s), " + std::to_string(kpis.errors) + " device error(s)";
+      break;
+    case RunEnd::Collision: out.reason = "collision at " + seconds(t.endNs) + ": " + t.endMessage; break;
+    case RunEnd::DeviceError: {
+      int32_t code = 0;
+      for (const auto& d : cell->devices) code = code ? code : d->errorCode();
+      out.reason = "device error at " + seconds(t.endNs) + ": " + t.endMessage + " (" + plant::deviceErrorMeaning(code) + ")";
+      break;
+    }
+    case RunEnd::TimeLimit: out.reason = "deadlock: no completed cycle within " + seconds(t.endNs); break;
+    case RunEnd::PlcFault: out.reason = "PLC fault at " + seconds(t.endNs) + ": " + t.endMessage; break;
+    case RunEnd::Interrupted: out.reason = "interrupted"; break;
+  }
+  if (out.feasible) {
+    out.cycleNs = kpis.cycleTimeNs;
+    out.energyJ = kpis.totalEnergyJ;
+  }
+  return cell;
+}
+
 std::unique_ptr<Evaluator> Evaluator::create(const ProcessModel& model, SourceManager& sources, Diagnostics& diags) {
   std::unique_ptr<Evaluator> e(new Evaluator(model));
   e->template_ = cell::loadCellTemplate(model.cellFile, sources, diags);
@@ -108,47 +150,13 @@ std::unique_ptr<cell::Cell> Evaluator::run(const JobList& list, Evaluation& out)
                    " jobs; the job list has " + std::to_string(model_.jobList.waitFields.size()) + " wait fields";
       return nullptr;
     }
-  SourceManager sources;
-  Diagnostics diags;
-  auto cell = cell::instantiateCell(*template_, template_->root, sources, diags);
-  if (!cell) {
-    out.reason = "the cell does not load";
-    return nullptr;
-  }
-  sim::SimOptions options;
-  options.keepAllChanges = false;
-  if (model_.timeLimitNs > 0) options.timeLimitNs = model_.timeLimitNs;
-  options.preset = [&](plc::Runtime& plc) { writeJobs(list, plc.machine().memory()); };
-  sim::Simulation simulation(*cell, options);
-  out.end = simulation.run();
-  const report::Kpis kpis = report::computeKpis(cell->trace);
-  const Trace& t = cell->trace;
-  switch (out.end) {
-    case RunEnd::Completed:
-      out.feasible = kpis.collisions == 0 && kpis.errors == 0;
-      if (!out.feasible) out.reason = "completed with " + std::to_string(kpis.collisions) + " collision(s), " + std::to_string(kpis.errors) + " device error(s)";
-      break;
-    case RunEnd::Collision: out.reason = "collision at " + seconds(t.endNs) + ": " + t.endMessage; break;
-    case RunEnd::DeviceError: {
-      int32_t code = 0;
-      for (const auto& d : cell->devices) code = code ? code : d->errorCode();
-      out.reason = "device error at " + seconds(t.endNs) + ": " + t.endMessage + " (" + plant::deviceErrorMeaning(code) + ")";
-      break;
-    }
-    case RunEnd::TimeLimit: {
-      out.reason = "deadlock: no completed cycle within " + seconds(t.endNs);
-      if (progress_)
-        out.reason += " (" + bc::formatValue(*template_->module, *progress_, simulation.plc().machine().memory()) + " of " +
-                      std::to_string(list.jobs.size()) + " jobs finished)";
-      break;
-    }
-    case RunEnd::PlcFault: out.reason = "PLC fault at " + seconds(t.endNs) + ": " + t.endMessage; break;
-    case RunEnd::Interrupted: out.reason = "interrupted"; break;
-  }
-  if (out.feasible) {
-    out.cycleNs = kpis.cycleTimeNs;
-    out.energyJ = kpis.totalEnergyJ;
-  }
+  std::string progress;
+  auto cell = runInstance(*template_, template_->root, [&](uint8_t* memory) { writeJobs(list, memory); }, model_.timeLimitNs, out,
+                          [&](const uint8_t* memory) {
+                            if (progress_) progress = bc::formatValue(*template_->module, *progress_, memory);
+                          });
+  if (out.end == RunEnd::TimeLimit && progress_)
+    out.reason += " (" + progress + " of " + std::to_string(list.jobs.size()) + " jobs finished)";
   return cell;
 }
 
@@ -158,17 +166,21 @@ Evaluation Evaluator::evaluate(const JobList& list) const {
   return e;
 }
 
-std::vector<Evaluation> evaluateAll(const Evaluator& evaluator, const std::vector<JobList>& batch, unsigned threads) {
-  std::vector<Evaluation> results(batch.size());
+void parallelFor(size_t count, unsigned threads, const std::function<void(size_t)>& body) {
   std::atomic<size_t> next{0};
   auto work = [&] {
-    for (size_t i; (i = next.fetch_add(1)) < batch.size();) results[i] = evaluator.evaluate(batch[i]);
+    for (size_t i; (i = next.fetch_add(1)) < count;) body(i);
   };
-  threads = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(batch.size())));
+  threads = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(std::max<size_t>(count, 1))));
   std::vector<std::thread> pool;
   for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
   work();
   for (auto& t : pool) t.join();
+}
+
+std::vector<Evaluation> evaluateAll(const Evaluator& evaluator, const std::vector<JobList>& batch, unsigned threads) {
+  std::vector<Evaluation> results(batch.size());
+  parallelFor(batch.size(), threads, [&](size_t i) { results[i] = evaluator.evaluate(batch[i]); });
   return results;
 }
 

@@ -8,6 +8,7 @@
 // outcome does not depend on the number of threads.
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,6 +28,13 @@ struct Evaluation {
   double energyJ = 0;     // every device's energy over the run (feasible only)
   RunEnd end = RunEnd::Completed;
 };
+
+// One cycle of a fresh cell built from `tmpl` and `root` (the template's tree or an edited copy:
+// `virtcom sweep`), `preset` writing into the PLC's memory before its first scan and `atEnd`
+// (optional) reading it after the last; the outcome judged into `out`. Returns the finished cell
+// (null if it did not load: `out.reason` says why). Thread-safe; allocates.
+std::unique_ptr<cell::Cell> runInstance(const cell::CellTemplate& tmpl, const ConfigNode& root, const std::function<void(uint8_t*)>& preset,
+                                        int64_t timeLimitNs, Evaluation& out, const std::function<void(const uint8_t*)>& atEnd = {});
 
 class Evaluator {
  public:
@@ -62,6 +70,9 @@ class Evaluator {
   std::vector<std::pair<bc::VarRef, std::string>> presets_;
   bc::TypeId arrayTypeId_ = bc::kNoType;
 };
+
+// Calls body(0..count-1) on up to `threads` threads (the calling one included), each index once.
+void parallelFor(size_t count, unsigned threads, const std::function<void(size_t)>& body);
 
 // Evaluates every list of `batch` on up to `threads` threads; results[i] belongs to batch[i].
 std::vector<Evaluation> evaluateAll(const Evaluator& evaluator, const std::vector<JobList>& batch, unsigned threads);

@@ -1,9 +1,11 @@
 // End-to-end tests of `virtcom optimise`: the built binary (VIRTCOM_EXE) on the gearbox example's
 // process model with a small budget, checked on its exit code, output and files as a user sees
-// them; a model with a mistake; the same result with one and two threads.
+// them; a model with a mistake; the same result with one and two threads; `virtcom sweep` on the
+// gearbox, its slices merged, its Slurm script.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -52,7 +54,7 @@ TEST(Optimise, GearboxFindsAFeasibleSequenceAtLeastAsShortAsTheBestHandMadeOne) 
   const std::string html = virtcom::test::readFile((out / "best-1.html").string());
   EXPECT_NE(html.find("optimised sequence best-1"), std::string::npos);
   EXPECT_NE(html.find("<svg"), std::string::npos);
-  EXPECT_TRUE(fs::exists(out / "comparison.md"));
+  EXPECT_TRUE(fs::exists(out / "comparison.txt"));
 
   // Pasted into a copy of the example's program (MAIN.jobs initialised, sequence 0), the job list
   // runs to the cycle the optimiser reported.
@@ -103,11 +105,47 @@ TEST(Optimise, ModelMistakeIsReportedAtItsLocation) {
   fs::remove_all(dir);
 }
 
+const std::string kSweep = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell/sweep.yaml";
+
+TEST(Sweep, GearboxRowsAsCsvAndShardsMergeIntoTheSameTable) {
+  const fs::path out = tempDir("sweep");
+  std::string text;
+  ASSERT_EQ(virtcom::e2e::shell(kExe + " sweep " + kSweep + " --jobs 2 --csv " + (out / "all.csv").string(), text), 0) << text;
+  const std::string all = virtcom::test::readFile((out / "all.csv").string());
+  EXPECT_EQ(all.substr(0, all.find('\n')), "point,MAIN.sequence,Robot1.max_speed,cycle_s,energy_J,result");
+  EXPECT_NE(all.find("\n4,3,1150 mm/s,70.950,21977.1,ok\n"), std::string::npos) << all;
+  EXPECT_EQ(std::count(all.begin(), all.end(), '\n'), 7);
+  for (const char* shard : {"1/2", "2/2"}) {
+    std::string log;
+    const std::string file = (out / ("part" + std::string(1, shard[0]) + ".csv")).string();
+    ASSERT_EQ(virtcom::e2e::shell(kExe + " sweep " + kSweep + " --jobs 1 --shard " + shard + " --csv " + file, log), 0) << log;
+    EXPECT_NE(log.find("3 of 6 points"), std::string::npos) << log;
+  }
+  std::string log;
+  ASSERT_EQ(virtcom::e2e::shell(kExe + " sweep --merge " + (out / "merged.csv").string() + " " + (out / "part2.csv").string() + " " +
+                                    (out / "part1.csv").string(), log), 0) << log;
+  EXPECT_EQ(virtcom::test::readFile((out / "merged.csv").string()), all);
+  EXPECT_NE(virtcom::e2e::shell(kExe + " sweep --merge " + (out / "twice.csv").string() + " " + (out / "part1.csv").string() + " " +
+                                    (out / "part1.csv").string(), log), 0);
+  EXPECT_NE(log.find("is in more than one file"), std::string::npos) << log;
+  fs::remove_all(out);
+}
+
+TEST(Sweep, SlurmScriptRunsOneSlicePerArrayTask) {
+  std::string out;
+  ASSERT_EQ(virtcom::e2e::shell(kExe + " sweep " + kSweep + " --slurm-script 4", out), 0) << out;
+  EXPECT_NE(out.find("#SBATCH --array=1-4"), std::string::npos) << out;
+  EXPECT_NE(out.find("--shard ${SLURM_ARRAY_TASK_ID}/4"), std::string::npos) << out;
+  EXPECT_NE(out.find("virtcom sweep --merge"), std::string::npos) << out;
+}
+
 TEST(Optimise, HelpNamesEveryOption) {
   std::string out;
   ASSERT_EQ(virtcom::e2e::shell(kExe + " optimise --help", out), 0);
   for (const char* option : {"--objective", "--budget-evals", "--budget-time", "--seed", "--jobs", "--method", "--out", "--quiet"})
     EXPECT_NE(out.find(option), std::string::npos) << option;
+  ASSERT_EQ(virtcom::e2e::shell(kExe + " sweep --help", out), 0);
+  for (const char* option : {"--csv", "--shard", "--merge", "--slurm-script", "--jobs"}) EXPECT_NE(out.find(option), std::string::npos) << option;
 }
 
 }  // namespace

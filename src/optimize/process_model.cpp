@@ -90,12 +90,12 @@ class ModelReader {
   }
 
   void readDevices(ConfigReader& top) {
-    const ConfigNode* n = top.child("devices");
+    const ConfigNode* n = top.child("device_numbers");
     if (!n || n->kind() != Kind::Map || n->entries().empty()) {
-      error(n ? n->loc() : top.node().loc(), "the process model needs 'devices:', each device's number in the job list, e.g. { Robot1: 1 }");
+      error(n ? n->loc() : top.node().loc(), "the process model needs 'device_numbers:', each device's number in the job list, e.g. { Robot1: 1 }");
       return;
     }
-    ConfigReader r(*n, diags_, "'devices'");
+    ConfigReader r(*n, diags_, "'device_numbers'");
     for (const auto& [name, value] : n->entries()) m_.devices.emplace_back(name, r.requireInt(name));
   }
 
@@ -107,7 +107,7 @@ class ModelReader {
     auto it = std::ranges::find_if(m_.devices, [&](const auto& d) { return d.first == a.deviceName; });
     if (it != m_.devices.end()) a.device = it->second;
     else if (!a.deviceName.empty())
-      error(node.find("device")->loc(), "no device '" + a.deviceName + "' in the model's 'devices' (expected one of: " + deviceNames() + ")");
+      error(node.find("device")->loc(), "no device '" + a.deviceName + "' in the model's 'device_numbers' (expected one of: " + deviceNames() + ")");
     a.name = r.optString("name", a.deviceName + ":" + std::to_string(a.code));
     return a;
   }
@@ -291,7 +291,7 @@ std::optional<ProcessModel> readProcessModel(const std::string& path, SourceMana
   ProcessModel m;
   m.file = path;
   if (root.kind() != ConfigNode::Kind::Map) {
-    diags.error(celldiag::C060, root.loc(), "a process model is a map with 'cell', 'job_list', 'devices' and 'operations'");
+    diags.error(celldiag::C060, root.loc(), "a process model is a map with 'cell', 'job_list', 'device_numbers' and 'operations'");
     return std::nullopt;
   }
   ModelReader(m, diags).read(root);

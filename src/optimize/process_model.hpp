@@ -20,7 +20,7 @@ namespace virtcom::optimize {
 // One way to do an operation: the job the PLC's list holds for it.
 struct Alternative {
   std::string name;        // as `choose:` names it: its `name`, or "DEVICE:CODE"
-  std::string deviceName;  // a key of the model's `devices:`
+  std::string deviceName;  // a key of the model's `device_numbers:`
   int64_t device = 0;      // the device's number in the job list
   int64_t code = 0;        // procedure / program / position code
 };

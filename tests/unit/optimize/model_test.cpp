@@ -82,7 +82,7 @@ TEST(ProcessModel, SequenceOutOfPrecedenceOrMissingAMandatoryOperationIsRefused)
 
 TEST(ProcessModel, UnknownDeviceAndAlternativeAreReportedWithWhatExists) {
   auto r = readVariant("{ name: D, device: R2, code: 2 }", "{ name: D, device: R3, code: 2 }");
-  EXPECT_NE(r->text.find("no device 'R3' in the model's 'devices' (expected one of: R1, R2)"), std::string::npos) << r->text;
+  EXPECT_NE(r->text.find("no device 'R3' in the model's 'device_numbers' (expected one of: R1, R2)"), std::string::npos) << r->text;
   auto c = readVariant("order: [A, B, C, D, E, F] }", "order: [A, B, C, D, E, F], choose: { E: OnR3 } }");
   EXPECT_NE(c->text.find("operation 'E' has no alternative 'OnR3' (expected one of: OnR1, OnR2)"), std::string::npos) << c->text;
 }

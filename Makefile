@@ -67,6 +67,7 @@ demo: build
 bench: build
 	@$(BUILD)/bench/virtcom_bench --benchmark_counters_tabular=true
 	@$(BUILD)/bench/virtcom_modbus_bench
+	@$(BUILD)/bench/virtcom_optimise_bench
 
 # Every fuzz target (or those of FUZZ_TARGETS) for FUZZ_SECONDS (default 600) each on the
 # checked-in corpus (grown corpora kept in build/fuzz-campaign); prints executions, coverage and

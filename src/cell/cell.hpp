@@ -144,6 +144,24 @@ plant::FaultPlan readFaultPlan(ConfigReader& f, uint32_t defaultAtCommand);
 // read first.
 void readDeviceFaults(plant::Device& d, ConfigReader& f);
 
+// A cell file read and its soft PLC compiled once, for building many fresh cells from it
+// without compiling again (`virtcom optimise` and `virtcom sweep`: one cell per candidate, its
+// devices, world and bus in their initial state; docs/optimise.md).
+struct CellTemplate {
+  std::filesystem::path file;
+  ConfigNode root;                     // the YAML tree, `extends` and `replace_devices` applied
+  std::unique_ptr<bc::Module> module;  // the compiled soft PLC; null without one
+};
+
+// Reads, compiles and checks `path` as loadCell() does; null on any error.
+std::unique_ptr<CellTemplate> loadCellTemplate(const std::string& path, SourceManager& sources, Diagnostics& diags);
+
+// A fresh cell from `root` (the template's tree, or a copy with edited parameter values) with a
+// copy of the template's compiled program: checked like a loaded file (mistakes in edited values
+// are reported at their location), nothing compiled. Null on any error. Allocates; not for a
+// scan path. Not thread-safe on `sources`/`diags`: one of each per thread.
+std::unique_ptr<Cell> instantiateCell(const CellTemplate& tmpl, const ConfigNode& root, SourceManager& sources, Diagnostics& diags);
+
 // Parses "MAIN.count >= 3" against the module (also used by `--until`). Reports through `diags`.
 Condition parseCondition(const bc::Module& m, const std::string& text, SourceLocation loc, Diagnostics& diags);
 bool evaluate(const Condition& c, const uint8_t* memory);

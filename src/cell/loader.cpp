@@ -42,21 +42,32 @@ const char* dirText(plant::PortDir d) { return d == plant::PortDir::In ? "input"
 
 class Loader {
  public:
-  Loader(SourceManager& sources, Diagnostics& diags, st::CompileOptions plcOptions)
-      : sources_(sources), diags_(diags), plcOptions_(plcOptions) {}
+  // `precompiled`: the soft PLC to copy instead of compiling the files `plc: sources` names.
+  Loader(SourceManager& sources, Diagnostics& diags, st::CompileOptions plcOptions = {}, const bc::Module* precompiled = nullptr)
+      : sources_(sources), diags_(diags), plcOptions_(plcOptions), precompiled_(precompiled) {}
 
-  std::unique_ptr<Cell> load(const std::string& path) {
-    auto cell = std::make_unique<Cell>();
-    cell->file = path;
+  // The file's YAML tree with `extends` / `replace_devices` applied; false on an error.
+  bool readTree(const std::string& path, ConfigNode& root) {
     std::string text;
     if (!readText(path, text)) {
       diags_.error(celldiag::C002, {}, "cannot read cell file '" + path + "'");
-      return nullptr;
+      return false;
     }
+    return parseYaml(path, text, sources_, diags_, root) && takeBaseSections(path, root);
+  }
+
+  std::unique_ptr<Cell> load(const std::string& path) {
     ConfigNode root;
-    if (!parseYaml(path, text, sources_, diags_, root) || !takeBaseSections(cell->file, root)) return nullptr;
+    if (!readTree(path, root)) return nullptr;
+    return build(path, root);
+  }
+
+  // The cell described by `root` (a tree from readTree(), possibly edited), read from `path`.
+  std::unique_ptr<Cell> build(const std::filesystem::path& path, const ConfigNode& root) {
+    auto cell = std::make_unique<Cell>();
+    cell->file = path;
     ConfigReader top(root, diags_, "the cell file");
-    cell->name = top.optString("name", std::filesystem::path(path).parent_path().filename().string());
+    cell->name = top.optString("name", path.parent_path().filename().string());
     // Every part is checked even when an earlier one failed, so one run reports all mistakes;
     // without a compiled PLC program the run settings and wiring cannot be checked.
     bool plcOk = compilePlc(*cell, top);
@@ -175,7 +186,7 @@ class Loader {
       // no soft PLC; `plc: modbus:` / `plc: ads:` are read with the devices' signals, see load()
     } else if (srcs->kind() != ConfigNode::Kind::List || srcs->items().empty()) {
       plc.error(srcs->loc(), "'sources' must be a list of ST (.st), PLCopen XML (.xml) or TwinCAT 3 (.TcPOU, .TcGVL, .TcDUT, .TcIO) files relative to the cell file");
-    } else {
+    } else if (!precompiled_) {
       for (const auto& item : srcs->items()) {
         std::filesystem::path p = cell.file.parent_path() / item.scalar();
         std::string st;
@@ -194,10 +205,14 @@ class Loader {
     plc.child("ads");
     plc.rejectUnknownKeys();
     if (diags_.hasErrors()) return false;
-    if (inputs.empty()) return true;
-    plcFiles_.first = static_cast<uint32_t>(sources_.fileCount());
-    cell.module = st::compileProgram(inputs, sources_, diags_, plcOptions_);
-    plcFiles_.second = static_cast<uint32_t>(sources_.fileCount());
+    if (precompiled_ && srcs && !plcModbus_ && !plcAds_) {
+      cell.module = std::make_unique<bc::Module>(*precompiled_);  // a copy of the image, no compile
+    } else {
+      if (inputs.empty()) return true;
+      plcFiles_.first = static_cast<uint32_t>(sources_.fileCount());
+      cell.module = st::compileProgram(inputs, sources_, diags_, plcOptions_);
+      plcFiles_.second = static_cast<uint32_t>(sources_.fileCount());
+    }
     if (!cell.module) return false;
     for (auto& t : cell.module->tasks)
       if (t.isDefault) t.intervalNs = cell.run.plcCycleNs;
@@ -466,6 +481,8 @@ class Loader {
 
   SourceManager& sources_;
   Diagnostics& diags_;
+  st::CompileOptions plcOptions_;
+  const bc::Module* precompiled_ = nullptr;
   bool plcBroken_ = false;                  // the `plc:` section or its program has errors
   const ConfigNode* plcModbus_ = nullptr;  // `plc: modbus:` inside the file's tree, read after the devices
   const ConfigNode* plcAds_ = nullptr;     // `plc: ads:` likewise
@@ -476,7 +493,6 @@ class Loader {
     bool cycleDone = false;  // else recorded
   };
   std::vector<ExternalRunVariable> externalRun_;  // `run:` variables of the PLC behind `plc: ads:`
-  st::CompileOptions plcOptions_;
 };
 
 }  // namespace
@@ -505,6 +521,26 @@ std::unique_ptr<Cell> loadCell(const std::string& path, SourceManager& sources, 
   diags.sortByLocation();
   // The PLC program's compile errors first: they are the cause the user must read first.
   diags.moveFilesFirst(loader.plcFiles().first, loader.plcFiles().second);
+  return cell;
+}
+
+std::unique_ptr<CellTemplate> loadCellTemplate(const std::string& path, SourceManager& sources, Diagnostics& diags) {
+  auto tmpl = std::make_unique<CellTemplate>();
+  tmpl->file = path;
+  Loader loader(sources, diags);
+  std::unique_ptr<Cell> cell;
+  if (loader.readTree(path, tmpl->root)) cell = loader.build(tmpl->file, tmpl->root);
+  diags.sortByLocation();
+  diags.moveFilesFirst(loader.plcFiles().first, loader.plcFiles().second);
+  if (!cell) return nullptr;
+  tmpl->module = std::move(cell->module);
+  return tmpl;
+}
+
+std::unique_ptr<Cell> instantiateCell(const CellTemplate& tmpl, const ConfigNode& root, SourceManager& sources, Diagnostics& diags) {
+  Loader loader(sources, diags, {}, tmpl.module.get());
+  auto cell = loader.build(tmpl.file, root);
+  diags.sortByLocation();
   return cell;
 }
 

@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   virtcom::cli::addAdCommand(app, setExit);
   virtcom::cli::addHistoryCommand(app, setExit);
   virtcom::cli::addTestCommand(app, setExit);
+  virtcom::cli::addOptimiseCommand(app, setExit);
+  virtcom::cli::addSweepCommand(app, setExit);
   if (argc > 1) {
     std::string first = argv[1];
     bool known = first == "-h" || first == "--help" || first == "--version";

@@ -1,0 +1,138 @@
+// `virtcom sweep SWEEP.yaml`: device and PLC parameters over grids or random samples, one KPI row
+// per point (docs/optimise.md "Sweeps"); slices for a cluster (--shard), joined with --merge, and
+// the Slurm job-array script that runs them (--slurm-script).
+#include <algorithm>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "cli/commands.hpp"
+#include "cli/common.hpp"
+#include "optimize/sweep.hpp"
+
+namespace virtcom::cli {
+
+namespace {
+
+struct SweepOptions {
+  std::string file;
+  std::string csv;
+  std::string shard;                // "I/N", 1-based
+  std::vector<std::string> merge;   // OUT IN...
+  unsigned slurmTasks = 0;
+  unsigned jobs = 0;
+};
+
+// "I/N" with 1 <= I <= N.
+bool parseShard(const std::string& text, size_t& index, size_t& count) {
+  const size_t slash = text.find('/');
+  if (slash == std::string::npos) return false;
+  char* end = nullptr;
+  index = std::strtoul(text.c_str(), &end, 10);
+  if (end != text.c_str() + slash) return false;
+  count = std::strtoul(text.c_str() + slash + 1, &end, 10);
+  return *end == 0 && count >= 1 && index >= 1 && index <= count;
+}
+
+// Joins shard CSVs (same header) into one table ordered by point; a point twice is an error.
+ExitCode merge(const std::vector<std::string>& files) {
+  std::string header;
+  std::vector<std::pair<size_t, std::string>> rows;
+  for (size_t f = 1; f < files.size(); ++f) {
+    std::ifstream in(files[f]);
+    std::string line;
+    if (!in || !std::getline(in, line)) {
+      std::cerr << "error: --merge: cannot read " << files[f] << "\n";
+      return ExitCode::InputError;
+    }
+    if (header.empty()) header = line;
+    else if (line != header) {
+      std::cerr << "error: --merge: " << files[f] << " has other columns than " << files[1] << " (a slice of another sweep?)\n";
+      return ExitCode::InputError;
+    }
+    while (std::getline(in, line))
+      if (!line.empty()) rows.emplace_back(std::strtoul(line.c_str(), nullptr, 10), line);
+  }
+  std::ranges::stable_sort(rows, {}, &std::pair<size_t, std::string>::first);
+  std::string out = header + "\n";
+  for (size_t i = 0; i < rows.size(); ++i) {
+    if (i > 0 && rows[i].first == rows[i - 1].first) {
+      std::cerr << "error: --merge: point " << rows[i].first << " is in more than one file\n";
+      return ExitCode::InputError;
+    }
+    out += rows[i].second + "\n";
+  }
+  return writeFile(files[0], out) ? ExitCode::Ok : ExitCode::Usage;
+}
+
+std::string slurmScript(const SweepOptions& o) {
+  const std::string n = std::to_string(o.slurmTasks);
+  return "#!/bin/bash\n"
+         "# Runs " + o.file + " as a Slurm job array of " + n + " slices (docs/optimise.md \"Sweeps\").\n"
+         "# Submit: sbatch sweep.sbatch; afterwards: virtcom sweep --merge sweep.csv sweep-*.csv\n"
+         "#SBATCH --job-name=virtcom-sweep\n"
+         "#SBATCH --array=1-" + n + "\n"
+         "#SBATCH --cpus-per-task=1\n"
+         "#SBATCH --output=sweep-%a.log\n"
+         "virtcom sweep " + o.file + " --shard ${SLURM_ARRAY_TASK_ID}/" + n + " --jobs ${SLURM_CPUS_PER_TASK:-1} --csv sweep-${SLURM_ARRAY_TASK_ID}.csv\n";
+}
+
+ExitCode sweep(const SweepOptions& o) {
+  if (!o.merge.empty()) {
+    if (o.merge.size() < 2) {
+      std::cerr << "error: --merge OUT.csv IN.csv...: at least one input\n";
+      return ExitCode::Usage;
+    }
+    return merge(o.merge);
+  }
+  if (o.file.empty()) {
+    std::cerr << "error: a sweep file is needed (or --merge)\n";
+    return ExitCode::Usage;
+  }
+  if (o.slurmTasks) {
+    std::cout << slurmScript(o);
+    return ExitCode::Ok;
+  }
+  size_t shard = 1, shards = 1;
+  if (!o.shard.empty() && !parseShard(o.shard, shard, shards)) {
+    std::cerr << "error: --shard: '" << o.shard << "' is not I/N with 1 <= I <= N (e.g. 2/8)\n";
+    return ExitCode::Usage;
+  }
+  SourceManager sources;
+  Diagnostics diags;
+  auto spec = optimize::readSweep(o.file, sources, diags);
+  std::unique_ptr<optimize::Sweeper> sweeper;
+  if (spec) sweeper = optimize::Sweeper::create(*spec, sources, diags);
+  std::cerr << diags.render(sources);
+  if (!sweeper) return ExitCode::InputError;
+  const auto points = optimize::sweepPoints(*spec);
+  std::vector<size_t> mine;  // this slice: every shards-th point
+  for (size_t p = shard - 1; p < points.size(); p += shards) mine.push_back(p);
+  std::vector<optimize::SweepRow> rows(mine.size());
+  const unsigned threads = o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
+  optimize::parallelFor(mine.size(), threads, [&](size_t i) { rows[i] = sweeper->evaluate(mine[i], points[mine[i]]); });
+  const std::string csv = optimize::sweepCsv(*spec, rows);
+  if (o.csv.empty()) std::cout << csv;
+  else if (!writeFile(o.csv, csv)) return ExitCode::Usage;
+  std::cerr << "sweep: " << rows.size() << " of " << points.size() << " points (slice " << shard << "/" << shards << ")\n";
+  return ExitCode::Ok;
+}
+
+}  // namespace
+
+void addSweepCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
+  auto o = std::make_shared<SweepOptions>();
+  CLI::App* cmd = app.add_subcommand("sweep", "Run a cell over a grid or random sample of device and PLC parameters, one KPI row per point "
+                                              "(docs/optimise.md \"Sweeps\")");
+  cmd->add_option("sweep", o->file, "the sweep file (YAML): cell, parameters and their values, sampling")->check(CLI::ExistingFile);
+  cmd->add_option("--csv", o->csv, "write the rows to this CSV file (default: stdout)");
+  cmd->add_option("--shard", o->shard, "run only slice I of N (points I-1, I-1+N, ...), e.g. 2/8, for a cluster job array");
+  cmd->add_option("--merge", o->merge, "OUT.csv IN.csv...: join the slices' CSV files into one table ordered by point")->expected(2, 1 << 20);
+  cmd->add_option("--slurm-script", o->slurmTasks, "print a Slurm sbatch script running the sweep as a job array of this many slices")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--jobs", o->jobs, "points simulated in parallel (default: every core); never changes the rows")->check(CLI::PositiveNumber);
+  cmd->callback([o, setExit] { setExit(sweep(*o)); });
+}
+
+}  // namespace virtcom::cli

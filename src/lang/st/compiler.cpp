@@ -9,6 +9,7 @@
 #include "lang/st/codegen/init_program.hpp"
 #include "lang/st/parse/parser.hpp"
 #include "lang/st/prelude.hpp"
+#include "lang/st/var_config.hpp"
 
 namespace virtcom::st {
 
@@ -159,6 +160,7 @@ std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& input
     diags.sortByLocation();
     return nullptr;
   }
+  applyVarConfig(units, diags);  // its mistakes do not hide those of the declarations
   ProgramModel model;
   TypeTable types(module->types);
   ImageBuilder image(module->initialImage);

@@ -316,11 +316,21 @@ struct Resource {
   std::vector<ProgramConfig> programs;
 };
 
+// One VAR_CONFIG entry: `Cpu.p.x AT %IX1.0 : BOOL := TRUE;` (lang/st/var_config.hpp).
+struct ConfigVar {
+  std::vector<std::string> path;  // [resource.]instance.variable
+  std::string location;           // "%IX1.0"
+  TypeSpec type;
+  ExprPtr init;                   // null: none
+  SourceLocation loc;
+};
+
 struct Configuration {
   std::string name;
   SourceLocation loc;
   std::vector<VarBlock> globals;
   std::vector<Resource> resources;
+  std::vector<ConfigVar> configVars;
 };
 
 // One parsed source file.

@@ -745,7 +745,7 @@ TEST(ParserPou, SmallCases) {
   EXPECT_EQ(diags("FUNCTION_BLOCK F METHOD ABSTRACT M x := 1; END_METHOD END_FUNCTION_BLOCK"),
             "1:36 E006 an ABSTRACT method cannot have statements\n");
   EXPECT_EQ(diags("PROGRAM P VAR_CONFIG x : INT; END_VAR END_PROGRAM"),
-            "1:11 E011 VAR_CONFIG is not supported; its declarations are read as VAR\n");
+            "1:11 E011 VAR_CONFIG belongs in a CONFIGURATION (inst.var AT %IX1.0 : BOOL;); here its declarations are read as VAR\n");
 }
 
 // TwinCAT/CODESYS exports put METHODs, PROPERTYs and ACTIONs before the body, others after it:
@@ -887,7 +887,7 @@ TEST(ParserErrors, FloodsGiveOneError) {
             "2:1 E006 expected METHOD, PROPERTY or END_INTERFACE, found 'x'\n"
             "4:1 E006 expected METHOD, PROPERTY or END_INTERFACE, found 'z'\n");
   EXPECT_EQ(diags("CONFIGURATION C\nx := 1; y := 2;\nRESOURCE R ON PLC\na b c;\nEND_RESOURCE\nEND_CONFIGURATION"),
-            "2:1 E006 expected VAR_GLOBAL, RESOURCE, TASK, PROGRAM or END_CONFIGURATION, found 'x'\n"
+            "2:1 E006 expected VAR_GLOBAL, VAR_CONFIG, RESOURCE, TASK, PROGRAM or END_CONFIGURATION, found 'x'\n"
             "4:1 E006 expected VAR_GLOBAL, TASK, PROGRAM or END_RESOURCE, found 'a'\n");
   // The flood of a misplaced body (statements after a forgotten METHOD header) is one error too.
   auto p = parse("FUNCTION_BLOCK F\nMETHOD M\nEND_METHOD\nx := 1;\n) ) ) ;\ny := 2;\nEND_FUNCTION_BLOCK");

@@ -109,6 +109,12 @@ void Declarer::placeLocated(VarInfo& v, const std::string& address) {
                                 : a->area == 'Q' ? module_.outputs
                                                  : module_.memory;
   v.storage = Storage::Absolute;
+  if (!a && address.ends_with('*')) {
+    diags_.error(diag::E109, v.loc, "'" + address + "' has no address: complete it in the CONFIGURATION with "
+                                    "VAR_CONFIG (inst." + v.name + " AT " + address.substr(0, address.size() - 1) +
+                                    "... : type;)");
+    return;
+  }
   if (!a) {
     diags_.error(diag::E109, v.loc, "'" + address + "' is not a valid direct address (expected e.g. %IX0.0, %QW2, %MD4)");
     return;

@@ -28,7 +28,8 @@ VarBlock Parser::parseVarBlock() {
   block.loc = cur().loc;
   block.section = sectionOf(cur().kind);
   std::string opener(tokSpelling(cur().kind));
-  if (at(Tok::KwVarConfig)) error(diag::E011, "VAR_CONFIG is not supported; its declarations are read as VAR");
+  if (at(Tok::KwVarConfig))
+    error(diag::E011, "VAR_CONFIG belongs in a CONFIGURATION (inst.var AT %IX1.0 : BOOL;); here its declarations are read as VAR");
   advance();
   for (bool more = true; more;) {
     switch (cur().kind) {

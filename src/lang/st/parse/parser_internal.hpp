@@ -94,6 +94,7 @@ class Parser {
   void parseModifiers(Access& access, bool& isAbstract, bool& isFinal);
   Configuration parseConfiguration();
   Resource parseResource();
+  void parseVarConfig(std::vector<ConfigVar>& out);
   bool parseResourceItem(Resource& res);
   TaskDecl parseTask();
   ProgramConfig parseProgramConfig();

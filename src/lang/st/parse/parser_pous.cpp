@@ -252,6 +252,8 @@ Configuration Parser::parseConfiguration() {
   while (!at(Tok::KwEndConfiguration) && !at(Tok::Eof) && !stopped_) {
     if (at(Tok::KwVarGlobal)) {
       config.globals.push_back(parseVarBlock());
+    } else if (at(Tok::KwVarConfig)) {
+      parseVarConfig(config.configVars);
     } else if (at(Tok::KwResource)) {
       config.resources.push_back(parseResource());
     } else if (at(Tok::KwTask) || at(Tok::KwProgram)) {
@@ -263,11 +265,46 @@ Configuration Parser::parseConfiguration() {
     } else if (isTopLevelStart(cur().kind)) {
       break;
     } else {
-      skipStray(lastStray, "VAR_GLOBAL, RESOURCE, TASK, PROGRAM or END_CONFIGURATION");
+      skipStray(lastStray, "VAR_GLOBAL, VAR_CONFIG, RESOURCE, TASK, PROGRAM or END_CONFIGURATION");
     }
   }
   expectEnd(Tok::KwEndConfiguration, "CONFIGURATION", keywordLoc);
   return config;
+}
+
+// VAR_CONFIG  p.x AT %IX1.0 : BOOL [:= init]; ...  END_VAR
+void Parser::parseVarConfig(std::vector<ConfigVar>& out) {
+  SourceLocation keywordLoc = cur().loc;
+  advance();
+  while (!at(Tok::KwEndVar) && !isHardStop(cur().kind) && !stopped_) {
+    ConfigVar entry;
+    entry.loc = cur().loc;
+    size_t before = pos_;
+    do {
+      std::string part = expectName("an instance path such as p.x");
+      if (part.empty()) break;
+      entry.path.push_back(std::move(part));
+    } while (accept(Tok::Dot));
+    bool ok = !entry.path.empty() && expect(Tok::KwAt, "after the path of a VAR_CONFIG entry");
+    if (ok && at(Tok::DirectAddress)) {
+      entry.location = std::string(cur().text);
+      advance();
+    } else if (ok) {
+      errorExpected("a direct address such as %IX1.0", "after AT");
+      ok = false;
+    }
+    if (ok && expect(Tok::Colon, "after the address")) {
+      entry.type = parseTypeSpec(false, nullptr);
+      if (accept(Tok::Assign)) entry.init = parseExpr();
+      if (expect(Tok::Semicolon, "after a VAR_CONFIG entry")) {
+        out.push_back(std::move(entry));
+        continue;
+      }
+    }
+    skipPastSemicolon(false);
+    if (pos_ == before) advance();
+  }
+  expectEnd(Tok::KwEndVar, "VAR_CONFIG", keywordLoc);
 }
 
 Resource Parser::parseResource() {

@@ -2,7 +2,6 @@
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
-#include <netinet/tcp.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -216,14 +215,9 @@ void Server::run() {
         int fd = io_.acceptClient(config_.peers, clients.size(), [&](uint32_t ip) {
           return static_cast<size_t>(std::ranges::count_if(clients, [ip](const auto& c) { return c->peer == ip; }));
         }, peer);
-        if (fd >= 0) {
-          int one = 1;
-          ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-          // Keepalive finds peers that vanished without a FIN (pulled cable, killed VM).
-          ::setsockopt(fd, SOL_SOCKET, SO_KEEPALIVE, &one, sizeof one);
+        if (fd >= 0)
           clients.push_back(std::make_unique<Connection>(Connection{
               fd, peer, net::RequestBudget(config_.peers.limits().requestsPerSecond), Session(device_, config_.allowedNetIds), {}, {}}));
-        }
       }
       connections_.store(clients.size());
     }

@@ -1,6 +1,9 @@
 #include "proto/net/server_thread.hpp"
 
 #include <fcntl.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -54,9 +57,14 @@ int ServerThread::acceptClient(const PeerPolicy& policy, size_t open, const std:
                                uint32_t& peer) {
   int fd = acceptPeer(listenFd_, peer);
   if (fd < 0) return -1;
-  if (policy.admit(peer, open, openFrom(peer)) == Refusal::None) return fd;
-  ::close(fd);
-  return -1;
+  if (policy.admit(peer, open, openFrom(peer)) != Refusal::None) {
+    ::close(fd);
+    return -1;
+  }
+  int one = 1;
+  ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+  ::setsockopt(fd, SOL_SOCKET, SO_KEEPALIVE, &one, sizeof one);
+  return fd;
 }
 
 void ServerThread::stop() {

@@ -30,7 +30,8 @@ class ServerThread {
   void wake(uint8_t why);
   // I/O thread, once wakeFd() is readable: empties the pipe; true if stop() was among the wake-ups.
   bool takeStopRequest();
-  // I/O thread, once listenFd() is readable: the accepted connection (non-blocking) and its
+  // I/O thread, once listenFd() is readable: the accepted connection (non-blocking, TCP_NODELAY
+  // for request/response latency, SO_KEEPALIVE to find peers that vanished without a FIN) and its
   // `peer`, or -1 if there was none or `policy` refused it (closed at once, logged) with `open`
   // connections open, openFrom(peer) of them from that address.
   int acceptClient(const PeerPolicy& policy, size_t open, const std::function<size_t(uint32_t)>& openFrom, uint32_t& peer);

@@ -1,7 +1,6 @@
 #include "proto/opcua/server.hpp"
 
 #include <netinet/in.h>
-#include <netinet/tcp.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -148,12 +147,7 @@ void Server::run() {
         int fd = io_.acceptClient(config_.peers, clients.size(), [&](uint32_t ip) {
           return static_cast<size_t>(std::ranges::count_if(clients, [ip](const auto& c) { return c->peer == ip; }));
         }, peer);
-        if (fd >= 0) {
-          int one = 1;
-          ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-          ::setsockopt(fd, SOL_SOCKET, SO_KEEPALIVE, &one, sizeof one);
-          clients.push_back(std::make_unique<Connection>(Connection{fd, peer, Channel(core_), {}, {}, false}));
-        }
+        if (fd >= 0) clients.push_back(std::make_unique<Connection>(Connection{fd, peer, Channel(core_), {}, {}, false}));
       }
       connections_.store(clients.size());
     }

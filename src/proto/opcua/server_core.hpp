@@ -8,8 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "proto/ads/write_queue.hpp"
 #include "core/endpoint.hpp"
+#include "proto/ads/write_queue.hpp"
+#include "proto/net/peer_policy.hpp"
 #include "proto/opcua/address_space.hpp"
 #include "proto/opcua/subscription.hpp"
 #include "proto/opcua/types.hpp"

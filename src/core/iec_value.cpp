@@ -181,7 +181,7 @@ size_t formatDateInto(char* buf, int64_t seconds) {
 size_t formatTimeOfDayInto(char* buf, int64_t ms) {
   TextBuf out{buf};
   out.add("TOD#");
-  addClock(out, ms * 1'000'000);
+  addClock(out, (ms % 86'400'000) * 1'000'000);  // the day first: any 64-bit value of ms prints without overflow
   return out.n;
 }
 

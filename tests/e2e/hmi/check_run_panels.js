@@ -69,9 +69,9 @@ async function refused() {
   await withPage(async (page) => {
     const reply = await api('control', { action: 'reset' });
     assert.equal(reply.status, 409);
-    assert.match(reply.json.error, /--modbus or --ads/);
+    assert.match(reply.json.error, /--modbus, --ads or --opcua/);
     await page.click('#btn-reset');
-    await eventually(() => page.textContent('#message'), (m) => /--modbus or --ads/.test(m), 'the page shows why');
+    await eventually(() => page.textContent('#message'), (m) => /--modbus, --ads or --opcua/.test(m), 'the page shows why');
     const ns = await virtualNs(page);
     await sleep(300);
     assert.ok(await virtualNs(page) >= ns, 'the run was not reset');

@@ -129,13 +129,15 @@ void Declarer::addMembers(PouSym& pou, const Pou& ast, bool methodInst) {
           v.storage = Storage::Instance;
           uint32_t size = v.byReference ? 8 : types_[type].size;
           uint32_t align = v.byReference ? 8 : std::min<uint32_t>(types_[type].align, 8);
+          // Before taking `inst`: referenceTo() may add a type, which moves every TypeDesc.
+          const bc::TypeId fieldType = v.byReference ? types_.referenceTo(type) : type;
           bc::TypeDesc& inst = types_.mut(target.instanceType);
           v.offset = alignUp(inst.size, align);
           inst.size = v.offset + size;
           inst.align = std::max(inst.align, align);
           bc::Field f;
           f.name = v.name;
-          f.type = v.byReference ? types_.referenceTo(type) : type;
+          f.type = fieldType;
           f.offset = v.offset;
           f.hidden = v.hidden;
           f.readOnly = v.readOnly;

@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "aot/module_key.hpp"
 #include "bytecode/verifier.hpp"
 
 extern char** environ;
@@ -183,51 +184,111 @@ CompileResult load(const bc::Module& m, const fs::path& object) {
   return r;
 }
 
+// Why the module cannot be translated (the generated C trusts verified bytecode), or empty.
+std::string untranslatable(const bc::Module& m) {
+  std::string problem = bc::verifyModule(m);
+  return problem.empty() ? problem : "the module does not verify: " + problem;
+}
+
+// A module's translation units and where their objects and the linked shared object live in
+// the cache (the keys hash the generated source: no stale file is ever reused).
+struct CachePlan {
+  std::vector<CUnit> units;
+  std::vector<UnitJob> work;  // points into units
+  fs::path dir, library;
+};
+
+CachePlan planCache(const bc::Module& m, const CompileOptions& options, const std::vector<std::string>& compile,
+                    const std::vector<std::string>& link) {
+  CachePlan plan;
+  plan.units = generateCUnits(m, options.unitInstructions);
+  plan.dir = cacheDirectory(options);
+  std::string moduleKey = joined(link);
+  std::error_code ec;
+  for (const CUnit& unit : plan.units) {
+    const std::string key = hashHex(unit.source + '\0' + joined(compile));
+    moduleKey += key;
+    const fs::path object = plan.dir / (key + ".o");
+    plan.work.push_back({&unit, object, fs::exists(object, ec), {}});
+  }
+  plan.library = plan.dir / (hashHex(moduleKey) + ".so");
+  return plan;
+}
+
+// The cached shared object `library`, loaded; null code (with the reason) when it is not there.
+CompileResult loadFromCache(const bc::Module& m, const fs::path& library) {
+  std::error_code ec;
+  if (library.empty() || !fs::exists(library, ec)) {
+    CompileResult r;
+    r.error = "not in the cache";
+    return r;
+  }
+  CompileResult cached = load(m, library);
+  cached.fromCache = cached.code != nullptr;
+  return cached;
+}
+
+// The index from a module's cheap key (aot/module_key.hpp) to the name of its shared object:
+// KEY.module holds the file name. Written once the shared object is in place.
+fs::path indexFile(const fs::path& dir, const std::string& key) { return dir / (key + ".module"); }
+
+void rememberLibrary(const bc::Module& m, const CompileOptions& options, const fs::path& library) {
+  const std::string key = moduleKey(m, options.unitInstructions);
+  if (key.empty()) return;
+  const fs::path index = indexFile(library.parent_path(), key), tmp = library.parent_path() / temporaryName(key);
+  std::error_code ec;
+  if (std::ofstream(tmp) << library.filename().string()) fs::rename(tmp, index, ec);
+  fs::remove(tmp, ec);
+}
+
+fs::path rememberedLibrary(const bc::Module& m, const CompileOptions& options) {
+  const std::string key = moduleKey(m, options.unitInstructions);
+  if (key.empty()) return {};
+  const fs::path dir = cacheDirectory(options);
+  std::string name;
+  if (!(std::ifstream(indexFile(dir, key)) >> name) || name.find('/') != std::string::npos) return {};
+  return dir / name;
+}
+
 }  // namespace
 
 CompileResult compileModule(const bc::Module& m, const CompileOptions& options) {
   CompileResult r;
-  if (std::string problem = bc::verifyModule(m); !problem.empty()) {
-    r.error = "the module does not verify: " + problem;
-    return r;
-  }
-  const std::vector<CUnit> units = generateCUnits(m, options.unitInstructions);
+  if (r.error = untranslatable(m); !r.error.empty()) return r;
   const std::vector<std::string> compile = compilerCommand(options, kCompileFlags),
                                  link = compilerCommand(options, kLinkFlags);
-  const fs::path dir = cacheDirectory(options);
-  std::vector<UnitJob> work;
-  std::string moduleKey = joined(link);
-  std::error_code ec;
-  for (const CUnit& unit : units) {
-    const std::string key = hashHex(unit.source + '\0' + joined(compile));
-    moduleKey += key;
-    const fs::path object = dir / (key + ".o");
-    work.push_back({&unit, object, fs::exists(object, ec), {}});
-  }
-  r.units = units.size();
-  const fs::path library = dir / (hashHex(moduleKey) + ".so");
-  if (fs::exists(library, ec)) {
-    CompileResult cached = load(m, library);
+  CachePlan plan = planCache(m, options, compile, link);
+  r.units = plan.units.size();
+  if (CompileResult cached = loadFromCache(m, plan.library); cached.code) {
     cached.units = r.units;
-    cached.fromCache = cached.code != nullptr;
-    if (cached.code) return cached;
+    rememberLibrary(m, options, plan.library);
+    return cached;
   }
-  fs::create_directories(dir, ec);
+  std::error_code ec;
+  fs::create_directories(plan.dir, ec);
   if (ec) {
-    r.error = "cannot create the cache folder " + dir.string() + ": " + ec.message();
+    r.error = "cannot create the cache folder " + plan.dir.string() + ": " + ec.message();
     return r;
   }
+  auto& work = plan.work;
   r.unitsCompiled = static_cast<size_t>(std::count_if(work.begin(), work.end(), [](const UnitJob& w) { return !w.cached; }));
   r.error = compileUnits(work, compile, jobCount(options));
   if (!r.error.empty()) return r;
   std::vector<std::string> objects;
   for (const auto& w : work) objects.push_back(w.object.string());
-  r.error = produce(link, library, {}, objects);
+  r.error = produce(link, plan.library, {}, objects);
   if (!r.error.empty()) return r;
-  CompileResult loaded = load(m, library);
+  CompileResult loaded = load(m, plan.library);
   loaded.units = r.units;
   loaded.unitsCompiled = r.unitsCompiled;
+  if (loaded.code) rememberLibrary(m, options, plan.library);
   return loaded;
+}
+
+CompileResult loadCachedModule(const bc::Module& m, const CompileOptions& options) {
+  CompileResult r;
+  if (r.error = untranslatable(m); !r.error.empty()) return r;
+  return loadFromCache(m, rememberedLibrary(m, options));
 }
 
 }  // namespace virtcom::aot

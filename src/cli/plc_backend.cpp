@@ -89,7 +89,8 @@ uint64_t switchHookScans() {
 
 void addBackendOption(CLI::App& cmd, std::string& backend) {
   cmd.add_option("--backend", backend,
-                 "how the PLC runs its program: auto (default) starts on the bytecode interpreter at once and "
+                 "how the PLC runs its program: auto (default) runs machine code from the first scan when the "
+                 "cache holds this program's from a former run, else starts on the bytecode interpreter at once and "
                  "switches between two scans to machine code compiled in the background with the system C "
                  "compiler (stays on the interpreter without one); interp: the interpreter only; aot: machine code "
                  "compiled before the first scan (falls back to interp with a notice). See docs/performance.md")
@@ -104,6 +105,16 @@ PlcBackend::PlcBackend(const std::string& backend, const bc::Module& m) : reques
     return;
   }
   if (backend != "auto") return;
+  const uint64_t switchAtScan = switchHookScans();
+  // Machine code a former run left in the cache runs from the first scan: no compile to wait for.
+  // (Not when a test places the switch: that needs the interpreter first.)
+  if (!switchAtScan) {
+    aot::CompileResult cached = aot::loadCachedModule(m);
+    if (cached.code) {
+      compiled_ = std::move(cached.code);
+      return;
+    }
+  }
   handoff_ = std::make_shared<vm::CompiledHandoff>();
   compile_ = std::make_shared<Compile>(m);
   auto work = [compile = compile_, handoff = handoff_](std::chrono::milliseconds delay) {
@@ -125,8 +136,8 @@ PlcBackend::PlcBackend(const std::string& backend, const bc::Module& m) : reques
     compile->done = true;
     compile->finished.notify_all();
   };
-  if (const uint64_t scans = switchHookScans()) {
-    handoff_->holdUntilScan(scans);
+  if (switchAtScan) {
+    handoff_->holdUntilScan(switchAtScan);
     work(std::chrono::milliseconds(0));
     return;
   }
@@ -167,6 +178,7 @@ void PlcBackend::logRun(const plc::TierStats& stats) const {
   std::cerr << "tier: --backend " << requested_ << ": " << stats.interpScans << " scans interpreted, "
             << stats.compiledScans << " on machine code";
   if (stats.switchedAtNs >= 0) std::cerr << ", switched at " << static_cast<double>(stats.switchedAtNs) * 1e-9 << " s";
+  if (requested_ == "auto" && compiled_) std::cerr << "; machine code from the cache at load";
   if (compile_) {
     std::lock_guard lock(compile_->mutex);
     if (!compile_->done) std::cerr << "; machine code not ready when the run ended";

@@ -2,10 +2,12 @@
 // `--backend`: how the soft PLC runs its program, for every command that runs one.
 //   interp  the bytecode interpreter only;
 //   aot     machine code compiled (or taken from the cache) before the first scan;
-//   auto    (the default) the interpreter at once; a run still going after half a second has
-//           its machine code compiled on a background thread and switched to between two
-//           scans when it is ready (plc::Runtime's tier switch). Without a C compiler it stays
-//           on the interpreter, silently.
+//   auto    (the default) machine code from the first scan when the AOT cache holds this
+//           module's (a former aot run or a long auto run compiled it); else the interpreter at
+//           once, and a run still going after half a second has its machine code compiled on a
+//           background thread and switched to between two scans when it is ready
+//           (plc::Runtime's tier switch). Without a C compiler it stays on the interpreter,
+//           silently.
 #include <memory>
 #include <string>
 
@@ -30,7 +32,7 @@ class PlcBackend {
   PlcBackend(const PlcBackend&) = delete;
   PlcBackend& operator=(const PlcBackend&) = delete;
 
-  // Machine code to run from the first scan on (aot), else null.
+  // Machine code to run from the first scan on (aot, or auto with a warm cache), else null.
   std::shared_ptr<const vm::CompiledCode> compiled() const { return compiled_; }
   // Machine code to switch to once published (auto), else null.
   std::shared_ptr<const vm::CompiledHandoff> tierUp() const { return handoff_; }

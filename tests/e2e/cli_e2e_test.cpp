@@ -211,6 +211,28 @@ TEST_F(CliBackend, AutoSwitchingMidRunPrintsWhatTheInterpreterPrints) {
   EXPECT_TRUE(contains(reference.err, "tier: --backend interp: 40 scans interpreted, 0 on machine code")) << show(reference);
 }
 
+// A former aot run leaves the program's machine code in the cache: the default auto then runs it
+// from the first scan (found without generating C or compiling: no compiler is reachable) and
+// prints what the interpreter prints; a changed program is not taken for it.
+TEST_F(CliBackend, AutoRunsAFormerCompileFromTheFirstScan) {
+  const std::vector<std::string> args{"exec", "ton.st", "--cycles", "40", "--trace", "MAIN.q,MAIN.et"};
+  std::vector<std::string> aot = args, interp = args;
+  aot.insert(aot.end(), {"--backend", "aot"});
+  interp.insert(interp.end(), {"--backend", "interp"});
+  RunResult reference = run(interp);
+  ASSERT_EQ(run(aot).exitCode, 0);
+  ::setenv("VIRTCOM_TIER_LOG", "1", 1);
+  ::setenv("CC", "virtcom-no-such-compiler", 1);
+  RunResult r = run(args);
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out, reference.out) << show(r);
+  EXPECT_TRUE(contains(r.err, "tier: --backend auto: 0 scans interpreted, 40 on machine code; machine code from the cache at load"))
+      << show(r);
+  RunResult other = run({"exec", "counter.st", "--cycles", "5", "--print", "MAIN.count"});
+  EXPECT_EQ(other.out, "MAIN.count = 5\n");
+  EXPECT_TRUE(contains(other.err, "tier: --backend auto: 5 scans interpreted, 0 on machine code")) << show(other);
+}
+
 // The default is auto; the same fault report as the interpreter after a switch before the faulting scan.
 TEST_F(CliBackend, AutoIsTheDefaultAndReportsTheSameFault) {
   RunResult interp = run({"exec", "divzero.st", "--cycles", "5", "--backend", "interp"});

@@ -13,6 +13,7 @@
 #include "../vm/random_instr.hpp"
 #include "../vm/test_module_builder.hpp"
 #include "aot/compile.hpp"
+#include "aot/module_key.hpp"
 #include "aot/register_plan.hpp"
 #include "bytecode/verifier.hpp"
 #include "lang/st/compiler.hpp"
@@ -411,6 +412,55 @@ TEST(Aot, ReusesTheCachedObject) {
   vm::Machine vm(module);
   vm.useCompiled(second.code);
   EXPECT_TRUE(vm.run(0, 0));
+  fs::remove_all(o.cacheDir);
+}
+
+// `--backend auto` looks for a former compile before the first scan by the cheap key: nothing
+// before any compile, the same shared object after one, nothing for a module that differs in
+// any part the C generator reads (a constant, an index descriptor, a POU's registers, the unit
+// size), and it never compiles.
+TEST(Aot, LoadsAFormerCompileByTheCheapKeyOnly) {
+  aot::CompileOptions o;
+  o.cacheDir = (fs::path(VIRTCOM_AOT_TEST_CACHE) / ("key-test-" + std::to_string(getpid()))).string();
+  fs::remove_all(o.cacheDir);
+  std::mt19937 rng(7);
+  const bc::Module m = randomModule(rng, 6);
+  ASSERT_FALSE(aot::moduleKey(m, o.unitInstructions).empty()) << "the test binary has no build id";
+  const aot::CompileResult cold = aot::loadCachedModule(m, o);
+  EXPECT_EQ(cold.code, nullptr);
+  EXPECT_EQ(cold.error, "not in the cache");
+  EXPECT_FALSE(fs::exists(o.cacheDir)) << "a look-up writes nothing";
+
+  const aot::CompileResult compiled = aot::compileModule(m, o);
+  ASSERT_TRUE(compiled.code) << compiled.error;
+  const aot::CompileResult warm = aot::loadCachedModule(m, o);
+  ASSERT_TRUE(warm.code) << warm.error;
+  EXPECT_TRUE(warm.fromCache);
+  vm::Machine interp(m), machine(m);
+  machine.useCompiled(warm.code);
+  for (vm::Machine* vm : {&interp, &machine}) {
+    vm->setBudget(200);
+    ASSERT_TRUE(vm->coldStart());
+  }
+  int faulted = 0;
+  for (uint32_t pou = 0; pou < m.pous.size(); ++pou)
+    ASSERT_NO_FATAL_FAILURE(expectSameRun(interp, machine, m, pou, 0, 1000, faulted));
+
+  const auto key = aot::moduleKey(m, o.unitInstructions);
+  std::vector<bc::Module> others(4, m);
+  if (others[0].constants.empty()) others[0].constants.push_back(1);
+  else others[0].constants.back() ^= 1;
+  others[1].indexes.push_back({});
+  others[2].pous.back().numRegs += 1;
+  others[3].code.back().a ^= 1;
+  for (size_t k = 0; k < others.size(); ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_NE(aot::moduleKey(others[k], o.unitInstructions), key);
+  }
+  EXPECT_NE(aot::moduleKey(m, o.unitInstructions + 1), key);
+  aot::CompileOptions otherUnits = o;
+  otherUnits.unitInstructions = 1;
+  EXPECT_EQ(aot::loadCachedModule(m, otherUnits).code, nullptr);
   fs::remove_all(o.cacheDir);
 }
 

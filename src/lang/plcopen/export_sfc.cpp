@@ -153,6 +153,7 @@ class ChartWriter {
       a.append_attribute("localId") = newId();
       a.append_attribute("qualifier") = std::string(sfc::qualifierSpelling(assoc.qualifier)).c_str();
       if (assoc.duration) a.append_attribute("duration") = st::printExpr(*assoc.duration).c_str();
+      if (!assoc.indicator.name.empty()) a.append_attribute("indicator") = assoc.indicator.name.c_str();
       pugi::xml_node rel = a.append_child("relPosition");
       rel.append_attribute("x") = 0;
       rel.append_attribute("y") = 0;

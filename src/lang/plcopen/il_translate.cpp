@@ -70,6 +70,7 @@ struct Instruction {
   size_t operandOffset = 0;   // into the body text
   size_t offset = 0;          // of the operator (or label)
   bool opensParen = false;    // AND( ...
+  bool formal = false;        // LIMIT( MN := 0, IN := x, MX := 5 ): a call with a formal argument list
 };
 
 bool isWordChar(char c) { return isAsciiLetter(c) || isAsciiDigit(c) || c == '_'; }
@@ -112,6 +113,7 @@ class IlTranslator {
   void read();
   size_t readLine(size_t pos, size_t end);
   size_t operandEnd(size_t pos, size_t lineEnd, bool call) const;
+  bool formalList(size_t paren) const;
   SourceLocation at(size_t offset) const;
   void fail(std::string_view code, size_t offset, std::string message);
 
@@ -124,6 +126,7 @@ class IlTranslator {
   void call(const Instruction& ins);
   void fbInput(const Instruction& ins, st::ExprPtr instance);
   void function(const Instruction& ins);
+  static std::string conversionResult(std::string_view function);
   void jump(const Instruction& ins);
   st::StmtPtr carryTo(size_t label, SourceLocation loc);
   void startLabel(size_t label, SourceLocation loc);
@@ -198,6 +201,18 @@ size_t IlTranslator::operandEnd(size_t pos, size_t lineEnd, bool call) const {
   return clean_.size();
 }
 
+// True when the parenthesis at `paren` opens a formal argument list (`:=` or `=>` directly inside
+// it) rather than a deferred operand (`ADD( x`), whose IL instructions never hold those.
+bool IlTranslator::formalList(size_t paren) const {
+  int depth = 0;
+  for (size_t i = paren; i + 1 < clean_.size(); ++i) {
+    if (clean_[i] == '(') ++depth;
+    if (clean_[i] == ')' && --depth == 0) return false;
+    if (depth == 1 && ((clean_[i] == ':' && clean_[i + 1] == '=') || (clean_[i] == '=' && clean_[i + 1] == '>'))) return true;
+  }
+  return false;
+}
+
 // Reads the label and instruction of the line [pos, lineEnd); returns where reading goes on.
 size_t IlTranslator::readLine(size_t pos, size_t lineEnd) {
   auto skipBlanks = [&](size_t i) {
@@ -236,11 +251,15 @@ size_t IlTranslator::readLine(size_t pos, size_t lineEnd) {
   auto known = std::find_if(std::begin(kOperators), std::end(kOperators), [&](const Operator& o) { return o.name == upper; });
   ins.op = known != std::end(kOperators) ? *known : Operator{"", Kind::Function};
   size_t rest = skipBlanks(wordEnd);
-  if (rest < lineEnd && clean_[rest] == '(' && (ins.op.kind == Kind::Binary)) {
+  if (rest < lineEnd && clean_[rest] == '(' && (ins.op.kind == Kind::Binary || ins.op.kind == Kind::Function) &&
+      formalList(rest)) {
+    ins.op = Operator{"", Kind::Function};  // `ADD( IN1 := a, IN2 := b )` calls ADD
+    ins.formal = true;
+  } else if (rest < lineEnd && clean_[rest] == '(' && (ins.op.kind == Kind::Binary)) {
     ins.opensParen = true;
     rest = skipBlanks(rest + 1);
   }
-  size_t end = operandEnd(rest, lineEnd, ins.op.kind == Kind::Call);
+  size_t end = operandEnd(rest, lineEnd, ins.op.kind == Kind::Call || ins.formal);
   std::string_view operand = trimAscii(std::string_view(clean_).substr(rest, end - rest));
   ins.operandOffset = operand.empty() ? rest : static_cast<size_t>(operand.data() - clean_.data());
   ins.operand = std::string_view(text_).substr(ins.operandOffset, operand.size());
@@ -460,9 +479,22 @@ void IlTranslator::fbInput(const Instruction& ins, st::ExprPtr instance) {
   if (reads(*cr_, name)) cr_.reset();
 }
 
+// The type a conversion function `X_TO_Y` gives (Y); "" for other functions.
+std::string IlTranslator::conversionResult(std::string_view function) {
+  size_t to = asciiUpper(function).find("_TO_");
+  return to == std::string::npos ? "" : asciiUpper(function.substr(to + 4));
+}
+
 void IlTranslator::function(const Instruction& ins) {
   if (isOneOf(asciiUpper(ins.written), kFbInputOperators)) {
     if (st::ExprPtr instance = operand(ins)) fbInput(ins, std::move(instance));
+    return;
+  }
+  if (ins.formal) {
+    // IEC's formal call: the call as written; its result replaces the CR, which it does not read.
+    std::string_view call = std::string_view(clean_).substr(ins.offset, ins.operandOffset + ins.operand.size() - ins.offset);
+    cr_ = st::parseExpression(imp_.xml().fileId(), at(ins.offset), call, imp_.diags(), imp_.nextNodeId());
+    crType_ = conversionResult(ins.written);
     return;
   }
   if (!requireCr(ins)) return;
@@ -489,8 +521,7 @@ void IlTranslator::function(const Instruction& ins) {
     start = k + 1;
   }
   cr_ = std::move(c);
-  size_t to = asciiUpper(ins.written).find("_TO_");
-  crType_ = to == std::string::npos ? "" : asciiUpper(ins.written.substr(to + 4));
+  crType_ = conversionResult(ins.written);
 }
 
 void IlTranslator::translate(const Instruction& ins, size_t index) {

@@ -11,11 +11,14 @@
 // - Deferred operators (`AND( b ... )`) nest; `)` applies them.
 // - `CAL inst(...)` calls an FB instance (`CALC`/`CALCN`: when the CR is TRUE/FALSE); after a call
 //   a CR that reads the instance is undefined. Any other name as operator is a function called
-//   with the CR as its first argument: `LD 0  LIMIT x, 100` is `LIMIT(0, x, 100)`.
+//   with the CR as its first argument: `LD 0  LIMIT x, 100` is `LIMIT(0, x, 100)`. A formal call
+//   `LIMIT( MN := 0, IN := x, MX := 100 )` (also over several lines; `ADD( IN1 := a, IN2 := b )`
+//   too: `:=` or `=>` in the list tells it from a deferred ADD) is the call as written, and its
+//   result replaces the CR.
 // - The FB input operators call the FB with that input: `LD c  CLK trig` is `trig(CLK := c);`
 //   (S1, R1, CLK, CU, CD, PV, IN, PT; S and R on an RS/SR instance).
 // - `RET`, `RETC`, `RETCN` return; `JMP`, `JMPC`, `JMPCN` jump.
-// Not translated (X011): formal function calls, reading a CR that no instruction set.
+// Not translated (X011): reading a CR that no instruction set.
 #include <string_view>
 
 #include "lang/plcopen/import_internal.hpp"

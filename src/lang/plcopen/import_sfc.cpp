@@ -170,7 +170,8 @@ void ChartReader::actionBlock(pugi::xml_node node, sfc::Chart& chart) {
     if (sfc::qualifierNeedsTime(*q) && !assoc.duration)
       fail(diag::X003, a, "action qualifier " + std::string(qualifier) + " needs a 'duration' attribute");
     if (!sfc::qualifierNeedsTime(*q)) assoc.duration = nullptr;
-    if (std::string_view(a.attribute("indicator").value()).size() > 0) imp_.unsupported(a, "an action indicator variable");
+    if (pugi::xml_attribute indicator = a.attribute("indicator"); indicator && *indicator.value())
+      assoc.indicator = {indicator.value(), imp_.xml().at(a)};
     if (pugi::xml_node ref = child(a, "reference")) {
       assoc.action = {ref.attribute("name").value(), imp_.xml().at(ref)};
     } else if (pugi::xml_node inl = child(a, "inline")) {

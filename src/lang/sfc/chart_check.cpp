@@ -43,9 +43,6 @@ void checkSteps(const Chart& chart, std::map<std::string, size_t>& index, Diagno
         diags.error(diag::E404, a.loc, "qualifier " + q + " needs a duration, e.g. " + a.action.name + "(" + q + ", T#2s)");
       if (!needsTime && a.duration)
         diags.error(diag::E404, a.duration->loc, "qualifier " + q + " takes no duration; only L, D, SD, DS and SL do");
-      if (!a.indicator.name.empty())
-        diags.error(diag::E404, a.indicator.loc, "indicator variables in action associations are not supported; "
-                                                 "set the variable in the action instead");
     }
   }
   if (chart.steps.empty()) diags.error(diag::E401, chart.loc, "the chart has no steps; declare an INITIAL_STEP");

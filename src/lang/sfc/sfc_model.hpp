@@ -59,7 +59,7 @@ struct ActionAssociation {
   NamedRef action;
   Qualifier qualifier = Qualifier::N;
   st::ExprPtr duration;   // a TIME expression; set exactly when qualifierNeedsTime(qualifier)
-  NamedRef indicator;     // optional indicator variable (name empty if none); not supported yet
+  NamedRef indicator;     // optional indicator variable (name empty if none): kept, no effect (IEC)
   SourceLocation loc;     // the qualifier
 };
 

@@ -145,6 +145,8 @@ enum class StmtKind : uint8_t {
   Continue,
   Return,
   Empty,
+  Jump,       // JMP label; (CODESYS): label names the target
+  Label,      // label: (marks the position of the next statement in its list)
 };
 
 struct CondBlock {
@@ -179,6 +181,7 @@ struct Stmt {
   StmtList body;
   StmtList elseBody;
   bool hasElse = false;
+  std::string label;        // Jump, Label: the label's name as written
   CoverRole cover = CoverRole::Source;
   std::string coverName;    // StepActivated, TransitionFired: the step's or transition's name
   SourceLocation coverLoc;  // ... and where the chart declares it

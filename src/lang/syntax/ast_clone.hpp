@@ -56,6 +56,7 @@ inline StmtPtr cloneStmt(const Stmt& src, NodeId* nextNodeId = nullptr) {
   s->body = cloneStatements(src.body, nextNodeId);
   s->elseBody = cloneStatements(src.elseBody, nextNodeId);
   s->hasElse = src.hasElse;
+  s->label = src.label;
   s->cover = src.cover;
   s->coverName = src.coverName;
   s->coverLoc = src.coverLoc;

@@ -185,6 +185,8 @@ void printStatement(const Stmt& s, int indent, std::string& out) {
     case StmtKind::Continue: line(out, indent, "CONTINUE;"); break;
     case StmtKind::Return: line(out, indent, "RETURN;"); break;
     case StmtKind::Empty: line(out, indent, ";"); break;
+    case StmtKind::Jump: line(out, indent, "JMP " + s.label + ";"); break;
+    case StmtKind::Label: line(out, indent, s.label + ":"); break;
   }
 }
 

@@ -46,7 +46,7 @@ TEST(Il, EveryInstructionFormMatchesItsStTwinScanByScan) {
     plc.set("main.forms.c", next() & 0x10000 ? "TRUE" : "FALSE");
     plc.set("main.forms.raw", std::to_string(static_cast<int>(next() >> 16) % 300 - 100));
     plc.scan();
-    for (const char* out : {"both", "latched", "clamped", "doubled", "loops", "pulses", "counted", "flipped"})
+    for (const char* out : {"both", "latched", "clamped", "doubled", "loops", "pulses", "counted", "flipped", "limited", "summed"})
       ASSERT_EQ(plc.get(std::string("main.forms.") + out), plc.get(std::string("main.twin.") + out))
           << out << " at scan " << scan;
     pulses = std::stoi(plc.get("main.forms.pulses"));

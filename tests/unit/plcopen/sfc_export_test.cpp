@@ -136,6 +136,9 @@ TEST(ChartExportStructure, BranchesJumpsAndActionBlocksAreConnectedElements) {
   EXPECT_TRUE(sfc.select_node("transition[@priority='1']/condition")) << xml;
   xml = exportOf({input("qualifiers.st", readFile(kSfcGoldenDir / "qualifiers.st"))});
   EXPECT_NE(xml.find("qualifier=\"L\" duration=\"T#"), std::string::npos) << xml;
+  xml = exportOf({input("indicators.st", readFile(kSfcGoldenDir / "indicators.st"))});
+  EXPECT_NE(xml.find("qualifier=\"N\" indicator=\"full\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("qualifier=\"L\" duration=\"T#20ms\" indicator=\"lampOn\""), std::string::npos) << xml;
 }
 
 // beremiz_sfc.xml: priorities, a parallel branch, jumps, action blocks with a POU action, an

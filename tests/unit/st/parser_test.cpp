@@ -121,6 +121,8 @@ std::string show(const Stmt& s) {
     case StmtKind::Continue: return "CONTINUE";
     case StmtKind::Return: return "RETURN";
     case StmtKind::Empty: return "EMPTY";
+    case StmtKind::Jump: return "(jmp " + s.label + ")";
+    case StmtKind::Label: return "(label " + s.label + ")";
   }
   return "?";
 }
@@ -399,6 +401,16 @@ TEST(ParserStmt, Loops) {
   EXPECT_EQ(body("WHILE a < 10 DO a := a + 1; CONTINUE; END_WHILE"), "{(while (< a 10) {(:= a (+ a 1)) CONTINUE})}");
   EXPECT_EQ(body("REPEAT a := a + 1; UNTIL a > 10 END_REPEAT"), "{(repeat {(:= a (+ a 1))} (> a 10))}");
   EXPECT_EQ(body("RETURN; ;"), "{RETURN EMPTY}");
+}
+
+TEST(ParserStmt, JumpsAndLabels) {
+  EXPECT_EQ(body("again: x := x + 1; IF x < 3 THEN JMP again; END_IF"),
+            "{(label again) (:= x (+ x 1)) (if ((< x 3) {(jmp again)}))}");
+  // A label needs no statement after it; JMP is no reserved word.
+  EXPECT_EQ(body("IF a THEN JMP done; done: END_IF jmp := 1; theEnd:"),
+            "{(if (a {(jmp done) (label done)})) (:= jmp 1) (label theEnd)}");
+  // In a CASE branch `name:` starts the next branch (an enumeration value is a label there).
+  EXPECT_EQ(body("CASE s OF 1: x := 1; Red: x := 2; END_CASE"), "{(case s ((1) {(:= x 1)}) ((Red) {(:= x 2)}))}");
 }
 
 // ---- Declarations -----------------------------------------------------------------------------

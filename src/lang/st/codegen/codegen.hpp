@@ -161,6 +161,13 @@ class PouCompiler {
   void jumpOut(const Stmt& s);
   uint16_t condition(const Expr& e);
 
+  // JMP and labels (codegen_jump.cpp)
+  void collectLabels(const StmtList& list);
+  bool openLabelScope(const StmtList& list);
+  void closeLabelScope();
+  void placeLabel(const Stmt& s);
+  void jump(const Stmt& s);
+
   // Coverage probes (codegen_coverage.cpp), emitted only while covering_.
   bool coversPou() const;
   void probe(CoverageKind kind, SourceLocation loc, uint16_t arm = 0, uint16_t arms = 0, std::string name = {});
@@ -175,6 +182,7 @@ class PouCompiler {
   Value shortCircuit(const Expr& e);
   Value dateArithmetic(const Expr& e, Value a, Value b);
   Value pointerArithmetic(const Expr& e, Value a, Value b);
+  Value pointerDistance(Value a, Value b);
   std::optional<Place> memberPlace(const Expr& e, bool forWrite);
   std::optional<Place> indexPlace(const Expr& e, bool forWrite);
   std::optional<Place> valuePlace(const Value& v);
@@ -182,6 +190,7 @@ class PouCompiler {
   std::optional<Place> derefPlace(const Expr& e);
   Place varPlace(const VarInfo& v, uint16_t instanceBase);
   Place referee(const Place& referenceSlot);
+  static Place referenceSlot(const Place& referee);  // the reverse, for a place with viaReference
 
   std::vector<const VarInfo*> fbParams(PouSym& fb);
  public:
@@ -226,6 +235,14 @@ class PouCompiler {
     std::vector<uint32_t> breaks;
     std::vector<uint32_t> continues;
   };
+  // A label of the statement list being compiled: its address once reached, and the forward
+  // jumps waiting for it.
+  struct JumpLabel {
+    const Stmt* stmt = nullptr;
+    std::optional<uint32_t> target;
+    std::vector<uint32_t> pending;
+  };
+  using LabelScope = std::vector<JumpLabel>;
 
   CompileContext& ctx_;
   PouSym& pou_;
@@ -235,6 +252,8 @@ class PouCompiler {
   uint32_t tempTop_ = 0;
   uint32_t tempMax_ = 0;
   std::vector<Loop> loops_;
+  std::vector<const Stmt*> bodyLabels_;     // every label of the body, for E219/E220
+  std::vector<LabelScope> labelScopes_;     // the labels of each enclosing statement list
   std::vector<uint32_t> returns_;
   bool covering_ = false;
 };

@@ -20,7 +20,7 @@ void PouCompiler::probe(CoverageKind kind, SourceLocation loc, uint16_t arm, uin
 void PouCompiler::coverStatement(const Stmt& s) {
   switch (s.cover) {
     case CoverRole::Source:
-      if (s.kind != StmtKind::Empty) probe(CoverageKind::Statement, s.loc);
+      if (s.kind != StmtKind::Empty && s.kind != StmtKind::Label) probe(CoverageKind::Statement, s.loc);
       break;
     case CoverRole::StepActivated: probe(CoverageKind::Step, s.coverLoc, 0, 0, s.coverName); break;
     case CoverRole::TransitionFired: probe(CoverageKind::Transition, s.coverLoc, 0, 0, s.coverName); break;

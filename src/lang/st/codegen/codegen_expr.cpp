@@ -115,6 +115,15 @@ Place PouCompiler::referee(const Place& slot) {
   return p;
 }
 
+// The slot holding the address of the REFERENCE TO that `referee` came through.
+Place PouCompiler::referenceSlot(const Place& referee) {
+  Place slot;
+  slot.type = TypeTable::elem(ElemType::Lword);
+  slot.base = referee.referenceBase;
+  slot.offset = referee.referenceOffset;
+  return slot;
+}
+
 // The POU whose instance `this` points at (the FB itself, or the owner of a method/action).
 static PouSym* instanceOwner(PouSym& pou) {
   if (pou.kind == PouKind::FunctionBlock || pou.kind == PouKind::Program) return &pou;
@@ -783,11 +792,14 @@ Value PouCompiler::dateArithmetic(const Expr& e, Value a, Value b) {
 }
 
 // Pointer arithmetic as CODESYS has it (OSCAT depends on it): `p + n`, `n + p`, `p - n` move
-// the address by n bytes, not n elements (`p + SIZEOF(x)`), and keep p's type. Nothing is
-// checked here: dereferencing outside the PLC's memory is the `invalid pointer access` fault.
+// the address by n bytes, not n elements (`p + SIZEOF(x)`), and keep p's type; `p - q` is the
+// distance in bytes. Nothing is checked here: dereferencing outside the PLC's memory is the
+// `invalid pointer access` fault.
 Value PouCompiler::pointerArithmetic(const Expr& e, Value a, Value b) {
   TypeTable& t = types();
   const BinaryOp op = e.binaryOp;
+  if (op == BinaryOp::Sub && t.isPointer(a.type) && t.isPointer(b.type) && !a.untyped && !b.untyped)
+    return pointerDistance(a, b);
   // An untyped literal took the other operand's type when it was evaluated: `1 + p`.
   const bool pointerFirst = t.isPointer(a.type) && !a.untyped;
   const Value& pointer = pointerFirst ? a : b;
@@ -799,7 +811,7 @@ Value PouCompiler::pointerArithmetic(const Expr& e, Value a, Value b) {
       return v.untyped && v.kind == Value::Kind::Const ? std::string("a literal") : describe(t, v.type);
     };
     diags().error(diag::E210, e.loc, "pointer arithmetic takes a pointer and an integer number of bytes (p + n, n + p, "
-                                     "p - n); found " + what(a) + " and " + what(b));
+                                     "p - n) or two pointers (p - q); found " + what(a) + " and " + what(b));
     return Value::error();
   }
   uint16_t base = toReg(pointer);
@@ -809,6 +821,16 @@ Value PouCompiler::pointerArithmetic(const Expr& e, Value a, Value b) {
   Value v = regValue(pointer.type, out);
   v.untypedAddress = pointer.untypedAddress;
   return v;
+}
+
+// `p - q` of any two pointers: how many bytes p lies after q, as a LINT (negative when before).
+// CODESYS subtracts in its unsigned address type (__UXINT), which gives the same bits.
+Value PouCompiler::pointerDistance(Value a, Value b) {
+  uint16_t x = toReg(a);
+  uint16_t y = toReg(b);
+  uint16_t out = allocReg();
+  emit(Op::SUB, out, x, y);
+  return regValue(TypeTable::elem(ElemType::Lint), out);
 }
 
 Value PouCompiler::arithmetic(const Expr& e, Value a, Value b) {

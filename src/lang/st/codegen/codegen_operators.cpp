@@ -137,8 +137,8 @@ std::pair<uint16_t, uint16_t> PouCompiler::classTest(uint16_t address, const std
   return {found, instance};
 }
 
-// `dest ?= source` (IEC 61131-3 ed. 3 assignment attempt). dest is an interface or a REF_TO
-// (POINTER TO) a function block; source an interface, an FB instance or a REF_TO/POINTER TO an
+// `dest ?= source` (IEC 61131-3 ed. 3 assignment attempt). dest is an interface, a REF_TO
+// (POINTER TO) or a REFERENCE TO a function block; source an interface, an FB instance or a REF_TO/POINTER TO an
 // FB. dest gets the instance when its class (the dynamic one, read from the class header) is
 // dest's FB or derives from it, or implements dest's interface; NULL otherwise.
 void PouCompiler::attemptAssignment(const Stmt& s) {
@@ -147,13 +147,19 @@ void PouCompiler::attemptAssignment(const Stmt& s) {
   if (!checkAssignable(diags(), *dest, pou_, s.lhs->loc)) return;
   const InterfaceSym* itf = nullptr;
   const PouSym* fb = nullptr;
+  auto functionBlock = [&](TypeId type) -> const PouSym* {
+    auto f = model().fbByType.find(type);
+    return f != model().fbByType.end() && f->second->kind == PouKind::FunctionBlock ? f->second : nullptr;
+  };
   if (auto i = model().interfaceByType.find(dest->type); i != model().interfaceByType.end()) itf = i->second;
-  if (types().isPointer(dest->type))
-    if (auto f = model().fbByType.find(types()[dest->type].element); f != model().fbByType.end() &&
-                                                                     f->second->kind == PouKind::FunctionBlock)
-      fb = f->second;
+  if (types().isPointer(dest->type)) {
+    fb = functionBlock(types()[dest->type].element);
+  } else if (dest->viaReference && (fb = functionBlock(dest->type))) {
+    // A REFERENCE TO an FB: the attempt binds the reference itself (unbound when it fails).
+    dest = referenceSlot(*dest);
+  }
   if (!itf && !fb) {
-    diags().error(diag::E202, s.lhs->loc, "?= needs an interface or a REF_TO a function block on the left, found " +
+    diags().error(diag::E202, s.lhs->loc, "?= needs an interface, a REF_TO or a REFERENCE TO a function block on the left, found " +
                                               describe(types(), dest->type));
     return;
   }

@@ -28,6 +28,7 @@ void PouCompiler::compile() {
     statements(frameInits);
     edgeInputs();
     covering_ = coversPou();
+    collectLabels(pou_.ast->body);
     statements(pou_.ast->body);
     covering_ = false;
   }
@@ -68,13 +69,15 @@ void PouCompiler::edgeInputs() {
 }
 
 void PouCompiler::statements(const StmtList& list) {
+  const bool labelled = openLabelScope(list);
   for (const auto& s : list) statement(*s);
+  if (labelled) closeLabelScope();
 }
 
 void PouCompiler::statement(const Stmt& s) {
   uint16_t mark = regMark();
   uint32_t tempMark = tempTop_;
-  if (s.kind != StmtKind::Empty) ctx_.module.lines.push_back({here(), s.loc});
+  if (s.kind != StmtKind::Empty && s.kind != StmtKind::Label) ctx_.module.lines.push_back({here(), s.loc});
   if (covering_) coverStatement(s);
   switch (s.kind) {
     case StmtKind::Assign:
@@ -98,6 +101,8 @@ void PouCompiler::statement(const Stmt& s) {
     case StmtKind::Exit:
     case StmtKind::Continue: jumpOut(s); break;
     case StmtKind::Return: returns_.push_back(emitJump(Op::JMP, 0)); break;
+    case StmtKind::Jump: jump(s); break;
+    case StmtKind::Label: placeLabel(s); break;
     case StmtKind::Empty: break;
   }
   freeRegs(mark);
@@ -124,12 +129,7 @@ void PouCompiler::assignment(const Stmt& s) {
                                                 describe(types(), src->type));
       return;
     }
-    // the reference slot itself (not the referee)
-    Place refSlot;
-    refSlot.type = TypeTable::elem(ElemType::Lword);
-    refSlot.base = target->referenceBase;
-    refSlot.offset = target->referenceOffset;
-    store(refSlot, addressOf(*src));
+    store(referenceSlot(*target), addressOf(*src));  // the reference itself, not the referee
     return;
   }
   if (s.kind == StmtKind::SetAssign || s.kind == StmtKind::ResetAssign) {

@@ -137,6 +137,10 @@ class Parser {
   StmtPtr parseWhile();
   StmtPtr parseRepeat();
   StmtPtr parseSimple(StmtKind kind);
+  bool atLabel() const;
+  StmtPtr parseLabel();
+  bool atJump() const;
+  StmtPtr parseJump();
   void expectStatementEnd();
   bool looksLikeCaseLabel() const;
   bool atSetResetOperator() const;

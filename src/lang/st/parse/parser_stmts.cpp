@@ -1,4 +1,5 @@
-// Statements: assignments, calls, IF, CASE, FOR, WHILE, REPEAT, EXIT, CONTINUE, RETURN.
+// Statements: assignments, calls, IF, CASE, FOR, WHILE, REPEAT, EXIT, CONTINUE, RETURN, JMP, labels.
+#include "core/ascii.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 #include "lang/st/parse/parser_internal.hpp"
 
@@ -80,6 +81,8 @@ StmtPtr Parser::parseStatement() {
     }
     default: break;
   }
+  if (atLabel()) return parseLabel();
+  if (atJump()) return parseJump();
   if (isStatementStart(cur().kind) || at(Tok::LParen)) return parseAssignmentOrCall();
   errorExpected("a statement", "");
   advance();
@@ -136,6 +139,32 @@ void Parser::expectStatementEnd() {
   errorExpected("';'", "after statement");
   bool onNewLine = pos_ > 0 && cur().loc.line > toks_[pos_ - 1].loc.line;
   if (!onNewLine) skipPastSemicolon(true);
+}
+
+// `name :` (not `:=`) at the start of a statement is a jump label (CODESYS). In a CASE branch
+// the parser has already taken `name :` as the next case label.
+bool Parser::atLabel() const { return isNameToken(cur().kind) && peekTok(1).kind == Tok::Colon; }
+
+StmtPtr Parser::parseLabel() {
+  StmtPtr label = makeStmt(StmtKind::Label, cur().loc);
+  label->label = cur().text;
+  advance();
+  advance();
+  return label;
+}
+
+// JMP is no reserved word: `JMP name` (two names in a row) is a jump, `jmp := 1;` an assignment.
+bool Parser::atJump() const {
+  return cur().kind == Tok::Identifier && iequalsAscii(cur().text, "JMP") && isNameToken(peekTok(1).kind);
+}
+
+StmtPtr Parser::parseJump() {
+  StmtPtr jump = makeStmt(StmtKind::Jump, cur().loc);
+  advance();
+  jump->label = cur().text;
+  advance();
+  expectStatementEnd();
+  return jump;
 }
 
 StmtPtr Parser::parseSimple(StmtKind kind) {

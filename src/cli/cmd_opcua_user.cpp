@@ -40,7 +40,8 @@ ExitCode addUser(const UserOptions& o) {
   }
   const std::string password = readPassword();
   if (password.empty()) {
-    std::cerr << "error: no password on stdin: expected it on the first line (e.g. `read -rs P; echo \"$P\" | virtcom opcua-user add ...`)\n";
+    std::cerr << "error: no password on stdin: expected it on the first line "
+                 "(e.g. `read -rs P; echo \"$P\" | virtcom opcua-user add ...`)\n";
     return ExitCode::Usage;
   }
   ua::UserAccess access = ua::UserAccess::Read;
@@ -67,7 +68,8 @@ void addOpcuaUserCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   CLI::App* users = app.add_subcommand("opcua-user", "Manage the OPC UA users file of --opcua-users (docs/opcua.md, Users and roles)");
   users->require_subcommand(1);
   auto o = std::make_shared<UserOptions>();
-  CLI::App* add = users->add_subcommand("add", "Add a user (or set the password and role of one), reading the password from the first line of stdin");
+  CLI::App* add = users->add_subcommand(
+      "add", "Add a user (or set the password and role of one), reading the password from the first line of stdin");
   add->add_option("file", o->file, "the users file (created if missing, readable by its owner only)")->required();
   add->add_option("user", o->user, "the user name (no ':' and no spaces)")->required();
   add->add_option("--role", o->role, "read-only (default: browse, read, subscribe) or read-write (also write)")

@@ -86,8 +86,10 @@ void announceOpcuaServer(OpcuaPlcServer& server) {
   std::string identities;
   if (c.anonymous != proto::opcua::UserAccess::None)
     identities = std::string("anonymous ") + (c.anonymous == proto::opcua::UserAccess::Write ? "read-write" : "read-only");
-  if (!c.users.empty()) identities += (identities.empty() ? "" : ", ") + std::to_string(c.users.size()) + " users";
-  std::cerr << "opcua: serving " << server.server().endpointUrl() << " (security None, " << identities << ")\n";
+  if (!c.users.empty())
+    identities += (identities.empty() ? "" : ", ") + std::to_string(c.users.size()) + (c.users.size() == 1 ? " user" : " users");
+  // One write: tests and scripts wait for the whole line.
+  std::cerr << "opcua: serving " + server.server().endpointUrl() + " (security None, " + identities + ")\n";
 }
 
 }  // namespace virtcom::cli

@@ -162,12 +162,13 @@ std::string makeUsersFile() {
   const std::string file = (dir / "users.txt").string();
   std::filesystem::remove(file);
   std::string out;
-  EXPECT_EQ(virtcom::e2e::shell("printf 'op-pass\\n' | '" + kExe + "' opcua-user add '" + file + "' operator --role read-write", out), 0) << out;
+  const std::string add = "' | '" + kExe + "' opcua-user add '" + file + "' ";
+  EXPECT_EQ(virtcom::e2e::shell("printf 'op-pass\\n" + add + "operator --role read-write", out), 0) << out;
   EXPECT_NE(out.find("added operator (read-write)"), std::string::npos) << out;
-  EXPECT_EQ(virtcom::e2e::shell("printf 'first\\n' | '" + kExe + "' opcua-user add '" + file + "' viewer", out), 0) << out;
+  EXPECT_EQ(virtcom::e2e::shell("printf 'first\\n" + add + "viewer", out), 0) << out;
   // Again: the password is replaced, not a second line added.
   out.clear();
-  EXPECT_EQ(virtcom::e2e::shell("printf 'view-pass\\n' | '" + kExe + "' opcua-user add '" + file + "' viewer", out), 0) << out;
+  EXPECT_EQ(virtcom::e2e::shell("printf 'view-pass\\n" + add + "viewer", out), 0) << out;
   EXPECT_NE(out.find("updated viewer (read-only)"), std::string::npos) << out;
   return file;
 }
@@ -182,10 +183,20 @@ TEST(OpcuaE2e, UsersFileIdentities) {
   EXPECT_EQ(std::filesystem::status(users).permissions() & std::filesystem::perms::others_read, std::filesystem::perms::none);
   auto server = startServer({"--opcua-users", users});
   ASSERT_GT(server->port(), 0) << server->errorOutput();
-  EXPECT_NE(server->errorOutput().find("(security None, 2 users)"), std::string::npos) << server->errorOutput();
-  EXPECT_EQ(virtcom::e2e::shell("cd '" + kClientDir + "' && node check_opcua_identity.js " + std::to_string(server->port()), out), 0) << out;
+  EXPECT_TRUE(server->waitFor("(security None, 2 users)")) << server->errorOutput();
+  const std::string client = "cd '" + kClientDir + "' && node check_opcua_identity.js ";
+  EXPECT_EQ(virtcom::e2e::shell(client + std::to_string(server->port()), out), 0) << out;
   EXPECT_NE(out.find("ok: identities"), std::string::npos) << out;
   EXPECT_EQ(server->stop(), 0) << server->errorOutput();
+  // Anonymous allowed to read beside the users.
+  server = startServer({"--opcua-users", users, "--opcua-anonymous", "read"});
+  ASSERT_GT(server->port(), 0) << server->errorOutput();
+  EXPECT_TRUE(server->waitFor("(security None, anonymous read-only, 2 users)")) << server->errorOutput();
+  out.clear();
+  EXPECT_EQ(virtcom::e2e::shell(client + std::to_string(server->port()) + " anonymous-read", out), 0) << out;
+  EXPECT_NE(out.find("ok: identities"), std::string::npos) << out;
+  EXPECT_EQ(server->stop(), 0) << server->errorOutput();
+  std::filesystem::remove_all(std::filesystem::path(users).parent_path());
 }
 
 TEST(OpcuaE2e, IdentityOptionErrors) {
@@ -195,7 +206,8 @@ TEST(OpcuaE2e, IdentityOptionErrors) {
   EXPECT_NE(out.find("--opcua-anonymous none: nobody could log on; give --opcua-users FILE too"), std::string::npos) << out;
   const std::string bad = (std::filesystem::temp_directory_path() / ("virtcom-bad-users-" + std::to_string(::getpid()))).string();
   out.clear();
-  EXPECT_EQ(virtcom::e2e::shell("printf '# users\\nop:admin:x\\n' > '" + bad + "' && " + exec + "--opcua-users '" + bad + "'", out), 64) << out;
+  const std::string writeBad = "printf '# users\\nop:admin:x\\n' > '" + bad + "' && ";
+  EXPECT_EQ(virtcom::e2e::shell(writeBad + exec + "--opcua-users '" + bad + "'", out), 64) << out;
   EXPECT_NE(out.find(bad + ":2:1: expected 6 fields"), std::string::npos) << out;
   out.clear();
   EXPECT_EQ(virtcom::e2e::shell("'" + kExe + "' opcua-user add '" + bad + ".new' op < /dev/null", out), 64) << out;
@@ -209,7 +221,8 @@ TEST(OpcuaE2e, HelpNamesTheOptions) {
   for (const char* command : {"exec", "serve"}) {
     out.clear();
     EXPECT_EQ(virtcom::e2e::shell("'" + kExe + "' " + command + " --help", out), 0) << out;
-    for (const char* option : {"--opcua ", "--opcua-allow", "--opcua-readonly", "--opcua-max-sessions", "--opcua-users", "--opcua-anonymous"})
+    for (const char* option :
+         {"--opcua ", "--opcua-allow", "--opcua-readonly", "--opcua-max-sessions", "--opcua-users", "--opcua-anonymous"})
       EXPECT_NE(out.find(option), std::string::npos) << command << " " << option;
   }
   out.clear();

@@ -36,7 +36,9 @@ uint32_t checkUserName(const ServerConfig& config, const ExtensionObject& token,
   // An encrypted password needs a security policy other than None: none is announced.
   if (policyId != kUserNamePolicyId || !algorithm.empty()) return bad(StatusCodeValue::BadIdentityTokenInvalid);
   const UserAccount* account = findUserAccount(config.users, user);
-  if (!account || !passwordMatches(*account, password.bytes)) return bad(StatusCodeValue::BadUserAccessDenied);
+  // An unknown user costs a hash too, so that the time of the answer does not tell it apart.
+  static const UserAccount kNobody = makeUserAccount("", UserAccess::None, "", kDefaultHashIterations);
+  if (!passwordMatches(account ? *account : kNobody, password.bytes) || !account) return bad(StatusCodeValue::BadUserAccessDenied);
   access = account->access;
   return 0;
 }

@@ -126,7 +126,10 @@ TextResult<std::vector<UserAccount>> parseUserAccounts(std::string_view text, st
     UserAccount a;
     size_t column = 1;
     std::string error = parseLine(line, a, column);
-    if (error.empty() && findUserAccount(accounts, a.name)) error = "user '" + a.name + "' is listed twice: expected one line per user";
+    if (error.empty() && findUserAccount(accounts, a.name)) {
+      column = 1;
+      error = "user '" + a.name + "' is listed twice: expected one line per user";
+    }
     if (!error.empty())
       return TextResult<std::vector<UserAccount>>::failure(std::string(file) + ":" + std::to_string(lineNo) + ":" +
                                                            std::to_string(column) + ": " + error);

@@ -26,6 +26,7 @@ void addHistoryCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addTestCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addOptimiseCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 void addSweepCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
+void addOpcuaUserCommand(CLI::App& app, std::function<void(ExitCode)> setExit);
 // `ad convert` and `ad export` (cmd_ad_files.cpp), registered under `ad` by addAdCommand.
 void addAdFileCommands(CLI::App& ad, std::function<void(ExitCode)> setExit);
 

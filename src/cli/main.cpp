@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   virtcom::cli::addTestCommand(app, setExit);
   virtcom::cli::addOptimiseCommand(app, setExit);
   virtcom::cli::addSweepCommand(app, setExit);
+  virtcom::cli::addOpcuaUserCommand(app, setExit);
   if (argc > 1) {
     std::string first = argv[1];
     bool known = first == "-h" || first == "--help" || first == "--version";

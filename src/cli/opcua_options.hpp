@@ -20,10 +20,16 @@ struct OpcuaServeOptions {
   std::string allow;   // --opcua-allow: IPv4 peers or networks; empty: any (loopback only)
   bool readOnly = false;
   size_t maxSessions = 32;
+  std::string usersFile;  // --opcua-users FILE: accounts for UserName identities; empty: none
+  std::string anonymous;  // --opcua-anonymous none|read|write; empty: write, or none with --opcua-users
   bool enabled() const { return !listen.empty(); }
 };
 
 void addOpcuaServeOptions(CLI::App* cmd, OpcuaServeOptions& o);
+
+// The accounts of a users file (`--opcua-users`, `opcua-user add`); the error names the file
+// (and line and column when its text is wrong: "users.txt:2:7: unknown role ..."). A missing file is empty when `missingIsEmpty`.
+std::expected<std::vector<proto::opcua::UserAccount>, std::string> readOpcuaUsers(const std::string& path, bool missingIsEmpty = false);
 
 // A compiled program served over OPC UA: its ADS symbol table (the address space is generated
 // from it) and the server; the scan loop calls afterScan() once after the cold start, then
@@ -48,7 +54,8 @@ class OpcuaPlcServer {
 std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions& o, const PeerFlags& peers,
                                                                               const bc::Module& module);
 
-// "opcua: serving opc.tcp://127.0.0.1:4840 (security None, anonymous)" on stderr, once the
+// "opcua: serving opc.tcp://127.0.0.1:4840 (security None, anonymous read-write)" on stderr (the
+// identities accepted: "anonymous read-only", "2 users", ...), once the
 // first image is published (e2e tests and scripts wait for it).
 void announceOpcuaServer(OpcuaPlcServer& server);
 

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 #include "server_process.hpp"
@@ -154,15 +155,79 @@ TEST(OpcuaE2e, ServeCellsSoftPlcOverOpcua) {
   EXPECT_EQ(server.stop(), 0) << server.errorOutput();
 }
 
+// A users file made by `virtcom opcua-user add` (the passwords on stdin), in a fresh folder.
+std::string makeUsersFile() {
+  const auto dir = std::filesystem::temp_directory_path() / ("virtcom-opcua-users-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string file = (dir / "users.txt").string();
+  std::filesystem::remove(file);
+  std::string out;
+  const std::string add = "' | '" + kExe + "' opcua-user add '" + file + "' ";
+  EXPECT_EQ(virtcom::e2e::shell("printf 'op-pass\\n" + add + "operator --role read-write", out), 0) << out;
+  EXPECT_NE(out.find("added operator (read-write)"), std::string::npos) << out;
+  EXPECT_EQ(virtcom::e2e::shell("printf 'first\\n" + add + "viewer", out), 0) << out;
+  // Again: the password is replaced, not a second line added.
+  out.clear();
+  EXPECT_EQ(virtcom::e2e::shell("printf 'view-pass\\n" + add + "viewer", out), 0) << out;
+  EXPECT_NE(out.find("updated viewer (read-only)"), std::string::npos) << out;
+  return file;
+}
+
+TEST(OpcuaE2e, UsersFileIdentities) {
+  ASSERT_TRUE(std::filesystem::exists(kClientDir + "/node_modules/node-opcua-client"))
+      << "the npm node-opcua-client is missing: run `npm ci --prefix tests/e2e/opcua` (make test does)";
+  const std::string users = makeUsersFile();
+  std::string text, out;
+  EXPECT_EQ(virtcom::e2e::shell("cat '" + users + "'", text), 0);
+  EXPECT_EQ(text.find("op-pass"), std::string::npos) << "passwords are stored as hashes: " << text;
+  EXPECT_EQ(std::filesystem::status(users).permissions() & std::filesystem::perms::others_read, std::filesystem::perms::none);
+  auto server = startServer({"--opcua-users", users});
+  ASSERT_GT(server->port(), 0) << server->errorOutput();
+  EXPECT_TRUE(server->waitFor("(security None, 2 users)")) << server->errorOutput();
+  const std::string client = "cd '" + kClientDir + "' && node check_opcua_identity.js ";
+  EXPECT_EQ(virtcom::e2e::shell(client + std::to_string(server->port()), out), 0) << out;
+  EXPECT_NE(out.find("ok: identities"), std::string::npos) << out;
+  EXPECT_EQ(server->stop(), 0) << server->errorOutput();
+  // Anonymous allowed to read beside the users.
+  server = startServer({"--opcua-users", users, "--opcua-anonymous", "read"});
+  ASSERT_GT(server->port(), 0) << server->errorOutput();
+  EXPECT_TRUE(server->waitFor("(security None, anonymous read-only, 2 users)")) << server->errorOutput();
+  out.clear();
+  EXPECT_EQ(virtcom::e2e::shell(client + std::to_string(server->port()) + " anonymous-read", out), 0) << out;
+  EXPECT_NE(out.find("ok: identities"), std::string::npos) << out;
+  EXPECT_EQ(server->stop(), 0) << server->errorOutput();
+  std::filesystem::remove_all(std::filesystem::path(users).parent_path());
+}
+
+TEST(OpcuaE2e, IdentityOptionErrors) {
+  std::string out;
+  const std::string exec = "cd '" + kDataDir + "' && '" + kExe + "' exec opcua/GVL.st opcua/MAIN.st --cycles 1 --opcua 127.0.0.1:0 ";
+  EXPECT_EQ(virtcom::e2e::shell(exec + "--opcua-anonymous none", out), 64) << out;
+  EXPECT_NE(out.find("--opcua-anonymous none: nobody could log on; give --opcua-users FILE too"), std::string::npos) << out;
+  const std::string bad = (std::filesystem::temp_directory_path() / ("virtcom-bad-users-" + std::to_string(::getpid()))).string();
+  out.clear();
+  const std::string writeBad = "printf '# users\\nop:admin:x\\n' > '" + bad + "' && ";
+  EXPECT_EQ(virtcom::e2e::shell(writeBad + exec + "--opcua-users '" + bad + "'", out), 64) << out;
+  EXPECT_NE(out.find(bad + ":2:1: expected 6 fields"), std::string::npos) << out;
+  out.clear();
+  EXPECT_EQ(virtcom::e2e::shell("'" + kExe + "' opcua-user add '" + bad + ".new' op < /dev/null", out), 64) << out;
+  EXPECT_NE(out.find("no password on stdin"), std::string::npos) << out;
+  std::filesystem::remove(bad);
+}
+
 TEST(OpcuaE2e, HelpNamesTheOptions) {
   std::string out;
   EXPECT_EQ(virtcom::e2e::shell("'" + kExe + "' exec --help", out), 0) << out;
   for (const char* command : {"exec", "serve"}) {
     out.clear();
     EXPECT_EQ(virtcom::e2e::shell("'" + kExe + "' " + command + " --help", out), 0) << out;
-    for (const char* option : {"--opcua ", "--opcua-allow", "--opcua-readonly", "--opcua-max-sessions"})
+    for (const char* option :
+         {"--opcua ", "--opcua-allow", "--opcua-readonly", "--opcua-max-sessions", "--opcua-users", "--opcua-anonymous"})
       EXPECT_NE(out.find(option), std::string::npos) << command << " " << option;
   }
+  out.clear();
+  EXPECT_EQ(virtcom::e2e::shell("'" + kExe + "' opcua-user add --help", out), 0) << out;
+  EXPECT_NE(out.find("--role"), std::string::npos) << out;
 }
 
 }  // namespace

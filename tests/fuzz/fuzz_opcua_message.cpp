@@ -39,7 +39,11 @@ ads::SymbolTable makeTable() {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const ads::SymbolTable table = makeTable();
-  static ua::ServerCore core(table, ua::ServerConfig{});
+  static ua::ServerCore core(table, [] {
+    ua::ServerConfig c;  // anonymous read-write, and one user so that UserName tokens are decoded too
+    c.users.push_back(ua::makeUserAccount("op", ua::UserAccess::Write, "pw", 10'000));
+    return c;
+  }());
   std::span<const uint8_t> input(data, size);
   std::vector<uint8_t> tx;
   {
@@ -58,6 +62,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     ua::Session* session = core.createSession(1, 10'000, "fuzz", 0);
     if (!session) break;
     session->activated = true;
+    session->access = ua::UserAccess::Write;
     const uint32_t id = session->id;
     ua::ServiceContext ctx{core, 1, session, 0};
     ua::Reader in(input);

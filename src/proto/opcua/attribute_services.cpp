@@ -63,13 +63,14 @@ uint32_t encodeValueAttribute(Writer& w, const ServerCore& core, const Node& n) 
 
 namespace {
 
-uint8_t accessLevel(const Node& n, bool user, const ServerCore& core) {
-  const bool writable = n.writable && !(user && core.config().readOnly);
+// AccessLevel, or UserAccessLevel for a session that may do `user` (nullptr: AccessLevel).
+uint8_t accessLevel(const Node& n, const UserAccess* user) {
+  const bool writable = n.writable && (!user || *user == UserAccess::Write);
   return static_cast<uint8_t>(kAccessRead | (writable ? kAccessWrite : 0));
 }
 
 // Appends the Variant of one attribute, or returns a Bad status (nothing appended).
-uint32_t encodeAttribute(Writer& w, const ServerCore& core, const Node& n, uint32_t attribute) {
+uint32_t encodeAttribute(Writer& w, const ServerCore& core, const Session& session, const Node& n, uint32_t attribute) {
   const bool variable = n.nodeClass == NodeClass::Variable;
   switch (attribute) {
     case kNodeIdAttr: scalarVariant(w, BuiltinType::NodeId, n.id); return 0;
@@ -103,8 +104,8 @@ uint32_t encodeAttribute(Writer& w, const ServerCore& core, const Node& n, uint3
       }
       return 0;
     }
-    case kAccessLevelAttr: scalarVariant(w, BuiltinType::Byte, accessLevel(n, false, core)); return 0;
-    case kUserAccessLevelAttr: scalarVariant(w, BuiltinType::Byte, accessLevel(n, true, core)); return 0;
+    case kAccessLevelAttr: scalarVariant(w, BuiltinType::Byte, accessLevel(n, nullptr)); return 0;
+    case kUserAccessLevelAttr: scalarVariant(w, BuiltinType::Byte, accessLevel(n, &session.access)); return 0;
     case kMinimumSamplingIntervalAttr: scalarVariant(w, BuiltinType::Double, 0.0); return 0;
     case kHistorizingAttr: scalarVariant(w, BuiltinType::Boolean, false); return 0;
     default: return bad(StatusCodeValue::BadAttributeIdInvalid);
@@ -139,7 +140,7 @@ uint32_t handleRead(ServiceContext& ctx, Reader& in, Writer& out) {
       const bool source = value && (timestamps == kTimestampsSource || timestamps == kTimestampsBoth);
       const bool server = value && (timestamps == kTimestampsServer || timestamps == kTimestampsBoth);
       out.u8(static_cast<uint8_t>(kDataValueValue | (source ? kDataValueSourceTime : 0) | (server ? kDataValueServerTime : 0)));
-      status = encodeAttribute(out, ctx.core, ctx.core.space().node(*node), attribute);
+      status = encodeAttribute(out, ctx.core, *ctx.session, ctx.core.space().node(*node), attribute);
       if (status == 0) {
         if (source) encode(out, now);
         if (server) encode(out, now);
@@ -175,6 +176,7 @@ uint32_t handleWrite(ServiceContext& ctx, Reader& in, Writer& out) {
     else {
       const Node& n = ctx.core.space().node(*node);
       if (n.source != ValueSource::Plc || !n.writable) status = bad(StatusCodeValue::BadNotWritable);
+      else if (ctx.session->access != UserAccess::Write) status = bad(StatusCodeValue::BadUserAccessDenied);
       else if (!value.hasValue) status = bad(StatusCodeValue::BadTypeMismatch);
       else if ((status = plcBytesOf(value.value, n.plc, bytes)) == 0) status = ctx.core.write(n.plc, bytes);
     }

@@ -39,6 +39,7 @@ class Server {
 
   net::Endpoint endpoint() const { return io_.bound(); }
   std::string endpointUrl();
+  const ServerConfig& config() const { return config_; }
 
   // Scan thread, before a scan: applies every queued write to `live`; returns how many edits.
   size_t applyPendingWrites(const LiveImage& live);

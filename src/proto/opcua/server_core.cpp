@@ -31,7 +31,6 @@ std::string ServerCore::endpointUrl() const {
 }
 
 uint32_t ServerCore::write(const PlcValue& v, std::span<const uint8_t> bytes) {
-  if (config_.readOnly) return static_cast<uint32_t>(StatusCodeValue::BadUserAccessDenied);
   if (!pending_.hasRoom(bytes.size())) return static_cast<uint32_t>(StatusCodeValue::BadTooManyOperations);
   if (v.bit >= 0) {
     const auto mask = static_cast<uint8_t>(1u << v.bit);

@@ -14,6 +14,7 @@
 #include "proto/opcua/address_space.hpp"
 #include "proto/opcua/subscription.hpp"
 #include "proto/opcua/types.hpp"
+#include "proto/opcua/user_accounts.hpp"
 
 namespace virtcom::proto::opcua {
 
@@ -30,7 +31,9 @@ struct ServerConfig {
   size_t maxSubscriptions = 16;            // per session; beyond: BadTooManySubscriptions
   size_t maxMonitoredItems = 10000;        // per subscription; beyond: BadTooManyMonitoredItems
   size_t maxPublishRequests = 10;          // queued per session; beyond: BadTooManyPublishRequests
-  bool readOnly = false;                   // every Write refused (BadUserAccessDenied)
+  bool readOnly = false;                   // every Write refused (BadUserAccessDenied), whoever the user
+  std::vector<UserAccount> users;          // --opcua-users: who may log on with a password; empty: nobody
+  UserAccess anonymous = UserAccess::Write;  // what an anonymous session may do; None: anonymous refused
   size_t writeQueueBytes = 64 * 1024;      // written data between two scans
   AddressSpaceConfig names;
   std::string endpointUrl;                 // what GetEndpoints announces; empty: opc.tcp://listen
@@ -49,6 +52,7 @@ struct Session {
   uint32_t token = 0;          // ns=1;i=token is the AuthenticationToken
   uint32_t channelId = 0;      // the channel it was last used on
   bool activated = false;
+  UserAccess access = UserAccess::None;  // of the identity it was activated with
   double timeoutMs = 0;
   int64_t lastUsedNs = 0;
   std::string name;
@@ -71,8 +75,8 @@ class ServerCore {
   // The published image (zero until the first publish) and the writes waiting for the scan.
   std::span<const uint8_t> snapshot() const { return snapshot_; }
   // Checks a write of `bytes` into the variable whole, queues it and applies it to the snapshot
-  // (so it reads back at once). 0 or a Bad status (BadNotWritable, BadUserAccessDenied when read
-  // only, BadResourceUnavailable-like BadTooManyOperations when the queue is full).
+  // (so it reads back at once). 0 or a Bad status (BadTooManyOperations when the queue is full);
+  // the caller has checked the session may write.
   uint32_t write(const PlcValue& v, std::span<const uint8_t> bytes);
   ads::WriteQueue& pendingWrites() { return pending_; }
   void publish(std::span<const uint8_t> image);

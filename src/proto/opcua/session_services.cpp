@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <random>
 
-#include "proto/opcua/node_ids.hpp"
+#include "proto/opcua/identity.hpp"
 #include "proto/opcua/services.hpp"
 
 namespace virtcom::proto::opcua {
@@ -16,7 +16,7 @@ constexpr ServiceEntry kServices[] = {
 #undef X
 };
 
-constexpr uint32_t kApplicationTypeServer = 0, kSecurityModeNone = 1, kUserTokenAnonymous = 0;
+constexpr uint32_t kApplicationTypeServer = 0, kSecurityModeNone = 1;
 // Session timeouts the server grants (ms): clients ask for anything; 0 means "the server's choice".
 constexpr double kMinSessionTimeoutMs = 10'000, kMaxSessionTimeoutMs = 3'600'000, kDefaultSessionTimeoutMs = 60'000;
 constexpr size_t kNonceBytes = 32;
@@ -94,12 +94,7 @@ void encodeEndpointDescription(Writer& w, const ServerCore& core) {
   w.nullString();  // ServerCertificate: none with policy None
   w.u32(kSecurityModeNone);
   w.string(kSecurityPolicyNone);
-  w.i32(1);  // UserIdentityTokens: anonymous only
-  w.string("anonymous");
-  w.u32(kUserTokenAnonymous);
-  w.nullString();
-  w.nullString();
-  w.nullString();
+  encodeUserTokenPolicies(w, core.config());
   w.string(kTransportProfileBinary);
   w.u8(0);  // SecurityLevel: the lowest (no security)
 }
@@ -159,10 +154,10 @@ uint32_t handleActivateSession(ServiceContext& ctx, Reader& in, Writer& out) {
     if (!skipSignature(in)) return kDecodingError;  // SignedSoftwareCertificate: two ByteStrings
   ExtensionObject identity;
   if (!skipStringArray(in) || !decode(in, identity) || !skipSignature(in)) return kDecodingError;
-  // Anonymous only (a null token is anonymous too: OPC 10000-4 §5.6.3.2).
-  const bool anonymous = identity.typeId.isNull() || identity.typeId == NodeId::num(0, ids::kAnonymousIdentityToken);
-  if (!anonymous) return static_cast<uint32_t>(StatusCodeValue::BadIdentityTokenRejected);
+  UserAccess access = UserAccess::None;
+  if (const uint32_t status = checkIdentity(ctx.core.config(), identity, access); status != 0) return status;
   ctx.session->activated = true;
+  ctx.session->access = access;
   ctx.session->channelId = ctx.channelId;
   encodeNonce(out);
   out.i32(0);  // Results

@@ -25,6 +25,7 @@ struct OptimiseOptions {
   uint64_t budgetEvals = 2000;
   std::string budgetTime;
   uint64_t seed = 1;
+  size_t batch = 16;
   unsigned jobs = 0;      // 0: every core (one per rank under mpirun)
   std::string method = "auto";
   std::string out;
@@ -95,6 +96,7 @@ ExitCode optimise(const OptimiseOptions& o) {
   else if (o.objective == "both") so.objective = optimize::Objective::Both;
   so.budgetEvals = o.budgetEvals;
   so.seed = o.seed;
+  so.batch = o.batch;
   so.method = o.method == "exhaustive" ? optimize::Method::Exhaustive : o.method == "anneal" ? optimize::Method::Anneal : optimize::Method::Auto;
   const unsigned threads = o.jobs ? o.jobs : ranks.size() > 1 ? 1u : std::max(1u, std::thread::hardware_concurrency());
   const int64_t startNs = monotonicNowNs();
@@ -164,6 +166,9 @@ void addOptimiseCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--budget-time", o->budgetTime, "stop after this wall time, e.g. 90s, 5m (results then depend on the machine's speed)");
   cmd->add_option("--seed", o->seed, "seed of the search's random choices (default 1)");
+  cmd->add_option("--batch", o->batch, "candidates simulated together (default 16): at most this many threads and MPI ranks are busy at once; "
+                                       "the search's path depends on it, so compare runs with the same --batch")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--jobs", o->jobs, "simulations in parallel (default: every core; under mpirun one per rank); never changes the result")->check(CLI::PositiveNumber);
   cmd->add_option("--method", o->method, "auto (default: exhaustive if the distinct candidates fit the budget, else anneal), exhaustive, anneal")
       ->check(CLI::IsMember({"auto", "exhaustive", "anneal"}));

@@ -116,7 +116,6 @@ std::string slurmScript(const SweepOptions& o) {
 }
 
 ExitCode sweep(const SweepOptions& o) {
-  const optimize::Ranks ranks;
   if (!o.merge.empty()) {
     if (o.merge.size() < 2) {
       std::cerr << "error: --merge OUT.csv IN.csv...: at least one input\n";
@@ -137,6 +136,7 @@ ExitCode sweep(const SweepOptions& o) {
     std::cerr << "error: --shard: '" << o.shard << "' is not I/N with 1 <= I <= N (e.g. 2/8)\n";
     return ExitCode::Usage;
   }
+  const optimize::Ranks ranks;
   SourceManager sources;
   Diagnostics diags;
   auto spec = optimize::readSweep(o.file, sources, diags);

@@ -56,13 +56,13 @@ std::string write(const std::string& path, const Contents& c) {
     if (!slice.bind(1, static_cast<int64_t>(s.index)).bind(2, static_cast<int64_t>(s.count)).bind(3, static_cast<int64_t>(s.points)).run())
       return "'" + path + "': " + db.errorText();
   history::Statement row(db, insert.c_str());
+  const int kpis = 2 + static_cast<int>(c.table.parameters.size());  // cycle_s's parameter number
   for (const report::SweepTable::Row& r : c.table.rows) {
-    int i = 1;
-    row.bind(i++, static_cast<int64_t>(r.point));
-    for (const std::string& v : r.values) row.bind(i++, v);
-    if (r.feasible) row.bind(i++, r.cycleS).bind(i++, r.energyJ);
-    else row.bindNull(i++).bindNull(i++);
-    row.bind(i, r.result);
+    row.bind(1, static_cast<int64_t>(r.point));
+    for (size_t p = 0; p < r.values.size(); ++p) row.bind(2 + static_cast<int>(p), r.values[p]);
+    if (r.feasible) row.bind(kpis, r.cycleS).bind(kpis + 1, r.energyJ);
+    else row.bindNull(kpis).bindNull(kpis + 1);
+    row.bind(kpis + 2, r.result);
     if (!row.run()) return "'" + path + "': point " + std::to_string(r.point) + ": " + db.errorText();
   }
   if (!db.exec("COMMIT")) return "'" + path + "': " + db.errorText();

@@ -214,7 +214,7 @@ TEST(Sweep, SlurmScriptRunsOneSlicePerArrayTask) {
 TEST(Optimise, HelpNamesEveryOption) {
   std::string out;
   ASSERT_EQ(virtcom::e2e::shell(kExe + " optimise --help", out), 0);
-  for (const char* option : {"--objective", "--budget-evals", "--budget-time", "--seed", "--jobs", "--method", "--out", "--quiet"})
+  for (const char* option : {"--objective", "--budget-evals", "--budget-time", "--seed", "--jobs", "--method", "--out", "--quiet", "--batch"})
     EXPECT_NE(out.find(option), std::string::npos) << option;
   ASSERT_EQ(virtcom::e2e::shell(kExe + " sweep --help", out), 0);
   for (const char* option : {"--csv", "--shard", "--merge", "--slurm-script", "--jobs", "--sqlite", "--html"}) EXPECT_NE(out.find(option), std::string::npos) << option;

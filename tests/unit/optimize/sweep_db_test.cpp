@@ -63,7 +63,7 @@ TEST_F(SweepDb, PointsHaveAColumnPerParameterAndKpiAndTheSweepIsDescribed) {
   EXPECT_EQ(writeSweepDb(path("all.db"), spec, {1, 1, 4}, rows), "");
   EXPECT_TRUE(isSqliteFile(path("all.db")));
   const std::string points =
-      dump(path("all.db"), "SELECT point, \"MAIN.sequence\", \"Robot1.max_speed\", printf('%.3f', cycle_s), energy_J, result FROM points", 6);
+      dump(path("all.db"), "SELECT point, \"MAIN.sequence\", \"Robot1.max_speed\", round(cycle_s, 3), energy_J, result FROM points", 6);
   EXPECT_NE(points.find("1\t2\t1150 mm/s\t70.001\t"), std::string::npos) << points;
   EXPECT_NE(points.find("3\t3\t1150 mm/s\tNULL\tNULL\tcollision at 33.28 s: Robot1, Robot2 in SharedTable\t"), std::string::npos) << points;
   const std::string sweep = dump(path("all.db"), "SELECT key, value FROM sweep ORDER BY key", 2);

@@ -2,7 +2,7 @@
 // the gearbox's refined job list evaluated again and again as the optimiser does it (a fresh
 // cell from the compiled template, the list written, one cycle simulated), on 1 thread and in
 // batches of 16 on 2 threads; a whole exhaustive search of the gearbox model (24 candidates);
-// and annealing on the larger line of bench/optimise/ (millions of candidates), whose
+// and annealing on the larger line of bench/optimise/ (over a thousand candidates), whose
 // evaluations per second are what a search of a real model reaches (docs/scaling.md).
 #include <benchmark/benchmark.h>
 

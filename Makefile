@@ -14,7 +14,8 @@ LAUNCHER   := -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 APT_PACKAGES := build-essential cmake ninja-build g++ clang libclang-rt-14-dev \
                 libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
                 libyaml-dev nlohmann-json3-dev libpugixml-dev libcpp-httplib-dev chromium libmodbus-dev mbpoll pkg-config nodejs ccache \
-                libsqlite3-dev libgraphviz-dev lcov libxml2-utils libssl-dev
+                libsqlite3-dev libgraphviz-dev lcov libxml2-utils libssl-dev \
+                libopenmpi-dev openmpi-bin
 
 .PHONY: all deps build test demo bench fuzz fuzz-build clean
 

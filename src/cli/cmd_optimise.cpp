@@ -1,5 +1,6 @@
 // `virtcom optimise MODEL.yaml`: search the orders of a process model for the shortest cycle, the
 // least energy or both (docs/optimise.md); every candidate run by the cell's real PLC program.
+// Under mpirun the evaluations are spread over the ranks (docs/scaling.md); rank 0 reports.
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -9,6 +10,7 @@
 #include "cli/common.hpp"
 #include "core/clock.hpp"
 #include "optimize/evaluator.hpp"
+#include "optimize/ranks.hpp"
 #include "optimize/search.hpp"
 #include "report/html_report.hpp"
 #include "report/kpis.hpp"
@@ -23,7 +25,8 @@ struct OptimiseOptions {
   uint64_t budgetEvals = 2000;
   std::string budgetTime;
   uint64_t seed = 1;
-  unsigned jobs = 0;      // 0: every core
+  size_t batch = 16;
+  unsigned jobs = 0;      // 0: every core (one per rank under mpirun)
   std::string method = "auto";
   std::string out;
   bool quiet = false;
@@ -78,15 +81,13 @@ bool writeBest(const OptimiseOptions& o, const optimize::Evaluator& evaluator, c
 }
 
 ExitCode optimise(const OptimiseOptions& o) {
+  const optimize::Ranks ranks;
   SourceManager sources;
   Diagnostics diags;
   auto model = optimize::readProcessModel(o.model, sources, diags);
-  if (!model) {
-    std::cerr << diags.render(sources);
-    return ExitCode::InputError;
-  }
-  auto evaluator = optimize::Evaluator::create(*model, sources, diags);
-  std::cerr << diags.render(sources);
+  std::unique_ptr<optimize::Evaluator> evaluator;
+  if (model) evaluator = optimize::Evaluator::create(*model, sources, diags);
+  if (ranks.leader()) std::cerr << diags.render(sources);
   if (!evaluator) return ExitCode::InputError;
   optimize::SearchOptions so;
   so.objective = model->objective;
@@ -95,8 +96,9 @@ ExitCode optimise(const OptimiseOptions& o) {
   else if (o.objective == "both") so.objective = optimize::Objective::Both;
   so.budgetEvals = o.budgetEvals;
   so.seed = o.seed;
+  so.batch = o.batch;
   so.method = o.method == "exhaustive" ? optimize::Method::Exhaustive : o.method == "anneal" ? optimize::Method::Anneal : optimize::Method::Auto;
-  const unsigned threads = o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = o.jobs ? o.jobs : ranks.size() > 1 ? 1u : std::max(1u, std::thread::hardware_concurrency());
   const int64_t startNs = monotonicNowNs();
   int64_t deadlineNs = 0;
   if (!o.budgetTime.empty()) {
@@ -108,11 +110,12 @@ ExitCode optimise(const OptimiseOptions& o) {
     deadlineNs = startNs + *ns;
   }
   stopOnSignals();
-  so.stop = [&] { return gStopRequested.load() || (deadlineNs && monotonicNowNs() >= deadlineNs); };
+  // The leader's clock decides for every rank, so all of them search alike.
+  so.stop = [&] { return ranks.leaderDecides(gStopRequested.load() || (deadlineNs && monotonicNowNs() >= deadlineNs)); };
   int64_t lastPrintNs = 0;
   so.progress = [&](const optimize::Progress& p) {
     const int64_t now = monotonicNowNs();
-    if (o.quiet || now - lastPrintNs < 1'000'000'000) return;
+    if (o.quiet || !ranks.leader() || now - lastPrintNs < 1'000'000'000) return;
     lastPrintNs = now;
     const double rate = static_cast<double>(p.evaluations) / std::max(1e-9, static_cast<double>(now - startNs) * 1e-9);
     std::cerr << "optimise: " << p.evaluations << " evaluations, " << fixed(rate, 1) << "/s, " << p.infeasible << " infeasible, best "
@@ -120,14 +123,18 @@ ExitCode optimise(const OptimiseOptions& o) {
     if (so.objective == optimize::Objective::Both) std::cerr << ", front " << p.frontSize;
     std::cerr << "\n";
   };
-  optimize::BatchEvaluator batch = [&](const std::vector<optimize::JobList>& lists) { return optimize::evaluateAll(*evaluator, lists, threads); };
+  optimize::BatchEvaluator batch = [&](const std::vector<optimize::JobList>& lists) {
+    return ranks.evaluateAll(lists.size(), threads, [&](size_t i) { return evaluator->evaluate(lists[i]); });
+  };
   std::vector<optimize::JobList> userLists;
   for (const auto& s : model->sequences) userLists.push_back(optimize::buildJobList(*model, s.candidate));
-  const std::vector<optimize::Evaluation> user = optimize::evaluateAll(*evaluator, userLists, threads);
+  const std::vector<optimize::Evaluation> user = batch(userLists);
   optimize::SearchResult r = optimize::search(*model, batch, so);
   const double wallS = static_cast<double>(monotonicNowNs() - startNs) * 1e-9;
+  if (!ranks.leader()) return r.best.empty() ? ExitCode::RunStopped : ExitCode::Ok;
   std::cout << "method: " << (r.method == optimize::Method::Exhaustive ? "exhaustive" : "simulated annealing") << " (" << r.why << ")\n"
-            << "objective: " << optimize::objectiveName(so.objective) << ", seed " << o.seed << ", " << threads << " thread(s)\n"
+            << "objective: " << optimize::objectiveName(so.objective) << ", seed " << o.seed << ", " << threads << " thread(s)"
+            << (ranks.size() > 1 ? " on each of " + std::to_string(ranks.size()) + " MPI ranks" : std::string()) << "\n"
             << "evaluations: " << r.evaluations << " (" << r.infeasible << " infeasible, " << r.repeats << " repeats not simulated) in "
             << fixed(wallS, 1) << " s: " << fixed(static_cast<double>(r.evaluations) / std::max(wallS, 1e-9) * 3600, 0) << " per hour\n"
             << (r.complete ? "every distinct candidate was evaluated: the best is optimal for this model\n" : "");
@@ -159,7 +166,10 @@ void addOptimiseCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--budget-time", o->budgetTime, "stop after this wall time, e.g. 90s, 5m (results then depend on the machine's speed)");
   cmd->add_option("--seed", o->seed, "seed of the search's random choices (default 1)");
-  cmd->add_option("--jobs", o->jobs, "simulations in parallel (default: every core); never changes the result")->check(CLI::PositiveNumber);
+  cmd->add_option("--batch", o->batch, "candidates simulated together (default 16): at most this many threads and MPI ranks are busy at once; "
+                                       "the search's path depends on it, so compare runs with the same --batch")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--jobs", o->jobs, "simulations in parallel (default: every core; under mpirun one per rank); never changes the result")->check(CLI::PositiveNumber);
   cmd->add_option("--method", o->method, "auto (default: exhaustive if the distinct candidates fit the budget, else anneal), exhaustive, anneal")
       ->check(CLI::IsMember({"auto", "exhaustive", "anneal"}));
   cmd->add_option("--out", o->out, "write best-N.st (the job list to paste), best-N.html (its report) and comparison.txt into this folder");

@@ -1,6 +1,7 @@
 // `virtcom sweep SWEEP.yaml`: device and PLC parameters over grids or random samples, one KPI row
-// per point (docs/optimise.md "Sweeps"); slices for a cluster (--shard), joined with --merge, and
-// the Slurm job-array script that runs them (--slurm-script).
+// per point (docs/optimise.md "Sweeps") as CSV, a SQLite database and a page of charts; slices for
+// a cluster (--shard), joined with --merge, and the Slurm job-array script that runs them
+// (--slurm-script); under mpirun the points are spread over the ranks (docs/scaling.md).
 #include <algorithm>
 #include <fstream>
 #include <iostream>
@@ -9,7 +10,10 @@
 
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
+#include "optimize/ranks.hpp"
 #include "optimize/sweep.hpp"
+#include "optimize/sweep_db.hpp"
+#include "report/sweep_chart.hpp"
 
 namespace virtcom::cli {
 
@@ -18,6 +22,8 @@ namespace {
 struct SweepOptions {
   std::string file;
   std::string csv;
+  std::string sqlite;
+  std::string html;
   std::string shard;                // "I/N", 1-based
   std::vector<std::string> merge;   // OUT IN...
   unsigned slurmTasks = 0;
@@ -36,7 +42,7 @@ bool parseShard(const std::string& text, size_t& index, size_t& count) {
 }
 
 // Joins shard CSVs (same header) into one table ordered by point; a point twice is an error.
-ExitCode merge(const std::vector<std::string>& files) {
+ExitCode mergeCsv(const std::vector<std::string>& files) {
   std::string header;
   std::vector<std::pair<size_t, std::string>> rows;
   for (size_t f = 1; f < files.size(); ++f) {
@@ -66,6 +72,37 @@ ExitCode merge(const std::vector<std::string>& files) {
   return writeFile(files[0], out) ? ExitCode::Ok : ExitCode::Usage;
 }
 
+// Joins shard databases (--sqlite) into one, and draws the merged sweep when asked (--html).
+ExitCode mergeDbs(const std::vector<std::string>& files, const std::string& html) {
+  const std::vector<std::string> inputs(files.begin() + 1, files.end());
+  if (std::string problem = optimize::mergeSweepDbs(files[0], inputs); !problem.empty()) {
+    std::cerr << "error: --merge: " << problem << "\n";
+    return ExitCode::InputError;
+  }
+  if (html.empty()) return ExitCode::Ok;
+  report::SweepTable table;
+  if (std::string problem = optimize::readSweepDb(files[0], table); !problem.empty()) {
+    std::cerr << "error: --html: " << problem << "\n";
+    return ExitCode::InputError;
+  }
+  return writeFile(html, report::sweepHtml(table)) ? ExitCode::Ok : ExitCode::Usage;
+}
+
+// Databases merge into a database, CSV files into CSV; a mix is refused.
+ExitCode merge(const std::vector<std::string>& files, const std::string& html) {
+  const size_t databases = static_cast<size_t>(std::count_if(files.begin() + 1, files.end(), optimize::isSqliteFile));
+  if (databases == files.size() - 1) return mergeDbs(files, html);
+  if (databases != 0) {
+    std::cerr << "error: --merge: the inputs mix SQLite databases and CSV files; merge each kind on its own\n";
+    return ExitCode::Usage;
+  }
+  if (!html.empty()) {
+    std::cerr << "error: --html with --merge draws a merged database: merge the slices' --sqlite files\n";
+    return ExitCode::Usage;
+  }
+  return mergeCsv(files);
+}
+
 std::string slurmScript(const SweepOptions& o) {
   const std::string n = std::to_string(o.slurmTasks);
   return "#!/bin/bash\n"
@@ -84,7 +121,7 @@ ExitCode sweep(const SweepOptions& o) {
       std::cerr << "error: --merge OUT.csv IN.csv...: at least one input\n";
       return ExitCode::Usage;
     }
-    return merge(o.merge);
+    return merge(o.merge, o.html);
   }
   if (o.file.empty()) {
     std::cerr << "error: a sweep file is needed (or --merge)\n";
@@ -99,23 +136,34 @@ ExitCode sweep(const SweepOptions& o) {
     std::cerr << "error: --shard: '" << o.shard << "' is not I/N with 1 <= I <= N (e.g. 2/8)\n";
     return ExitCode::Usage;
   }
+  const optimize::Ranks ranks;
   SourceManager sources;
   Diagnostics diags;
   auto spec = optimize::readSweep(o.file, sources, diags);
   std::unique_ptr<optimize::Sweeper> sweeper;
   if (spec) sweeper = optimize::Sweeper::create(*spec, sources, diags);
-  std::cerr << diags.render(sources);
+  if (ranks.leader()) std::cerr << diags.render(sources);
   if (!sweeper) return ExitCode::InputError;
   const auto points = optimize::sweepPoints(*spec);
   std::vector<size_t> mine;  // this slice: every shards-th point
   for (size_t p = shard - 1; p < points.size(); p += shards) mine.push_back(p);
-  std::vector<optimize::SweepRow> rows(mine.size());
-  const unsigned threads = o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
-  optimize::parallelFor(mine.size(), threads, [&](size_t i) { rows[i] = sweeper->evaluate(mine[i], points[mine[i]]); });
+  const unsigned threads = o.jobs ? o.jobs : ranks.size() > 1 ? 1u : std::max(1u, std::thread::hardware_concurrency());
+  const std::vector<optimize::Evaluation> evals =
+      ranks.evaluateAll(mine.size(), threads, [&](size_t i) { return sweeper->evaluate(mine[i], points[mine[i]]).eval; });
+  if (!ranks.leader()) return ExitCode::Ok;
+  std::vector<optimize::SweepRow> rows;
+  for (size_t i = 0; i < mine.size(); ++i) rows.push_back({mine[i], sweeper->values(points[mine[i]]), evals[i]});
   const std::string csv = optimize::sweepCsv(*spec, rows);
-  if (o.csv.empty()) std::cout << csv;
-  else if (!writeFile(o.csv, csv)) return ExitCode::Usage;
-  std::cerr << "sweep: " << rows.size() << " of " << points.size() << " points (slice " << shard << "/" << shards << ")\n";
+  if (!o.csv.empty() && !writeFile(o.csv, csv)) return ExitCode::Usage;
+  if (o.csv.empty() && o.sqlite.empty() && o.html.empty()) std::cout << csv;
+  if (!o.sqlite.empty())
+    if (std::string problem = optimize::writeSweepDb(o.sqlite, *spec, {shard, shards, points.size()}, rows); !problem.empty()) {
+      std::cerr << "error: --sqlite: " << problem << "\n";
+      return ExitCode::Usage;
+    }
+  if (!o.html.empty() && !writeFile(o.html, report::sweepHtml(optimize::sweepTable(*spec, rows)))) return ExitCode::Usage;
+  std::cerr << "sweep: " << rows.size() << " of " << points.size() << " points (slice " << shard << "/" << shards << ")"
+            << (ranks.size() > 1 ? " on " + std::to_string(ranks.size()) + " MPI ranks" : std::string()) << "\n";
   return ExitCode::Ok;
 }
 
@@ -126,12 +174,15 @@ void addSweepCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   CLI::App* cmd = app.add_subcommand("sweep", "Run a cell over a grid or random sample of device and PLC parameters, one KPI row per point "
                                               "(docs/optimise.md \"Sweeps\")");
   cmd->add_option("sweep", o->file, "the sweep file (YAML): cell, parameters and their values, sampling")->check(CLI::ExistingFile);
-  cmd->add_option("--csv", o->csv, "write the rows to this CSV file (default: stdout)");
+  cmd->add_option("--csv", o->csv, "write the rows to this CSV file (default: stdout, unless --sqlite or --html)");
   cmd->add_option("--shard", o->shard, "run only slice I of N (points I-1, I-1+N, ...), e.g. 2/8, for a cluster job array");
-  cmd->add_option("--merge", o->merge, "OUT.csv IN.csv...: join the slices' CSV files into one table ordered by point")->expected(2, 1 << 20);
+  cmd->add_option("--merge", o->merge, "OUT IN...: join the slices' CSV files (or --sqlite databases) into one table ordered by point")->expected(2, 1 << 20);
   cmd->add_option("--slurm-script", o->slurmTasks, "print a Slurm sbatch script running the sweep as a job array of this many slices")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--jobs", o->jobs, "points simulated in parallel (default: every core); never changes the rows")->check(CLI::PositiveNumber);
+  cmd->add_option("--jobs", o->jobs, "points simulated in parallel (default: every core; under mpirun one per rank); never changes the rows")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--sqlite", o->sqlite, "also write the rows to this SQLite database: tables points, sweep, slices (docs/optimise.md)");
+  cmd->add_option("--html", o->html, "also write a page charting each KPI over the parameters (with --merge: of the merged database)");
   cmd->callback([o, setExit] { setExit(sweep(*o)); });
 }
 

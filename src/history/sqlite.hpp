@@ -1,6 +1,7 @@
 #pragma once
-// Thin RAII handles over the SQLite C API (Debian libsqlite3-dev), for this folder only: a
-// connection and a prepared statement. They never throw; a failing call returns false and the
+// Thin RAII handles over the SQLite C API (Debian libsqlite3-dev): a connection and a prepared
+// statement. The historian's, and the one SQLite wrapper of the project (optimize's sweep
+// databases use it too). They never throw; a failing call returns false and the
 // connection keeps SQLite's message (errorText()).
 #include <cstdint>
 #include <string>

@@ -145,10 +145,16 @@ ConfigNode Sweeper::editedRoot(const std::vector<size_t>& at) const {
   return out;
 }
 
+std::vector<std::string> Sweeper::values(const std::vector<size_t>& at) const {
+  std::vector<std::string> out;
+  for (size_t p = 0; p < at.size(); ++p) out.push_back(spec_.parameters[p].values[at[p]]);
+  return out;
+}
+
 SweepRow Sweeper::evaluate(size_t point, const std::vector<size_t>& at) const {
   SweepRow row;
   row.point = point;
-  for (size_t p = 0; p < at.size(); ++p) row.values.push_back(spec_.parameters[p].values[at[p]]);
+  row.values = values(at);
   const bc::Module& m = *template_->module;
   runInstance(*template_, editedRoot(at),
               [&](uint8_t* memory) {

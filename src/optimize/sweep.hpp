@@ -53,6 +53,8 @@ class Sweeper {
   static std::unique_ptr<Sweeper> create(const SweepSpec& spec, SourceManager& sources, Diagnostics& diags);
   // One point's row. Thread-safe.
   SweepRow evaluate(size_t point, const std::vector<size_t>& at) const;
+  // A point's values as written in the sweep file.
+  std::vector<std::string> values(const std::vector<size_t>& at) const;
 
  private:
   explicit Sweeper(const SweepSpec& spec) : spec_(spec) {}

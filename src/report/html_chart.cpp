@@ -69,6 +69,8 @@ int tickDecimals(int64_t stepNs) {
 
 }  // namespace
 
+Rgb paletteColor(size_t i) { return i < kPaletteSize ? kPalette[i] : generatedColor(i); }
+
 double TimeScale::x(int64_t ns) const {
   double f = static_cast<double>(ns - startNs) / static_cast<double>(endNs - startNs);
   return leftPx + f * (rightPx - leftPx);
@@ -162,7 +164,7 @@ LabelColors::LabelColors(const Trace& trace) : byLabel_(trace.labels.size()) {
     return trace.labels[a] != trace.labels[b] ? trace.labels[a] < trace.labels[b] : a < b;
   });
   for (size_t i = 0; i < used_.size(); ++i)
-    byLabel_[used_[i]] = i < kPaletteSize ? kPalette[i] : generatedColor(i);
+    byLabel_[used_[i]] = paletteColor(i);
 }
 
 Rgb LabelColors::color(uint32_t label) const {

@@ -46,6 +46,8 @@ struct Rgb {
   uint8_t r = 0, g = 0, b = 0;
 };
 std::string hex(Rgb c);
+// The i-th colour of the qualitative palette (operations, sweep series), generated beyond it.
+Rgb paletteColor(size_t i);
 // Black or white, whichever reads better on `c`.
 const char* textColorOn(Rgb c);
 

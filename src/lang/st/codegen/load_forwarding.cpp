@@ -25,24 +25,20 @@ struct Access {
   uint32_t offset = 0;
   uint32_t width = 0;
 
-  bool same(const Access& o) const {
-    return absolute == o.absolute && base == o.base && offset == o.offset && width == o.width;
-  }
   bool overlaps(const Access& o) const { return offset < o.offset + o.width && o.offset < offset + width; }
   // Whether a store to `this` may change `o`: only a store from the same base register or to an
   // absolute address, away from `o`'s range, is known not to (other bases may alias anything).
   bool mayClobber(const Access& o) const { return absolute != o.absolute || base != o.base || overlaps(o); }
 };
 
-// Register `reg` holds what load `op` of `at` reads.
+// Register `reg` holds what instruction `key` (its operand A ignored) computes: a load of a
+// location, or a pure function of its operands.
 struct Fact {
-  Op op;
-  Access at;
+  Instr key;
   uint16_t reg;
 
-  bool operator==(const Fact& o) const {
-    return op == o.op && at.same(o.at) && reg == o.reg;
-  }
+  bool operator==(const Fact& o) const { return computes(o.key) && reg == o.reg; }
+  bool computes(const Instr& ins) const { return key.op == ins.op && key.b == ins.b && key.c == ins.c; }
 };
 using Facts = std::vector<Fact>;
 
@@ -56,9 +52,10 @@ uint32_t accessWidth(Op op) {
   }
 }
 
-// The location a plain load reads (LD_BIT excluded: it is no whole location); nullopt otherwise.
+// The location a load reads; nullopt for instructions that load nothing.
 std::optional<Access> loadOf(const Instr& ins) {
   switch (ins.op) {
+    case Op::LD_BIT: return Access{false, ins.b, 0, 1};
     case Op::LD_I8: case Op::LD_U8: case Op::LD_I16: case Op::LD_U16: case Op::LD_I32: case Op::LD_U32:
     case Op::LD_64: case Op::LD_F32:
       return Access{false, ins.b, ins.c, accessWidth(ins.op)};
@@ -80,6 +77,33 @@ std::optional<Access> storeOf(const Instr& ins) {
       return Access{true, 0, ins.bx(), accessWidth(ins.op)};
     default: return std::nullopt;
   }
+}
+
+// Instructions whose result depends on their operands alone (registers, immediates, constants):
+// computed again on the same operands, they give the same value, or the same fault, which the
+// first one would already have raised. SYSTIME is not one: it counts its reads.
+bool pure(Op op) {
+  switch (op) {
+    case Op::LDI: case Op::LDK: case Op::INDEX:
+    case Op::ADD: case Op::SUB: case Op::MUL: case Op::DIV_I: case Op::MOD_I: case Op::DIV_U: case Op::MOD_U:
+    case Op::ADDI: case Op::DIVK: case Op::MODK: case Op::NEG: case Op::SEXT: case Op::ZEXT:
+    case Op::BAND: case Op::BOR: case Op::BXOR: case Op::BNOT: case Op::LNOT: case Op::SHL: case Op::SHR:
+    case Op::EQ: case Op::NE: case Op::LT_I: case Op::LE_I: case Op::LT_U: case Op::LE_U:
+    case Op::EQ_F: case Op::NE_F: case Op::LT_F: case Op::LE_F:
+    case Op::EQK: case Op::NEK: case Op::LTK: case Op::LEK: case Op::GTK: case Op::GEK:
+    case Op::ADD_F: case Op::SUB_F: case Op::MUL_F: case Op::DIV_F:
+    case Op::ADD_F32: case Op::SUB_F32: case Op::MUL_F32: case Op::DIV_F32: case Op::NEG_F: case Op::RND_F32:
+    case Op::I2F: case Op::U2F: case Op::F2I: case Op::F2I_TRUNC: case Op::F2U: return true;
+    default: return false;
+  }
+}
+
+// Whether `ins` reads register `reg` through operand B or C (not A: forwarded instructions only
+// write A).
+bool readsBC(const Instr& ins, uint16_t reg) {
+  if (bc::opFormat(ins.op) != bc::Format::ABC) return false;
+  const bc::OperandRoles roles = bc::operandRoles(ins.op);
+  return (roles.b == bc::Operand::Reg && ins.b == reg) || (roles.c == bc::Operand::Reg && ins.c == reg);
 }
 
 // Instructions whose memory effects are not one store: copies, calls (the callee or native may
@@ -136,26 +160,36 @@ Reads readsOf(Instr& ins, uint16_t numRegs) {
   return r;
 }
 
-const Fact* holder(const Facts& facts, Op op, const Access& at) {
+// The fact that a register already holds what `ins` computes; null if none.
+const Fact* holder(const Facts& facts, const Instr& ins) {
+  if (!pure(ins.op) && !loadOf(ins)) return nullptr;
   for (const Fact& f : facts)
-    if (f.op == op && f.at.same(at)) return &f;
+    if (f.computes(ins)) return &f;
   return nullptr;
 }
 
 // The facts after `ins`. A repeated load keeps the register that already holds the location,
 // whether or not the load is then removed, so the facts hold for the code before and after.
 void transfer(const Instr& ins, Facts& facts) {
-  const std::optional<Access> load = loadOf(ins);
-  const Fact* held = load ? holder(facts, ins.op, *load) : nullptr;
-  if (held && held->reg == ins.a) return;  // the load writes the value its register already has
+  const Fact* held = holder(facts, ins);
+  if (held && held->reg == ins.a) return;  // it writes the value its register already has
   if (clobbersMemory(ins.op)) facts.clear();
   if (const std::optional<Access> store = storeOf(ins))
-    std::erase_if(facts, [&](const Fact& f) { return store->mayClobber(f.at); });
+    std::erase_if(facts, [&](const Fact& f) {
+      const std::optional<Access> at = loadOf(f.key);
+      return at && store->mayClobber(*at);
+    });
   if (const std::optional<Written> w = written(ins)) {
     const auto hit = [&](uint16_t reg) { return reg == w->reg || (w->andAbove && reg > w->reg); };
-    std::erase_if(facts, [&](const Fact& f) { return hit(f.reg) || (!f.at.absolute && hit(f.at.base)); });
+    std::erase_if(facts, [&](const Fact& f) {
+      if (hit(f.reg)) return true;
+      if (bc::opFormat(f.key.op) != bc::Format::ABC) return false;
+      const bc::OperandRoles roles = bc::operandRoles(f.key.op);
+      return (roles.b == bc::Operand::Reg && hit(f.key.b)) || (roles.c == bc::Operand::Reg && hit(f.key.c));
+    });
   }
-  if (load && !held && (load->absolute || load->base != ins.a)) facts.push_back({ins.op, *load, ins.a});
+  // A result that overwrote one of its own operands is no longer what the operands compute.
+  if (!held && (pure(ins.op) || loadOf(ins)) && !readsBC(ins, ins.a)) facts.push_back({ins, ins.a});
 }
 
 Facts meet(const Facts& a, const Facts& b) {
@@ -179,9 +213,10 @@ class Forwarder {
       Facts facts = *in[k];
       for (uint32_t j = k; j < n_ && (j == k || !leader_[j]); ++j) {
         const Instr& ins = code_[begin_ + j];
-        if (const std::optional<Access> load = loadOf(ins))
-          if (const Fact* held = holder(facts, ins.op, *load)) removed_[j] = rename(j, held->reg);
-        transfer(ins, facts);
+        // A removed instruction changes nothing, so the facts about its register stay (the
+        // entry facts of the next blocks, computed on the code as it was, are fewer: still true).
+        if (const Fact* held = holder(facts, ins)) removed_[j] = rename(j, held->reg);
+        if (!removed_[j]) transfer(ins, facts);
       }
     }
     return removed_;

@@ -25,7 +25,9 @@ struct Access {
   uint32_t offset = 0;
   uint32_t width = 0;
 
-  bool overlaps(const Access& o) const { return offset < o.offset + o.width && o.offset < offset + width; }
+  bool overlaps(const Access& o) const {
+    return offset < uint64_t{o.offset} + o.width && o.offset < uint64_t{offset} + width;
+  }
   // Whether a store to `this` may change `o`: only a store from the same base register or to an
   // absolute address, away from `o`'s range, is known not to (other bases may alias anything).
   bool mayClobber(const Access& o) const { return absolute != o.absolute || base != o.base || overlaps(o); }
@@ -168,17 +170,41 @@ const Fact* holder(const Facts& facts, const Instr& ins) {
   return nullptr;
 }
 
+// What `at` may address, seen from a known base: when its base register holds the address of
+// an element of a one-dimensional array (ADD base, rb, ri with ri = INDEX(.., d), as code
+// generation addresses a[i]), any element of the array relative to rb; `at` itself otherwise.
+// So a store into an array no longer hides every other variable of the instance.
+Access region(const Access& at, const Facts& facts, const std::vector<bc::IndexDesc>& indexes) {
+  if (at.absolute) return at;
+  for (const Fact& sum : facts) {
+    if (sum.reg != at.base || sum.key.op != Op::ADD) continue;
+    for (const Fact& index : facts)
+      if (index.reg == sum.key.c && index.key.op == Op::INDEX && index.key.c < indexes.size()) {
+        const bc::IndexDesc& d = indexes[index.key.c];
+        const uint64_t span = uint64_t{d.count - 1} * d.stride + at.width;
+        if (span > UINT32_MAX) return at;
+        return Access{false, sum.key.b, at.offset, static_cast<uint32_t>(span)};
+      }
+  }
+  return at;
+}
+
 // The facts after `ins`. A repeated load keeps the register that already holds the location,
 // whether or not the load is then removed, so the facts hold for the code before and after.
-void transfer(const Instr& ins, Facts& facts) {
+void transfer(const Instr& ins, Facts& facts, const std::vector<bc::IndexDesc>& indexes) {
   const Fact* held = holder(facts, ins);
   if (held && held->reg == ins.a) return;  // it writes the value its register already has
   if (clobbersMemory(ins.op)) facts.clear();
-  if (const std::optional<Access> store = storeOf(ins))
-    std::erase_if(facts, [&](const Fact& f) {
+  if (const std::optional<Access> store = storeOf(ins)) {
+    // Regions are resolved with all facts still there, then the clobbered loads go.
+    const Access to = region(*store, facts, indexes);
+    Facts kept;
+    for (const Fact& f : facts) {
       const std::optional<Access> at = loadOf(f.key);
-      return at && store->mayClobber(*at);
-    });
+      if (!at || !to.mayClobber(region(*at, facts, indexes))) kept.push_back(f);
+    }
+    facts = std::move(kept);
+  }
   if (const std::optional<Written> w = written(ins)) {
     const auto hit = [&](uint16_t reg) { return reg == w->reg || (w->andAbove && reg > w->reg); };
     std::erase_if(facts, [&](const Fact& f) {
@@ -201,8 +227,9 @@ Facts meet(const Facts& a, const Facts& b) {
 
 class Forwarder {
  public:
-  Forwarder(std::vector<Instr>& code, uint32_t begin, uint32_t end, uint16_t numRegs)
-      : code_(code), begin_(begin), n_(end - begin), numRegs_(numRegs), live_(code, begin, end, numRegs),
+  Forwarder(std::vector<Instr>& code, uint32_t begin, uint32_t end, uint16_t numRegs,
+            const std::vector<bc::IndexDesc>& indexes)
+      : code_(code), indexes_(indexes), begin_(begin), n_(end - begin), numRegs_(numRegs), live_(code, begin, end, numRegs),
         leader_(n_, false), removed_(n_, false) {}
 
   std::vector<bool> run() {
@@ -216,7 +243,7 @@ class Forwarder {
         // A removed instruction changes nothing, so the facts about its register stay (the
         // entry facts of the next blocks, computed on the code as it was, are fewer: still true).
         if (const Fact* held = holder(facts, ins)) removed_[j] = rename(j, held->reg);
-        if (!removed_[j]) transfer(ins, facts);
+        if (!removed_[j]) transfer(ins, facts, indexes_);
       }
     }
     return removed_;
@@ -263,7 +290,7 @@ class Forwarder {
         Facts facts = *in[k];
         uint32_t j = k;
         for (;; ++j) {
-          transfer(code_[begin_ + j], facts);
+          transfer(code_[begin_ + j], facts, indexes_);
           if (endsBlock(j) || j + 1 == n_ || leader_[j + 1]) break;
         }
         if (bc::isBranch(code_[begin_ + j].op)) flowInto(targetOf(j), facts, changed);
@@ -307,6 +334,7 @@ class Forwarder {
   }
 
   std::vector<Instr>& code_;
+  const std::vector<bc::IndexDesc>& indexes_;
   uint32_t begin_, n_;
   uint16_t numRegs_;
   Liveness live_;
@@ -316,8 +344,9 @@ class Forwarder {
 
 }  // namespace
 
-std::vector<bool> forwardLoads(std::vector<Instr>& code, uint32_t begin, uint32_t end, uint16_t numRegs) {
-  return Forwarder(code, begin, end, numRegs).run();
+std::vector<bool> forwardLoads(std::vector<Instr>& code, uint32_t begin, uint32_t end, uint16_t numRegs,
+                               const std::vector<bc::IndexDesc>& indexes) {
+  return Forwarder(code, begin, end, numRegs, indexes).run();
 }
 
 }  // namespace virtcom::st

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "bytecode/instruction.hpp"
+#include "bytecode/module.hpp"
 
 namespace virtcom::st {
 
@@ -13,7 +14,8 @@ namespace virtcom::st {
 // that register in the instructions that read it before it is written again, and returns which
 // instructions (by index from begin) are now dead and to be removed. A load is kept when its
 // register is still read after its basic block, or the holding register is written before the
-// last read. Branch offsets are left as they are.
-std::vector<bool> forwardLoads(std::vector<bc::Instr>& code, uint32_t begin, uint32_t end, uint16_t numRegs);
+// last read. Branch offsets are left as they are. `indexes` are the module's array shapes (INDEX).
+std::vector<bool> forwardLoads(std::vector<bc::Instr>& code, uint32_t begin, uint32_t end, uint16_t numRegs,
+                               const std::vector<bc::IndexDesc>& indexes);
 
 }  // namespace virtcom::st

@@ -126,7 +126,7 @@ void optimizePou(bc::Module& m, uint32_t codeStart, size_t firstLine, uint16_t n
   if (end <= codeStart + 1) return;
   const std::optional<std::vector<int64_t>> targets = branchTargets(m.code, codeStart, end);
   if (!targets) return;
-  compact(m, codeStart, firstLine, forwardLoads(m.code, codeStart, end, numRegs), *targets);
+  compact(m, codeStart, firstLine, forwardLoads(m.code, codeStart, end, numRegs, m.indexes), *targets);
   fuseBranches(m, codeStart, firstLine, numRegs);
 }
 

@@ -16,10 +16,11 @@ namespace {
 using bc::Instr;
 using bc::Op;
 
-// A module with one POU of hand-written code (8 registers), optimised.
-bc::Module optimised(std::vector<Instr> code) {
+// A module with one POU of hand-written code (8 registers) and array shapes `indexes`, optimised.
+bc::Module optimised(std::vector<Instr> code, std::vector<bc::IndexDesc> indexes = {}) {
   bc::Module m;
   m.code = std::move(code);
+  m.indexes = std::move(indexes);
   bc::PouInfo p;
   p.name = "P";
   p.codeSize = static_cast<uint32_t>(m.code.size());
@@ -50,6 +51,31 @@ TEST(LoadForwarding, AStoreThatMayOverlapMakesTheLoadReadMemory) {
   EXPECT_EQ(between(Instr::abx(Op::STA_32, 5, 64)), 6u);   // so may an absolute address
   EXPECT_EQ(between(Instr::abc(Op::COPY, 5, 6, 7)), 6u);   // a block copy
   EXPECT_EQ(between(Instr::abc(Op::ST_32, 5, 1, 4)), 5u);  // next to it: the load goes
+}
+
+TEST(LoadForwarding, ARepeatedComputationReadsTheFirstResult) {
+  const bc::Module m = optimised({Instr::asbx(Op::LDI, 2, 7), Instr::asbx(Op::LDI, 3, 7), Instr::abc(Op::ADD, 4, 2, 3),
+                                  Instr::abc(Op::ST_32, 4, 1, 0), kRet});
+  ASSERT_EQ(m.code.size(), 4u);
+  EXPECT_EQ(m.code[1].b, 2);
+  EXPECT_EQ(m.code[1].c, 2);
+}
+
+TEST(LoadForwarding, AStoreIntoAnArrayElementKeepsWhatIsOutsideTheArray) {
+  // ARRAY[0..3] OF WORD at r1 + 0 (x0: 4 elements of 2 bytes), i at r1 + 10: a[i] := v, then
+  // load the WORD at `offset` again.
+  const auto reloads = [](uint16_t offset) {
+    const Instr ld16 = Instr::abc(Op::LD_U16, 2, 1, offset);
+    Instr again = ld16;
+    again.a = 6;
+    return optimised({ld16, Instr::abc(Op::LD_I16, 3, 1, 10), Instr::abc(Op::INDEX, 4, 3, 0),
+                      Instr::abc(Op::ADD, 5, 1, 4), Instr::abc(Op::ST_16, 2, 5, 0), again,
+                      Instr::abc(Op::ST_16, 6, 1, 12), kRet},
+                     {{0, 4, 2}})
+        .code.size();
+  };
+  EXPECT_EQ(reloads(8), 7u);  // just past the last element: served from r2
+  EXPECT_EQ(reloads(6), 8u);  // the last element: read again
 }
 
 TEST(LoadForwarding, WritingTheHoldingRegisterBeforeTheLastReadKeepsTheLoad) {

@@ -68,7 +68,7 @@ std::optional<Access> loadOf(const Instr& ins) {
   }
 }
 
-// The location a store writes; nullopt for instructions that store nothing.
+// The location a store writes (a CALLFB's instance); nullopt for instructions that store nothing.
 std::optional<Access> storeOf(const Instr& ins) {
   switch (ins.op) {
     case Op::ST_8: case Op::ST_16: case Op::ST_32: case Op::ST_64: case Op::ST_F32:
@@ -77,6 +77,12 @@ std::optional<Access> storeOf(const Instr& ins) {
     case Op::ST_BIT: return Access{false, ins.b, 0, 1};
     case Op::STA_8: case Op::STA_16: case Op::STA_32: case Op::STA_64: case Op::STA_F32:
       return Access{true, 0, ins.bx(), accessWidth(ins.op)};
+    case Op::CALLFB: {  // a standard FB writes its own members only
+      uint32_t size = 0;
+      for (const bc::NativeFbMember& m : bc::nativeFbMembers(static_cast<bc::NativeFb>(ins.bx())))
+        size = std::max(size, m.offset + m.size);
+      return Access{false, ins.a, 0, size};
+    }
     default: return std::nullopt;
   }
 }
@@ -108,11 +114,11 @@ bool readsBC(const Instr& ins, uint16_t reg) {
   return (roles.b == bc::Operand::Reg && ins.b == reg) || (roles.c == bc::Operand::Reg && ins.c == reg);
 }
 
-// Instructions whose memory effects are not one store: copies, calls (the callee or native may
-// write anything), frame set-up, coverage counters, and the ends of the POU.
+// Instructions whose memory effects are not one store: copies, calls of POUs and natives (which
+// may write anything), frame set-up, coverage counters, and the ends of the POU.
 bool clobbersMemory(Op op) {
   switch (op) {
-    case Op::COPY: case Op::CALL: case Op::CALLN: case Op::CALLFB: case Op::ENTER: case Op::COVER:
+    case Op::COPY: case Op::CALL: case Op::CALLN: case Op::ENTER: case Op::COVER:
     case Op::RET: case Op::TRAP: return true;
     default: return false;
   }

@@ -264,29 +264,39 @@ void PouCompiler::forStatement(const Stmt& s) {
   }
   bool uns = !t.isSignedInt(var->type);
   Op le = uns ? Op::LE_U : Op::LE_I;
-  uint32_t top = here();
+  // c := the loop goes on with the control variable's value in register i.
+  const auto goesOn = [&](uint16_t i) {
+    uint16_t c = allocReg();
+    if (step == 0xffff) {
+      if (stepConst >= 0) emit(le, c, i, end);
+      else emit(le, c, end, i);
+    } else {
+      // the direction is known only at run time
+      uint16_t zero = loadConstInt(0), neg = allocReg();
+      emit(Op::LT_I, neg, step, zero);
+      uint32_t down = emitJump(Op::JNZ, neg);
+      emit(le, c, i, end);
+      uint32_t joined = emitJump(Op::JMP, 0);
+      patchJump(down, here());
+      emit(le, c, end, i);
+      patchJump(joined, here());
+    }
+    return c;
+  };
+  // The test comes first and again after each step, so an iteration costs the step and one
+  // test. The control variable's register stays allocated through the body and is loaded into
+  // the same register at the top and after the step: the load forwarding pass
+  // (load_forwarding.hpp) then serves the body's reads of the variable from it.
   uint16_t mark = regMark();
   uint16_t i = load(*var);
-  uint16_t c = allocReg();
-  if (step == 0xffff) {
-    if (stepConst >= 0) emit(le, c, i, end);
-    else emit(le, c, end, i);
-  } else {
-    // the direction is known only at run time
-    uint16_t zero = loadConstInt(0), neg = allocReg();
-    emit(Op::LT_I, neg, step, zero);
-    uint32_t down = emitJump(Op::JNZ, neg);
-    emit(le, c, i, end);
-    uint32_t joined = emitJump(Op::JMP, 0);
-    patchJump(down, here());
-    emit(le, c, end, i);
-    patchJump(joined, here());
-  }
-  uint32_t exit = emitJump(Op::JZ, c);
-  freeRegs(mark);
+  uint16_t held = regMark();
+  uint32_t exit = emitJump(Op::JZ, goesOn(i));
+  freeRegs(held);
+  uint32_t body = here();
   loops_.push_back({});
   statements(s.body);
   uint32_t cont = here();
+  freeRegs(mark);
   uint16_t i2 = load(*var);
   if (step == 0xffff && stepConst >= INT16_MIN && stepConst <= INT16_MAX) {
     emit(Op::ADDI, i2, i2, static_cast<uint16_t>(static_cast<int16_t>(stepConst)));
@@ -298,7 +308,8 @@ void PouCompiler::forStatement(const Stmt& s) {
   }
   store(*var, i2);
   freeRegs(mark);
-  jumpTo(Op::JMP, 0, top);
+  jumpTo(Op::JNZ, goesOn(load(*var)), body);
+  freeRegs(mark);
   uint32_t after = here();
   patchJump(exit, after);
   for (uint32_t b : loops_.back().breaks) patchJump(b, after);

@@ -1,0 +1,358 @@
+// Redundant-load elimination (load_forwarding.hpp). Code generation loads a variable again at
+// every use (each statement starts from scratch with its registers), so a loop body reloads its
+// FOR variable and the variables it just read; here a forward dataflow over the POU's basic
+// blocks tracks which register holds which loaded location, and a repeated load becomes a
+// renaming of the register it would have written.
+#include "lang/st/codegen/load_forwarding.hpp"
+
+#include <algorithm>
+#include <optional>
+
+#include "bytecode/verifier.hpp"
+#include "lang/st/codegen/liveness.hpp"
+
+namespace virtcom::st {
+
+namespace {
+
+using bc::Instr;
+using bc::Op;
+
+// A memory range addressed by an instruction: register `base` + offset, or an absolute address.
+struct Access {
+  bool absolute = false;
+  uint16_t base = 0;
+  uint32_t offset = 0;
+  uint32_t width = 0;
+
+  bool overlaps(const Access& o) const {
+    return offset < uint64_t{o.offset} + o.width && o.offset < uint64_t{offset} + width;
+  }
+  // Whether a store to `this` may change `o`: only a store from the same base register or to an
+  // absolute address, away from `o`'s range, is known not to (other bases may alias anything).
+  bool mayClobber(const Access& o) const { return absolute != o.absolute || base != o.base || overlaps(o); }
+};
+
+// Register `reg` holds what instruction `key` (its operand A ignored) computes: a load of a
+// location, or a pure function of its operands.
+struct Fact {
+  Instr key;
+  uint16_t reg;
+
+  bool operator==(const Fact& o) const { return computes(o.key) && reg == o.reg; }
+  bool computes(const Instr& ins) const { return key.op == ins.op && key.b == ins.b && key.c == ins.c; }
+};
+using Facts = std::vector<Fact>;
+
+uint32_t accessWidth(Op op) {
+  switch (op) {
+    case Op::LD_I8: case Op::LD_U8: case Op::ST_8: case Op::STK_8: case Op::ST_BIT: return 1;
+    case Op::LD_I16: case Op::LD_U16: case Op::ST_16: case Op::STK_16: return 2;
+    case Op::LD_I32: case Op::LD_U32: case Op::LD_F32: case Op::ST_32: case Op::STK_32: case Op::ST_F32: return 4;
+    case Op::LD_64: case Op::ST_64: case Op::STK_64: return 8;
+    default: return bc::operandRoles(op).width;  // the absolute forms
+  }
+}
+
+// The location a load reads; nullopt for instructions that load nothing.
+std::optional<Access> loadOf(const Instr& ins) {
+  switch (ins.op) {
+    case Op::LD_BIT: return Access{false, ins.b, 0, 1};
+    case Op::LD_I8: case Op::LD_U8: case Op::LD_I16: case Op::LD_U16: case Op::LD_I32: case Op::LD_U32:
+    case Op::LD_64: case Op::LD_F32:
+      return Access{false, ins.b, ins.c, accessWidth(ins.op)};
+    case Op::LDA_I8: case Op::LDA_U8: case Op::LDA_I16: case Op::LDA_U16: case Op::LDA_I32: case Op::LDA_U32:
+    case Op::LDA_64: case Op::LDA_F32:
+      return Access{true, 0, ins.bx(), accessWidth(ins.op)};
+    default: return std::nullopt;
+  }
+}
+
+// The location a store writes (a CALLFB's instance); nullopt for instructions that store nothing.
+std::optional<Access> storeOf(const Instr& ins) {
+  switch (ins.op) {
+    case Op::ST_8: case Op::ST_16: case Op::ST_32: case Op::ST_64: case Op::ST_F32:
+    case Op::STK_8: case Op::STK_16: case Op::STK_32: case Op::STK_64:
+      return Access{false, ins.b, ins.c, accessWidth(ins.op)};
+    case Op::ST_BIT: return Access{false, ins.b, 0, 1};
+    case Op::STA_8: case Op::STA_16: case Op::STA_32: case Op::STA_64: case Op::STA_F32:
+      return Access{true, 0, ins.bx(), accessWidth(ins.op)};
+    case Op::CALLFB: {  // a standard FB writes its own members only
+      uint32_t size = 0;
+      for (const bc::NativeFbMember& m : bc::nativeFbMembers(static_cast<bc::NativeFb>(ins.bx())))
+        size = std::max(size, m.offset + m.size);
+      return Access{false, ins.a, 0, size};
+    }
+    default: return std::nullopt;
+  }
+}
+
+// Instructions whose result depends on their operands alone (registers, immediates, constants):
+// computed again on the same operands, they give the same value, or the same fault, which the
+// first one would already have raised. SYSTIME is not one: it counts its reads.
+bool pure(Op op) {
+  switch (op) {
+    case Op::LDI: case Op::LDK: case Op::INDEX:
+    case Op::ADD: case Op::SUB: case Op::MUL: case Op::DIV_I: case Op::MOD_I: case Op::DIV_U: case Op::MOD_U:
+    case Op::ADDI: case Op::DIVK: case Op::MODK: case Op::NEG: case Op::SEXT: case Op::ZEXT:
+    case Op::BAND: case Op::BOR: case Op::BXOR: case Op::BNOT: case Op::LNOT: case Op::SHL: case Op::SHR:
+    case Op::EQ: case Op::NE: case Op::LT_I: case Op::LE_I: case Op::LT_U: case Op::LE_U:
+    case Op::EQ_F: case Op::NE_F: case Op::LT_F: case Op::LE_F:
+    case Op::EQK: case Op::NEK: case Op::LTK: case Op::LEK: case Op::GTK: case Op::GEK:
+    case Op::ADD_F: case Op::SUB_F: case Op::MUL_F: case Op::DIV_F:
+    case Op::ADD_F32: case Op::SUB_F32: case Op::MUL_F32: case Op::DIV_F32: case Op::NEG_F: case Op::RND_F32:
+    case Op::I2F: case Op::U2F: case Op::F2I: case Op::F2I_TRUNC: case Op::F2U: return true;
+    default: return false;
+  }
+}
+
+// Whether `ins` reads register `reg` through operand B or C (not A: forwarded instructions only
+// write A).
+bool readsBC(const Instr& ins, uint16_t reg) {
+  if (bc::opFormat(ins.op) != bc::Format::ABC) return false;
+  const bc::OperandRoles roles = bc::operandRoles(ins.op);
+  return (roles.b == bc::Operand::Reg && ins.b == reg) || (roles.c == bc::Operand::Reg && ins.c == reg);
+}
+
+// Instructions whose memory effects are not one store: copies, calls of POUs and natives (which
+// may write anything), frame set-up, coverage counters, and the ends of the POU.
+bool clobbersMemory(Op op) {
+  switch (op) {
+    case Op::COPY: case Op::CALL: case Op::CALLN: case Op::ENTER: case Op::COVER:
+    case Op::RET: case Op::TRAP: return true;
+    default: return false;
+  }
+}
+
+// The lowest register `ins` writes and whether it writes every register from there up (a call's
+// window); nullopt if it writes none.
+struct Written {
+  uint16_t reg;
+  bool andAbove;
+};
+std::optional<Written> written(const Instr& ins) {
+  if (ins.op == Op::CALL || ins.op == Op::CALLN) return Written{ins.a, true};
+  if (bc::writesOnlyA(ins.op)) return Written{ins.a, false};
+  return std::nullopt;
+}
+bool writes(const Instr& ins, uint16_t reg) {
+  const std::optional<Written> w = written(ins);
+  return w && (reg == w->reg || (w->andAbove && reg > w->reg));
+}
+
+// The registers `ins` reads, as pointers into it (to rename them); `window` is set when it also
+// reads a register range (CALL from A up, CALLN A .. A + arity - 1) that cannot be renamed.
+struct Reads {
+  uint16_t* regs[3] = {};
+  int count = 0;
+  uint32_t windowFrom = 0, windowTo = 0;  // [from, to)
+};
+Reads readsOf(Instr& ins, uint16_t numRegs) {
+  Reads r;
+  const bc::OperandRoles roles = bc::operandRoles(ins.op);
+  if (ins.op == Op::CALL) {
+    r.windowFrom = ins.a;
+    r.windowTo = numRegs;
+    return r;
+  }
+  if (ins.op == Op::CALLN) {
+    r.windowFrom = ins.a;
+    r.windowTo = ins.a + bc::nativeArity(static_cast<bc::Native>(ins.bx()));
+    return r;
+  }
+  if (roles.a == bc::Operand::Reg && !bc::writesOnlyA(ins.op)) r.regs[r.count++] = &ins.a;
+  if (bc::opFormat(ins.op) == bc::Format::ABC) {
+    if (roles.b == bc::Operand::Reg) r.regs[r.count++] = &ins.b;
+    if (roles.c == bc::Operand::Reg) r.regs[r.count++] = &ins.c;
+  }
+  return r;
+}
+
+// The fact that a register already holds what `ins` computes; null if none.
+const Fact* holder(const Facts& facts, const Instr& ins) {
+  if (!pure(ins.op) && !loadOf(ins)) return nullptr;
+  for (const Fact& f : facts)
+    if (f.computes(ins)) return &f;
+  return nullptr;
+}
+
+// What `at` may address, seen from a known base: when its base register holds the address of
+// an element of a one-dimensional array (ADD base, rb, ri with ri = INDEX(.., d), as code
+// generation addresses a[i]), any element of the array relative to rb; `at` itself otherwise.
+// So a store into an array no longer hides every other variable of the instance.
+Access region(const Access& at, const Facts& facts, const std::vector<bc::IndexDesc>& indexes) {
+  if (at.absolute) return at;
+  for (const Fact& sum : facts) {
+    if (sum.reg != at.base || sum.key.op != Op::ADD) continue;
+    for (const Fact& index : facts)
+      if (index.reg == sum.key.c && index.key.op == Op::INDEX && index.key.c < indexes.size()) {
+        const bc::IndexDesc& d = indexes[index.key.c];
+        const uint64_t span = uint64_t{d.count - 1} * d.stride + at.width;
+        if (span > UINT32_MAX) return at;
+        return Access{false, sum.key.b, at.offset, static_cast<uint32_t>(span)};
+      }
+  }
+  return at;
+}
+
+// The facts after `ins`. A repeated load keeps the register that already holds the location,
+// whether or not the load is then removed, so the facts hold for the code before and after.
+void transfer(const Instr& ins, Facts& facts, const std::vector<bc::IndexDesc>& indexes) {
+  const Fact* held = holder(facts, ins);
+  if (held && held->reg == ins.a) return;  // it writes the value its register already has
+  if (clobbersMemory(ins.op)) facts.clear();
+  if (const std::optional<Access> store = storeOf(ins)) {
+    // Regions are resolved with all facts still there, then the clobbered loads go.
+    const Access to = region(*store, facts, indexes);
+    Facts kept;
+    for (const Fact& f : facts) {
+      const std::optional<Access> at = loadOf(f.key);
+      if (!at || !to.mayClobber(region(*at, facts, indexes))) kept.push_back(f);
+    }
+    facts = std::move(kept);
+  }
+  if (const std::optional<Written> w = written(ins)) {
+    const auto hit = [&](uint16_t reg) { return reg == w->reg || (w->andAbove && reg > w->reg); };
+    std::erase_if(facts, [&](const Fact& f) {
+      if (hit(f.reg)) return true;
+      if (bc::opFormat(f.key.op) != bc::Format::ABC) return false;
+      const bc::OperandRoles roles = bc::operandRoles(f.key.op);
+      return (roles.b == bc::Operand::Reg && hit(f.key.b)) || (roles.c == bc::Operand::Reg && hit(f.key.c));
+    });
+  }
+  // A result that overwrote one of its own operands is no longer what the operands compute.
+  if (!held && (pure(ins.op) || loadOf(ins)) && !readsBC(ins, ins.a)) facts.push_back({ins, ins.a});
+}
+
+Facts meet(const Facts& a, const Facts& b) {
+  Facts out;
+  for (const Fact& f : a)
+    if (std::find(b.begin(), b.end(), f) != b.end()) out.push_back(f);
+  return out;
+}
+
+class Forwarder {
+ public:
+  Forwarder(std::vector<Instr>& code, uint32_t begin, uint32_t end, uint16_t numRegs,
+            const std::vector<bc::IndexDesc>& indexes)
+      : code_(code), indexes_(indexes), begin_(begin), n_(end - begin), numRegs_(numRegs), live_(code, begin, end, numRegs),
+        leader_(n_, false), removed_(n_, false) {}
+
+  std::vector<bool> run() {
+    findBlocks();
+    const std::vector<std::optional<Facts>> in = blockEntryFacts();
+    for (uint32_t k = 0; k < n_; ++k) {
+      if (!leader_[k] || !in[k]) continue;
+      Facts facts = *in[k];
+      for (uint32_t j = k; j < n_ && (j == k || !leader_[j]); ++j) {
+        const Instr& ins = code_[begin_ + j];
+        // A removed instruction changes nothing, so the facts about its register stay (the
+        // entry facts of the next blocks, computed on the code as it was, are fewer: still true).
+        if (const Fact* held = holder(facts, ins)) removed_[j] = rename(j, held->reg);
+        if (!removed_[j]) transfer(ins, facts, indexes_);
+      }
+    }
+    return removed_;
+  }
+
+ private:
+  bool endsBlock(uint32_t k) const {
+    const Op op = code_[begin_ + k].op;
+    return bc::isBranch(op) || op == Op::RET || op == Op::TRAP;
+  }
+  bool fallsThrough(uint32_t k) const {
+    const Op op = code_[begin_ + k].op;
+    return op != Op::JMP && op != Op::RET && op != Op::TRAP && k + 1 < n_;
+  }
+  uint32_t targetOf(uint32_t k) const {
+    return static_cast<uint32_t>(bc::branchTarget(begin_ + k, code_[begin_ + k]) - begin_);
+  }
+
+  void findBlocks() {
+    leader_[0] = true;
+    for (uint32_t k = 0; k < n_; ++k) {
+      if (bc::isBranch(code_[begin_ + k].op)) leader_[targetOf(k)] = true;
+      if (endsBlock(k) && k + 1 < n_) leader_[k + 1] = true;
+    }
+  }
+
+  // The facts on entry of each block (indexed by its leader), nullopt where none reaches it:
+  // forward dataflow from the POU's entry with nothing known, meeting by intersection.
+  std::vector<std::optional<Facts>> blockEntryFacts() const {
+    std::vector<std::optional<Facts>> in(n_);
+    in[0] = Facts{};
+    const auto flowInto = [&](uint32_t to, const Facts& facts, bool& changed) {
+      std::optional<Facts> next = in[to] ? meet(*in[to], facts) : facts;
+      if (to == 0) next = Facts{};
+      if (next != in[to]) {
+        in[to] = std::move(next);
+        changed = true;
+      }
+    };
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (uint32_t k = 0; k < n_; ++k) {
+        if (!leader_[k] || !in[k]) continue;
+        Facts facts = *in[k];
+        uint32_t j = k;
+        for (;; ++j) {
+          transfer(code_[begin_ + j], facts, indexes_);
+          if (endsBlock(j) || j + 1 == n_ || leader_[j + 1]) break;
+        }
+        if (bc::isBranch(code_[begin_ + j].op)) flowInto(targetOf(j), facts, changed);
+        if (fallsThrough(j)) flowInto(j + 1, facts, changed);
+      }
+    }
+    return in;
+  }
+
+  // Replaces the load at k (into rY) by `holding` in the reads that follow, up to the next write
+  // of rY; false (nothing changed) if rY is read by a call window, after `holding` is written,
+  // or after the end of the block.
+  bool rename(uint32_t k, uint16_t holding) {
+    const uint16_t y = code_[begin_ + k].a;
+    if (y == holding) return true;
+    std::vector<uint16_t*> uses;
+    bool clobbered = false;
+    for (uint32_t j = k + 1; j < n_; ++j) {
+      if (leader_[j]) {  // fell through into the next block
+        if (live_.liveBefore(begin_ + j, y)) return false;
+        break;
+      }
+      Instr& ins = code_[begin_ + j];
+      const Reads reads = readsOf(ins, numRegs_);
+      if (y >= reads.windowFrom && y < reads.windowTo) return false;
+      for (int i = 0; i < reads.count; ++i)
+        if (*reads.regs[i] == y) {
+          if (clobbered) return false;
+          uses.push_back(reads.regs[i]);
+        }
+      if (writes(ins, y)) break;
+      clobbered |= writes(ins, holding);
+      if (endsBlock(j)) {
+        if (bc::isBranch(ins.op) && live_.liveBefore(begin_ + targetOf(j), y)) return false;
+        if (fallsThrough(j) && live_.liveBefore(begin_ + j + 1, y)) return false;
+        break;
+      }
+    }
+    for (uint16_t* use : uses) *use = holding;
+    return true;
+  }
+
+  std::vector<Instr>& code_;
+  const std::vector<bc::IndexDesc>& indexes_;
+  uint32_t begin_, n_;
+  uint16_t numRegs_;
+  Liveness live_;
+  std::vector<bool> leader_;
+  std::vector<bool> removed_;
+};
+
+}  // namespace
+
+std::vector<bool> forwardLoads(std::vector<Instr>& code, uint32_t begin, uint32_t end, uint16_t numRegs,
+                               const std::vector<bc::IndexDesc>& indexes) {
+  return Forwarder(code, begin, end, numRegs, indexes).run();
+}
+
+}  // namespace virtcom::st

@@ -1,0 +1,22 @@
+#pragma once
+// Redundant-load elimination over the bytecode of one POU, a peephole pass (peephole.hpp).
+#include <cstdint>
+#include <vector>
+
+#include "bytecode/instruction.hpp"
+#include "bytecode/module.hpp"
+
+namespace virtcom::st {
+
+// Finds the loads in code[begin, end) whose value a register already holds on every path that
+// reaches them (the same load from the same base register and offset, with no store that may
+// overlap, no call and no write of either register in between), and likewise the pure
+// computations (INDEX, arithmetic, LDI/LDK) on unchanged operands; renames their destination to
+// that register in the instructions that read it before it is written again, and returns which
+// instructions (by index from begin) are now dead and to be removed. A load is kept when its
+// register is still read after its basic block, or the holding register is written before the
+// last read. Branch offsets are left as they are. `indexes` are the module's array shapes (INDEX).
+std::vector<bool> forwardLoads(std::vector<bc::Instr>& code, uint32_t begin, uint32_t end, uint16_t numRegs,
+                               const std::vector<bc::IndexDesc>& indexes);
+
+}  // namespace virtcom::st

@@ -1,0 +1,133 @@
+// The load forwarding pass (src/lang/st/codegen/load_forwarding.cpp, run by optimizePou): which
+// repeated loads are served from the register that already holds the location, and which writes,
+// calls and joins make the next load read memory again. What the code computes is checked by the
+// golden suite on both backends (tests/golden/st/statements/for_reloads.st).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "bytecode/disassembler.hpp"
+#include "lang/st/codegen/peephole.hpp"
+#include "lang/st/compiler.hpp"
+
+namespace virtcom::st {
+namespace {
+
+using bc::Instr;
+using bc::Op;
+
+// A module with one POU of hand-written code (8 registers) and array shapes `indexes`, optimised.
+bc::Module optimised(std::vector<Instr> code, std::vector<bc::IndexDesc> indexes = {}) {
+  bc::Module m;
+  m.code = std::move(code);
+  m.indexes = std::move(indexes);
+  bc::PouInfo p;
+  p.name = "P";
+  p.codeSize = static_cast<uint32_t>(m.code.size());
+  p.numRegs = 8;
+  m.pous.push_back(p);
+  optimizePou(m, 0, 0, 8);
+  return m;
+}
+
+Instr ld(uint16_t into, uint16_t offset) { return Instr::abc(Op::LD_I32, into, 1, offset); }
+const Instr kRet = Instr::abc(Op::RET, 0, 0, 0);
+
+TEST(LoadForwarding, ASecondLoadOfTheSameLocationReadsTheFirstRegister) {
+  const bc::Module m = optimised({ld(2, 0), ld(3, 0), Instr::abc(Op::ADD, 4, 2, 3), Instr::abc(Op::ST_32, 4, 1, 8), kRet});
+  ASSERT_EQ(m.code.size(), 4u);
+  EXPECT_EQ(m.code[1].op, Op::ADD);
+  EXPECT_EQ(m.code[1].b, 2);
+  EXPECT_EQ(m.code[1].c, 2);
+}
+
+TEST(LoadForwarding, AStoreThatMayOverlapMakesTheLoadReadMemory) {
+  const auto between = [](Instr store) {
+    return optimised({ld(2, 0), store, ld(3, 0), Instr::abc(Op::ADD, 4, 2, 3), Instr::abc(Op::ST_32, 4, 1, 8), kRet})
+        .code.size();
+  };
+  EXPECT_EQ(between(Instr::abc(Op::ST_8, 5, 1, 3)), 6u);   // the last byte of the location
+  EXPECT_EQ(between(Instr::abc(Op::ST_32, 5, 6, 0)), 6u);  // another base may point anywhere
+  EXPECT_EQ(between(Instr::abx(Op::STA_32, 5, 64)), 6u);   // so may an absolute address
+  EXPECT_EQ(between(Instr::abc(Op::COPY, 5, 6, 7)), 6u);   // a block copy
+  EXPECT_EQ(between(Instr::abc(Op::ST_32, 5, 1, 4)), 5u);  // next to it: the load goes
+}
+
+TEST(LoadForwarding, ARepeatedComputationReadsTheFirstResult) {
+  const bc::Module m = optimised({Instr::asbx(Op::LDI, 2, 7), Instr::asbx(Op::LDI, 3, 7), Instr::abc(Op::ADD, 4, 2, 3),
+                                  Instr::abc(Op::ST_32, 4, 1, 0), kRet});
+  ASSERT_EQ(m.code.size(), 4u);
+  EXPECT_EQ(m.code[1].b, 2);
+  EXPECT_EQ(m.code[1].c, 2);
+}
+
+TEST(LoadForwarding, AStoreIntoAnArrayElementKeepsWhatIsOutsideTheArray) {
+  // ARRAY[0..3] OF WORD at r1 + 0 (x0: 4 elements of 2 bytes), i at r1 + 10: a[i] := v, then
+  // load the WORD at `offset` again.
+  const auto reloads = [](uint16_t offset) {
+    const Instr ld16 = Instr::abc(Op::LD_U16, 2, 1, offset);
+    Instr again = ld16;
+    again.a = 6;
+    return optimised({ld16, Instr::abc(Op::LD_I16, 3, 1, 10), Instr::abc(Op::INDEX, 4, 3, 0),
+                      Instr::abc(Op::ADD, 5, 1, 4), Instr::abc(Op::ST_16, 2, 5, 0), again,
+                      Instr::abc(Op::ST_16, 6, 1, 12), kRet},
+                     {{0, 4, 2}})
+        .code.size();
+  };
+  EXPECT_EQ(reloads(8), 7u);  // just past the last element: served from r2
+  EXPECT_EQ(reloads(6), 8u);  // the last element: read again
+}
+
+TEST(LoadForwarding, WritingTheHoldingRegisterBeforeTheLastReadKeepsTheLoad) {
+  const bc::Module m = optimised({ld(2, 0), ld(3, 0), Instr::asbx(Op::LDI, 2, 9), Instr::abc(Op::ADD, 4, 3, 2),
+                                  Instr::abc(Op::ST_32, 4, 1, 8), kRet});
+  EXPECT_EQ(m.code.size(), 6u);
+}
+
+TEST(LoadForwarding, ALoadWhoseRegisterIsReadInAnotherBlockStays) {
+  // 0: r2 := x   1: r3 := x   2: JZ r2 -> 4   3: STK   4: ST r3 (r3 read after the block)   5: RET
+  const bc::Module m = optimised({ld(2, 0), ld(3, 0), Instr::asbx(Op::JZ, 2, 1), Instr::abc(Op::STK_32, 1, 1, 8),
+                                  Instr::abc(Op::ST_32, 3, 1, 4), kRet});
+  EXPECT_EQ(m.code.size(), 6u);
+}
+
+TEST(LoadForwarding, AJoinKnowsOnlyWhatEveryPathKnows) {
+  // 0: r2 := x   1: JZ r3 -> 3   2: <store>   3: r4 := x   4: ST r4   5: RET
+  const auto after = [](Instr arm) {
+    return optimised({ld(2, 0), Instr::asbx(Op::JZ, 3, 1), arm, ld(4, 0), Instr::abc(Op::ST_32, 4, 1, 8), kRet})
+        .code.size();
+  };
+  EXPECT_EQ(after(Instr::abc(Op::STK_32, 1, 1, 0)), 6u);  // one arm writes x
+  EXPECT_EQ(after(Instr::abc(Op::STK_32, 1, 1, 4)), 5u);  // neither does
+}
+
+// The listing of MAIN of a program whose body is `body` over DINT x, y, u.
+std::string mainListing(const std::string& body) {
+  SourceManager sources;
+  Diagnostics diags;
+  const std::string text = "PROGRAM MAIN\nVAR x, y, u : DINT; END_VAR\n" + body + "\nEND_PROGRAM\n";
+  auto m = compileProgram({{"main.st", text}}, sources, diags);
+  if (!m) return "compile error: " + diags.render(sources);
+  for (uint32_t p = 0; p < m->pous.size(); ++p)
+    if (m->pous[p].name == "MAIN") return bc::disassemble(*m, p);
+  return "no MAIN";
+}
+
+size_t count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(LoadForwarding, AForLoopReadsItsControlVariableFromARegister) {
+  const std::string l = mainListing("FOR x := 1 TO 10 DO y := y + x; u := u + x * 2; END_FOR");
+  // x (offset 0) is loaded before the first test and after each step, never in the body.
+  EXPECT_EQ(count(l, "LD_I32   r4, r1, 0\n"), 2u) << l;
+  EXPECT_EQ(count(l, ", r1, 0\n"), 3u) << l;  // and stored by the step
+  // The test follows the step: one backward compare-and-branch, no JMP.
+  EXPECT_EQ(count(l, "  JLE_I "), 1u) << l;
+  EXPECT_EQ(count(l, "  JMP "), 0u) << l;
+}
+
+}  // namespace
+}  // namespace virtcom::st

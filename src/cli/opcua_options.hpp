@@ -30,7 +30,7 @@ void addOpcuaServeOptions(CLI::App* cmd, OpcuaServeOptions& o);
 // beforeScan()/afterScan() around every scan. Neither allocates.
 class OpcuaPlcServer {
  public:
-  void beforeScan(plc::Runtime& runtime);
+  void beforeScan(plc::Runtime& runtime, WriteObserver* audit = nullptr);
   void afterScan(plc::Runtime& runtime);
   proto::opcua::Server& server() { return *server_; }
   void stop() { server_->stop(); }

@@ -90,7 +90,7 @@ uint32_t ticks(LoopbackClient& c) {
 TEST(AdsE2e, NpmAdsClientScenario) {
   ASSERT_TRUE(std::filesystem::exists(kClientDir + "/node_modules/ads-client"))
       << "the npm ads-client is missing: run `npm ci --prefix tests/e2e/ads` (make test does)";
-  auto server = startServer();
+  auto server = startServer({"--audit-writes", "each"});
   ASSERT_GT(server->port(), 0) << server->errorOutput();
   std::string command = "cd '" + kClientDir + "' && node check_ads_client.js " + std::to_string(server->port()) + " 2>&1";
   FILE* node = ::popen(command.c_str(), "r");
@@ -102,6 +102,15 @@ TEST(AdsE2e, NpmAdsClientScenario) {
   EXPECT_EQ(status, 0) << output;
   EXPECT_NE(output.find("ads-client checks passed"), std::string::npos) << output;
   EXPECT_EQ(server->stop(), 0) << server->errorOutput();
+  // Every accepted write audited with the client's address and AmsNetId (docs/security.md);
+  // the refused ones (ads_readonly, CONSTANT) are not writes.
+  const std::string log = server->errorOutput();
+  EXPECT_NE(log.find("ads 127.0.0.1:"), std::string::npos) << log;
+  EXPECT_NE(log.find("(AmsNetId "), std::string::npos) << log;
+  EXPECT_NE(log.find(" MAIN.level: "), std::string::npos) << log;
+  EXPECT_NE(log.find(" -> 'hello ads'\n"), std::string::npos) << log;
+  EXPECT_EQ(log.find(" MAIN.serial: "), std::string::npos) << log;
+  EXPECT_EQ(log.find(" MAIN.kMax: "), std::string::npos) << log;
 }
 
 TEST(AdsE2e, AbruptDisconnectsAndGarbageLeaveOthersServed) {

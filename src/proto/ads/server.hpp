@@ -71,7 +71,7 @@ class Server {
   const std::string& discoveryProblem() const { return discoveryProblem_; }
 
   // Scan thread, before a scan: applies every queued write to `live`; returns how many edits.
-  size_t applyPendingWrites(const LiveImage& live);
+  size_t applyPendingWrites(const LiveImage& live, WriteObserver* audit = nullptr);
   // Scan thread, before a scan: a RUN (5) or STOP (6) a client asked for with WriteControl.
   std::optional<uint16_t> takeStateRequest();
   // Scan thread, after a scan: copies the data area into the snapshot and wakes the I/O thread

@@ -113,6 +113,21 @@ TEST(AdsE2e, NpmAdsClientScenario) {
   EXPECT_EQ(log.find(" MAIN.kMax: "), std::string::npos) << log;
 }
 
+// The defaults let 100 client processes of one machine in at once (docs/security.md, Limits):
+// a hundred connections from loopback, all open together, each answered.
+TEST(AdsE2e, AHundredConnectionsAreAllServedWithTheDefaults) {
+  auto server = startServer();
+  ASSERT_GT(server->port(), 0) << server->errorOutput();
+  std::vector<std::unique_ptr<LoopbackClient>> clients;
+  for (int i = 0; i < 100; ++i) {
+    clients.push_back(std::make_unique<LoopbackClient>(server->port()));
+    ASSERT_TRUE(clients.back()->connected()) << i;
+  }
+  for (auto& c : clients) ticks(*c);  // expects the read answered without error
+  EXPECT_EQ(server->errorOutput().find("refused"), std::string::npos) << server->errorOutput();
+  EXPECT_EQ(server->stop(), 0) << server->errorOutput();
+}
+
 TEST(AdsE2e, AbruptDisconnectsAndGarbageLeaveOthersServed) {
   auto server = startServer();
   ASSERT_GT(server->port(), 0) << server->errorOutput();

@@ -112,6 +112,7 @@ void Server::addRoute(const AmsNetId& netId, uint32_t ipv4) {
   if (!ids.empty() && std::find(ids.begin(), ids.end(), netId) == ids.end()) ids.push_back(netId);
   if (!config_.peers.allowed().empty() && !config_.peers.allows(ipv4)) config_.peers.allowed().push_back(net::Ipv4Net{ipv4});
   config_.peers.log("ads: route added for AmsNetId " + formatNetId(netId) + " at " + net::formatIpv4(ipv4));
+  if (config_.onRouteAdded) config_.onRouteAdded(netId, ipv4);
 }
 
 size_t Server::applyPendingWrites(const LiveImage& live, WriteObserver* audit) {

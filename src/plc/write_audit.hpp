@@ -2,7 +2,8 @@
 // The audit of writes from outside (docs/security.md, Audit of external writes): every edit a
 // protocol server's write queue applies at a scan boundary becomes a record naming the time
 // (virtual and wall), the protocol, the peer, the variable written and its old and new value as
-// IEC text. One implementation for ADS, Modbus, OPC UA and the HMI (core/external_write.hpp).
+// IEC text. One implementation for ADS, Modbus and OPC UA (core/external_write.hpp; the HMI is
+// not wired yet).
 // Nothing is allocated or looked up while no external write happens; the records of a batch are
 // formatted (string work) only after it landed.
 #include <array>

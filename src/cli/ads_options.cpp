@@ -1,7 +1,11 @@
 #include "cli/ads_options.hpp"
 
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
+#include "cell/ads_routes.hpp"
 #include "proto/ads/ams.hpp"
 #include "proto/net/endpoint.hpp"
 
@@ -26,6 +30,37 @@ std::string splitAdsAllow(std::string_view text, proto::ads::ServerConfig& confi
   return peers;
 }
 
+// The routes of `--ads-routes FILE` into the lists in use: `config`'s NetIds and `peerList`'s
+// addresses; a route a UDP add route adds is appended to the file. Error text on failure.
+std::string useRoutesFile(const std::string& path, proto::ads::ServerConfig& config, std::string& peerList) {
+  std::string text;
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream content;
+    content << in.rdbuf();
+    if (!in || std::filesystem::is_directory(path, ec)) return "cannot read '" + path + "'";
+    text = content.str();
+  }
+  SourceManager sources;
+  Diagnostics diags;
+  auto routes = cell::parseAdsRoutes(path, text, sources, diags);
+  if (!routes) {
+    std::string rendered = diags.render(sources);
+    while (!rendered.empty() && rendered.back() == '\n') rendered.pop_back();
+    return rendered;
+  }
+  for (const cell::AdsRoute& r : *routes) {
+    config.allowedNetIds.push_back(r.netId);
+    peerList.append(peerList.empty() ? "" : ",").append(proto::net::formatIpv4(r.ipv4));
+  }
+  config.onRouteAdded = [path](const AmsNetId& netId, uint32_t ipv4) {
+    std::string problem = cell::appendAdsRoute(path, {"added-" + proto::net::formatIpv4(ipv4), netId, ipv4});
+    if (!problem.empty()) std::cerr << "ads: --ads-routes: " << problem << "\n";
+  };
+  return "";
+}
+
 }  // namespace
 
 void addAdsServeOptions(CLI::App* cmd, AdsServeOptions& o) {
@@ -38,6 +73,10 @@ void addAdsServeOptions(CLI::App* cmd, AdsServeOptions& o) {
   cmd->add_option("--ads-route-password", o.routePassword,
                   "the password a UDP add route (pyads add_route_to_plc, TwinCAT's Add Route dialog) must carry; without it every "
                   "add route is refused (0x704). An accepted route lets its AmsNetId and address in (see docs/ads.md, Routes)");
+  cmd->add_option("--ads-routes", o.routesFile,
+                  "the ADS route table in a file (YAML: routes: - {name, netid, address}; see docs/ads.md, Routes): its AmsNetIds "
+                  "and addresses are let in, with those of --ads-allow; a route added over UDP with --ads-route-password is "
+                  "appended to it, as TwinCAT keeps StaticRoutes.xml. Created when absent");
   cmd->add_option("--ads-discovery", o.discovery,
                   "UDP port of the ADS discovery service (identify, add route: adstool HOST netid, pyads add_route_to_plc) on the --ads address; 0 picks a free port, 'off' disables it (default 48899)");
 }
@@ -56,9 +95,13 @@ std::expected<std::unique_ptr<proto::ads::PlcServer>, std::string> startAdsServe
     if (!id) return std::unexpected("--ads-netid: " + id.error());
     config.device.netId = *id;
   }
-  const std::string peerList = splitAdsAllow(o.allow, config);
+  std::string peerList = splitAdsAllow(o.allow, config);
   if (!o.allow.empty() && peerList.empty() && config.allowedNetIds.empty())
     return std::unexpected(std::string("--ads-allow: the allow-list names no address"));
+  if (!o.routesFile.empty()) {
+    if (std::string problem = useRoutesFile(o.routesFile, config, peerList); !problem.empty())
+      return std::unexpected("--ads-routes: " + problem);
+  }
   auto policy = peerPolicy(*endpoint, peers, "ads", "--ads", "--ads-allow", peerList, !config.allowedNetIds.empty());
   if (!policy) return std::unexpected(policy.error());
   config.peers = std::move(*policy);

@@ -20,10 +20,12 @@ struct AdsServeOptions {
   bool readOnly = false;
   std::string routePassword;  // --ads-route-password: what a UDP add route must carry; empty: refused
   std::string discovery = "48899";  // --ads-discovery: UDP port of identify / add route, or "off"
+  std::string routesFile;  // --ads-routes: the route table's file (cell/ads_routes.hpp); empty: none
   bool enabled() const { return !listen.empty(); }
 };
 
-// Adds --ads, --ads-netid, --ads-allow, --ads-readonly, --ads-route-password and --ads-discovery to `cmd`.
+// Adds --ads, --ads-netid, --ads-allow, --ads-readonly, --ads-route-password, --ads-discovery and
+// --ads-routes to `cmd`.
 void addAdsServeOptions(CLI::App* cmd, AdsServeOptions& o);
 
 // Checks the options (with the command's peer flags) and starts the server over `module` (which

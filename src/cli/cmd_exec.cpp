@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "cli/ads_options.hpp"
+#include "cli/audit_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "cli/coverage_options.hpp"
@@ -39,6 +40,7 @@ struct ExecOptions {
   std::string modbusAllow;  // --modbus-allow: comma-separated peers; empty: any (loopback only)
   bool modbusReadOnly = false;
   PeerFlags peers;          // --allow-any-peer and the limits, for every server of the command
+  AuditLevel auditWrites = AuditLevel::Summary;  // --audit-writes
   bool modbusWritableInputs = false;  // %IW also as holding registers 8192.. (docs/modbus.md)
   AdsServeOptions ads;
   OpcuaServeOptions opcua;
@@ -80,9 +82,9 @@ void writeTraceRow(std::ostream& out, const bc::Module& m, const uint8_t* memory
 proto::modbus::ImageView modbusView(plc::Runtime& runtime) {
   const bc::Module& m = runtime.module();
   uint8_t* mem = runtime.machine().memory();
-  return {{runtime.inputImage(), m.inputs.size},
-          {mem + m.outputs.address, m.outputs.size},
-          {mem + m.memory.address, m.memory.size}};
+  proto::modbus::ImageView view{{runtime.inputImage(), m.inputs.size}, {mem + m.outputs.address, m.outputs.size}, {mem + m.memory.address, m.memory.size}};
+  view.plcAddresses = {m.inputs.address, m.outputs.address, m.memory.address, 0};
+  return view;
 }
 
 std::expected<std::unique_ptr<proto::modbus::Server>, std::string> startModbus(const ExecOptions& o, plc::Runtime& runtime) {
@@ -220,13 +222,16 @@ ExitCode runExec(const ExecOptions& o) {
     opcua->afterScan(runtime);
     announceOpcuaServer(*opcua);
   }
+  const bool serving = modbus || ads || opcua;
+  auto audit = serving ? makeWriteAudit(o.auditWrites, *module, std::cerr) : nullptr;
   int64_t cycles = o.cycles < 0 ? (forever ? INT64_MAX : 1) : o.cycles;
   ExitCode exitCode = ExitCode::Ok;
   for (int64_t k = 0; k < cycles && !gStopRequested; ++k) {
     int64_t now = runtime.nextTickNs();
-    if (modbus && modbus->applyPendingWrites(modbusView(runtime)) > 0) runtime.inputsTouched();
-    if (ads) ads->beforeScan(runtime);
-    if (opcua) opcua->beforeScan(runtime);
+    if (audit) audit->setVirtualTime(now);
+    if (modbus && modbus->applyPendingWrites(modbusView(runtime), audit.get()) > 0) runtime.inputsTouched();
+    if (ads) ads->beforeScan(runtime, audit.get());
+    if (opcua) opcua->beforeScan(runtime, audit.get());
     bool ok = runtime.tick();
     if (modbus) modbus->publishSnapshot(modbusView(runtime));
     if (ads) ads->afterScan(runtime);
@@ -249,6 +254,7 @@ ExitCode runExec(const ExecOptions& o) {
   if (ads) ads->stop();
   if (opcua) opcua->stop();
   backend.logRun(runtime.tierStats());
+  if (audit) std::cerr << auditSummary(*audit) << "\n";
   if (!o.retainFile.empty() && exitCode == ExitCode::Ok) {
     std::string problem = plc::saveRetainFile(o.retainFile, *module, runtime.machine().memory());
     if (!problem.empty()) {
@@ -301,6 +307,7 @@ void addExecCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   addAdsServeOptions(cmd, o->ads);
   addOpcuaServeOptions(cmd, o->opcua);
   addPeerFlags(cmd, o->peers, true);
+  addAuditOption(cmd, o->auditWrites);
   cmd->add_option("--retain-file", o->retainFile, "warm start: load the RETAIN/PERSISTENT variables from this file after the cold start (if it exists) and save them to it when the run ends without a fault");
   cmd->callback([o, setExit] { setExit(runExec(*o)); });
 }

@@ -18,6 +18,7 @@
 #include <optional>
 
 #include "cli/ads_options.hpp"
+#include "cli/audit_options.hpp"
 #include "cli/opcua_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
@@ -44,6 +45,7 @@ struct ServeOptions {
   std::string modbusAllow;  // --modbus-allow: comma-separated peers; empty: any (loopback only)
   bool modbusReadOnly = false;
   PeerFlags peers;          // --allow-any-peer and the limits, for every server of the command
+  AuditLevel auditWrites = AuditLevel::Summary;  // --audit-writes: ADS and OPC UA writes into the soft PLC
   AdsServeOptions ads;      // the soft PLC over ADS
   OpcuaServeOptions opcua;  // the soft PLC's variables over OPC UA
   HmiServeOptions hmi;      // the web HMI (--http)
@@ -170,6 +172,8 @@ ExitCode serveCell(const ServeOptions& o) {
     options.compiled = backend->compiled();
     options.tierUp = backend->tierUp();
   }
+  // A reset (which would replace the module) is refused while these serve.
+  auto audit = ads || opcua ? makeWriteAudit(o.auditWrites, *cell->module, std::cerr) : nullptr;
   if (ads || opcua) {
     // The first snapshot right after the cold start, then the announcement: a client that
     // connects at once reads the initial values, never an empty image.
@@ -184,8 +188,9 @@ ExitCode serveCell(const ServeOptions& o) {
       }
     };
     options.beforeScan = [&](plc::Runtime& plc) {
-      if (ads) ads->beforeScan(plc);
-      if (opcua) opcua->beforeScan(plc);
+      if (audit) audit->setVirtualTime(plc.nextTickNs());
+      if (ads) ads->beforeScan(plc, audit.get());
+      if (opcua) opcua->beforeScan(plc, audit.get());
     };
     options.afterScan = [&](plc::Runtime& plc) {
       if (ads) ads->afterScan(plc);
@@ -230,6 +235,7 @@ ExitCode serveCell(const ServeOptions& o) {
   if (ads) ads->stop();
   if (opcua) opcua->stop();
   if (hmi) hmi->stop();
+  if (audit) std::cerr << auditSummary(*audit) << "\n";
   const Trace& trace = cell->trace;
   const report::Kpis kpis = report::computeKpis(trace);
   // --quiet drops the table, never the reason a run failed.
@@ -260,6 +266,7 @@ void addServeCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   addAdsServeOptions(cmd, o->ads);
   addOpcuaServeOptions(cmd, o->opcua);
   addPeerFlags(cmd, o->peers, true);
+  addAuditOption(cmd, o->auditWrites);
   addHmiOptions(cmd, o->hmi, "--http");
   cmd->add_option("--speed", o->speed, "pace factor against the wall clock (default 1 = real time)")->check(CLI::PositiveNumber);
   addBackendOption(*cmd, o->backend);

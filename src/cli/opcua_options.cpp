@@ -71,10 +71,10 @@ std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(con
   return s;
 }
 
-void OpcuaPlcServer::beforeScan(plc::Runtime& runtime) {
+void OpcuaPlcServer::beforeScan(plc::Runtime& runtime, WriteObserver* audit) {
   const bc::Module& m = runtime.module();
   proto::opcua::LiveImage live{{runtime.machine().memory(), m.staticSize}, {runtime.inputImage(), m.inputs.size}};
-  if (server_->applyPendingWrites(live) > 0) runtime.inputsTouched();
+  if (server_->applyPendingWrites(live, audit) > 0) runtime.inputsTouched();
 }
 
 void OpcuaPlcServer::afterScan(plc::Runtime& runtime) {

@@ -36,7 +36,7 @@ std::expected<std::vector<proto::opcua::UserAccount>, std::string> readOpcuaUser
 // beforeScan()/afterScan() around every scan. Neither allocates.
 class OpcuaPlcServer {
  public:
-  void beforeScan(plc::Runtime& runtime);
+  void beforeScan(plc::Runtime& runtime, WriteObserver* audit = nullptr);
   void afterScan(plc::Runtime& runtime);
   proto::opcua::Server& server() { return *server_; }
   void stop() { server_->stop(); }

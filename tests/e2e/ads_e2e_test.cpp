@@ -1,11 +1,14 @@
 // End-to-end: `virtcom exec ads/GVL.st ads/MAIN.st --ads 127.0.0.1:0` in its own process, driven
 // by the real npm ads-client (tests/e2e/ads, installed by `make test` with npm ci) and by raw AMS
 // frames for what a well-behaved client never does: abrupt disconnects, garbage, half frames.
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -90,7 +93,7 @@ uint32_t ticks(LoopbackClient& c) {
 TEST(AdsE2e, NpmAdsClientScenario) {
   ASSERT_TRUE(std::filesystem::exists(kClientDir + "/node_modules/ads-client"))
       << "the npm ads-client is missing: run `npm ci --prefix tests/e2e/ads` (make test does)";
-  auto server = startServer();
+  auto server = startServer({"--audit-writes", "each"});
   ASSERT_GT(server->port(), 0) << server->errorOutput();
   std::string command = "cd '" + kClientDir + "' && node check_ads_client.js " + std::to_string(server->port()) + " 2>&1";
   FILE* node = ::popen(command.c_str(), "r");
@@ -101,6 +104,30 @@ TEST(AdsE2e, NpmAdsClientScenario) {
   int status = ::pclose(node);
   EXPECT_EQ(status, 0) << output;
   EXPECT_NE(output.find("ads-client checks passed"), std::string::npos) << output;
+  EXPECT_EQ(server->stop(), 0) << server->errorOutput();
+  // Every accepted write audited with the client's address and AmsNetId (docs/security.md);
+  // the refused ones (ads_readonly, CONSTANT) are not writes.
+  const std::string log = server->errorOutput();
+  EXPECT_NE(log.find("ads 127.0.0.1:"), std::string::npos) << log;
+  EXPECT_NE(log.find("(AmsNetId "), std::string::npos) << log;
+  EXPECT_NE(log.find(" MAIN.level: "), std::string::npos) << log;
+  EXPECT_NE(log.find(" -> 'hello ads'\n"), std::string::npos) << log;
+  EXPECT_EQ(log.find(" MAIN.serial: "), std::string::npos) << log;
+  EXPECT_EQ(log.find(" MAIN.kMax: "), std::string::npos) << log;
+}
+
+// The defaults let 100 client processes of one machine in at once (docs/security.md, Limits):
+// a hundred connections from loopback, all open together, each answered.
+TEST(AdsE2e, AHundredConnectionsAreAllServedWithTheDefaults) {
+  auto server = startServer();
+  ASSERT_GT(server->port(), 0) << server->errorOutput();
+  std::vector<std::unique_ptr<LoopbackClient>> clients;
+  for (int i = 0; i < 100; ++i) {
+    clients.push_back(std::make_unique<LoopbackClient>(server->port()));
+    ASSERT_TRUE(clients.back()->connected()) << i;
+  }
+  for (auto& c : clients) ticks(*c);  // expects the read answered without error
+  EXPECT_EQ(server->errorOutput().find("refused"), std::string::npos) << server->errorOutput();
   EXPECT_EQ(server->stop(), 0) << server->errorOutput();
 }
 
@@ -165,6 +192,39 @@ TEST(AdsE2e, BadOptionsAreUsageErrors) {
     EXPECT_EQ(p.waitExit(), 64);
     EXPECT_NE(p.errorOutput().find("error: " + extra[0] + ": '" + extra[1] + "'"), std::string::npos) << p.errorOutput();
   }
+}
+
+// --ads-routes FILE (docs/ads.md, Routes): its routes are the peers let in; a mistake stops the
+// command at its position.
+TEST(AdsE2e, TheRoutesFileLetsItsRoutesInAndOthersOut) {
+  const auto dir = std::filesystem::temp_directory_path() / ("virtcom_routes_e2e_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string routes = (dir / "routes.yaml").string(), bad = (dir / "bad.yaml").string();
+  std::ofstream(routes) << "routes:\n  - name: tester\n    netid: 10.0.0.1.1.1\n    address: 127.0.0.1\n";
+  std::ofstream(bad) << "routes:\n  - name: tester\n    netid: 10.0.0.1\n    address: 127.0.0.1\n";
+  {
+    auto server = startServer({"--ads-routes", routes});
+    ASSERT_GT(server->port(), 0) << server->errorOutput();
+    LoopbackClient listed(server->port());
+    ticks(listed);  // amsPacket() comes from 10.0.0.1.1.1: on the table, answered
+    std::ofstream(routes) << "routes:\n  - name: other\n    netid: 10.0.0.9.1.1\n    address: 127.0.0.1\n";
+    EXPECT_EQ(server->stop(), 0) << server->errorOutput();
+  }
+  {
+    auto server = startServer({"--ads-routes", routes});
+    ASSERT_GT(server->port(), 0) << server->errorOutput();
+    LoopbackClient unlisted(server->port());
+    EXPECT_TRUE(unlisted.send(byName(0xF004, "MAIN.ticks", 4)));
+    EXPECT_TRUE(unlisted.closedByServer());  // 10.0.0.1.1.1 has no route any more
+    EXPECT_EQ(server->stop(), 0) << server->errorOutput();
+  }
+  ServerProcess p(kExe, {"exec", "ads/GVL.st", "ads/MAIN.st", "--ads", "127.0.0.1:0", "--ads-routes", bad}, kDataDir, "ads: serving on ");
+  EXPECT_EQ(p.port(), 0);
+  EXPECT_EQ(p.waitExit(), 64);
+  EXPECT_NE(p.errorOutput().find("error: --ads-routes: " + bad + ":3:12: error[C010]: 'netid': '10.0.0.1' is not an AmsNetId"),
+            std::string::npos)
+      << p.errorOutput();
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

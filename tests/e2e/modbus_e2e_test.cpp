@@ -182,6 +182,29 @@ TEST_F(ModbusReadOnlyE2e, WritesAreRefusedWithIllegalFunctionAndReadsWork) {
   EXPECT_EQ(errno, EMBXILFUN);
 }
 
+// exec --audit-writes each: every write of a client on stderr with its peer, the variable (or the
+// IEC address where none is declared) and the old and new value; the count at the end.
+class ModbusAuditE2e : public ModbusE2e {
+ protected:
+  std::vector<std::string> execArgs() const override {
+    return {"exec", "modbus_io.st", "--modbus", "127.0.0.1:0", "--audit-writes", "each"};
+  }
+};
+
+TEST_F(ModbusAuditE2e, EachWriteIsLoggedWithPeerVariableAndValues) {
+  modbus_t* ctx = connect();
+  ASSERT_NE(ctx, nullptr) << modbus_strerror(errno);
+  ASSERT_EQ(modbus_write_register(ctx, kSetpointRegister, 21), 1) << modbus_strerror(errno);
+  EXPECT_TRUE(plc_->waitFor("modbus 127.0.0.1:")) << plc_->errorOutput();
+  EXPECT_TRUE(plc_->waitFor(" MAIN.setpoint (%MW0): 0 -> 21\n")) << plc_->errorOutput();
+  ASSERT_EQ(modbus_write_bit(ctx, 8, 1), 1);
+  EXPECT_TRUE(plc_->waitFor(" %QX1.0: FALSE -> TRUE\n")) << plc_->errorOutput();
+  EXPECT_EQ(plc_->stop(), 0);
+  port_ = 0;
+  EXPECT_NE(plc_->errorOutput().find("audit: 2 external writes (ads 0, modbus 2, opcua 0, http 0)"), std::string::npos)
+      << plc_->errorOutput();
+}
+
 // exec --modbus-allow without this machine: the loopback client is closed at once, and the
 // refusal logged with the peer and the reason (docs/security.md).
 class ModbusAllowListE2e : public ModbusE2e {

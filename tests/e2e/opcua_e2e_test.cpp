@@ -70,13 +70,22 @@ std::string typeOf(const Bytes& m) { return m.size() >= 3 ? std::string(m.begin(
 TEST(OpcuaE2e, NodeOpcuaClientScenario) {
   ASSERT_TRUE(std::filesystem::exists(kClientDir + "/node_modules/node-opcua-client"))
       << "the npm node-opcua-client is missing: run `npm ci --prefix tests/e2e/opcua` (make test does)";
-  auto server = startServer();
+  auto server = startServer({"--audit-writes", "each"});
   ASSERT_GT(server->port(), 0) << server->errorOutput();
   std::string output;
   int status = virtcom::e2e::shell("cd '" + kClientDir + "' && node check_opcua_client.js " + std::to_string(server->port()), output);
   EXPECT_EQ(status, 0) << output;
   EXPECT_NE(output.find("ok: "), std::string::npos) << output;
   EXPECT_EQ(server->stop(), 0) << server->errorOutput();
+  // Every accepted write audited with the client's address (docs/security.md), the members by name.
+  const std::string log = server->errorOutput();
+  EXPECT_NE(log.find("opcua 127.0.0.1:"), std::string::npos) << log;
+  EXPECT_NE(log.find(" MAIN.level: "), std::string::npos) << log;
+  EXPECT_NE(log.find(" MAIN.point.y: "), std::string::npos) << log;
+  EXPECT_NE(log.find(" -> -2.5\n"), std::string::npos) << log;
+  EXPECT_NE(log.find(" -> 'hello ua'\n"), std::string::npos) << log;
+  EXPECT_NE(log.find("audit: "), std::string::npos) << log;
+  EXPECT_EQ(log.find("external writes (ads 0, modbus 0, opcua 0"), std::string::npos) << log;
 }
 
 TEST(OpcuaE2e, GarbageHalfMessagesAndAbruptDisconnectsLeaveOthersServed) {

@@ -112,13 +112,14 @@ void Server::addRoute(const AmsNetId& netId, uint32_t ipv4) {
   if (!ids.empty() && std::find(ids.begin(), ids.end(), netId) == ids.end()) ids.push_back(netId);
   if (!config_.peers.allowed().empty() && !config_.peers.allows(ipv4)) config_.peers.allowed().push_back(net::Ipv4Net{ipv4});
   config_.peers.log("ads: route added for AmsNetId " + formatNetId(netId) + " at " + net::formatIpv4(ipv4));
+  if (config_.onRouteAdded) config_.onRouteAdded(netId, ipv4);
 }
 
-size_t Server::applyPendingWrites(const LiveImage& live) {
+size_t Server::applyPendingWrites(const LiveImage& live, WriteObserver* audit) {
   std::lock_guard lock(mutex_);
   WriteQueue& q = device_.pendingWrites();
   const size_t n = q.size();
-  if (n) q.applyTo(live.data, device_.table().layout().inputs, live.inputImage);
+  if (n) q.applyTo(live.data, device_.table().layout().inputs, live.inputImage, audit);
   q.clear();
   return n;
 }
@@ -215,9 +216,11 @@ void Server::run() {
         int fd = io_.acceptClient(config_.peers, clients.size(), [&](uint32_t ip) {
           return static_cast<size_t>(std::ranges::count_if(clients, [ip](const auto& c) { return c->peer == ip; }));
         }, peer);
-        if (fd >= 0)
+        if (fd >= 0) {
           clients.push_back(std::make_unique<Connection>(Connection{
               fd, peer, net::RequestBudget(config_.peers.limits().requestsPerSecond), Session(device_, config_.allowedNetIds), {}, {}}));
+          clients.back()->session.setPeer(peer, net::ServerThread::peerPort(fd));
+        }
       }
       connections_.store(clients.size());
     }

@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cstdint>
 #include <expected>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -46,6 +47,9 @@ struct ServerConfig {
   // refused (0x704). An accepted one adds its NetId to allowedNetIds and the sender's address to
   // the peers' allow-list, when those lists are in use (docs/ads.md, Routes).
   std::string routePassword;
+  // Called on the I/O thread for each route a UDP add route adds (the CLI persists it in the
+  // --ads-routes file, as TwinCAT does in StaticRoutes.xml); may be empty.
+  std::function<void(const AmsNetId& netId, uint32_t ipv4)> onRouteAdded;
 };
 
 // The scan thread's memory: the data area the symbol table describes, and the external input
@@ -71,7 +75,7 @@ class Server {
   const std::string& discoveryProblem() const { return discoveryProblem_; }
 
   // Scan thread, before a scan: applies every queued write to `live`; returns how many edits.
-  size_t applyPendingWrites(const LiveImage& live);
+  size_t applyPendingWrites(const LiveImage& live, WriteObserver* audit = nullptr);
   // Scan thread, before a scan: a RUN (5) or STOP (6) a client asked for with WriteControl.
   std::optional<uint16_t> takeStateRequest();
   // Scan thread, after a scan: copies the data area into the snapshot and wakes the I/O thread

@@ -80,6 +80,9 @@ void Session::answerPacket(const AmsHeader& h, std::span<const uint8_t> data, st
   const auto command = static_cast<Command>(h.commandId);
   currentClient_ = h.source;
   currentServer_ = h.target;
+  writer_.hasNetId = true;
+  writer_.netId = h.source.netId;
+  device_.pendingWrites().setWriter(writer_);
   reply_.clear();
   LittleEndianWriter(reply_).u32(0);  // result, patched below
   AdsError result = !withinRate                          ? AdsError::DeviceBusy

@@ -21,6 +21,11 @@ class Session {
  public:
   // `allowedNetIds` empty: any source NetId (no route check on localhost: docs/ads.md, Routes).
   explicit Session(Device& device, std::vector<AmsNetId> allowedNetIds = {});
+  // The TCP peer this session answers (for the write audit; the AmsNetId comes with each packet).
+  void setPeer(uint32_t ipv4, uint16_t port) {
+    writer_.ipv4 = ipv4;
+    writer_.port = port;
+  }
 
   // Answers one complete frame (as scanFrame found it), appending the response to `out`.
   // Returns false when the connection must close: AMS/TCP port close, or a source NetId that
@@ -81,6 +86,7 @@ class Session {
   std::vector<Notification> notifications_;
   uint32_t nextNotificationHandle_ = 1;
   AmsAddress currentClient_, currentServer_;  // addresses of the request being answered
+  ExternalWriter writer_{WriteProtocol::Ads};   // the peer, as its writes are audited
   std::optional<AmsAddress> registered_;       // the AMS port registered by this connection
   std::vector<uint8_t> reply_, scratch_, value_;
 };

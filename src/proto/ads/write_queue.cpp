@@ -14,7 +14,7 @@ bool WriteQueue::hasRoom(size_t dataBytes) const {
 }
 
 void WriteQueue::push(uint32_t offset, std::span<const uint8_t> data, uint8_t bitMask) {
-  edits_.push_back({offset, static_cast<uint32_t>(data.size()), static_cast<uint32_t>(data_.size()), bitMask});
+  edits_.push_back({offset, static_cast<uint32_t>(data.size()), static_cast<uint32_t>(data_.size()), bitMask, writer_});
   data_.insert(data_.end(), data.begin(), data.end());
 }
 
@@ -29,12 +29,14 @@ void WriteQueue::applyOne(const Edit& e, const uint8_t* data, std::span<uint8_t>
   }
 }
 
-void WriteQueue::applyTo(std::span<uint8_t> image, ByteRange mirror, std::span<uint8_t> mirrorImage) const {
+void WriteQueue::applyTo(std::span<uint8_t> image, ByteRange mirror, std::span<uint8_t> mirrorImage, WriteObserver* audit) const {
   auto mirrored = mirrorImage.first(std::min<size_t>(mirror.size, mirrorImage.size()));
   for (const Edit& e : edits_) {
+    if (audit) audit->beforeEdit(e.writer, image, 0, e.offset, e.size, e.bitMask);
     applyOne(e, data_.data() + e.dataPos, image, 0);
     if (!mirrored.empty()) applyOne(e, data_.data() + e.dataPos, mirrored, mirror.offset);
   }
+  if (audit && !edits_.empty()) audit->endEdits();
 }
 
 void WriteQueue::clear() {

@@ -246,6 +246,18 @@ void applyEdit(const ByteEdit& e, const ImageView& image) {
   bytes[e.offset] = static_cast<uint8_t>((bytes[e.offset] & ~e.mask) | (e.value & e.mask));
 }
 
+void EditQueue::applyTo(const ImageView& image, WriteObserver* audit) const {
+  for (size_t i = 0; i < edits_.size(); ++i) {
+    const ByteEdit& e = edits_[i];
+    if (audit) {
+      const uint8_t bits = e.mask == 0xff ? 0 : e.mask;
+      audit->beforeEdit(writers_[i], image.bytes(e.area), image.plcAddresses[static_cast<size_t>(e.area)], e.offset, 1, bits);
+    }
+    applyEdit(e, image);
+  }
+  if (audit && !edits_.empty()) audit->endEdits();
+}
+
 size_t handlePdu(std::span<const uint8_t> request, const ImageView& image, EditQueue& edits,
                  std::span<uint8_t, kMaxPduSize> response) {
   BigEndianReader in(request);

@@ -22,6 +22,8 @@
 #include <span>
 #include <vector>
 
+#include "core/external_write.hpp"
+
 namespace virtcom::proto::modbus {
 
 // MODBUS Application Protocol V1.1b3 section 4.1: a PDU is at most 253 bytes.
@@ -61,6 +63,9 @@ struct ImageView {
   std::span<const uint8_t> readOnlyCoils = {}, readOnlyHolding = {};  // Layout::Tables: bit per coil/register
   bool writableInputs = false;  // Layout::OpenPlc: %IW also as holding registers from kInputHoldingBase
   bool readOnly = false;        // every writing function refused with exception 01 (--modbus-readonly)
+  // Where each area (by Area) lies in the PLC's data area: the write audit names the variables
+  // written by it (Layout::OpenPlc; the input image stands for the %I area).
+  std::array<uint32_t, 4> plcAddresses{};
   std::span<uint8_t> bytes(Area a) const {
     switch (a) {
       case Area::Inputs: return inputs;
@@ -82,19 +87,34 @@ struct ByteEdit {
 // Applies the edit if it lies inside the view (edits are made against views of the same sizes).
 void applyEdit(const ByteEdit& e, const ImageView& image);
 
-// A bounded list of byte edits. Allocates only in the constructor: push never allocates, so it
-// can be filled and drained on the scan path.
+// A bounded list of byte edits, each with the client that made it (setWriter, before a request
+// is answered). Allocates only in the constructor: push never allocates, so it can be filled and
+// drained on the scan path.
 class EditQueue {
  public:
-  explicit EditQueue(size_t capacity) { edits_.reserve(capacity); }
+  explicit EditQueue(size_t capacity) {
+    edits_.reserve(capacity);
+    writers_.reserve(capacity);
+  }
   bool hasRoom(size_t n) const { return edits_.capacity() - edits_.size() >= n; }
+  void setWriter(const ExternalWriter& w) { writer_ = w; }
   // Precondition: hasRoom(1).
-  void push(const ByteEdit& e) { edits_.push_back(e); }
+  void push(const ByteEdit& e) {
+    edits_.push_back(e);
+    writers_.push_back(writer_);
+  }
   std::span<const ByteEdit> edits() const { return edits_; }
-  void clear() { edits_.clear(); }
+  // Applies every edit to `image` in arrival order, each reported to `audit` first (if given).
+  void applyTo(const ImageView& image, WriteObserver* audit) const;
+  void clear() {
+    edits_.clear();
+    writers_.clear();
+  }
 
  private:
   std::vector<ByteEdit> edits_;
+  std::vector<ExternalWriter> writers_;
+  ExternalWriter writer_{WriteProtocol::Modbus};
 };
 
 // Answers one request PDU (function code + data). Reads come from `image`; a write is checked

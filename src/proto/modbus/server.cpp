@@ -26,6 +26,7 @@ struct Connection {
   net::RequestBudget budget;
   std::vector<uint8_t> rx;  // received, not yet a whole frame
   std::vector<uint8_t> tx;  // responses not yet sent
+  ExternalWriter writer;    // who its writes are audited as
 };
 
 // Exception 06 (server busy) to `frame`, a request beyond the connection's request rate.
@@ -55,7 +56,7 @@ bool receive(Connection& c, Answer&& answer) {
     if (scan.status == FrameStatus::Malformed) return false;
     if (scan.status == FrameStatus::NeedMore) break;
     const bool withinRate = c.budget.take(monotonicNowNs());
-    size_t size = withinRate ? answer(rest.first(scan.size), response) : answerBusy(rest.first(scan.size), response);
+    size_t size = withinRate ? answer(c, rest.first(scan.size), response) : answerBusy(rest.first(scan.size), response);
     c.tx.insert(c.tx.end(), response.begin(), response.begin() + static_cast<ptrdiff_t>(size));
     used += scan.size;
   }
@@ -97,11 +98,10 @@ Server::~Server() { stop(); }
 
 void Server::stop() { io_.stop(); }
 
-size_t Server::applyPendingWrites(const ImageView& live) {
+size_t Server::applyPendingWrites(const ImageView& live, WriteObserver* audit) {
   std::lock_guard lock(mutex_);
-  auto edits = pending_.edits();
-  for (const ByteEdit& e : edits) applyEdit(e, live);
-  size_t n = edits.size();
+  pending_.applyTo(live, audit);
+  size_t n = pending_.edits().size();
   pending_.clear();
   return n;
 }
@@ -118,8 +118,9 @@ void Server::publishSnapshot(const ImageView& live) {
 void Server::run() {
   std::vector<Connection> clients;
   std::vector<pollfd> fds;
-  auto answer = [this](std::span<const uint8_t> frame, std::array<uint8_t, kMaxAduSize>& response) {
+  auto answer = [this](const Connection& c, std::span<const uint8_t> frame, std::array<uint8_t, kMaxAduSize>& response) {
     std::lock_guard lock(mutex_);
+    pending_.setWriter(c.writer);
     return handleFrame(frame, snapshot_, pending_, response);
   };
   try {
@@ -155,7 +156,9 @@ void Server::run() {
         int fd = io_.acceptClient(config_.peers, clients.size(), [&](uint32_t ip) {
           return static_cast<size_t>(std::ranges::count(clients, ip, &Connection::peer));
         }, peer);
-        if (fd >= 0) clients.push_back(Connection{fd, peer, net::RequestBudget(config_.peers.limits().requestsPerSecond), {}, {}});
+        if (fd >= 0)
+          clients.push_back(Connection{fd, peer, net::RequestBudget(config_.peers.limits().requestsPerSecond), {}, {},
+                                       ExternalWriter{WriteProtocol::Modbus, peer, net::ServerThread::peerPort(fd)}});
       }
     }
   } catch (const std::bad_alloc&) {

@@ -57,9 +57,10 @@ class Server {
   // The bound endpoint (the real port when 0 was asked for).
   Endpoint endpoint() const { return io_.bound(); }
 
-  // Scan thread, between scans: applies every queued write to `live` and empties the queue.
-  // Returns the number of byte edits applied. No allocation; locks only to copy.
-  size_t applyPendingWrites(const ImageView& live);
+  // Scan thread, between scans: applies every queued write to `live` and empties the queue,
+  // each edit reported to `audit` (if given). Returns the number of byte edits applied. No
+  // allocation (but the audit's, when there were writes); locks only to copy.
+  size_t applyPendingWrites(const ImageView& live, WriteObserver* audit = nullptr);
   // Scan thread, after a scan: copies `live` into the snapshot requests are answered from, then
   // re-applies writes still queued so a client reads back what it wrote. No allocation.
   void publishSnapshot(const ImageView& live);

@@ -67,6 +67,13 @@ int ServerThread::acceptClient(const PeerPolicy& policy, size_t open, const std:
   return fd;
 }
 
+uint16_t ServerThread::peerPort(int fd) {
+  sockaddr_in addr{};
+  socklen_t len = sizeof addr;
+  if (::getpeername(fd, reinterpret_cast<sockaddr*>(&addr), &len) != 0 || addr.sin_family != AF_INET) return 0;
+  return ntohs(addr.sin_port);
+}
+
 void ServerThread::stop() {
   if (!thread_.joinable()) return;
   wake(kWakeStop);

@@ -35,6 +35,8 @@ class ServerThread {
   // `peer`, or -1 if there was none or `policy` refused it (closed at once, logged) with `open`
   // connections open, openFrom(peer) of them from that address.
   int acceptClient(const PeerPolicy& policy, size_t open, const std::function<size_t(uint32_t)>& openFrom, uint32_t& peer);
+  // The peer's TCP port of an accepted connection (0 if the socket has none): audit records name it.
+  static uint16_t peerPort(int fd);
   // Wakes the loop with kWakeStop and joins the I/O thread. Idempotent.
   void stop();
 

@@ -29,6 +29,7 @@ struct Connection {
   Channel channel;
   std::vector<uint8_t> rx, tx;
   bool closing = false;  // answered; closed once tx is sent
+  ExternalWriter writer;  // who its writes are audited as
 };
 
 // Sends what the socket takes. False: close the connection.
@@ -60,11 +61,11 @@ std::string Server::endpointUrl() {
   return core_.endpointUrl();
 }
 
-size_t Server::applyPendingWrites(const LiveImage& live) {
+size_t Server::applyPendingWrites(const LiveImage& live, WriteObserver* audit) {
   std::lock_guard lock(mutex_);
   ads::WriteQueue& q = core_.pendingWrites();
   const size_t n = q.size();
-  if (n) q.applyTo(live.data, table_.layout().inputs, live.inputImage);
+  if (n) q.applyTo(live.data, table_.layout().inputs, live.inputImage, audit);
   q.clear();
   return n;
 }
@@ -87,6 +88,7 @@ void Server::run() {
     c.rx.insert(c.rx.end(), chunk.begin(), chunk.begin() + n);
     size_t used = 0;
     std::lock_guard lock(mutex_);
+    core_.pendingWrites().setWriter(c.writer);
     while (!c.closing) {
       auto rest = std::span<const uint8_t>(c.rx).subspan(used);
       FrameScan scan = scanFrame(rest, maxFrame);
@@ -147,7 +149,9 @@ void Server::run() {
         int fd = io_.acceptClient(config_.peers, clients.size(), [&](uint32_t ip) {
           return static_cast<size_t>(std::ranges::count_if(clients, [ip](const auto& c) { return c->peer == ip; }));
         }, peer);
-        if (fd >= 0) clients.push_back(std::make_unique<Connection>(Connection{fd, peer, Channel(core_), {}, {}, false}));
+        if (fd >= 0)
+          clients.push_back(std::make_unique<Connection>(Connection{
+              fd, peer, Channel(core_), {}, {}, false, ExternalWriter{WriteProtocol::OpcUa, peer, net::ServerThread::peerPort(fd)}}));
       }
       connections_.store(clients.size());
     }

@@ -42,7 +42,7 @@ class Server {
   const ServerConfig& config() const { return config_; }
 
   // Scan thread, before a scan: applies every queued write to `live`; returns how many edits.
-  size_t applyPendingWrites(const LiveImage& live);
+  size_t applyPendingWrites(const LiveImage& live, WriteObserver* audit = nullptr);
   // Scan thread, after a scan: copies the data area into the snapshot.
   void publishSnapshot(std::span<const uint8_t> data);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <unordered_set>
 
+#include "bytecode/variables.hpp"
 #include "core/ascii.hpp"
 #include "proto/ads/index_group.hpp"
 
@@ -177,29 +178,11 @@ class Builder {
   std::unordered_set<std::string> seen_;
 };
 
-bool isProgramInstance(const bc::Module& m, const bc::Symbol& s) {
-  return std::any_of(m.programs.begin(), m.programs.end(), [&](const bc::ProgramInstance& p) { return iequalsAscii(p.name, s.name); });
-}
-
 }  // namespace
 
 SymbolTable buildSymbolTable(const bc::Module& m) {
   Builder b(m);
-  for (const bc::Symbol& s : m.symbols)
-    if (!isProgramInstance(m, s)) b.variable(s.name, s.type, s.address, s.bit, s.readOnly);
-  for (const bc::ProgramInstance& p : m.programs) {
-    if (p.pou >= m.pous.size() || m.pous[p.pou].instanceType >= m.types.size()) continue;
-    for (const bc::Field& f : m.types[m.pous[p.pou].instanceType].fields) {
-      if (f.hidden) continue;
-      uint32_t address = f.absolute ? f.offset : p.address + f.offset;
-      int bit = -1;
-      if (f.bit >= 0) {
-        address += static_cast<uint32_t>(f.bit) / 8;
-        bit = f.bit % 8;
-      }
-      b.variable(p.name + "." + f.name, f.type, address, bit, f.readOnly);
-    }
-  }
+  for (const bc::NamedVar& v : bc::listVariables(m)) b.variable(v.name, v.ref.type, v.ref.address, v.ref.bit, v.ref.readOnly);
   MemoryLayout layout;
   layout.dataSize = m.staticSize;
   layout.inputs = {m.inputs.address, m.inputs.size};

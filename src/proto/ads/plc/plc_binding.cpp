@@ -13,14 +13,14 @@ uint16_t adsStateOf(plc::PlcState s) {
   return kAdsStateError;
 }
 
-void beforeScan(Server& server, plc::Runtime& runtime) {
+void beforeScan(Server& server, plc::Runtime& runtime, WriteObserver* audit) {
   if (auto state = server.takeStateRequest()) {
     if (*state == kAdsStateRun) runtime.start();
     else runtime.stop();
   }
   const bc::Module& m = runtime.module();
   LiveImage live{{runtime.machine().memory(), m.staticSize}, {runtime.inputImage(), m.inputs.size}};
-  if (server.applyPendingWrites(live) > 0) runtime.inputsTouched();
+  if (server.applyPendingWrites(live, audit) > 0) runtime.inputsTouched();
 }
 
 void afterScan(Server& server, plc::Runtime& runtime) {

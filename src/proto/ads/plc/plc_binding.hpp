@@ -13,7 +13,8 @@ namespace virtcom::proto::ads {
 
 // Before a scan: applies a client's RUN/STOP and every queued write (located inputs also go to
 // the external input image, so the scan's input copy keeps them). No allocation.
-void beforeScan(Server& server, plc::Runtime& runtime);
+// Each write is reported to `audit` (if given; plc/write_audit.hpp).
+void beforeScan(Server& server, plc::Runtime& runtime, WriteObserver* audit = nullptr);
 // After a scan: publishes the memory image and the PLC state to the server. No allocation.
 void afterScan(Server& server, plc::Runtime& runtime);
 
@@ -27,7 +28,7 @@ class PlcServer {
   // Builds the symbol table of `module` (which must outlive the server) and starts the server.
   static std::expected<std::unique_ptr<PlcServer>, std::string> start(const ServerConfig& config, const bc::Module& module);
 
-  void beforeScan(plc::Runtime& runtime) { ads::beforeScan(*server_, runtime); }
+  void beforeScan(plc::Runtime& runtime, WriteObserver* audit = nullptr) { ads::beforeScan(*server_, runtime, audit); }
   void afterScan(plc::Runtime& runtime) { ads::afterScan(*server_, runtime); }
   Server& server() { return *server_; }
   void stop() { server_->stop(); }

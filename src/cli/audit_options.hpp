@@ -1,0 +1,27 @@
+#pragma once
+// `--audit-writes off|summary|each` on the commands that serve the PLC (docs/security.md, Audit
+// of external writes): one plc::WriteAudit for every server of the command, its records on
+// stderr and its count per protocol at the end of the run.
+#include <memory>
+#include <ostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "plc/write_audit.hpp"
+
+namespace virtcom::cli {
+
+enum class AuditLevel { Off, Summary, Each };
+
+void addAuditOption(CLI::App* cmd, AuditLevel& level);
+
+// The audit the servers' queues report to (nullptr when --audit-writes off), logging each record
+// to `log` ("audit: 0.120s 2026-12-02T15:40:01.123Z modbus 127.0.0.1:50123 MAIN.speed (%MW0): 0 -> 5")
+// at level Each.
+std::unique_ptr<plc::WriteAudit> makeWriteAudit(AuditLevel level, const bc::Module& module, std::ostream& log);
+
+// "audit: 3 external writes (ads 1, modbus 2, opcua 0, http 0)" (also with none: the run saw none).
+std::string auditSummary(const plc::WriteAudit& audit);
+
+}  // namespace virtcom::cli

@@ -1,0 +1,95 @@
+// cell::parseAdsRoutes / appendAdsRoute, the route table of `--ads-routes FILE`: routes read with
+// their positions, every mistake reported at file:line:col, an added route appended and read back.
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "cell/ads_routes.hpp"
+
+namespace virtcom::cell {
+namespace {
+
+struct Parsed {
+  std::optional<std::vector<AdsRoute>> routes;
+  std::string messages;
+};
+
+Parsed parse(const std::string& text) {
+  SourceManager sources;
+  Diagnostics diags;
+  Parsed p;
+  p.routes = parseAdsRoutes("routes.yaml", text, sources, diags);
+  p.messages = diags.render(sources);
+  return p;
+}
+
+TEST(AdsRoutes, RoutesAreReadWithNameNetIdAndAddress) {
+  auto p = parse("routes:\n  - name: hmi-pc\n    netid: 192.168.1.20.1.1\n    address: 192.168.1.20\n"
+                 "  - {name: scada, netid: 10.0.0.7.1.1, address: 10.0.0.7}\n");
+  ASSERT_TRUE(p.routes) << p.messages;
+  ASSERT_EQ(p.routes->size(), 2u);
+  EXPECT_EQ((*p.routes)[0].name, "hmi-pc");
+  EXPECT_EQ(formatNetId((*p.routes)[0].netId), "192.168.1.20.1.1");
+  EXPECT_EQ((*p.routes)[0].ipv4, 0xc0a80114u);
+  EXPECT_EQ((*p.routes)[1].ipv4, 0x0a000007u);
+}
+
+TEST(AdsRoutes, AnEmptyFileOrAnEmptyListHasNoRoutes) {
+  for (const char* text : {"", "routes:\n", "# none yet\nroutes: []\n"}) {
+    auto p = parse(text);
+    ASSERT_TRUE(p.routes) << text << p.messages;
+    EXPECT_TRUE(p.routes->empty()) << text;
+  }
+}
+
+TEST(AdsRoutes, MistakesAreReportedAtTheirPositionWithWhatIsExpected) {
+  auto p = parse("routes:\n  - name: hmi-pc\n    netid: 192.168.1.20\n    address: 192.168.1.20\n");
+  EXPECT_FALSE(p.routes);
+  EXPECT_NE(p.messages.find("routes.yaml:3:12: error[C010]: 'netid': '192.168.1.20' is not an AmsNetId"), std::string::npos) << p.messages;
+
+  p = parse("routes:\n  - name: hmi-pc\n    netid: 1.2.3.4.1.1\n    address: pc.local\n");
+  EXPECT_FALSE(p.routes);
+  EXPECT_NE(p.messages.find("routes.yaml:4:14: error[C010]: 'address': "), std::string::npos) << p.messages;
+  EXPECT_NE(p.messages.find("the peer's IPv4 address"), std::string::npos) << p.messages;
+
+  p = parse("routes:\n  - name: hmi-pc\n    netid: 1.2.3.4.1.1\n");
+  EXPECT_FALSE(p.routes);
+  EXPECT_NE(p.messages.find("routes.yaml:2:5: error[C010]"), std::string::npos) << p.messages;
+  EXPECT_NE(p.messages.find("address"), std::string::npos) << p.messages;
+
+  p = parse("route:\n  - name: x\n");
+  EXPECT_FALSE(p.routes);
+  EXPECT_NE(p.messages.find("routes.yaml:1:1: error[C011]"), std::string::npos) << p.messages;
+
+  p = parse("routes: 5\n");
+  EXPECT_FALSE(p.routes);
+  EXPECT_NE(p.messages.find("'routes' must be a list"), std::string::npos) << p.messages;
+}
+
+TEST(AdsRoutes, AnAppendedRouteIsReadBackAfterTheOnesBefore) {
+  const auto path = (std::filesystem::temp_directory_path() / ("virtcom_routes_" + std::to_string(::getpid()) + ".yaml")).string();
+  std::filesystem::remove(path);
+  ASSERT_EQ(appendAdsRoute(path, {"first", {10, 0, 0, 1, 1, 1}, 0x0a000001}), "");
+  ASSERT_EQ(appendAdsRoute(path, {"second", {10, 0, 0, 2, 1, 1}, 0x0a000002}), "");
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::filesystem::remove(path);
+  auto p = parse(text.str());
+  ASSERT_TRUE(p.routes) << p.messages << text.str();
+  ASSERT_EQ(p.routes->size(), 2u);
+  EXPECT_EQ((*p.routes)[0].name, "first");
+  EXPECT_EQ((*p.routes)[1].name, "second");
+  EXPECT_EQ(formatNetId((*p.routes)[1].netId), "10.0.0.2.1.1");
+  EXPECT_EQ((*p.routes)[1].ipv4, 0x0a000002u);
+  EXPECT_EQ(appendAdsRoute("/nonexistent-dir/routes.yaml", {"x", {}, 0}), "cannot write the ADS routes file '/nonexistent-dir/routes.yaml'");
+}
+
+}  // namespace
+}  // namespace virtcom::cell

@@ -18,8 +18,8 @@
 #include "cell/yaml_config.hpp"
 #include "core/config_node.hpp"
 
-#ifndef VIRTCOM_SOURCE_ROOT
-#error "VIRTCOM_SOURCE_ROOT (the checkout the scratch tree copies from) must be defined"
+#ifndef VIRTCOM_SOURCE_DIR
+#error "VIRTCOM_SOURCE_DIR (the checkout the scratch tree copies from) must be defined"
 #endif
 
 namespace virtcom::fuzz {
@@ -58,10 +58,12 @@ class Scratch {
     std::string pattern = (std::filesystem::temp_directory_path() / "virtcom-fuzz-XXXXXX").string();
     if (!mkdtemp(pattern.data())) std::abort();
     root_ = std::filesystem::canonical(pattern);
-    const std::filesystem::path source(VIRTCOM_SOURCE_ROOT);
+    const std::filesystem::path source(VIRTCOM_SOURCE_DIR);
     for (const char* dir : {"examples", "lib", "tests/e2e/data"}) copyRegularFiles(source / dir, root_ / dir);
     dropFilesNamingOutside();
-    static const std::filesystem::path* removeAtExit = &root_;
+    // A copy that outlives this object: a handler registered while a static is being built
+    // runs after that static is destroyed.
+    static const std::filesystem::path* removeAtExit = new std::filesystem::path(root_);
     std::atexit([] { std::filesystem::remove_all(*removeAtExit); });
   }
 

@@ -21,7 +21,7 @@ constexpr int kTicks = 200;
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const virtcom::fuzz::Scratch& scratch = virtcom::fuzz::Scratch::get();
-  const std::string path = scratch.write("examples/drives/g120/fuzz_cell.yaml", data, size);
+  const std::string path = scratch.write(virtcom::fuzz::kCellInput, data, size);
   virtcom::SourceManager sources;
   virtcom::Diagnostics diags;
   virtcom::ConfigNode tree;

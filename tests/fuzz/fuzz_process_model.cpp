@@ -12,7 +12,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   namespace optimize = virtcom::optimize;
-  const std::string path = virtcom::fuzz::Scratch::get().write("examples/gearbox-cell/fuzz_process.yaml", data, size);
+  const std::string path = virtcom::fuzz::Scratch::get().write(virtcom::fuzz::kProcessModelInput, data, size);
   virtcom::SourceManager sources;
   virtcom::Diagnostics diags;
   const auto model = optimize::readProcessModel(path, sources, diags);

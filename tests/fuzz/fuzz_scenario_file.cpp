@@ -24,7 +24,7 @@ constexpr int64_t kCycles = 200;
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   namespace scenario = virtcom::scenario;
   const virtcom::fuzz::Scratch& scratch = virtcom::fuzz::Scratch::get();
-  const std::string path = scratch.write("examples/gearbox-cell/tests/fuzz_scenario.yaml", data, size);
+  const std::string path = scratch.write(virtcom::fuzz::kScenarioInput, data, size);
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
   virtcom::SourceManager sources;
   virtcom::Diagnostics diags;

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cell/yaml_config.hpp"
@@ -24,6 +25,15 @@
 
 namespace virtcom::fuzz {
 
+// Where each target writes its input in the copy. A cell beside the drive example cells and a
+// scenario beside the gearbox's, so the seeds name the copy's files as the examples do.
+inline constexpr const char* kCellInput = "examples/drives/g120/fuzz_cell.yaml";
+inline constexpr const char* kScenarioInput = "examples/gearbox-cell/tests/fuzz_scenario.yaml";
+inline constexpr const char* kProcessModelInput = "examples/gearbox-cell/fuzz_process.yaml";
+inline constexpr const char* kSweepInput = "examples/gearbox-cell/fuzz_sweep.yaml";
+// The inputs the loader may read as a cell file (a scenario's `cell:` may name itself).
+inline constexpr const char* kLoadedAsCell[] = {kCellInput, kScenarioInput};
+
 class Scratch {
  public:
   // The process's tree, made at the first call.
@@ -34,8 +44,7 @@ class Scratch {
 
   const std::filesystem::path& root() const { return root_; }
 
-  // Writes the input to `relative`, a file in a folder of the copy (dropFilesNamingOutside()
-  // checked the copy's files from there).
+  // Writes the input to `relative`, one of the k*Input paths above.
   std::string write(const std::string& relative, const uint8_t* data, size_t size) const {
     const std::filesystem::path p = root_ / relative;
     std::ofstream(p, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
@@ -96,27 +105,35 @@ class Scratch {
     }
   }
 
-  // A YAML file of the copy may be read from another folder than its own: taken by `extends`
-  // (its paths then resolve from the input's folder) or named by a scenario's `cell:`. Such a
-  // file is dropped from the copy if it names a file outside from any folder of the copy.
+  // A YAML file of the copy is read with its paths resolved from its own folder (as a cell,
+  // or a scenario's `cell:`), or from the folder of a file that `extends` it: an input loaded as
+  // a cell (any copy file may be its base) or a copy file naming it. It is dropped from the copy
+  // if it names a file outside from any of those folders.
   void dropFilesNamingOutside() const {
-    std::vector<std::filesystem::path> files, folders;
-    for (const auto& entry : std::filesystem::recursive_directory_iterator(root_))
-      if (entry.is_directory()) folders.push_back(entry.path());
-      else if (entry.path().extension() == ".yaml") files.push_back(entry.path());
-    for (const std::filesystem::path& file : files) {
-      std::ifstream in(file, std::ios::binary);
+    struct File {
+      std::filesystem::path path;
+      ConfigNode tree;
+      std::vector<std::filesystem::path> readFrom;
+    };
+    std::vector<File> files;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(root_)) {
+      if (entry.path().extension() != ".yaml") continue;
+      std::ifstream in(entry.path(), std::ios::binary);
       const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
       SourceManager sources;
       Diagnostics diags;
-      ConfigNode tree;
-      if (!cell::parseYaml(file.string(), text, sources, diags, tree)) continue;
-      for (const std::filesystem::path& folder : folders)
-        if (!namesOnlyInside(tree, folder)) {
-          std::filesystem::remove(file);
-          break;
-        }
+      File f{entry.path(), {}, {entry.path().parent_path()}};
+      if (!cell::parseYaml(entry.path().string(), text, sources, diags, f.tree)) continue;
+      for (const char* input : kLoadedAsCell) f.readFrom.push_back((root_ / input).parent_path());
+      files.push_back(std::move(f));
     }
+    for (const File& a : files)
+      if (const ConfigNode* base = a.tree.find("extends"); base && base->kind() == ConfigNode::Kind::Scalar)
+        for (File& b : files)
+          if (b.path == (a.path.parent_path() / base->scalar()).lexically_normal()) b.readFrom.push_back(a.path.parent_path());
+    for (const File& f : files)
+      if (!std::all_of(f.readFrom.begin(), f.readFrom.end(), [&](const auto& folder) { return namesOnlyInside(f.tree, folder); }))
+        std::filesystem::remove(f.path);
   }
 
   std::filesystem::path root_;

@@ -25,7 +25,7 @@ size_t pointCount(const virtcom::optimize::SweepSpec& spec) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   namespace optimize = virtcom::optimize;
-  const std::string path = virtcom::fuzz::Scratch::get().write("examples/gearbox-cell/fuzz_sweep.yaml", data, size);
+  const std::string path = virtcom::fuzz::Scratch::get().write(virtcom::fuzz::kSweepInput, data, size);
   virtcom::SourceManager sources;
   virtcom::Diagnostics diags;
   const auto spec = optimize::readSweep(path, sources, diags);

@@ -11,7 +11,7 @@ export CCACHE_BASEDIR := $(CURDIR)
 export CCACHE_NOHASHDIR := 1
 LAUNCHER   := -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 
-APT_PACKAGES := build-essential cmake ninja-build g++ clang libclang-rt-14-dev \
+APT_PACKAGES := build-essential cmake ninja-build g++ clang-19 libclang-rt-19-dev \
                 libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
                 libyaml-dev nlohmann-json3-dev libpugixml-dev libcpp-httplib-dev chromium libmodbus-dev mbpoll pkg-config nodejs ccache \
                 libsqlite3-dev libgraphviz-dev lcov libxml2-utils libssl-dev \
@@ -38,7 +38,7 @@ build: deps
 
 fuzz-build: deps
 	@cmake -S . -B $(FUZZBUILD) $(CMAKE_GEN) $(LAUNCHER) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DVIRTCOM_FUZZ_ONLY=ON >/dev/null
+	  -DCMAKE_CXX_COMPILER=clang++-19 -DCMAKE_C_COMPILER=clang-19 -DVIRTCOM_FUZZ_ONLY=ON >/dev/null
 	@cmake --build $(FUZZBUILD) -j $(JOBS)
 
 test: deps fuzz-build

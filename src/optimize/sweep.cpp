@@ -31,8 +31,12 @@ std::optional<SweepSpec> readSweep(const std::string& path, SourceManager& sourc
   const std::string sampling = top.optString("sampling", "grid");
   s.random = sampling == "random";
   if (!s.random && sampling != "grid") diags.error(celldiag::C070, root.find("sampling")->loc(), "'sampling' is '" + sampling + "', expected grid or random");
-  s.samples = static_cast<size_t>(top.optInt("samples", 0));
-  if (s.random && s.samples == 0) diags.error(celldiag::C070, root.loc(), "'sampling: random' needs 'samples', the number of points");
+  // Read signed: a negative count cast to size_t would ask for ~2^64 points.
+  const int64_t samples = top.optInt("samples", 0);
+  if (samples < 0)
+    diags.error(celldiag::C070, root.find("samples")->loc(), "'samples' is " + std::to_string(samples) + ", expected a positive number of points");
+  else s.samples = static_cast<size_t>(samples);
+  if (s.random && samples == 0) diags.error(celldiag::C070, root.loc(), "'sampling: random' needs 'samples', the number of points");
   s.seed = static_cast<uint64_t>(top.optInt("seed", 1));
   if (top.has("time_limit")) s.timeLimitNs = static_cast<int64_t>(top.optQuantity("time_limit", Dimension::Time, 0) * 1e9 + 0.5);
   const ConfigNode* params = top.child("parameters");

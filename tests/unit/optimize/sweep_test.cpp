@@ -84,5 +84,21 @@ TEST(Sweep, UnknownParameterAndRefusedValueAreReportedAtTheSweepFile) {
   std::filesystem::remove(path);
 }
 
+// Found writing the fuzz target fuzz_sweep_file: `samples: -1` was cast to 2^64 - 1 points.
+TEST(Sweep, NegativeSamplesAreRefused) {
+  const std::string path = (std::filesystem::temp_directory_path() / ("sweep_samples_" + std::to_string(::getpid()) + ".yaml")).string();
+  std::ofstream(path) << "cell: cell.yaml\n"
+                         "sampling: random\n"
+                         "samples: -1\n"
+                         "parameters:\n"
+                         "  MAIN.sequence: [1, 2]\n";
+  SourceManager sources;
+  Diagnostics diags;
+  EXPECT_FALSE(readSweep(path, sources, diags));
+  const std::string text = diags.render(sources);
+  EXPECT_NE(text.find(":3:10: error[C070]: 'samples' is -1, expected a positive number of points"), std::string::npos) << text;
+  std::filesystem::remove(path);
+}
+
 }  // namespace
 }  // namespace virtcom::optimize

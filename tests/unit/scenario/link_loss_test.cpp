@@ -49,7 +49,7 @@ TEST_F(ScenarioTest, ALinkFaultNeedsAnExternalPlcAndWindows) {
   const std::string t = text(r);
   EXPECT_NE(t.find("test.yaml:3:6: error[C063]: the cell's controller is its soft PLC"), std::string::npos) << t;
   EXPECT_NE(t.find("test.yaml:4:12: error[C063]: 'link' names the link to the cell's external PLC: 'plc'"), std::string::npos) << t;
-  EXPECT_NE(t.find("test.yaml:4:34: error[C063]: 'comm_loss' lists windows"), std::string::npos) << t;
+  EXPECT_NE(t.find("test.yaml:4:30: error[C063]: 'comm_loss' lists windows"), std::string::npos) << t;
 }
 
 }  // namespace

@@ -181,7 +181,7 @@ class Binder {
       a.kind = Action::Kind::PowerLoss;
       a.durationNs = plant::requireDurationNs(r, "power_loss");
       if (!cell_.module) r.error(node.keyLoc("power_loss"), "'power_loss' needs the soft PLC");
-      step.actions.push_back(a);
+      step.actions.push_back(std::move(a));
     }
     if (step.actions.empty() && r.ok())
       r.error(node.loc(), "a step does something: set, force, release, facts, fault, parameter or power_loss");

@@ -2,6 +2,7 @@
 #include "scenario/parameter_change.hpp"
 
 #include <algorithm>
+#include <string_view>
 
 #include "core/cell_diagnostic_codes.hpp"
 

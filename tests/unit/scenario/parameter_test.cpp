@@ -8,27 +8,26 @@
 namespace virtcom::scenario::test {
 namespace {
 
-// Three parts; the clamp closes in 1 s (cell file), a cycle takes about 1.03 s.
-constexpr const char* kThreeCycles = "set: {MAIN.start: TRUE}\ncycles: 3\n";
+// Parts clamped one after the other for 6 s, the last one starting before 4 s (then the parts
+// run out); the clamp closes in 1 s (cell file), a part takes about 1.03 s.
+constexpr const char* kParts = "set: {MAIN.start: TRUE}\ntime_limit: 6 s\nsteps:\n  - {at: 4 s, facts: {partPresent: false}}\n";
 
 TEST_F(ScenarioTest, ParameterChangeSlowsTheCommandsThatBeginAfterIt) {
   // The first close (0 s .. 1 s) runs with 1 s; the change at 0.5 s does not stretch it; the
   // second close starts at about 1.03 s and takes 2 s, the third one too.
-  CaseResult r = run(std::string(kThreeCycles) + R"(steps:
-  - {at: 0.5 s, parameter: {Clamp.commands.1.duration: 2 s}}
+  CaseResult r = run(std::string(kParts) + R"(  - {at: 0.5 s, parameter: {Clamp.commands.1.duration: 2 s}}
 expect:
   - {at: 1.02 s, that: "MAIN.parts = 1"}
   - {at: 2.9 s, that: "MAIN.parts = 1 AND Clamp.busy"}
   - {at: 3.1 s, that: "MAIN.parts = 2"}
   - {final: "MAIN.parts = 3"}
-  - {run_end: completed}
 )");
   EXPECT_EQ(r.verdict, Verdict::Pass) << text(r);
 }
 
 TEST_F(ScenarioTest, WithoutTheChangeTheSecondPartIsDoneEarly) {
   // The same assertion fails without the change: the assertion can fail.
-  CaseResult r = run(std::string(kThreeCycles) + "expect:\n  - {at: 2.9 s, that: \"MAIN.parts = 1 AND Clamp.busy\"}\n");
+  CaseResult r = run(std::string(kParts) + "expect:\n  - {at: 2.9 s, that: \"MAIN.parts = 1 AND Clamp.busy\"}\n");
   EXPECT_EQ(r.verdict, Verdict::Fail);
   EXPECT_NE(text(r).find("(MAIN.parts = 2"), std::string::npos) << text(r);
 }
@@ -36,8 +35,7 @@ TEST_F(ScenarioTest, WithoutTheChangeTheSecondPartIsDoneEarly) {
 TEST_F(ScenarioTest, ParameterChangesOfOneDeviceAddUp) {
   // The power changes on top of the duration changed before it; the duration stays changed:
   // 1 s at 100 W, then twice 2 s at 200 W.
-  CaseResult r = run(std::string(kThreeCycles) + R"(steps:
-  - {at: 0.5 s, parameter: {Clamp.commands.1.duration: 2 s}}
+  CaseResult r = run(std::string(kParts) + R"(  - {at: 0.5 s, parameter: {Clamp.commands.1.duration: 2 s}}
   - {at: 0.6 s, parameter: {Clamp.busy_power: 200 W}}
 expect:
   - {energy: {device: Clamp, min: 0.89 kJ, max: 0.91 kJ}}

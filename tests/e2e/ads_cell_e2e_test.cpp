@@ -3,7 +3,9 @@
 //    the cell runs (tests/e2e/ads/check_served_cell.js), also together with --modbus;
 //  - the client bridge: `virtcom exec plc/*.st --ads` in a second process is the PLC of
 //    bridge.yaml (`plc: ads:`), and the cell completes the same cycles as with the soft PLC in
-//    process; connection, name and type problems are reported at start with their position.
+//    process; connection, name and type problems are reported at start with their position;
+//  - `virtcom test` on bridge.yaml: a scenario cuts the link (`{link: plc, comm_loss: ...}`), and
+//    the run ends as a PLC fault (on_loss: fault) or holds the commands for the window (hold).
 #include <gtest/gtest.h>
 
 #include <cstdio>

@@ -8,9 +8,10 @@
 namespace virtcom::scenario::test {
 namespace {
 
-// Parts clamped one after the other for 6 s, the last one starting before 4 s (then the parts
-// run out); the clamp closes in 1 s (cell file), a part takes about 1.03 s.
-constexpr const char* kParts = "set: {MAIN.start: TRUE}\ntime_limit: 6 s\nsteps:\n  - {at: 4 s, facts: {partPresent: false}}\n";
+// Parts clamped one after the other for 6 s (the station's cycleDone rises once: `cycles: 3`
+// keeps the run going to the time limit), the last one starting before 4 s (then the parts run
+// out); the clamp closes in 1 s (cell file), a part takes about 1.03 s.
+constexpr const char* kParts = "set: {MAIN.start: TRUE}\ncycles: 3\ntime_limit: 6 s\nsteps:\n  - {at: 4 s, facts: {partPresent: false}}\n";
 
 TEST_F(ScenarioTest, ParameterChangeSlowsTheCommandsThatBeginAfterIt) {
   // The first close (0 s .. 1 s) runs with 1 s; the change at 0.5 s does not stretch it; the

@@ -108,6 +108,7 @@ struct Cell {
   Trace trace;
   plant::World world{trace};
   std::vector<std::unique_ptr<plant::Device>> devices;
+  std::vector<ConfigNode> deviceEntries;  // each device's cell-file entry, in device order (mapping files resolved)
   std::vector<Wire> wires;
   RunSettings run;
   modbus_map::SignalMap modbus;        // what `virtcom serve --modbus` serves: `modbus:` or automatic
@@ -139,6 +140,12 @@ std::unique_ptr<Cell> loadCell(const std::string& path, SourceManager& sources, 
 // error_code is given (0: every command fails). Reports through `f`; shared by the cell file and
 // scenario files (docs/scenarios.md), which change a plan in the middle of a run.
 plant::FaultPlan readFaultPlan(ConfigReader& f, uint32_t defaultAtCommand);
+// A device of `type` named `name` from its cell-file entry read by `cfg`: the entry's loader keys
+// (wiring, faults, model, description) known, the rest read by the type's factory, unknown keys
+// rejected; see plant::createDevice. Shared by the loader and scenario files, which build a device
+// again from its entry with a value edited (a mid-run parameter change, docs/scenarios.md).
+std::unique_ptr<plant::Device> createDeviceOfEntry(ConfigReader& cfg, const std::string& name, const std::string& type,
+                                                   plant::World& world);
 // A device's whole `faults:` entry into its plan, with its type's own keys (drives: `inject`,
 // `comm_loss`); rejects unknown keys. The caller marks keys of its own (a scenario's `device`)
 // read first.

@@ -341,18 +341,14 @@ class Loader {
         cfg.error(node.loc(), "a device named '" + name + "' already exists");
         continue;
       }
-      const ConfigNode* wiring = cfg.child("wiring");
-      const ConfigNode* faults = cfg.child("faults");
-      cfg.optString("model", "");        // informational: the real device's make and type
-      cfg.optString("description", "");
-      // the factory reads the device's own parameters and rejects unknown keys; an entry with
-      // parameter mistakes still yields its device, so its wiring and signals are checked in the
-      // same run (load() then fails, so such a device never runs)
-      auto device = plant::createDevice(type, name, cfg, cell.world, drives::deviceTypes());
+      // an entry with parameter mistakes still yields its device, so its wiring and signals are
+      // checked in the same run (load() then fails, so such a device never runs)
+      auto device = createDeviceOfEntry(cfg, name, type, cell.world);
       if (!device) continue;  // unknown type
-      if (faults) readFaults(*device, *faults);
-      bindPorts(cell, *device, wiring, node);
+      if (const ConfigNode* faults = cfg.child("faults")) readFaults(*device, *faults);
+      bindPorts(cell, *device, cfg.child("wiring"), node);
       cell.devices.push_back(std::move(device));
+      cell.deviceEntries.push_back(node);
     }
     reportUndefinedVessels(cell);
   }
@@ -496,6 +492,16 @@ class Loader {
 };
 
 }  // namespace
+
+std::unique_ptr<plant::Device> createDeviceOfEntry(ConfigReader& cfg, const std::string& name, const std::string& type,
+                                                   plant::World& world) {
+  cfg.child("wiring");  // read by the loader once the device exists
+  cfg.child("faults");
+  cfg.optString("model", "");  // informational: the real device's make and type
+  cfg.optString("description", "");
+  // the factory reads the device's own parameters and rejects unknown keys
+  return plant::createDevice(type, name, cfg, world, drives::deviceTypes());
+}
 
 plant::FaultPlan readFaultPlan(ConfigReader& f, uint32_t defaultAtCommand) {
   plant::FaultPlan p;

@@ -318,7 +318,7 @@ ExitCode runCell(const RunOptions& o) {
     if (!reset) break;
     std::unique_ptr<cell::Cell> fresh;
     while (true) {
-      auto reloaded = reloadForReset(*cell, sources);
+      auto reloaded = reloadForReset(*cell, sources, o.coverage.compileOptions());
       if (reloaded) {
         fresh = std::move(*reloaded);
         break;

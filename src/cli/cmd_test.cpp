@@ -9,7 +9,10 @@
 #include "cli/commands.hpp"
 #include "bytecode/coverage.hpp"
 #include "cli/common.hpp"
+#include "cli/ads_client.hpp"
 #include "cli/coverage_options.hpp"
+#include "cli/modbus_options.hpp"
+#include "cli/plc_backend.hpp"
 #include "report/html_report.hpp"
 #include "report/kpis.hpp"
 #include "report/waveform.hpp"
@@ -26,6 +29,7 @@ struct TestOptions {
   std::string filter;
   std::string reportDir;
   unsigned jobs = 0;  // 0: one per hardware thread
+  std::string backend = "auto";
   CoverageOptions coverage;
 };
 
@@ -46,6 +50,24 @@ bool writeCaseReports(const std::string& dir, const scenario::CaseResult& r) {
   const std::string stem = (std::filesystem::path(dir) / fileStem(r.spec.name)).string();
   bool ok = writeFile(stem + ".html", report::htmlReport(trace, report::computeKpis(trace), html));
   return writeFile(stem + ".vcd", report::vcdReport(trace)) && ok;
+}
+
+// The bridge to a case's external PLC (`plc: ads:` / `plc: modbus:`), as `virtcom run` starts
+// it, added to the case's options; the case runs in real time, as the external PLC does.
+std::shared_ptr<void> startExternalPlcLink(cell::Cell& cell, const SourceManager& sources, sim::SimOptions& sim, std::string& error) {
+  sim.speed = 1;
+  if (cell.plcModbus) {
+    std::shared_ptr<proto::modbus::ClientBridge> bridge = startClientBridge(*cell.plcModbus, "is the controller");
+    sim.bridges.push_back(bridge.get());
+    return bridge;
+  }
+  std::shared_ptr<proto::ads::ClientBridge> bridge = startAdsBridge(cell, sources, "is the controller");
+  if (!bridge) {
+    error = "the external PLC at " + cell.plcAds->address + " could not be used (see the errors above)";
+    return nullptr;
+  }
+  sim.bridges.push_back(bridge.get());
+  return bridge;
 }
 
 void printResult(const scenario::CaseResult& r) {
@@ -96,6 +118,16 @@ ExitCode runTests(const TestOptions& o) {
       coverage.merge(counted);
     };
   }
+  // Each case's PLC on the chosen backend (machine code from the AOT cache after the first case
+  // of a program); the backends give the same results, so the verdicts do not depend on it.
+  options.hooks.beforeRun = [&o](cell::Cell& cell, const SourceManager& sources, sim::SimOptions& sim,
+                                 std::string& error) -> std::shared_ptr<void> {
+    if (!cell.module) return startExternalPlcLink(cell, sources, sim, error);
+    auto backend = std::make_shared<PlcBackend>(o.backend, *cell.module);
+    sim.compiled = backend->compiled();
+    sim.tierUp = backend->tierUp();
+    return backend;
+  };
   const unsigned jobs = o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
   std::vector<scenario::CaseResult> results;
   bool reportsOk = true;
@@ -132,6 +164,7 @@ void addTestCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--filter", o->filter, "run only the cases whose name or file matches this glob (* and ?), e.g. 'cycle*'");
   cmd->add_option("--report-dir", o->reportDir, "write the HTML report and the VCD of every failing case into this directory");
+  addBackendOption(*cmd, o->backend);
   addCoverageOptions(*cmd, o->coverage);
   cmd->callback([o, setExit] { setExit(runTests(*o)); });
 }

@@ -137,9 +137,10 @@ bool sameDevices(const cell::Cell& fresh, const cell::Cell& running) {
 
 }  // namespace
 
-std::expected<std::unique_ptr<cell::Cell>, std::string> reloadForReset(cell::Cell& running, SourceManager& sources) {
+std::expected<std::unique_ptr<cell::Cell>, std::string> reloadForReset(cell::Cell& running, SourceManager& sources,
+                                                                       st::CompileOptions plcOptions) {
   const std::string path = running.file.string();
-  auto fresh = loadCellFile(path, sources);
+  auto fresh = loadCellFile(path, sources, plcOptions);
   if (!fresh) return std::unexpected(path + " no longer loads (see above): restart the command");
   const bool samePlc = (fresh->module == nullptr) == (running.module == nullptr) &&
                        (!fresh->module || sameProgram(*fresh->module, *running.module));

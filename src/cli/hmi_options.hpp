@@ -99,7 +99,10 @@ class LiveHmi {
 // initial state), which must still be the same cell (the same PLC program and memory layout,
 // devices and signals: the HMI's model and variable catalog stay true). It takes over
 // `running`'s PLC module object (the HMI, presets and compiled code point at it) and run
-// settings (the command's adjustments). Error text if the files changed or no longer load.
-std::expected<std::unique_ptr<cell::Cell>, std::string> reloadForReset(cell::Cell& running, SourceManager& sources);
+// settings (the command's adjustments). `plcOptions`: how the running cell's program was
+// compiled (`run --coverage`: with probes, so the program compares equal and its counts go on
+// being recorded). Error text if the files changed or no longer load.
+std::expected<std::unique_ptr<cell::Cell>, std::string> reloadForReset(cell::Cell& running, SourceManager& sources,
+                                                                       st::CompileOptions plcOptions = {});
 
 }  // namespace virtcom::cli

@@ -78,6 +78,14 @@ class Device {
   virtual void finish(int64_t endNs, Trace& trace);
   // Non-zero while the device reports an error to the controller.
   virtual int32_t errorCode() const { return 0; }
+  // A mid-run parameter change (a scenario's `parameter:` step, docs/scenarios.md): whether this
+  // type can take the parameters of `edited`, a device of its type built from its cell-file entry
+  // with one scalar value edited (so its lists have the same entries); if so, swapParameters()
+  // exchanges the two devices' parameters without allocating, keeping this device's state, the
+  // labels interned at prepare() and a running command on its entry. What has begun (a planned
+  // motion, a running press stroke) goes on as planned; what begins from then on uses the new values.
+  virtual bool changesParameters() const { return false; }
+  virtual void swapParameters(Device& edited) { (void)edited; }
 
   FaultPlan& faults() { return faults_; }
   // Device-specific keys of the cell file's `faults:` entry, after the loader has read the

@@ -34,6 +34,8 @@ class Press final : public SequencedDevice {
 
   Press(std::string name, Params params);
   const Params& params() const { return p_; }
+  bool changesParameters() const override { return true; }
+  void swapParameters(Device& edited) override { swapKeepingLabels(p_, static_cast<Press&>(edited).p_, &Params::programs, prog_); }
 
  protected:
   uint32_t commandLabel(double command) const override;

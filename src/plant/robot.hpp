@@ -77,6 +77,8 @@ class Robot final : public SequencedDevice {
 
   static bool isGripper(ToolKind k) { return k != ToolKind::Screwer; }
   const Params& params() const { return p_; }
+  bool changesParameters() const override { return true; }
+  void swapParameters(Device& edited) override { swapKeepingLabels(p_, static_cast<Robot&>(edited).p_, &Params::procedures, proc_); }
   // Current state, for tests and reports.
   int32_t toolIndex() const { return tool_; }
   int32_t locationIndex() const { return location_; }

@@ -29,6 +29,8 @@
 // Energy totals: idle power x whole run + the sum of the commands' energies.
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "plant/device.hpp"
 #include "plant/device_errors.hpp"
@@ -81,6 +83,20 @@ class SequencedDevice : public Device {
   virtual void prepareLabels(World& world, Trace& trace) = 0;
 
   double idlePowerW_ = 0;
+
+  // swapParameters() of a subclass whose Params hold the entries of `list` (procedures,
+  // programs): swaps `mine` and `edited` (same entries, one scalar differs), keeping the labels
+  // interned at prepare() and `running` on the same entry; the idle power follows the new values.
+  template <class Params, class Entry>
+  void swapKeepingLabels(Params& mine, Params& edited, std::vector<Entry> Params::*list, const Entry*& running) {
+    std::vector<Entry>& from = mine.*list;
+    std::vector<Entry>& to = edited.*list;
+    for (size_t i = 0; i < from.size() && i < to.size(); ++i) to[i].label = from[i].label;
+    const ptrdiff_t at = running ? running - from.data() : -1;
+    std::swap(mine, edited);
+    if (at >= 0) running = (mine.*list).data() + at;
+    idlePowerW_ = mine.idlePowerW;
+  }
 
  private:
   enum class Phase : uint8_t { Idle, Running, Delaying, WaitDrop };

@@ -28,6 +28,8 @@ class TimedDevice final : public SequencedDevice {
   };
 
   TimedDevice(std::string name, Params params);
+  bool changesParameters() const override { return true; }
+  void swapParameters(Device& edited) override { swapKeepingLabels(p_, static_cast<TimedDevice&>(edited).p_, &Params::commands, cmd_); }
 
  protected:
   uint32_t commandLabel(double command) const override;

@@ -9,6 +9,7 @@
 #include "core/trace.hpp"
 #include "plant/config_helpers.hpp"
 #include "plc/variable_text.hpp"
+#include "scenario/parameter_change.hpp"
 
 namespace virtcom::scenario {
 
@@ -135,9 +136,30 @@ class Binder {
   void readLoadFaults(const ConfigNode& list) {
     forEachItem(list, "faults", [&](const ConfigNode& item) {
       ConfigReader r(item, diags_, "fault");
+      if (r.has("link")) return readLinkLoss(r);
       int device = deviceIndex(r);
       if (device >= 0) cell::readDeviceFaults(*cell_.devices[static_cast<size_t>(device)], r);
     });
+  }
+
+  // `{link: plc, comm_loss: [{at: T, duration: D}, ...]}`: the external PLC's link cut.
+  void readLinkLoss(ConfigReader& r) {
+    const ConfigNode& node = r.node();
+    if (r.requireString("link") != "plc")
+      diags_.error(celldiag::C063, node.find("link")->loc(), "'link' names the link to the cell's external PLC: 'plc'");
+    if (!cell_.plcAds && !cell_.plcModbus)
+      diags_.error(celldiag::C063, node.keyLoc("link"),
+                   "the cell's controller is its soft PLC: only an external PLC ('plc: ads:' or 'plc: modbus:') has a link to lose");
+    const ConfigNode* losses = r.child("comm_loss");
+    if (!losses || losses->kind() != ConfigNode::Kind::List || losses->items().empty())
+      diags_.error(celldiag::C063, losses ? losses->loc() : node.loc(), "'comm_loss' lists windows, e.g. [{at: 2 s, duration: 1 s}]");
+    else
+      for (const ConfigNode& w : losses->items()) {
+        ConfigReader wr(w, diags_, "'comm_loss' window");
+        plan_.linkLosses.push_back({plant::requireDurationNs(wr, "at"), plant::requireDurationNs(wr, "duration")});
+        wr.rejectUnknownKeys();
+      }
+    r.rejectUnknownKeys();
   }
 
   void readStep(const ConfigNode& node) {
@@ -153,15 +175,16 @@ class Binder {
     if (const ConfigNode* release = r.child("release")) readRelease(*release, step.actions);
     if (const ConfigNode* facts = r.child("facts")) readFacts(*facts, step.actions);
     if (const ConfigNode* fault = r.child("fault")) readStepFault(*fault, step.actions);
+    if (const ConfigNode* parameters = r.child("parameter")) readParameters(*parameters, step.actions);
     if (r.has("power_loss")) {
       Action a;
       a.kind = Action::Kind::PowerLoss;
       a.durationNs = plant::requireDurationNs(r, "power_loss");
       if (!cell_.module) r.error(node.keyLoc("power_loss"), "'power_loss' needs the soft PLC");
-      step.actions.push_back(a);
+      step.actions.push_back(std::move(a));
     }
     if (step.actions.empty() && r.ok())
-      r.error(node.loc(), "a step does something: set, force, release, facts, fault or power_loss");
+      r.error(node.loc(), "a step does something: set, force, release, facts, fault, parameter or power_loss");
     r.rejectUnknownKeys();
     plan_.steps.push_back(std::move(step));
   }
@@ -206,6 +229,21 @@ class Binder {
     a.index = static_cast<uint32_t>(device);
     a.name = cell_.devices[a.index]->name();
     out.push_back(std::move(a));
+  }
+
+  // `{DEVICE.key: VALUE, ...}`: device parameters changed when the step acts.
+  void readParameters(const ConfigNode& map, std::vector<Action>& out) {
+    if (map.kind() != ConfigNode::Kind::Map) {
+      diags_.error(celldiag::C062, map.loc(), "'parameter' maps device parameters to values, e.g. {Robot1.max_speed: 800 mm/s}");
+      return;
+    }
+    for (const auto& [name, value] : map.entries()) {
+      Action a;
+      a.kind = Action::Kind::Parameter;
+      a.name = name;
+      a.edited = parameters_.edit(name, map.keyLoc(name), value, diags_, a.index);
+      if (a.edited) out.push_back(std::move(a));
+    }
   }
 
   // One entry of `expect:`: its kind is the first key of the table below that it has.
@@ -302,6 +340,7 @@ class Binder {
   Diagnostics& diags_;
   NameScope scope_;
   Plan plan_;
+  ParameterEditor parameters_{cell_};
 };
 
 }  // namespace

@@ -3,26 +3,29 @@
 // or on conditions, and the assertions, every name resolved. Built by bindScenario(), applied by
 // Stimuli (scenario/stimuli.hpp) and judged by Checker (scenario/checker.hpp).
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "bytecode/module.hpp"
 #include "plant/device.hpp"
 #include "scenario/expression.hpp"
+#include "scenario/link_loss.hpp"
 
 namespace virtcom::scenario {
 
 // One thing a step does to the running cell.
 struct Action {
-  enum class Kind : uint8_t { Set, Force, Release, ReleaseAll, Fact, Fault, PowerLoss };
+  enum class Kind : uint8_t { Set, Force, Release, ReleaseAll, Fact, Fault, PowerLoss, Parameter };
   Kind kind = Kind::Set;
   std::string name;            // the variable, fact or device as written (messages)
   bc::VarRef ref;              // Set/Force/Release: the PLC variable
   std::vector<uint8_t> bytes;  // Set/Force: the value's bytes (a BOOL bit: its byte, masked by ref.bit)
-  uint32_t index = 0;          // Fact: fact id; Fault: device index in Cell::devices
+  uint32_t index = 0;          // Fact: fact id; Fault, Parameter: device index in Cell::devices
   bool factValue = false;
   plant::FaultPlan plan;       // Fault: the device's plan from then on
   int64_t durationNs = 0;      // PowerLoss: how long the PLC stays off before its warm restart
+  std::unique_ptr<plant::Device> edited;  // Parameter: the device built with the new value, swapped in
 };
 
 // Actions applied once, before the scan of the first tick at or after `atNs`, or of the first
@@ -62,6 +65,7 @@ struct Plan {
   std::vector<Action> presets;  // `set:` before the first scan
   std::vector<Step> steps;      // in file order
   std::vector<Assertion> assertions;
+  std::vector<LinkLossWindow> linkLosses;  // `{link: plc, comm_loss: [...]}`: the external PLC's link cut
   std::string xfail;            // non-empty: the scenario is expected to fail, for this reason
   bool usesPlc = false;         // some step or condition touches the soft PLC
 };

@@ -42,8 +42,9 @@ std::unique_ptr<cell::Cell> loadScenario(const CaseSpec& spec, const st::Compile
   const std::filesystem::path cellPath = (std::filesystem::path(spec.file).parent_path() / cellName).lexically_normal();
   auto cell = cell::loadCell(cellPath.string(), sources, diags, plcOptions);
   if (!cell) return nullptr;
-  if (!cell->module) {
-    diags.error(celldiag::C060, root.find("cell")->loc(), "the cell '" + cellName + "' has no soft PLC ('plc: sources'): scenarios drive the soft PLC");
+  if (!cell->module && !cell->plcAds && !cell->plcModbus) {
+    diags.error(celldiag::C060, root.find("cell")->loc(),
+                "the cell '" + cellName + "' has no controller: scenarios drive its soft PLC ('plc: sources') or an external one ('plc: ads:', 'plc: modbus:')");
     return nullptr;
   }
   plan = bindScenario(top, *cell);
@@ -80,10 +81,22 @@ CaseResult runCase(const CaseSpec& spec, const CaseOptions& options) {
   o.traceSinks.push_back(&checker);
   // A failed case's report shows every signal; a passing case keeps none (bounded memory).
   o.keepAllChanges = options.keepFailedCell;
-  if (options.hooks.beforeRun) options.hooks.beforeRun(*cell, o);
+  std::string hookError;
+  std::shared_ptr<void> keptForTheRun = options.hooks.beforeRun ? options.hooks.beforeRun(*cell, sources, o, hookError) : nullptr;
+  if (!hookError.empty()) {
+    result.messages.push_back(hookError);
+    result.wallNs = monotonicNowNs() - startedNs;
+    return result;
+  }
+  // The external PLC's link, cut in the scenario's windows (its bridges come from the hook).
+  std::vector<std::unique_ptr<LinkLossBridge>> cutLinks;
+  if (!plan.linkLosses.empty()) {
+    const bool faultOnLoss = cell->plcAds ? cell->plcAds->faultOnLoss : cell->plcModbus->faultOnLoss;
+    for (BusBridge*& b : o.bridges) b = cutLinks.emplace_back(std::make_unique<LinkLossBridge>(*b, plan.linkLosses, faultOnLoss)).get();
+  }
   {
     sim::Simulation simulation(*cell, o);
-    checker.attach(&simulation.plc());
+    if (simulation.hasPlc()) checker.attach(&simulation.plc());
     simulation.run();
     if (options.hooks.afterRun) options.hooks.afterRun(simulation);
   }

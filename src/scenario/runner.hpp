@@ -22,11 +22,15 @@ struct CaseSpec {
   std::string classname;      // the file's path with dots: "examples.gearbox-cell.tests.press_error"
 };
 
-// Where a caller joins every case's run, on the case's worker thread (e.g. a PLC code coverage
-// recorder per case, merged after all ran): `beforeRun` may add hooks and sinks to the options,
-// `afterRun` sees the finished simulation. Both must be safe to call from several threads at once.
+// Where a caller joins every case's run, on the case's worker thread (e.g. the PLC backend's
+// machine code, the bridge to an external PLC, a PLC code coverage recorder per case, merged
+// after all ran): `beforeRun` may add hooks, sinks, bridges and compiled code to the options and
+// returns what must live as long as the run (e.g. a background compile, a bridge; may be null),
+// or sets `error` (the case is then an ERROR, not run); `afterRun` sees the finished simulation.
+// Both must be safe to call from several threads at once.
 struct CaseHooks {
-  std::function<void(const cell::Cell& cell, sim::SimOptions& options)> beforeRun;
+  std::function<std::shared_ptr<void>(cell::Cell& cell, const SourceManager& sources, sim::SimOptions& options, std::string& error)>
+      beforeRun;
   std::function<void(sim::Simulation& simulation)> afterRun;
 };
 

@@ -75,6 +75,7 @@ void Stimuli::apply(const Action& a, plc::Runtime& plc, int64_t nowNs) {
     case Action::Kind::ReleaseAll: forces_.clear(); break;
     case Action::Kind::Fact: cell_.world.setFact(a.index, a.factValue); break;
     case Action::Kind::Fault: cell_.devices[a.index]->faults() = a.plan; break;
+    case Action::Kind::Parameter: cell_.devices[a.index]->swapParameters(*a.edited); break;
     case Action::Kind::PowerLoss:
       if (restartAtNs_ < 0) powerDown(plc);
       restartAtNs_ = nowNs + a.durationNs;

@@ -3,7 +3,9 @@
 //    the cell runs (tests/e2e/ads/check_served_cell.js), also together with --modbus;
 //  - the client bridge: `virtcom exec plc/*.st --ads` in a second process is the PLC of
 //    bridge.yaml (`plc: ads:`), and the cell completes the same cycles as with the soft PLC in
-//    process; connection, name and type problems are reported at start with their position.
+//    process; connection, name and type problems are reported at start with their position;
+//  - `virtcom test` on bridge.yaml: a scenario cuts the link (`{link: plc, comm_loss: ...}`), and
+//    the run ends as a PLC fault (on_loss: fault) or holds the commands for the window (hold).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -236,6 +238,49 @@ TEST_F(AdsBridgeE2e, APlcLostMidRunEndsTheRunAsAFault) {
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   EXPECT_EQ(plc->stop(), 0);
   EXPECT_EQ(run.waitExit(), 2) << run.errorOutput();
+}
+
+// `virtcom test` on bridge.yaml: a scenario cuts the link to the PLC in the other process
+// (docs/scenarios.md, `{link: plc, comm_loss: ...}`); `expect` is the scenario's assertions.
+class AdsLinkLossE2e : public AdsBridgeE2e {
+ protected:
+  int testScenario(const std::string& cell, const std::string& body, std::string& out) {
+    std::ofstream(dir_ / "loss.yaml") << "name: loss\ncell: " << cell << "\n" << body;
+    return shell(kExe + " test " + (dir_ / "loss.yaml").string() + " --jobs 1", out);
+  }
+};
+
+TEST_F(AdsLinkLossE2e, OnLossFaultEndsTheRunAsAPlcFault) {
+  auto plc = startPlc();
+  ASSERT_GT(plc->port(), 0) << plc->errorOutput();
+  const std::string body = "faults:\n  - {link: plc, comm_loss: [{at: 0.5 s, duration: 1 s}]}\nexpect:\n  - {run_end: plc_fault}\n";
+  std::string out;
+  EXPECT_EQ(testScenario(bridgeCell(plc->port()), body, out), 0) << out;
+  EXPECT_NE(out.find("PASS  loss"), std::string::npos) << out;
+  // Without the loss the same assertion fails: the run completes.
+  out.clear();
+  EXPECT_EQ(testScenario(bridgeCell(plc->port()), "expect:\n  - {run_end: plc_fault}\n", out), 5) << out;
+  EXPECT_NE(out.find("FAIL  loss"), std::string::npos) << out;
+}
+
+TEST_F(AdsLinkLossE2e, OnLossHoldStallsTheCycleForTheWindowThenGoesOn) {
+  auto plc = startPlc();
+  ASSERT_GT(plc->port(), 0) << plc->errorOutput();
+  const std::string cell = bridgeCell(plc->port(), "on_loss: fault", "on_loss: hold");
+  // A cycle takes about 1.5 s; cut for 2 s, the first one takes at least 3 s, and the run completes.
+  const std::string expect = "expect:\n  - {run_end: completed}\n  - {cycle_time: {min: 3 s}}\n";
+  std::string out;
+  EXPECT_EQ(testScenario(cell, "faults:\n  - {link: plc, comm_loss: [{at: 0.3 s, duration: 2 s}]}\n" + expect, out), 0) << out;
+  EXPECT_NE(out.find("PASS  loss"), std::string::npos) << out;
+  out.clear();
+  EXPECT_EQ(testScenario(cell, expect, out), 5) << out;
+  EXPECT_NE(out.find("cycle_time"), std::string::npos) << out;
+}
+
+TEST_F(AdsLinkLossE2e, ALinkFaultNeedsAnExternalPlc) {
+  std::string out;
+  EXPECT_EQ(testScenario(kExample + "/cell.yaml", "faults:\n  - {link: plc, comm_loss: [{at: 1 s, duration: 1 s}]}\n", out), 5) << out;
+  EXPECT_NE(out.find("loss.yaml:4:6: error[C063]: the cell's controller is its soft PLC"), std::string::npos) << out;
 }
 
 }  // namespace

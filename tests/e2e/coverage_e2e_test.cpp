@@ -4,8 +4,11 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <map>
+#include <sstream>
 #include <string>
 
+#include "server_process.hpp"
 #include "shell_command.hpp"
 #include "support/read_file.hpp"
 
@@ -13,6 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using virtcom::e2e::ServerProcess;
 using virtcom::e2e::shell;
 using virtcom::test::readFile;
 
@@ -89,6 +93,43 @@ TEST_F(Coverage, RunOfACellWritesCoverageAndEndsAsWithout) {
   EXPECT_TRUE(contains(info, "end_of_record\n")) << info;
   std::string summary;
   EXPECT_EQ(shell("lcov --summary '" + path("run.info") + "'", summary), 0) << summary;
+}
+
+// "DA:LINE,COUNT" of a tracefile: LINE -> COUNT.
+std::map<int, long> lineCounts(const std::string& info) {
+  std::map<int, long> counts;
+  std::istringstream in(info);
+  for (std::string line; std::getline(in, line);)
+    if (line.starts_with("DA:")) counts[std::stoi(line.substr(3))] = std::stol(line.substr(line.find(',') + 1));
+  return counts;
+}
+
+// `run --hmi --coverage` with a reset from the page after the run ended: the reset is accepted
+// (the fresh program is compiled with the probes too) and the tracefile counts both runs, each
+// once: every line twice as often as in one run (stepped every tick, as a paced run is).
+TEST_F(Coverage, AnHmiResetNeitherLosesNorDoublesCounts) {
+  std::string out;
+  ASSERT_EQ(shell("cd '" + kData + "' && '" + kExe + "' run cells/ld_handshake.yaml --quiet --time-mode tick --coverage '" +
+                      path("one.info") + "'",
+                  out),
+            0)
+      << out;
+  ServerProcess run(kExe, {"run", "cells/ld_handshake.yaml", "--quiet", "--hmi", "127.0.0.1:0", "--speed", "20", "--coverage", path("two.info")},
+                    kData, "hmi: serving http://");
+  ASSERT_GT(run.port(), 0) << run.errorOutput();
+  const std::string ended = "hmi: the run has ended";
+  ASSERT_TRUE(run.waitForCount(ended, 1)) << run.errorOutput();
+  const std::string reset = "node -e \"fetch('http://127.0.0.1:" + std::to_string(run.port()) +
+                            "/api/control', {method: 'POST', body: JSON.stringify({action: 'reset'})})"
+                            ".then((r) => process.exit(r.status === 200 ? 0 : 1))\"";
+  ASSERT_EQ(shell(reset, out), 0) << out;
+  ASSERT_TRUE(run.waitForCount(ended, 2)) << run.errorOutput();
+  EXPECT_TRUE(contains(run.errorOutput(), "hmi: reset: the run starts again")) << run.errorOutput();
+  run.stop();
+  const auto one = lineCounts(readFile(path("one.info"))), two = lineCounts(readFile(path("two.info")));
+  ASSERT_FALSE(one.empty());
+  ASSERT_EQ(one.size(), two.size()) << readFile(path("two.info"));
+  for (const auto& [line, count] : one) EXPECT_EQ(two.at(line), 2 * count) << "line " << line;
 }
 
 TEST_F(Coverage, HelpNamesTheOptionsAndAnUnwritableFileFails) {

@@ -64,6 +64,20 @@ class ServerProcess {
     return true;
   }
 
+  // Waits until `text` has been written `count` times; false at the deadline or the process's end.
+  bool waitForCount(const std::string& text, size_t count) {
+    auto until = std::chrono::steady_clock::now() + kDeadline;
+    auto seen = [&] {
+      size_t n = 0;
+      for (size_t at = err_.find(text); at != std::string::npos; at = err_.find(text, at + 1)) ++n;
+      return n;
+    };
+    while (seen() < count) {
+      if (std::chrono::steady_clock::now() >= until || !drainStderr(100)) return false;
+    }
+    return true;
+  }
+
   // SIGTERM, then the exit status: 128 + signal if killed by one, -1 (after SIGKILL) if it hangs.
   int stop() { return signal(SIGTERM); }
   // Sends `sig` (SIGKILL: a crash the process cannot clean up after), then the exit status as stop().

@@ -171,10 +171,12 @@ TEST(Sweep, SqliteSlicesMergeIntoTheSingleRunsDatabaseAndDrawTheSamePage) {
 }
 
 #ifdef VIRTCOM_MPIEXEC
-// mpirun with N ranks on this machine (as root too, as in CI); Open MPI's own allocations still
-// held at exit are not ours to report (tests/e2e/data/openmpi-lsan.supp).
+// mpirun with N ranks on this machine (as root too, as in CI). Leak checking is off in the ranks:
+// Open MPI unloads its plugins at MPI_Finalize, so the allocations they still hold are reported
+// from unknown modules that no suppression can name; the same sweeps run in one process, leak
+// checked, in the tests above.
 std::string mpirun(int ranks) {
-  return "LSAN_OPTIONS=suppressions=" + std::string(VIRTCOM_SOURCE_DIR) + "/tests/e2e/data/openmpi-lsan.supp " VIRTCOM_MPIEXEC
+  return "ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0 " VIRTCOM_MPIEXEC
          " --oversubscribe --allow-run-as-root -n " + std::to_string(ranks) + " ";
 }
 

@@ -36,8 +36,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (!scratch.namesOnlyInside(scenario::substituteParameters(file.root, file.rows[row], diags), dir)) return -1;
 
   scenario::CaseOptions options;
-  options.hooks.beforeRun = [](const virtcom::cell::Cell& cell, virtcom::sim::SimOptions& o) {
+  options.hooks.beforeRun = [](virtcom::cell::Cell& cell, const virtcom::SourceManager&, virtcom::sim::SimOptions& o,
+                               std::string&) -> std::shared_ptr<void> {
     o.timeLimitNs = kCycles * cell.run.plcCycleNs;
+    return nullptr;
   };
   for (size_t row = 0; row < std::max<size_t>(rows, 1); ++row) {
     scenario::CaseSpec spec;

@@ -9,6 +9,7 @@
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "cli/opcua_options.hpp"
+#include "proto/opcua/crypto.hpp"
 
 namespace virtcom::cli {
 
@@ -37,6 +38,10 @@ ExitCode addUser(const UserOptions& o) {
   if (!accounts) {
     std::cerr << accounts.error() << "\n";
     return ExitCode::InputError;
+  }
+  if (auto crypto = ua::loadCrypto(); !crypto) {
+    std::cerr << "error: hashing the password needs " << crypto.error() << "\n";
+    return ExitCode::Usage;
   }
   const std::string password = readPassword();
   if (password.empty()) {

@@ -8,6 +8,7 @@
 
 #include "proto/ads/plc/module_symbols.hpp"
 #include "proto/net/endpoint.hpp"
+#include "proto/opcua/crypto.hpp"
 
 namespace virtcom::cli {
 
@@ -53,6 +54,7 @@ std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(con
     auto users = readOpcuaUsers(o.usersFile);
     if (!users) return std::unexpected("--opcua-users: " + users.error());
     if (users->empty()) return std::unexpected("--opcua-users: " + o.usersFile + " lists no user (add one with `virtcom opcua-user add`)");
+    if (auto crypto = ua::loadCrypto(); !crypto) return std::unexpected("--opcua-users: the password checks need " + crypto.error());
     config.users = std::move(*users);
     config.anonymous = ua::UserAccess::None;
   }

@@ -22,13 +22,12 @@ const std::string kExe = VIRTCOM_EXE;
 const std::string kGearbox = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell";
 const std::string kActivity = std::string(VIRTCOM_SOURCE_DIR) + "/examples/activity";
 
-TEST(StartUp, TheExecutableNeedsNeitherTheHttpNorTheGraphvizNorTheMpiLibraries) {
+TEST(StartUp, TheExecutableNeedsNeitherTheHttpNorTheGraphvizNorTheMpiNorTheCryptoLibraries) {
   std::string out;
   ASSERT_EQ(shell("readelf -d " + kExe, out), 0) << out;
   ASSERT_NE(out.find("(NEEDED)"), std::string::npos) << out;
-  // libcrypto is not in the list: the OPC UA server's password hashes (proto/opcua/user_accounts)
-  // need it in the executable (docs/performance.md, start-up).
-  for (const char* library : {"libcpp-httplib", "libssl", "libbrotli", "libgvc", "libcgraph", "libgvplugin", "libmpi", "libopen-"})
+  for (const char* library :
+       {"libcpp-httplib", "libssl", "libcrypto", "libbrotli", "libgvc", "libcgraph", "libgvplugin", "libmpi", "libopen-"})
     EXPECT_EQ(out.find(library), std::string::npos) << library << " is loaded by every command:\n" << out;
 }
 
@@ -83,6 +82,31 @@ TEST_F(StartUpWithoutModules, ASweepUnderMpiNamesTheMissingMpiModule) {
             std::string::npos)
       << out;
   EXPECT_EQ(out.find("points"), std::string::npos) << out;
+}
+
+// Hashing a password (and checking one: an OPC UA server with a users file) needs the crypto
+// module; without it nothing is written and the message names the file.
+TEST_F(StartUpWithoutModules, AddingAnOpcuaUserNamesTheMissingCryptoModule) {
+  std::string out;
+  const std::string users = (dir_ / "users.txt").string();
+  EXPECT_EQ(shell("echo secret | " + exe_ + " opcua-user add " + users + " op", out), 64) << out;
+  EXPECT_NE(out.find("error: hashing the password needs cannot load the module virtcom-crypto.so (built and installed beside the "
+                     "virtcom executable): " + (dir_ / "virtcom-crypto.so").string() + ": cannot open shared object file"),
+            std::string::npos)
+      << out;
+  EXPECT_FALSE(std::filesystem::exists(users));
+}
+
+TEST_F(StartUpWithoutModules, AnOpcuaServerWithUsersNamesTheMissingCryptoModule) {
+  std::string out;
+  const std::string users = (dir_ / "users.txt").string();
+  ASSERT_EQ(shell("echo secret | " + kExe + " opcua-user add " + users + " op", out), 0) << out;
+  const std::string program = (dir_ / "main.st").string();
+  ASSERT_EQ(shell("printf 'PROGRAM MAIN VAR x : INT; END_VAR x := x + 1; END_PROGRAM' > " + program, out), 0) << out;
+  const std::string command = exe_ + " exec " + program + " --cycles 10 --opcua 127.0.0.1:0 --opcua-users " + users;
+  EXPECT_EQ(shell(command, out), 64) << command << "\n" << out;
+  EXPECT_NE(out.find("error: --opcua-users: the password checks need cannot load the module virtcom-crypto.so"), std::string::npos)
+      << command << "\n" << out;
 }
 
 // What the server sends on `client` until `text` arrives (or 5 s pass without data).

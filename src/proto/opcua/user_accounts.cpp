@@ -1,11 +1,9 @@
 #include "proto/opcua/user_accounts.hpp"
 
-#include <openssl/crypto.h>
-#include <openssl/evp.h>
-#include <openssl/rand.h>
-
 #include <charconv>
 #include <stdexcept>
+
+#include "proto/opcua/crypto.hpp"
 
 namespace virtcom::proto::opcua {
 
@@ -18,8 +16,7 @@ constexpr uint32_t kMinIterations = 10'000, kMaxIterations = 10'000'000;
 
 std::vector<uint8_t> pbkdf2(std::string_view password, std::span<const uint8_t> salt, uint32_t iterations, size_t bytes) {
   std::vector<uint8_t> out(bytes);
-  if (PKCS5_PBKDF2_HMAC(password.data(), static_cast<int>(password.size()), salt.data(), static_cast<int>(salt.size()),
-                        static_cast<int>(iterations), EVP_sha256(), static_cast<int>(bytes), out.data()) != 1)
+  if (!crypto().pbkdf2Sha256(password.data(), password.size(), salt.data(), salt.size(), iterations, out.data(), bytes))
     throw std::runtime_error("OpenSSL PBKDF2 failed");
   return out;
 }
@@ -140,7 +137,7 @@ TextResult<std::vector<UserAccount>> parseUserAccounts(std::string_view text, st
 
 UserAccount makeUserAccount(std::string name, UserAccess access, std::string_view password, uint32_t iterations) {
   UserAccount a{std::move(name), access, iterations, std::vector<uint8_t>(kSaltBytes), {}};
-  if (RAND_bytes(a.salt.data(), static_cast<int>(a.salt.size())) != 1) throw std::runtime_error("OpenSSL RAND_bytes failed");
+  if (!crypto().randomBytes(a.salt.data(), a.salt.size())) throw std::runtime_error("OpenSSL RAND_bytes failed");
   a.hash = pbkdf2(password, a.salt, iterations, kHashBytes);
   return a;
 }
@@ -152,7 +149,7 @@ std::string formatUserAccount(const UserAccount& a) {
 
 bool passwordMatches(const UserAccount& a, std::string_view password) {
   const std::vector<uint8_t> hash = pbkdf2(password, a.salt, a.iterations, a.hash.size());
-  return CRYPTO_memcmp(hash.data(), a.hash.data(), hash.size()) == 0;
+  return crypto().equalInConstantTime(hash.data(), a.hash.data(), hash.size());
 }
 
 const UserAccount* findUserAccount(std::span<const UserAccount> accounts, std::string_view name) {

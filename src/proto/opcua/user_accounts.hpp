@@ -3,7 +3,8 @@
 // name, a role and a salted PBKDF2-HMAC-SHA256 hash of the password (never the password itself),
 //   NAME:ROLE:pbkdf2-sha256:ITERATIONS:SALT_HEX:HASH_HEX
 // with ROLE `read-only` or `read-write`; `#` starts a comment line. Hashing and checking use
-// OpenSSL (libcrypto).
+// OpenSSL's libcrypto through crypto.hpp (the module virtcom-crypto.so): call loadCrypto() first
+// to report a missing module; here its absence throws std::runtime_error.
 #include <cstdint>
 #include <span>
 #include <string>

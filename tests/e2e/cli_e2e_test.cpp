@@ -458,13 +458,13 @@ TEST_F(CliExec, MalformedRetainFileIsAnError) {
 TEST_F(CliExec, FbExitRunsOnceWhenTheProgramEnds) {
   const std::string file = (work_ / "retain.txt").string();
   const std::vector<std::string> args{"exec", "fb_exit.st", "--cycles", "3", "--retain-file", file,
-                                      "--print", "MAIN.scans", "--print", "MAIN.log.closed", "--print", "gShutdowns"};
+                                      "--print", "MAIN.scans", "--print", "MAIN.journal.closed", "--print", "gShutdowns"};
   RunResult first = run(args);
   EXPECT_EQ(first.exitCode, 0) << show(first);
-  EXPECT_EQ(first.out, "MAIN.scans = 3\nMAIN.log.closed = TRUE\ngShutdowns = 1\n");
+  EXPECT_EQ(first.out, "MAIN.scans = 3\nMAIN.journal.closed = TRUE\ngShutdowns = 1\n");
   RunResult second = run(args);
   EXPECT_EQ(second.exitCode, 0) << show(second);
-  EXPECT_EQ(second.out, "MAIN.scans = 3\nMAIN.log.closed = TRUE\ngShutdowns = 2\n");
+  EXPECT_EQ(second.out, "MAIN.scans = 3\nMAIN.journal.closed = TRUE\ngShutdowns = 2\n");
 }
 
 TEST_F(CliExec, FaultInFbExitIsARuntimeFault) {

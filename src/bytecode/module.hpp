@@ -178,6 +178,9 @@ struct Module {
   // Init POU run once at cold start after the image is loaded (FB_init calls); kNoPou if none.
   static constexpr uint32_t kNoPou = 0xffffffffu;
   uint32_t initPou = kNoPou;
+  // Exit POU run once when the program ends (FB_exit calls); kNoPou if none. Kind Init too:
+  // both run outside the scan, without coverage.
+  uint32_t exitPou = kNoPou;
   CoverageTable coverage;
 
   uint32_t memorySize() const { return staticSize + stackSize; }

@@ -115,6 +115,7 @@ class Verifier {
     for (const ProcessArea* a : {&m_.inputs, &m_.outputs, &m_.memory})
       if (a->size && !inStatic(a->address, a->size)) return fail("process image area outside static memory");
     if (m_.initPou != Module::kNoPou && m_.initPou >= m_.pous.size()) return fail("init pou index out of range");
+    if (m_.exitPou != Module::kNoPou && m_.exitPou >= m_.pous.size()) return fail("exit pou index out of range");
     const CoverageTable& cov = m_.coverage;
     if (!cov.probes.empty() && !inStatic(cov.counterAddress, uint64_t{8} * cov.probes.size()))
       return fail("coverage counters outside static memory");

@@ -253,6 +253,10 @@ ExitCode runExec(const ExecOptions& o) {
   if (modbus) modbus->stop();
   if (ads) ads->stop();
   if (opcua) opcua->stop();
+  if (!runtime.exit()) {
+    std::cerr << "runtime fault in FB_exit: " << runtime.faultText() << "\n";
+    exitCode = ExitCode::PlcFault;
+  }
   backend.logRun(runtime.tierStats());
   if (audit) std::cerr << auditSummary(*audit) << "\n";
   if (!o.retainFile.empty() && exitCode == ExitCode::Ok) {

@@ -111,7 +111,13 @@ bool decodeDuration(std::string_view body, uint64_t& ns, bool& negative, Literal
   return true;
 }
 
-bool decodeDate(std::string_view body, int64_t& seconds, LiteralError& why) {
+namespace {
+
+// The first year of the 64-bit nanosecond dates (LDATE, LDT): LDT#1677-09-21-00:12:43.145224192.
+constexpr uint64_t kFirstLongYear = 1677;
+
+// yyyy-mm-dd from `firstYear` to 9999, to seconds since 1970 (negative before 1970).
+bool decodeCivilDate(std::string_view body, uint64_t firstYear, int64_t& seconds, LiteralError& why) {
   std::string_view parts[3];
   uint64_t y = 0, m = 0, d = 0;
   if (splitParts(body, '-', parts, 3) != 3 || !parseDecimal(parts[0], y) || !parseDecimal(parts[1], m) ||
@@ -119,17 +125,22 @@ bool decodeDate(std::string_view body, int64_t& seconds, LiteralError& why) {
     return fail(why, "expected yyyy-mm-dd");
   static constexpr unsigned kDaysInMonth[] = {31, 29, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
   bool leap = (y % 4 == 0 && y % 100 != 0) || y % 400 == 0;
-  if (y < 1970 || y > 9999 || m < 1 || m > 12 || d < 1 || d > kDaysInMonth[m - 1] || (m == 2 && d == 29 && !leap))
+  if (y > 9999 || m < 1 || m > 12 || d < 1 || d > kDaysInMonth[m - 1] || (m == 2 && d == 29 && !leap))
     return fail(why, "no such date");
+  if (y < firstYear)
+    return fail(why, firstYear == 1970 ? "before 1970: DATE and DT count unsigned seconds since 1970 (LDATE and LDT "
+                                         "reach back to 1677)"
+                                       : "before 1677: LDATE and LDT count signed 64-bit nanoseconds since 1970");
   seconds = daysFromCivil(static_cast<int64_t>(y), static_cast<unsigned>(m), static_cast<unsigned>(d)) * 86400;
   return true;
 }
 
-namespace {
-
-// 64-bit nanoseconds since 1970 end in April 2262.
-bool failBeyondLdt(LiteralError& why) {
-  why = {LiteralError::Kind::TooLarge, "beyond LDT#2262-04-11-23:47:16.854775807, the last of 64-bit nanoseconds", {}};
+// 64-bit nanoseconds since 1970 reach from September 1677 to April 2262.
+bool failOutsideLdt(LiteralError& why, bool before) {
+  why = {LiteralError::Kind::TooLarge,
+         before ? "before LDT#1677-09-21-00:12:43.145224192, the first of 64-bit nanoseconds"
+                : "beyond LDT#2262-04-11-23:47:16.854775807, the last of 64-bit nanoseconds",
+         {}};
   return false;
 }
 
@@ -158,21 +169,28 @@ bool decodeClockNs(std::string_view body, int64_t& ns, LiteralError& why) {
   return true;
 }
 
-// yyyy-mm-dd-hh:mm:ss[.f] to nanoseconds since 1970.
-bool decodeDateAndTimeNs(std::string_view body, int64_t& ns, LiteralError& why) {
+// yyyy-mm-dd-hh:mm:ss[.f] from `firstYear` on to nanoseconds since 1970.
+bool decodeDateAndTimeNs(std::string_view body, uint64_t firstYear, int64_t& ns, LiteralError& why) {
   size_t dash = std::string_view::npos, count = 0;
   for (size_t i = 0; i < body.size() && count < 3; ++i)
     if (body[i] == '-' && ++count == 3) dash = i;
   if (dash == std::string_view::npos) return fail(why, "expected yyyy-mm-dd-hh:mm:ss");
   int64_t daySeconds = 0, clock = 0;
-  if (!decodeDate(body.substr(0, dash), daySeconds, why) || !decodeClockNs(body.substr(dash + 1), clock, why))
+  if (!decodeCivilDate(body.substr(0, dash), firstYear, daySeconds, why) ||
+      !decodeClockNs(body.substr(dash + 1), clock, why))
     return false;
-  if (__builtin_mul_overflow(daySeconds, int64_t{1'000'000'000}, &ns) || __builtin_add_overflow(ns, clock, &ns))
-    return failBeyondLdt(why);
+  const __int128 wide = static_cast<__int128>(daySeconds) * 1'000'000'000 + clock;
+  if (wide < std::numeric_limits<int64_t>::min()) return failOutsideLdt(why, true);
+  if (wide > std::numeric_limits<int64_t>::max()) return failOutsideLdt(why, false);
+  ns = static_cast<int64_t>(wide);
   return true;
 }
 
 }  // namespace
+
+bool decodeDate(std::string_view body, int64_t& seconds, LiteralError& why) {
+  return decodeCivilDate(body, 1970, seconds, why);
+}
 
 // hh:mm[:ss[.fff]] to milliseconds since midnight.
 bool decodeTimeOfDay(std::string_view body, int64_t& ms, LiteralError& why) {
@@ -185,7 +203,7 @@ bool decodeTimeOfDay(std::string_view body, int64_t& ms, LiteralError& why) {
 // yyyy-mm-dd-hh:mm:ss[.f] to seconds since 1970 (the fraction is dropped: DT counts seconds).
 bool decodeDateAndTime(std::string_view body, int64_t& seconds, LiteralError& why) {
   int64_t ns = 0;
-  if (!decodeDateAndTimeNs(body, ns, why)) return false;
+  if (!decodeDateAndTimeNs(body, 1970, ns, why)) return false;
   seconds = ns / 1'000'000'000;
   return true;
 }
@@ -204,12 +222,14 @@ bool decodeLiteralBody(std::string_view body, LiteralFamily family, int64_t& val
     case LiteralFamily::Date: return decodeDate(body, value, why);
     case LiteralFamily::Tod: return decodeTimeOfDay(body, value, why);
     case LiteralFamily::Dt: return decodeDateAndTime(body, value, why);
-    case LiteralFamily::Ldate:
-      if (!decodeDate(body, value, why)) return false;
-      if (__builtin_mul_overflow(value, int64_t{1'000'000'000}, &value)) return failBeyondLdt(why);
+    case LiteralFamily::Ldate: {
+      int64_t seconds = 0;
+      if (!decodeCivilDate(body, kFirstLongYear, seconds, why)) return false;
+      if (__builtin_mul_overflow(seconds, int64_t{1'000'000'000}, &value)) return failOutsideLdt(why, seconds < 0);
       return true;
+    }
     case LiteralFamily::Ltod: return decodeClockNs(body, value, why);
-    case LiteralFamily::Ldt: return decodeDateAndTimeNs(body, value, why);
+    case LiteralFamily::Ldt: return decodeDateAndTimeNs(body, kFirstLongYear, value, why);
     case LiteralFamily::None: break;
   }
   return fail(why, "not a time or date literal");

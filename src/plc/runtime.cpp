@@ -49,6 +49,18 @@ bool Runtime::coldStart() {
   return true;
 }
 
+bool Runtime::exit() {
+  if (!initialised_ || state_ == PlcState::Fault) return true;
+  initialised_ = false;
+  if (!machine_.runExit()) {
+    state_ = PlcState::Fault;
+    faultTask_.clear();  // no task: the fault's location names the FB_exit
+    return false;
+  }
+  state_ = PlcState::Stop;
+  return true;
+}
+
 bool Runtime::runTask(size_t task, int64_t nowNs) {
   const bc::TaskInfo& info = module_.tasks[task];
   uint8_t* mem = machine_.memory();

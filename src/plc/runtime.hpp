@@ -53,6 +53,10 @@ class Runtime {
     else if (state_ == PlcState::Stop) state_ = PlcState::Run;
   }
   void stop() { if (state_ == PlcState::Run) state_ = PlcState::Stop; }
+  // Ends the program (CODESYS: before a new download or a reset): calls FB_exit of every
+  // instance that has one and enters STOP; the next start() cold-starts. Nothing is called
+  // after a fault or before the first cold start. False if FB_exit faulted (FAULT, faultText()).
+  bool exit();
   PlcState state() const { return state_; }
 
   // The greatest common divisor of all task intervals: the scheduler's tick.

@@ -98,8 +98,19 @@ void Simulation::recordChanges() {
   cell_.bus.clearChanges();
 }
 
+// A fault report on one line, for tables and reports.
+static std::string oneLine(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ';');
+  return text;
+}
+
 void Simulation::finish(RunEnd end, std::string message) {
   ended_ = true;
+  if (runtime_ && !runtime_->exit()) {  // FB_exit, unless the PLC already faulted
+    end = RunEnd::PlcFault;
+    message = oneLine("FB_exit: " + runtime_->faultText());
+    cell_.trace.faults.push_back({nowNs_, "PLC", message});
+  }
   Trace& trace = cell_.trace;
   trace.end = end;
   trace.endMessage = std::move(message);
@@ -133,9 +144,7 @@ bool Simulation::countCycle(bool done) {
 bool Simulation::checkPlcStop() {
   uint8_t* mem = runtime_->machine().memory();
   if (runtime_->state() == plc::PlcState::Fault) {
-    std::string text = runtime_->faultText();
-    for (auto& c : text)
-      if (c == '\n') c = ';';  // one line in tables and reports
+    std::string text = oneLine(runtime_->faultText());
     cell_.trace.faults.push_back({nowNs_, "PLC", text});
     finish(RunEnd::PlcFault, text);
     return true;

@@ -32,6 +32,9 @@ class Machine {
   // memory[0, staticSize) = initialImage, the rest zero, sp = staticSize; then runs m.initPou
   // if set. Returns false if the init POU faulted (fault() says why).
   bool coldStart();
+  // Runs m.exitPou if set (the FB_exit calls at the end of the program). Returns false if it
+  // faulted (fault() says why).
+  bool runExit() { return m_.exitPou == bc::Module::kNoPou || run(m_.exitPou, 0); }
 
   uint8_t* memory() { return memory_.data(); }
   const uint8_t* memory() const { return memory_.data(); }

@@ -454,6 +454,25 @@ TEST_F(CliExec, MalformedRetainFileIsAnError) {
   EXPECT_TRUE(contains(r.err, "retain.txt:1: expected NAME HEX TYPE")) << show(r);
 }
 
+// FB_exit (issue 16) runs after the last scan and before --print and the retain file.
+TEST_F(CliExec, FbExitRunsOnceWhenTheProgramEnds) {
+  const std::string file = (work_ / "retain.txt").string();
+  const std::vector<std::string> args{"exec", "fb_exit.st", "--cycles", "3", "--retain-file", file,
+                                      "--print", "MAIN.scans", "--print", "MAIN.journal.closed", "--print", "gShutdowns"};
+  RunResult first = run(args);
+  EXPECT_EQ(first.exitCode, 0) << show(first);
+  EXPECT_EQ(first.out, "MAIN.scans = 3\nMAIN.journal.closed = TRUE\ngShutdowns = 1\n");
+  RunResult second = run(args);
+  EXPECT_EQ(second.exitCode, 0) << show(second);
+  EXPECT_EQ(second.out, "MAIN.scans = 3\nMAIN.journal.closed = TRUE\ngShutdowns = 2\n");
+}
+
+TEST_F(CliExec, FaultInFbExitIsARuntimeFault) {
+  RunResult r = run({"exec", "fb_exit_fault.st", "--cycles", "2", "--print", "MAIN.stats.mean"});
+  EXPECT_EQ(r.exitCode, 2) << show(r);
+  EXPECT_TRUE(contains(r.err, "runtime fault in FB_exit: division by zero at fb_exit_fault.st:9:")) << show(r);
+}
+
 TEST_F(CliExec, DefaultIsOneCycle) {
   RunResult r = run({"exec", "counter.st", "--print", "MAIN.count"});
   EXPECT_EQ(r.exitCode, 0) << show(r);

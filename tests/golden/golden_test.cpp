@@ -272,6 +272,8 @@ TEST_P(Golden, Run) {
     checkScan(*module, h, k + 1, steps, runtime.machine().memory(), bitsSeen);
   }
   for (const auto& [name, expected] : h.bits) EXPECT_EQ(bitsSeen[name], expected) << name << " scan by scan";
+  // The program ends as `exec` ends it: FB_exit runs (nothing after a fault), then CHECK.
+  faulted = !runtime.exit() || faulted;
   if (!h.fault.empty()) {
     ASSERT_TRUE(faulted) << "expected a runtime fault containing '" << h.fault << "'";
     EXPECT_NE(runtime.faultText().find(h.fault), std::string::npos) << runtime.faultText();
@@ -325,6 +327,8 @@ TEST_P(Golden, AotMatchesInterpreter) {
     ASSERT_TRUE(sameImage(k));
     if (!ran) break;
   }
+  ASSERT_EQ(native.exit(), interp.exit()) << interp.faultText() << " / " << native.faultText();
+  ASSERT_TRUE(sameImage(h.cycles + 1));
   EXPECT_EQ(native.faultText(), interp.faultText());
   EXPECT_EQ(native.machine().timeReads(), interp.machine().timeReads());
 }

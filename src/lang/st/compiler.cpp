@@ -177,26 +177,29 @@ std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& input
     diags.sortByLocation();
     return nullptr;
   }
-  std::unique_ptr<Pou> initAst = buildInitProgram(model, types);
-  PouSym* initPou = nullptr;
-  if (initAst) {
+  std::unique_ptr<Pou> initAst = buildInitProgram(model, types), exitAst = buildExitProgram(model, types);
+  auto addLifecyclePou = [&](const std::unique_ptr<Pou>& ast) -> PouSym* {
+    if (!ast) return nullptr;
     auto sym = std::make_unique<PouSym>();
-    sym->name = sym->qualifiedName = initAst->name;
-    sym->ast = initAst.get();
-    initPou = sym.get();
+    sym->name = sym->qualifiedName = ast->name;
+    sym->ast = ast.get();
     model.pous.push_back(std::move(sym));
-  }
+    return model.pous.back().get();
+  };
+  PouSym* initPou = addLifecyclePou(initAst);
+  PouSym* exitPou = addLifecyclePou(exitAst);
   // Every POU with code gets its slot first, so calls can name any callee.
   for (auto& p : model.pous) {
     if (!hasCode(*p)) continue;
     p->bcIndex = static_cast<uint32_t>(module->pous.size());
     bc::PouInfo info;
     info.name = p->qualifiedName;
-    info.kind = p.get() == initPou ? bc::PouKind::Init : moduleKind(p->kind);
+    info.kind = p.get() == initPou || p.get() == exitPou ? bc::PouKind::Init : moduleKind(p->kind);
     info.instanceType = p->kind == PouKind::FunctionBlock || p->kind == PouKind::Program ? p->instanceType : bc::kNoType;
     module->pous.push_back(info);
   }
   if (initPou) module->initPou = initPou->bcIndex;
+  if (exitPou) module->exitPou = exitPou->bcIndex;
   CompileContext ctx{model, types, declarer, *module, image, diags, options.coverage};
   for (auto& p : model.pous) {
     if (!hasCode(*p)) continue;

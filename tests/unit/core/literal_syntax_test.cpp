@@ -116,7 +116,16 @@ TEST(LiteralSyntax, Dates) {
   EXPECT_EQ(body("9999-12-31", LiteralFamily::Date), "253402214400");
   EXPECT_EQ(body("2023-02-29", LiteralFamily::Date), "error: no such date");
   EXPECT_EQ(body("2024-02-31", LiteralFamily::Date), "error: no such date");
-  EXPECT_EQ(body("1969-12-31", LiteralFamily::Date), "error: no such date");
+  EXPECT_EQ(body("1969-12-31", LiteralFamily::Date),
+            "error: before 1970: DATE and DT count unsigned seconds since 1970 (LDATE and LDT reach back to 1677)");
+  // LDATE/LDT are signed 64-bit ns: before 1970 they are negative, down to 1677-09-21-00:12:43.145224192.
+  EXPECT_EQ(body("1969-12-31", LiteralFamily::Ldate), "-86400000000000");
+  EXPECT_EQ(body("1969-07-20-20:17:40", LiteralFamily::Ldt), "-14182940000000000");
+  EXPECT_EQ(body("1677-09-21-00:12:43.145224192", LiteralFamily::Ldt), "-9223372036854775808");
+  EXPECT_EQ(body("1677-09-21-00:12:43.145224191", LiteralFamily::Ldt),
+            "error: before LDT#1677-09-21-00:12:43.145224192, the first of 64-bit nanoseconds");
+  EXPECT_EQ(body("1677-09-21", LiteralFamily::Ldate), "error: before LDT#1677-09-21-00:12:43.145224192, the first of 64-bit nanoseconds");
+  EXPECT_EQ(body("1676-12-31", LiteralFamily::Ldate), "error: before 1677: LDATE and LDT count signed 64-bit nanoseconds since 1970");
   EXPECT_EQ(body("2024-13-01", LiteralFamily::Date), "error: no such date");
   EXPECT_EQ(body("2024-01", LiteralFamily::Date), "error: expected yyyy-mm-dd");
   EXPECT_EQ(body("2024-01-02-03", LiteralFamily::Date), "error: expected yyyy-mm-dd");

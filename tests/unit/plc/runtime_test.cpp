@@ -134,6 +134,61 @@ TEST(RuntimeState, ColdStartAgainResetsToInitialValues) {
   EXPECT_EQ(rt.ticks(), 0u);
 }
 
+// FB_exit (issue 16): once, at the end, in STOP afterwards; never before the first cold start
+// or after a fault.
+const char* const kExitCounter = R"st(VAR_GLOBAL
+  gExits : INT;
+  gDivisor : INT := 1;
+END_VAR
+FUNCTION_BLOCK FB_Closer
+METHOD FB_exit : BOOL
+gExits := gExits + 1 + 0 / gDivisor;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM MAIN
+VAR
+  closer : FB_Closer;
+  q : INT;
+END_VAR
+q := 10 / gDivisor;
+END_PROGRAM
+)st";
+
+TEST(RuntimeState, ExitCallsFbExitOnceAndStops) {
+  auto module = compileSt(kExitCounter);
+  ASSERT_NE(module, nullptr);
+  VirtualClock clock;
+  Runtime rt(*module, clock);
+  EXPECT_TRUE(rt.exit());  // never started: nothing to end
+  ASSERT_TRUE(rt.coldStart());
+  EXPECT_EQ(valueOf(rt, "gExits"), "0");
+  ASSERT_TRUE(rt.tick());
+  ASSERT_TRUE(rt.exit());
+  EXPECT_EQ(valueOf(rt, "gExits"), "1");
+  EXPECT_EQ(rt.state(), PlcState::Stop);
+  EXPECT_TRUE(rt.exit());
+  EXPECT_EQ(valueOf(rt, "gExits"), "1");
+}
+
+TEST(RuntimeState, NoFbExitAfterAFaultButAFaultInFbExitIsReported) {
+  auto module = compileSt(kExitCounter);
+  ASSERT_NE(module, nullptr);
+  VirtualClock clock;
+  Runtime faulted(*module, clock);
+  ASSERT_TRUE(faulted.coldStart());
+  ASSERT_EQ(setValue(faulted, "gDivisor", "0"), "");
+  EXPECT_FALSE(faulted.tick());
+  EXPECT_TRUE(faulted.exit());
+  EXPECT_EQ(valueOf(faulted, "gExits"), "0");
+  VirtualClock clock2;
+  Runtime failing(*module, clock2);
+  ASSERT_TRUE(failing.coldStart());
+  ASSERT_EQ(setValue(failing, "gDivisor", "0"), "");
+  EXPECT_FALSE(failing.exit());
+  EXPECT_EQ(failing.state(), PlcState::Fault);
+  EXPECT_NE(failing.faultText().find("division by zero at main.st:7:"), std::string::npos) << failing.faultText();
+}
+
 const char* const kDivByZero = R"st(PROGRAM MAIN
 VAR
   divisor : INT := 3;

@@ -22,8 +22,8 @@ bool isInsideOwnPou(const Place& p, const PouSym& pou) {
 
 bool checkAssignable(Diagnostics& diags, const Place& target, const PouSym& pou, SourceLocation loc) {
   if (target.constant) {
-    diags.error(diag::E204, loc, "'" + (target.var ? target.var->name : std::string("value")) +
-                                     "' is a CONSTANT and cannot be assigned");
+    diags.error(diag::E204, loc, target.var ? "'" + target.var->name + "' is a CONSTANT and cannot be assigned"
+                                            : std::string("this is part of a CONSTANT and cannot be assigned"));
     return false;
   }
   if (target.isInput && isInsideOwnPou(target, pou) && pou.kind == PouKind::FunctionBlock)

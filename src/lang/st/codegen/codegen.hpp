@@ -21,6 +21,7 @@ struct CompileContext {
 };
 
 inline constexpr uint16_t kAbsolute = 0xffff;  // Place::base for absolute addresses
+inline constexpr uint16_t kNoReg = 0xffff;     // no register allocated
 inline constexpr uint16_t kFp = 0;
 inline constexpr uint16_t kThis = 1;
 
@@ -189,6 +190,15 @@ class PouCompiler {
   std::optional<Place> indexPlace(const Expr& e, bool forWrite);
   std::optional<Place> valuePlace(const Value& v);
   std::optional<Place> pointerIndexPlace(const Place& pointer, const Expr& index);
+  std::optional<Place> stringIndexPlace(const Place& string, const Expr& index);
+  // Byte offset of an indexed element: folded constant part plus a register (kNoReg: none).
+  struct CheckedOffset {
+    int64_t constant = 0;
+    uint16_t variable = kNoReg;
+  };
+  bool addCheckedIndex(const Expr& index, const bc::ArrayDim& dim, uint64_t stride, const std::string& what,
+                       CheckedOffset& offset);
+  Place offsetPlace(Place p, const CheckedOffset& offset);
   std::optional<Place> derefPlace(const Expr& e);
   Place varPlace(const VarInfo& v, uint16_t instanceBase);
   Place referee(const Place& referenceSlot);

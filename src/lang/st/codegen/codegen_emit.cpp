@@ -281,19 +281,20 @@ struct TimeScaling {
   int64_t divide = 1;
 };
 
-// How a duration or date changes its unit: DT (seconds) to TOD (ms since midnight) keeps the
-// clock (mod a day) and multiplies by 1000, LDT to LDATE drops the clock, DATE to LDATE
-// multiplies by 1e9, LTIME to TIME divides by 1e6. Conversions between durations and dates,
-// and those that would invent a part (TOD to DT, DATE to TOD), copy the number as it is.
+// A duration or date converts as the point in time it stands for: a duration counts from 0,
+// DATE/DT/LDATE/LDT from 1970-01-01-00:00, TOD/LTOD from midnight. The number changes its
+// unit (DT seconds to TOD milliseconds: * 1000, LTIME to TIME: / 1e6, toward zero); a target
+// without a clock (DATE, LDATE) keeps the midnight of the day, a clock (TOD, LTOD) the time
+// within the day, both by floor (a negative LTIME or a LDT before 1970 falls on the day before).
+// So TIME_TO_DT(T#1d2h) is DT#1970-01-02-02:00:00, DT_TO_TIME gives the milliseconds since
+// 1970 (wrapping in TIME's 32 bits as CODESYS does), TOD_TO_DT is the clock on 1970-01-01 and
+// DATE_TO_TOD the midnight.
 TimeScaling timeScaling(ElemType from, ElemType to) {
   const int64_t fu = timeUnitNs(from), tu = timeUnitNs(to);
   const DatePart fp = datePart(from), tp = datePart(to);
-  const bool durations = fp == DatePart::None && tp == DatePart::None;
-  const bool dates = fp != DatePart::None && tp != DatePart::None && (fp == tp || fp == DatePart::Both ||
-                                                                      (fp == DatePart::Day && tp == DatePart::Both));
   TimeScaling s;
-  if (from == to || fu == 0 || tu == 0 || !(durations || dates)) return s;
-  if (fp == DatePart::Both && (tp == DatePart::Day || tp == DatePart::Clock)) {
+  if (from == to || fu == 0 || tu == 0) return s;
+  if ((tp == DatePart::Day || tp == DatePart::Clock) && fp != tp) {
     s.unitsPerDay = 86'400'000'000'000 / fu;
     s.keepClock = tp == DatePart::Clock;
   }
@@ -301,6 +302,9 @@ TimeScaling timeScaling(ElemType from, ElemType to) {
   if (tu > fu) s.divide = tu / fu;
   return s;
 }
+
+// x mod d rounded toward minus infinity (the time within the day also before 1970).
+int64_t floorMod(int64_t x, int64_t d) { return ((x % d) + d) % d; }
 
 }  // namespace
 
@@ -383,7 +387,7 @@ Value PouCompiler::convert(Value v, TypeId to, SourceLocation loc) {
     if (from != kNoType) {
       const TimeScaling s = timeScaling(t.storageElem(from), t.storageElem(to));
       if (s.unitsPerDay) {
-        const int64_t rem = static_cast<int64_t>(static_cast<uint64_t>(i) % static_cast<uint64_t>(s.unitsPerDay));
+        const int64_t rem = floorMod(i, s.unitsPerDay);
         i = s.keepClock ? rem : i - rem;
       }
       if (s.multiply > 1) i *= s.multiply;
@@ -446,14 +450,17 @@ Value PouCompiler::convert(Value v, TypeId to, SourceLocation loc) {
   // integer-like to integer-like; durations and dates change their unit (timeScaling)
   const TimeScaling s = timeScaling(fe, te);
   if (s.unitsPerDay) {
-    uint16_t rem = allocReg();
-    emit(Op::MOD_U, rem, r, loadConstInt(s.unitsPerDay));
+    // floorMod: (r % d + d) % d
+    uint16_t rem = allocReg(), day = loadConstInt(s.unitsPerDay);
+    emit(Op::MOD_I, rem, r, day);
+    emit(Op::ADD, rem, rem, day);
+    emit(Op::MOD_I, rem, rem, day);
     if (s.keepClock) {
       r = rem;
     } else {
-      uint16_t day = allocReg();
-      emit(Op::SUB, day, r, rem);
-      r = day;
+      uint16_t midnight = allocReg();
+      emit(Op::SUB, midnight, r, rem);
+      r = midnight;
     }
   }
   if (s.multiply > 1) {

@@ -272,8 +272,15 @@ std::optional<Place> PouCompiler::indexPlace(const Expr& e, bool forWrite) {
   const bc::TypeDesc& d = types()[at];
   if (d.kind == bc::TypeKind::Pointer && d.element != kNoType && e.items.size() == 1)
     return pointerIndexPlace(*basePlace, *e.items[0]);
+  if (d.kind == bc::TypeKind::String) {
+    if (e.items.size() == 1) return stringIndexPlace(*basePlace, *e.items[0]);
+    diags().error(diag::E213, e.loc, "a " + std::string(d.elem == ElemType::Wstring ? "WSTRING" : "STRING") +
+                                         " takes one index (the 0-based character offset), found " +
+                                         std::to_string(e.items.size()));
+    return std::nullopt;
+  }
   if (d.kind != bc::TypeKind::Array) {
-    diags().error(diag::E213, e.loc, "only arrays can be indexed; this is " + describe(types(), at));
+    diags().error(diag::E213, e.loc, "only arrays, STRINGs and pointers can be indexed; this is " + describe(types(), at));
     return std::nullopt;
   }
   if (e.items.size() != d.dims.size()) {
@@ -286,48 +293,73 @@ std::optional<Place> PouCompiler::indexPlace(const Expr& e, bool forWrite) {
   p.type = d.element;
   p.var = nullptr;
   p.viaReference = false;
-  // Constant part folded at compile time; variable part accumulated in a register.
-  int64_t constLinear = 0;
-  uint16_t linear = 0xffff;
+  CheckedOffset offset;
   uint64_t stride = 1;
   for (size_t k = d.dims.size(); k-- > 0;) {
-    const bc::ArrayDim& dim = d.dims[k];
-    Value idx = expr(*e.items[k], TypeTable::elem(ElemType::Dint));
-    if (!idx.ok()) return std::nullopt;
-    if (!types().isInteger(idx.type) && !types().isEnum(idx.type)) {
-      diags().error(diag::E213, e.items[k]->loc, "an array index must be an integer, found " + describe(types(), idx.type));
-      return std::nullopt;
-    }
-    if (idx.kind == Value::Kind::Const) {
-      if (idx.c.i < dim.lo || idx.c.i > dim.hi) {
-        diags().error(diag::E213, e.items[k]->loc, "index " + std::to_string(idx.c.i) + " is outside " + d.name);
-        return std::nullopt;
-      }
-      constLinear += (idx.c.i - dim.lo) * static_cast<int64_t>(stride);
-    } else {
-      // One INDEX checks the index and scales it to a byte offset.
-      uint16_t r = allocReg();
-      emit(Op::INDEX, r, toReg(idx), indexDesc({dim.lo, static_cast<uint32_t>(dim.count()),
-                                                static_cast<uint32_t>(stride * elemSize)}));
-      if (linear == 0xffff) linear = r;
-      else emit(Op::ADD, linear, linear, r);
-    }
-    stride *= dim.count();
+    if (!addCheckedIndex(*e.items[k], d.dims[k], stride * elemSize, d.name, offset)) return std::nullopt;
+    stride *= d.dims[k].count();
   }
-  p.offset += static_cast<uint32_t>(constLinear * elemSize);
-  if (linear != 0xffff) {
-    uint16_t addr = allocReg();
-    if (p.base == kAbsolute) {
-      uint16_t b = loadConstInt(p.offset);
-      emit(Op::ADD, addr, b, linear);
-      p.offset = 0;
-    } else {
-      emit(Op::ADD, addr, p.base, linear);
-    }
-    p.base = addr;
-  }
+  p = offsetPlace(p, offset);
   // An element of an ARRAY OF REFERENCE TO is used like its referee, as a REFERENCE TO variable is.
   if (types().isReference(p.type) && !model().interfaceByType.count(p.type)) p = referee(p);
+  return p;
+}
+
+// `s[i]` on a STRING(n) / WSTRING(n), as CODESYS has it: the BYTE (WORD) at 0-based character
+// offset i, read and written in place. Checked like an array index against the declared
+// length (0 <= i < n): the terminator slot and the bytes past it are not characters.
+std::optional<Place> PouCompiler::stringIndexPlace(const Place& string, const Expr& index) {
+  const bc::TypeDesc& d = types()[string.type];
+  const bool wide = d.elem == ElemType::Wstring;
+  const bc::ArrayDim chars{0, static_cast<int64_t>(d.stringLength) - 1};
+  CheckedOffset offset;
+  const std::string what = d.name + " (characters 0.." + std::to_string(chars.hi) + ")";
+  if (!addCheckedIndex(index, chars, wide ? 2 : 1, what, offset)) return std::nullopt;
+  Place p = string;
+  p.type = TypeTable::elem(wide ? ElemType::Word : ElemType::Byte);
+  p.var = nullptr;
+  p.viaReference = false;
+  return offsetPlace(p, offset);
+}
+
+// One index into `dim` whose elements lie `stride` bytes apart: a constant one is checked now
+// (E213) and folded, a variable one becomes an INDEX (checked at run time, the array fault)
+// whose byte offset is added up in a register.
+bool PouCompiler::addCheckedIndex(const Expr& index, const bc::ArrayDim& dim, uint64_t stride,
+                                  const std::string& what, CheckedOffset& offset) {
+  Value idx = expr(index, TypeTable::elem(ElemType::Dint));
+  if (!idx.ok()) return false;
+  if (!types().isInteger(idx.type) && !types().isEnum(idx.type)) {
+    diags().error(diag::E213, index.loc, "an index must be an integer, found " + describe(types(), idx.type));
+    return false;
+  }
+  if (idx.kind == Value::Kind::Const) {
+    if (idx.c.i < dim.lo || idx.c.i > dim.hi) {
+      diags().error(diag::E213, index.loc, "index " + std::to_string(idx.c.i) + " is outside " + what);
+      return false;
+    }
+    offset.constant += (idx.c.i - dim.lo) * static_cast<int64_t>(stride);
+    return true;
+  }
+  uint16_t r = allocReg();
+  emit(Op::INDEX, r, toReg(idx), indexDesc({dim.lo, static_cast<uint32_t>(dim.count()), static_cast<uint32_t>(stride)}));
+  if (offset.variable == kNoReg) offset.variable = r;
+  else emit(Op::ADD, offset.variable, offset.variable, r);
+  return true;
+}
+
+// The place `offset` bytes after p.
+Place PouCompiler::offsetPlace(Place p, const CheckedOffset& offset) {
+  p.offset += static_cast<uint32_t>(offset.constant);
+  if (offset.variable == kNoReg) return p;
+  uint16_t addr = allocReg();
+  if (p.base == kAbsolute) {
+    emit(Op::ADD, addr, loadConstInt(p.offset), offset.variable);
+    p.offset = 0;
+  } else {
+    emit(Op::ADD, addr, p.base, offset.variable);
+  }
+  p.base = addr;
   return p;
 }
 
@@ -435,7 +467,7 @@ std::optional<Place> PouCompiler::place(const Expr& e, bool forWrite) {
     case ExprKind::DirectAddr: {
       auto a = parseDirectAddress(e.text);
       if (!a) {
-        diags().error(diag::E109, e.loc, "'" + e.text + "' is not a valid direct address");
+        diags().error(diag::E109, e.loc, directAddressError(e.text));
         return std::nullopt;
       }
       const bc::ProcessArea& area = a->area == 'I' ? ctx_.module.inputs : a->area == 'Q' ? ctx_.module.outputs : ctx_.module.memory;
@@ -712,7 +744,8 @@ Value PouCompiler::compare(const Expr& e, Value a, Value b) {
     Value cb = t.isPointer(common) || common == b.type ? b : convert(b, common, e.loc);
     if (!ca.ok() || !cb.ok()) return Value::error();
     // The K comparisons are signed: fine for every register except unsigned 64-bit ones.
-    bool unsignedCompare = isUnsigned(t, common) || t.isDateLike(common) || t.isPointer(common);
+    // DATE, TOD and DT are unsigned 32-bit; LDATE, LTOD and LDT signed (before 1970: negative).
+    bool unsignedCompare = isUnsigned(t, common) || (t.isDateLike(common) && t.bits(common) < 64) || t.isPointer(common);
     bool immediates = !t.isReal(common) && !(unsignedCompare && t.bits(common) >= 64);
     if (immediates && smallConst(cb)) {
       k = smallConst(cb);

@@ -2,6 +2,7 @@
 
 #include "lang/syntax/ast_clone.hpp"
 
+#include <algorithm>
 #include <map>
 
 namespace virtcom::st {
@@ -42,11 +43,16 @@ struct Container {
   const PouSym* pou = nullptr;
 };
 
+// Which of the CODESYS lifecycle methods the calls are for.
+enum class Lifecycle { Init, Exit };
+
 class InitCalls {
  public:
-  InitCalls(const ProgramModel& model, const TypeTable& types, StmtList& out) : model_(model), types_(types), out_(out) {}
+  InitCalls(const ProgramModel& model, const TypeTable& types, StmtList& out, Lifecycle kind = Lifecycle::Init)
+      : model_(model), types_(types), out_(out), method_(kind == Lifecycle::Init ? "FB_INIT" : "FB_EXIT") {}
 
-  // Emits the FB_init calls for the variable at `path` of `type` and everything inside it.
+  // Emits the FB_init (FB_exit) calls for the variable at `path` of `type` and everything
+  // inside it, nested instances first.
   void visit(const Expr& path, TypeId type, const std::vector<CallArg>* args, SourceLocation loc,
              Container container = {}) {
     if (!needsInit(type)) return;  // also keeps arrays of plain values from being walked
@@ -77,8 +83,8 @@ class InitCalls {
       if (m.storage == Storage::Instance && !m.byReference && m.name.find('.') == std::string::npos)
         visit(*member(cloneExpr(path), m.name), m.type, m.decl ? &m.decl->fbInitArgs : nullptr, m.loc,
               Container{&path, fb->second});
-    auto init = fb->second->methods.find("FB_INIT");
-    if (init != fb->second->methods.end()) call(path, *init->second, args, loc, container);
+    auto method = fb->second->methods.find(method_);
+    if (method != fb->second->methods.end()) call(path, *method->second, args, loc, container);
   }
 
  private:
@@ -91,7 +97,7 @@ class InitCalls {
     if (d.kind == bc::TypeKind::Array) {
       needs = needsInit(d.element);
     } else if (auto fb = model_.fbByType.find(type); fb != model_.fbByType.end()) {
-      needs = fb->second->methods.count("FB_INIT") > 0;
+      needs = fb->second->methods.count(method_) > 0;
       for (const auto& m : fb->second->members)
         needs = needs || (m.storage == Storage::Instance && !m.byReference && needsInit(m.type));
     } else if (d.kind == bc::TypeKind::Struct) {
@@ -131,7 +137,7 @@ class InitCalls {
           e->args.push_back(CallArg{positional ? std::string() : p->name, false, false, std::move(v), loc});
         }
     };
-    flag("BINITRETAINS", true);
+    if (method_ == "FB_INIT") flag("BINITRETAINS", true);
     flag("BINCOPYCODE", false);
     if (args)
       for (const auto& a : *args) {
@@ -148,23 +154,39 @@ class InitCalls {
   const ProgramModel& model_;
   const TypeTable& types_;
   StmtList& out_;
+  const std::string method_;
   std::map<TypeId, bool> needs_;
 };
 
 }  // namespace
 
-std::unique_ptr<Pou> buildInitProgram(const ProgramModel& model, const TypeTable& types) {
+namespace {
+
+std::unique_ptr<Pou> buildLifecycleProgram(const ProgramModel& model, const TypeTable& types, Lifecycle kind) {
   auto pou = std::make_unique<Pou>();
   pou->kind = PouKind::Program;
-  pou->name = "__INIT";
+  pou->name = kind == Lifecycle::Init ? "__INIT" : "__EXIT";
   pou->hasBody = true;
-  InitCalls calls(model, types, pou->body);
+  InitCalls calls(model, types, pou->body, kind);
   for (const auto& g : model.globals)
     calls.visit(*makeExpr(ExprKind::Name, g.var.loc, g.var.name), g.var.type, g.var.decl ? &g.var.decl->fbInitArgs : nullptr, g.var.loc);
   for (const auto& inst : model.programInstances)
     calls.visit(*makeExpr(ExprKind::Name, inst.pou->ast->loc, inst.name), inst.pou->instanceType, nullptr, inst.pou->ast->loc);
   if (pou->body.empty()) return nullptr;
+  // FB_exit undoes in the reverse order: program instances before globals, a container
+  // before the instances inside it.
+  if (kind == Lifecycle::Exit) std::reverse(pou->body.begin(), pou->body.end());
   return pou;
+}
+
+}  // namespace
+
+std::unique_ptr<Pou> buildInitProgram(const ProgramModel& model, const TypeTable& types) {
+  return buildLifecycleProgram(model, types, Lifecycle::Init);
+}
+
+std::unique_ptr<Pou> buildExitProgram(const ProgramModel& model, const TypeTable& types) {
+  return buildLifecycleProgram(model, types, Lifecycle::Exit);
 }
 
 StmtList buildFrameInitCalls(const ProgramModel& model, const TypeTable& types, const PouSym& pou) {

@@ -13,6 +13,11 @@ namespace virtcom::st {
 
 // The init program's AST (a PROGRAM named __INIT), or null when no instance has an FB_init.
 std::unique_ptr<Pou> buildInitProgram(const ProgramModel& model, const TypeTable& types);
+// The exit program (__EXIT, Module::exitPou): METHOD FB_exit of every such instance with
+// bInCopyCode := FALSE, run once when the PLC program ends (CODESYS: before a new download or
+// a reset), in the reverse order of FB_init. Null when no instance has an FB_exit. Instances
+// in a frame get no FB_exit call.
+std::unique_ptr<Pou> buildExitProgram(const ProgramModel& model, const TypeTable& types);
 // The FB_init calls for the instances among `pou`'s frame variables (VAR of a FUNCTION or
 // METHOD, VAR_TEMP of any POU), run before its body: these are initialised on every call, so
 // CODESYS calls their FB_init on every call too. Empty when none has an FB_init.

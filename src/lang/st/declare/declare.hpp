@@ -118,5 +118,8 @@ struct DirectAddress {
   uint32_t size = 1;
 };
 std::optional<DirectAddress> parseDirectAddress(std::string_view text);
+// Why parseDirectAddress refused `text`, for E109: a hierarchical address (%MW1.7.9, %IX0.0.1)
+// is named as such, anything else is malformed.
+std::string directAddressError(std::string_view text);
 
 }  // namespace virtcom::st

@@ -102,6 +102,20 @@ std::optional<DirectAddress> parseDirectAddress(std::string_view text) {
   return a;
 }
 
+std::string directAddressError(std::string_view text) {
+  const std::string t = upper(text);
+  const size_t i = t.find_first_of("0123456789");  // %<area>[<size>]<n>.<n>...
+  const bool numeric = t.starts_with('%') && (i == 2 || i == 3) && t.find_first_not_of("0123456789.", i) == std::string::npos;
+  const bool bitSized = numeric && (i == 2 || t[2] == 'X');
+  // More fields than the flat form has (X: byte.bit, the other sizes one number).
+  if (numeric && std::count(t.begin() + static_cast<std::ptrdiff_t>(i), t.end(), '.') + 1 > (bitSized ? 2 : 1))
+    return "'" + std::string(text) + "' is a hierarchical address: IEC 61131-3 leaves the meaning of its fields "
+           "(rack, module, channel of an I/O configuration) to the implementation, and virtcom's process image is "
+           "three flat byte areas; write a flat address (%" + t.substr(1, i - 1) + "<n>" +
+           (bitSized ? ", %" + std::string(1, t[1]) + "X<byte>.<bit>" : std::string()) + ") or use VAR_CONFIG";
+  return "'" + std::string(text) + "' is not a valid direct address (expected e.g. %IX0.0, %QW2, %MD4)";
+}
+
 void Declarer::placeLocated(VarInfo& v, const std::string& address) {
   auto a = parseDirectAddress(address);
   const bc::ProcessArea& area = !a ? module_.inputs
@@ -116,7 +130,7 @@ void Declarer::placeLocated(VarInfo& v, const std::string& address) {
     return;
   }
   if (!a) {
-    diags_.error(diag::E109, v.loc, "'" + address + "' is not a valid direct address (expected e.g. %IX0.0, %QW2, %MD4)");
+    diags_.error(diag::E109, v.loc, directAddressError(address));
     return;
   }
   uint32_t size = types_[v.type].size;

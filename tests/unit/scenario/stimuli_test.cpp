@@ -77,6 +77,20 @@ expect:
   EXPECT_EQ(r.verdict, Verdict::Pass) << text(r);
 }
 
+// A late done (the clamp's done 0.5 s after its 1 s close): the cycle ends 0.5 s later than the
+// 1.03 s of the plain run, still inside the PLC's 3 s watchdog.
+TEST_F(ScenarioTest, LateDoneFromAStepDelaysTheCycle) {
+  CaseResult r = run(R"(set: {MAIN.start: TRUE}
+steps:
+  - {at: 0 s, fault: {device: Clamp, extra_delay: 0.5 s}}
+expect:
+  - {cycle_time: {min: 1.5 s, max: 1.6 s}}
+  - {never: MAIN.failed}
+  - {at: 1.2 s, that: "MAIN.state = 1 AND NOT MAIN.done"}
+)");
+  EXPECT_EQ(r.verdict, Verdict::Pass) << text(r);
+}
+
 TEST_F(ScenarioTest, ErrorAtTheSecondCommandOnly) {
   // The first command clamps, the second (the next part, at once) fails with the injected code.
   CaseResult r = run(R"(set: {MAIN.start: TRUE}

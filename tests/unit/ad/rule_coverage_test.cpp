@@ -78,7 +78,7 @@ TEST(RuleCoverage, EachRuleCountsTheScansInWhichItFiredAtItsArc) {
   EXPECT_EQ(rules, (std::vector<Row>{{"Signals.Lights", 27, "1", 101},    // Start -> Delay: every scan
                                      {"Signals.Lights", 28, "2", 81},     // Delay -> GreenOn: from 0.2 s
                                      {"Signals.Stopping", 42, "1", 51},   // Both -> RedOn: from 0.5 s
-                                     {"Signals.Alarm", 55, "1", 0}}));    // Never -> HornOn: never
+                                     {"Signals.Alarm", 54, "1", 0}}));    // Never -> HornOn: never
   // Besides the rules only the PROGRAM's calls of its diagrams count, at the diagram lines; the
   // statements a rule is lowered to are no lines of their own.
   for (const CoveragePoint& p : data.points()) {

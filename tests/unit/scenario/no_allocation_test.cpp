@@ -24,8 +24,8 @@ steps:
   - {at: 2 s, force: {MAIN.part: FALSE}}
   - {at: 3 s, release: MAIN.part}
   - {at: 3.5 s, facts: {partPresent: true}}
-  - {at: 4 s, press: {MAIN.cycleDone: 100 ms}}
-  - {at: 4.05 s, press: {MAIN.cycleDone: 200 ms}}
+  - {at: 4 s, press: {MAIN.busy: 100 ms}}
+  - {at: 4.05 s, press: {MAIN.busy: 200 ms}}
 expect:
   - {always: NOT MAIN.failed}
   - {never: "MAIN.state = 9"}

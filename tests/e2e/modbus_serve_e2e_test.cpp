@@ -277,27 +277,22 @@ TEST_F(BridgeE2e, ALostPlcIsAFaultOrHeldAsConfigured) {
 // `virtcom test` on bridge.yaml: a scenario cuts the Modbus link to the PLC in the other process
 // (docs/scenarios.md, `{link: plc, comm_loss: ...}`), as ads_cell_e2e_test.cpp does over ADS.
 // The cell counts the PLC's cycles at its marker, so a run without the cut completes 2 cycles.
+// Each scenario gets a PLC of its own, started afresh: one left mid-cycle by the run before
+// would command the press at once.
 class ModbusLinkLossE2e : public BridgeE2e {
  protected:
-  void SetUp() override {
-    BridgeE2e::SetUp();
-    plc_ = std::make_unique<ServerProcess>(kExe, std::vector<std::string>{"exec", "plc/controller.st", "--modbus", "127.0.0.1:0"},
-                                           kExample, kAnnounce);
-    ASSERT_GT(plc_->port(), 0) << plc_->errorOutput();
-  }
-  void TearDown() override {
-    EXPECT_EQ(plc_->stop(), 0) << plc_->errorOutput();
-    BridgeE2e::TearDown();
-  }
   // The scenario `body` on bridge.yaml (on_loss as given, 2 cycles counted at the marker).
   int testScenario(const std::string& onLoss, const std::string& body, std::string& out) {
-    std::string cell = readFile(bridgeCell(plc_->port(), onLoss));
+    ServerProcess plc(kExe, {"exec", "plc/controller.st", "--modbus", "127.0.0.1:0"}, kExample, kAnnounce);
+    EXPECT_GT(plc.port(), 0) << plc.errorOutput();
+    std::string cell = readFile(bridgeCell(plc.port(), onLoss));
     cell.replace(cell.find("# cycle_done:"), 13, "cycle_done:");
     std::ofstream(dir_ / "cycles.yaml") << cell << "run:\n  cycles: 2\n";
     std::ofstream(dir_ / "loss.yaml") << "name: loss\ncell: cycles.yaml\ntime_limit: 20 s\n" << body;
-    return shell(std::string(kExe) + " test " + (dir_ / "loss.yaml").string() + " --jobs 1", out);
+    const int status = shell(std::string(kExe) + " test " + (dir_ / "loss.yaml").string() + " --jobs 1", out);
+    EXPECT_EQ(plc.stop(), 0) << plc.errorOutput();
+    return status;
   }
-  std::unique_ptr<ServerProcess> plc_;
 };
 
 TEST_F(ModbusLinkLossE2e, OnLossFaultEndsTheRunAsAPlcFault) {

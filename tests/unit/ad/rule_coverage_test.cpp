@@ -12,6 +12,7 @@
 
 #include "ad_fixture.hpp"
 #include "bytecode/coverage.hpp"
+#include "lang/ad/lower.hpp"
 #include "plc/rule_counter.hpp"
 #include "support/read_file.hpp"
 

@@ -7,7 +7,8 @@ namespace virtcom::cli {
 
 void addCoverageOptions(CLI::App& cmd, CoverageOptions& o) {
   cmd.add_option("--coverage", o.lcovPath,
-                 "record PLC code coverage (statements, IF/CASE branches, SFC steps and transitions) and write it as an "
+                 "record PLC code coverage (statements, IF/CASE branches, SFC steps and transitions, activity-diagram rules) "
+                 "and write it as an "
                  "lcov tracefile (genhtml makes HTML of it, see docs/coverage.md); prints a summary per POU");
   cmd.add_option("--coverage-xml", o.xmlPath, "record PLC code coverage and write it as Cobertura XML (for CI servers)");
 }

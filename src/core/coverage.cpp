@@ -21,6 +21,7 @@ const char* coverageKindName(CoverageKind k) {
     case CoverageKind::Branch: return "branch";
     case CoverageKind::Step: return "step";
     case CoverageKind::Transition: return "transition";
+    case CoverageKind::Rule: return "rule";
   }
   return "?";
 }

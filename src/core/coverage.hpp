@@ -15,18 +15,20 @@ enum class CoverageKind : uint8_t {
                // of a decision without ELSE is the implicit one: no condition held)
   Step,        // an SFC step became active
   Transition,  // an SFC transition fired
+  Rule,        // an activity-diagram rule fired (its IF held in a scan)
 };
-const char* coverageKindName(CoverageKind k);  // "statement", "branch", "step", "transition"
+const char* coverageKindName(CoverageKind k);  // "statement", "branch", "step", "transition", "rule"
 
 struct CoveragePoint {
   std::string file;    // source path as compiled
   std::string pou;     // qualified POU name: "MAIN", "FB_Motor.Start"
-  uint32_t line = 0;   // the statement's line; for a branch the line of its IF/CASE
+  uint32_t line = 0;   // the statement's line; for a branch the line of its IF/CASE; for a rule
+                       // the line of the arc to its first output (lang/ad/lower.hpp)
   uint32_t column = 0; // the statement's (IF/CASE's) column: tells decisions of one line apart
   CoverageKind kind = CoverageKind::Statement;
   uint32_t arm = 0;    // Branch: index of the arm in its decision
   uint32_t arms = 0;   // Branch: how many arms the decision has (implicit ELSE included)
-  std::string name;    // Step, Transition: the element's name
+  std::string name;    // Step, Transition: the element's name; Rule: its index ("3", "3.1")
   uint64_t count = 0;
 };
 

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
+#include <string_view>
+#include <utility>
 
 #include "drives/normalisation.hpp"
 
@@ -81,6 +84,26 @@ SpeedAxis::SpeedAxis(std::string name, DriveCommon common, SpeedAxisParams param
   mop_.step = p_.p1082 / p_.p1047S * dtS;
   mop_.maximum = p_.p1082;
   mop_.value = mopStartRpm();
+}
+
+bool SpeedAxis::changesParameter(std::string_view key) const {
+  static constexpr std::string_view kLive[] = {"p1120", "p1121", "p1135", "p1047", "tau_speed", "tau_coast", "p0045", "p1226",
+                                               "p1227", "p1228", "p2163", "p2164", "p2166", "torque_limit", "monitoring_time"};
+  return std::ranges::find(kLive, key) != std::end(kLive);
+}
+
+// The edited axis has the same step (`step` does not change), so its slopes and filter factors,
+// derived in its constructor, are this axis's with the new parameters.
+void SpeedAxis::swapParameters(plant::Device& edited) {
+  auto& other = static_cast<SpeedAxis&>(edited);
+  std::swap(p_, other.p_);
+  std::swap(alphaSpeed_, other.alphaSpeed_);
+  std::swap(coastFactor_, other.coastFactor_);
+  std::swap(alphaGlatt_, other.alphaGlatt_);
+  std::swap(upStep_, other.upStep_);
+  std::swap(off1Step_, other.off1Step_);
+  std::swap(off3Step_, other.off3Step_);
+  std::swap(mop_.step, other.mop_.step);
 }
 
 double SpeedAxis::setpointRpm() const {

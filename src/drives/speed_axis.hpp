@@ -55,6 +55,12 @@ class SpeedAxis final : public TelegramDevice {
   const AlarmBuffer& alarmBuffer() const { return alarms_; }
   double rfgOutputRpm() const { return rfgOut_; }
   double mopRpm() const { return mop_.value; }
+  // Mid-run parameter changes (docs/scenarios.md): the ramp and MOP ramp times, the time
+  // constants, the standstill and tolerance monitoring, the torque limit and the setpoint
+  // monitoring time. Not the reference and maximum speeds or p2002/p2003 (the PLC's scaling),
+  // the telegram, the step, the MOP configuration, the brake or the load.
+  bool changesParameter(std::string_view key) const override;
+  void swapParameters(plant::Device& edited) override;
   // Test entry points for the fault and alarm buffers (the cell file injects through `faults:`).
   void raiseFault(uint16_t number, Reaction reaction, int64_t nowNs);
   void removeFaultCause(uint16_t number);

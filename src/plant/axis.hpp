@@ -34,7 +34,7 @@ class Axis final : public SequencedDevice {
 
   Axis(std::string name, Params params);
   const Params& params() const { return p_; }
-  bool changesParameters() const override { return true; }
+  bool changesParameter(std::string_view) const override { return true; }
   void swapParameters(Device& edited) override {
     const NamedPosition* none = nullptr;  // a move runs to its target, not to an entry
     swapKeepingLabels(p_, static_cast<Axis&>(edited).p_, &Params::positions, none);

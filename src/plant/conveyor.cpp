@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "plant/config_helpers.hpp"
 #include "plant/motion_profile.hpp"
@@ -273,6 +274,17 @@ void checkPortName(ConfigReader& cfg, std::vector<std::string>& names, const cha
 }
 
 }  // namespace
+
+bool Conveyor::changesParameter(std::string_view key) const {
+  return key == "speed" || key == "spawn_interval" || key == "spawn_count";
+}
+
+void Conveyor::swapParameters(Device& edited) {
+  Params& other = static_cast<Conveyor&>(edited).p_;
+  std::swap(p_.speed, other.speed);
+  std::swap(p_.spawnIntervalNs, other.spawnIntervalNs);
+  std::swap(p_.spawnCount, other.spawnCount);
+}
 
 std::unique_ptr<Device> makeConveyor(const std::string& name, ConfigReader& cfg, World& world) {
   Conveyor::Params p;

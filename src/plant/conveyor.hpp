@@ -60,6 +60,11 @@ class Conveyor final : public Device {
   void step(const StepContext& ctx) override;
   int64_t nextEventNs() const override;
   void finish(int64_t endNs, Trace& trace) override;
+  // A running belt takes a new speed, spawn_interval or spawn_count. Its geometry (length,
+  // part_length, sensor and pusher positions, initial parts) and part kinds shape the parts
+  // already on it, and its powers are accounted over the whole run at the end: they stay as loaded.
+  bool changesParameter(std::string_view key) const override;
+  void swapParameters(Device& edited) override;
 
   size_t partCount() const { return parts_.size(); }
   // Parts in bin `bin` (pushers in order, then the end bin) of kind `kind`.

@@ -8,6 +8,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/config_node.hpp"
@@ -79,12 +80,16 @@ class Device {
   // Non-zero while the device reports an error to the controller.
   virtual int32_t errorCode() const { return 0; }
   // A mid-run parameter change (a scenario's `parameter:` step, docs/scenarios.md): whether this
-  // type can take the parameters of `edited`, a device of its type built from its cell-file entry
+  // type can take a new value of its cell-file key `key` (the first key of the changed path:
+  // "max_speed", "programs") from `edited`, a device of its type built from its cell-file entry
   // with one scalar value edited (so its lists have the same entries); if so, swapParameters()
   // exchanges the two devices' parameters without allocating, keeping this device's state, the
   // labels interned at prepare() and a running command on its entry. What has begun (a planned
   // motion, a running press stroke) goes on as planned; what begins from then on uses the new values.
-  virtual bool changesParameters() const { return false; }
+  virtual bool changesParameter(std::string_view key) const {
+    (void)key;
+    return false;
+  }
   virtual void swapParameters(Device& edited) { (void)edited; }
 
   FaultPlan& faults() { return faults_; }

@@ -34,7 +34,7 @@ class Press final : public SequencedDevice {
 
   Press(std::string name, Params params);
   const Params& params() const { return p_; }
-  bool changesParameters() const override { return true; }
+  bool changesParameter(std::string_view) const override { return true; }
   void swapParameters(Device& edited) override { swapKeepingLabels(p_, static_cast<Press&>(edited).p_, &Params::programs, prog_); }
 
  protected:

@@ -77,7 +77,7 @@ class Robot final : public SequencedDevice {
 
   static bool isGripper(ToolKind k) { return k != ToolKind::Screwer; }
   const Params& params() const { return p_; }
-  bool changesParameters() const override { return true; }
+  bool changesParameter(std::string_view) const override { return true; }
   void swapParameters(Device& edited) override { swapKeepingLabels(p_, static_cast<Robot&>(edited).p_, &Params::procedures, proc_); }
   // Current state, for tests and reports.
   int32_t toolIndex() const { return tool_; }

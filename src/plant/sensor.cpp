@@ -1,5 +1,7 @@
 #include "plant/sensor.hpp"
 
+#include <utility>
+
 #include "plant/config_helpers.hpp"
 
 namespace virtcom::plant {
@@ -28,6 +30,12 @@ void Sensor::step(const StepContext& ctx) {
   }
   const bool out = faults_.stuckOutput < 0 ? value_ : faults_.stuckOutput != 0;
   ctx.bus.setBool(tag(valuePort_), out);
+}
+
+void Sensor::swapParameters(Device& edited) {
+  auto& other = static_cast<Sensor&>(edited);
+  std::swap(delayNs_, other.delayNs_);
+  std::swap(invert_, other.invert_);
 }
 
 int64_t Sensor::nextEventNs() const { return pending_ ? pendingSinceNs_ + delayNs_ : INT64_MAX; }

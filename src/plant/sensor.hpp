@@ -16,6 +16,11 @@ class Sensor final : public Device {
   void step(const StepContext& ctx) override;
   int64_t nextEventNs() const override;
   bool value() const { return value_; }
+  // `delay` and `invert` change mid-run (a change of the fact already pending is judged by the
+  // new delay; a new `invert` shows after the delay, as a change of the fact would); the fact
+  // it senses does not.
+  bool changesParameter(std::string_view key) const override { return key == "delay" || key == "invert"; }
+  void swapParameters(Device& edited) override;
 
  private:
   size_t valuePort_ = 0;

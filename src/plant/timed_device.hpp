@@ -28,7 +28,7 @@ class TimedDevice final : public SequencedDevice {
   };
 
   TimedDevice(std::string name, Params params);
-  bool changesParameters() const override { return true; }
+  bool changesParameter(std::string_view) const override { return true; }
   void swapParameters(Device& edited) override { swapKeepingLabels(p_, static_cast<TimedDevice&>(edited).p_, &Params::commands, cmd_); }
 
  protected:

@@ -18,11 +18,12 @@ struct CoverageRatio {
   void add(bool isHit) { hit += isHit ? 1u : 0u; ++total; }
 };
 
-// One POU's coverage: statement lines, IF/CASE arms, SFC steps and transitions.
+// One POU's coverage: statement lines, IF/CASE arms, SFC steps and transitions, activity-diagram
+// rules.
 struct PouCoverage {
   std::string pou;
   std::string file;
-  CoverageRatio lines, branches, steps, transitions;
+  CoverageRatio lines, branches, steps, transitions, rules;
 };
 
 // Per POU, in order of file then first line; a last row "total" over all of them.
@@ -31,7 +32,8 @@ std::vector<PouCoverage> coverageByPou(const CoverageData& data);
 // The lcov tracefile (geninfo(1) format): per source file TN, SF, FN/FNDA per POU (its calls:
 // the count of its first statement), FNF/FNH, BRDA per IF/CASE arm (block: the decision's rank
 // among those of its line, '-' when the decision never ran), BRF/BRH, DA per line of a
-// statement, step or transition (the largest count on the line), LF/LH, end_of_record.
+// statement, step, transition or activity-diagram rule (the largest count on the line), LF/LH,
+// end_of_record.
 std::string lcovTracefile(const CoverageData& data, std::string_view testName);
 
 // Cobertura XML (coverage-04.dtd): a package per source directory, a class per POU (with its
@@ -39,7 +41,8 @@ std::string lcovTracefile(const CoverageData& data, std::string_view testName);
 // condition-coverage="50% (1/2)". No timestamp: the same runs give the same bytes.
 std::string coberturaXml(const CoverageData& data);
 
-// The terminal table: per POU lines, branches, steps and transitions hit / total, and a total.
+// The terminal table: per POU lines, branches, steps and transitions hit / total, and a total;
+// a rules column too when the program has activity-diagram rules.
 std::string coverageSummaryText(const CoverageData& data);
 
 }  // namespace virtcom::report

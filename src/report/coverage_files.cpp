@@ -25,7 +25,7 @@ PouLines& pouOf(FileLines& file, const std::string& name) {
 }
 
 // The POU's calls: its first statement runs once per call (ST has no jump over it); a POU
-// without a statement of its own (a chart only) falls back to its busiest probe.
+// without a statement of its own (a chart only, a diagram's rules) falls back to its busiest probe.
 void finishPou(PouLines& pou, const std::vector<const CoveragePoint*>& points) {
   const CoveragePoint* first = nullptr;
   uint64_t busiest = 0;
@@ -54,6 +54,7 @@ std::vector<FileLines> groupByFile(const CoverageData& data) {
       case CoverageKind::Statement: countLine(pou.lines, p.line, p.count); break;
       case CoverageKind::Step: pou.steps.push_back(&p); countLine(pou.lines, p.line, p.count); break;
       case CoverageKind::Transition: pou.transitions.push_back(&p); countLine(pou.lines, p.line, p.count); break;
+      case CoverageKind::Rule: pou.rules.push_back(&p); countLine(pou.lines, p.line, p.count); break;
       case CoverageKind::Branch: {
         if (pou.decisions.empty() || pou.decisions.back().line != p.line || pou.decisions.back().column != p.column)
           pou.decisions.push_back({p.line, p.column, 0, {}});

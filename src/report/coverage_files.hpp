@@ -23,9 +23,9 @@ struct PouLines {
   std::string name;
   uint32_t firstLine = 0;
   uint64_t calls = 0;                   // count of its first statement (or its busiest probe)
-  std::map<uint32_t, uint64_t> lines;   // statement, step and transition lines: largest count
+  std::map<uint32_t, uint64_t> lines;   // statement, step, transition and rule lines: largest count
   std::vector<Decision> decisions;      // by line, then column
-  std::vector<const CoveragePoint*> steps, transitions;
+  std::vector<const CoveragePoint*> steps, transitions, rules;
 };
 
 struct FileLines {

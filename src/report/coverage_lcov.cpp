@@ -54,7 +54,8 @@ std::string ratioText(const CoverageRatio& r) {
 
 void addTo(PouCoverage& total, const PouCoverage& p) {
   for (auto [into, from] : {std::pair{&total.lines, &p.lines}, {&total.branches, &p.branches},
-                            {&total.steps, &p.steps}, {&total.transitions, &p.transitions}}) {
+                            {&total.steps, &p.steps}, {&total.transitions, &p.transitions},
+                            {&total.rules, &p.rules}}) {
     into->hit += from->hit;
     into->total += from->total;
   }
@@ -76,6 +77,7 @@ std::vector<PouCoverage> coverageByPou(const CoverageData& data) {
         for (uint64_t c : d.arms) row.branches.add(c > 0);
       for (const CoveragePoint* p : pou.steps) row.steps.add(p->count > 0);
       for (const CoveragePoint* p : pou.transitions) row.transitions.add(p->count > 0);
+      for (const CoveragePoint* p : pou.rules) row.rules.add(p->count > 0);
       addTo(total, row);
       rows.push_back(std::move(row));
     }
@@ -96,12 +98,15 @@ std::string coverageSummaryText(const CoverageData& data) {
   for (const PouCoverage& r : rows) width = std::max(width, displayWidth(r.pou));
   width = std::min<size_t>(width, 40);
   constexpr size_t kColumn = 18;
+  const bool rules = rows.back().rules.total > 0;  // the total row: any rule at all
   std::string out = padRight("Coverage", width) + "  " + padRight("lines", kColumn) + padRight("branches", kColumn) +
-                    padRight("steps", kColumn) + "transitions\n";
-  for (const PouCoverage& r : rows)
+                    padRight("steps", kColumn) + (rules ? padRight("transitions", kColumn) + "rules" : "transitions") + "\n";
+  for (const PouCoverage& r : rows) {
     out += padRight(fitWidth(r.pou, width), width) + "  " + padRight(ratioText(r.lines), kColumn) +
-           padRight(ratioText(r.branches), kColumn) + padRight(ratioText(r.steps), kColumn) +
-           ratioText(r.transitions) + "\n";
+           padRight(ratioText(r.branches), kColumn) + padRight(ratioText(r.steps), kColumn);
+    out += rules ? padRight(ratioText(r.transitions), kColumn) + ratioText(r.rules) : ratioText(r.transitions);
+    out += "\n";
+  }
   return out;
 }
 

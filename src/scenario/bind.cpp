@@ -172,6 +172,7 @@ class Binder {
     step.atNs = when ? -1 : plant::optDurationNs(r, "at", 0);
     if (const ConfigNode* sets = r.child("set")) readAssignments(*sets, Action::Kind::Set, step.actions);
     if (const ConfigNode* forces = r.child("force")) readAssignments(*forces, Action::Kind::Force, step.actions);
+    if (const ConfigNode* presses = r.child("press")) readPresses(*presses, step.actions);
     if (const ConfigNode* release = r.child("release")) readRelease(*release, step.actions);
     if (const ConfigNode* facts = r.child("facts")) readFacts(*facts, step.actions);
     if (const ConfigNode* fault = r.child("fault")) readStepFault(*fault, step.actions);
@@ -184,9 +185,33 @@ class Binder {
       step.actions.push_back(std::move(a));
     }
     if (step.actions.empty() && r.ok())
-      r.error(node.loc(), "a step does something: set, force, release, facts, fault, parameter or power_loss");
+      r.error(node.loc(), "a step does something: set, force, press, release, facts, fault, parameter or power_loss");
     r.rejectUnknownKeys();
     plan_.steps.push_back(std::move(step));
+  }
+
+  // `press: {VAR: DURATION, ...}`: an operator's push button, a BOOL TRUE from the step for
+  // DURATION, then FALSE.
+  void readPresses(const ConfigNode& map, std::vector<Action>& out) {
+    if (map.kind() != ConfigNode::Kind::Map) {
+      diags_.error(celldiag::C060, map.loc(), "'press' maps BOOL variables to how long they are pressed, e.g. {MAIN.startButton: 200 ms}");
+      return;
+    }
+    ConfigReader r(map, diags_, "'press'");
+    for (const auto& [name, value] : map.entries()) {
+      Action a;
+      a.kind = Action::Kind::Press;
+      a.name = name;
+      a.durationNs = plant::requireDurationNs(r, name);
+      if (!resolveVariable(name, map.keyLoc(name), a.ref)) continue;
+      const bc::TypeDesc& type = cell_.module->types[a.ref.type];
+      if (type.kind != bc::TypeKind::Elementary || type.elem != ElemType::Bool) {
+        diags_.error(celldiag::C060, map.keyLoc(name), "'" + name + "' is " + type.name + ": a pressed button is a BOOL");
+        continue;
+      }
+      a.bytes = {static_cast<uint8_t>(a.ref.bit >= 0 ? 1u << a.ref.bit : 1u)};
+      out.push_back(std::move(a));
+    }
   }
 
   void readRelease(const ConfigNode& node, std::vector<Action>& out) {

@@ -51,12 +51,13 @@ std::unique_ptr<plant::Device> ParameterEditor::edit(const std::string& name, So
   const plant::Device& d = **found;
   const std::string path = name.substr(dot + 1);
   const std::string key = path.substr(0, path.find('.'));
-  if (!d.changesParameters()) {
-    diags.error(celldiag::C062, keyLoc, "'" + name + "': a " + d.type() + " cannot change its parameters during a run (robot, axis, press and timed devices can)");
-    return nullptr;
-  }
   if (std::ranges::find(kNotParameters, key) != std::end(kNotParameters)) {
     diags.error(celldiag::C062, keyLoc, "'" + name + "': '" + key + "' is no parameter of the device's model");
+    return nullptr;
+  }
+  if (!d.changesParameter(key)) {
+    diags.error(celldiag::C062, keyLoc,
+                "'" + name + "': a " + d.type() + " cannot change '" + key + "' during a run (docs/scenarios.md lists what each type can change)");
     return nullptr;
   }
   if (value.kind() != ConfigNode::Kind::Scalar) {

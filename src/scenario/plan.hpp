@@ -16,15 +16,16 @@ namespace virtcom::scenario {
 
 // One thing a step does to the running cell.
 struct Action {
-  enum class Kind : uint8_t { Set, Force, Release, ReleaseAll, Fact, Fault, PowerLoss, Parameter };
+  enum class Kind : uint8_t { Set, Force, Release, ReleaseAll, Fact, Fault, PowerLoss, Parameter, Press };
   Kind kind = Kind::Set;
   std::string name;            // the variable, fact or device as written (messages)
-  bc::VarRef ref;              // Set/Force/Release: the PLC variable
-  std::vector<uint8_t> bytes;  // Set/Force: the value's bytes (a BOOL bit: its byte, masked by ref.bit)
+  bc::VarRef ref;              // Set/Force/Release/Press: the PLC variable
+  std::vector<uint8_t> bytes;  // Set/Force/Press: the value's bytes (a BOOL bit: its byte, masked by ref.bit)
   uint32_t index = 0;          // Fact: fact id; Fault, Parameter: device index in Cell::devices
   bool factValue = false;
   plant::FaultPlan plan;       // Fault: the device's plan from then on
-  int64_t durationNs = 0;      // PowerLoss: how long the PLC stays off before its warm restart
+  int64_t durationNs = 0;      // PowerLoss: how long the PLC stays off before its warm restart;
+                               // Press: how long the button (a BOOL) is held TRUE
   std::unique_ptr<plant::Device> edited;  // Parameter: the device built with the new value, swapped in
 };
 

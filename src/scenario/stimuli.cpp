@@ -9,28 +9,41 @@
 
 namespace virtcom::scenario {
 
-bool writeValue(const Action& a, plc::Runtime& plc) {
-  uint8_t* at = plc.machine().memory() + a.ref.address;
+bool writeBytes(const bc::VarRef& ref, std::span<const uint8_t> bytes, plc::Runtime& plc) {
+  uint8_t* at = plc.machine().memory() + ref.address;
   bool changed = false;
-  if (a.ref.bit >= 0) {
-    const uint8_t mask = static_cast<uint8_t>(1u << a.ref.bit);
-    const uint8_t next = static_cast<uint8_t>((*at & ~mask) | (a.bytes[0] & mask));
+  if (ref.bit >= 0) {
+    const uint8_t mask = static_cast<uint8_t>(1u << ref.bit);
+    const uint8_t next = static_cast<uint8_t>((*at & ~mask) | (bytes[0] & mask));
     changed = next != *at;
     *at = next;
   } else {
-    changed = std::memcmp(at, a.bytes.data(), a.bytes.size()) != 0;
-    std::memcpy(at, a.bytes.data(), a.bytes.size());
+    changed = std::memcmp(at, bytes.data(), bytes.size()) != 0;
+    std::memcpy(at, bytes.data(), bytes.size());
   }
-  plc::syncInputImage(plc.module(), a.ref, plc.machine().memory(), plc.inputImage());
+  plc::syncInputImage(plc.module(), ref, plc.machine().memory(), plc.inputImage());
   if (changed) plc.inputsTouched();
   return changed;
 }
 
-Stimuli::Stimuli(const Plan& plan, cell::Cell& cell) : plan_(plan), cell_(cell), stepDone_(plan.steps.size(), 0) {
-  size_t forces = 0;
+bool writeValue(const Action& a, plc::Runtime& plc) { return writeBytes(a.ref, a.bytes, plc); }
+
+namespace {
+
+size_t countActions(const Plan& plan, Action::Kind kind) {
+  size_t n = 0;
   for (const Step& s : plan.steps)
-    forces += static_cast<size_t>(std::ranges::count_if(s.actions, [](const Action& a) { return a.kind == Action::Kind::Force; }));
-  forces_.reserve(forces);
+    n += static_cast<size_t>(std::ranges::count_if(s.actions, [kind](const Action& a) { return a.kind == kind; }));
+  return n;
+}
+
+constexpr uint8_t kFalse[1] = {0};  // a released button's BOOL, bit or byte
+
+}  // namespace
+
+Stimuli::Stimuli(const Plan& plan, cell::Cell& cell) : plan_(plan), cell_(cell), stepDone_(plan.steps.size(), 0) {
+  forces_.reserve(countActions(plan, Action::Kind::Force));
+  held_.reserve(countActions(plan, Action::Kind::Press));
   if (!cell.module) return;
   uint32_t total = 0;
   for (const plc::RetainedVariable& v : plc::retainedVariables(*cell.module)) {
@@ -48,6 +61,11 @@ void Stimuli::preset(plc::Runtime& plc) {
 void Stimuli::beforeScan(plc::Runtime& plc) {
   const int64_t nowNs = plc.nextTickNs();
   if (restartAtNs_ >= 0 && nowNs >= restartAtNs_) restart(plc);
+  std::erase_if(held_, [&](const Held& h) {  // buttons whose press is over go back to FALSE
+    if (nowNs < h.releaseAtNs) return false;
+    writeBytes(h.press->ref, kFalse, plc);
+    return true;
+  });
   ValueSources in{plc.machine().memory(), &cell_.bus, &cell_.world};
   for (size_t i = 0; i < plan_.steps.size(); ++i) {
     const Step& s = plan_.steps[i];
@@ -73,6 +91,11 @@ void Stimuli::apply(const Action& a, plc::Runtime& plc, int64_t nowNs) {
       std::erase_if(forces_, [&](const Action* f) { return f->ref.address == a.ref.address && f->ref.bit == a.ref.bit; });
       break;
     case Action::Kind::ReleaseAll: forces_.clear(); break;
+    case Action::Kind::Press:
+      std::erase_if(held_, [&](const Held& h) { return h.press->ref.address == a.ref.address && h.press->ref.bit == a.ref.bit; });
+      held_.push_back({&a, nowNs + a.durationNs});  // within the capacity reserved for every press
+      writeValue(a, plc);
+      break;
     case Action::Kind::Fact: cell_.world.setFact(a.index, a.factValue); break;
     case Action::Kind::Fault: cell_.devices[a.index]->faults() = a.plan; break;
     case Action::Kind::Parameter: cell_.devices[a.index]->swapParameters(*a.edited); break;

@@ -1,7 +1,8 @@
 // End-to-end: a cell served over Modbus TCP (`virtcom serve examples/modbus-cell/cell.yaml`)
 // driven by libmodbus and mbpoll as the external PLC would, and the client bridge
 // (examples/modbus-cell/bridge.yaml) commissioning the cell against virtcom's own soft PLC
-// (`virtcom exec controller.st --modbus`) in another process.
+// (`virtcom exec controller.st --modbus`) in another process, and `virtcom test` cutting that
+// link in a scenario (on_loss fault and hold).
 #include <modbus.h>
 #include <unistd.h>
 
@@ -271,6 +272,58 @@ TEST_F(BridgeE2e, ALostPlcIsAFaultOrHeldAsConfigured) {
   out.clear();
   EXPECT_EQ(shell(std::string(kExe) + " run " + bridgeCell(closedPort, "hold") + " --time-limit 0.3s --quiet", out), 3) << out;
   EXPECT_NE(out.find("(holding the last commands, retrying every poll)"), std::string::npos) << out;
+}
+
+// `virtcom test` on bridge.yaml: a scenario cuts the Modbus link to the PLC in the other process
+// (docs/scenarios.md, `{link: plc, comm_loss: ...}`), as ads_cell_e2e_test.cpp does over ADS.
+// The cell counts the PLC's cycles at its marker, so a run without the cut completes 2 cycles.
+// Each scenario gets a PLC of its own, started afresh: one left mid-cycle by the run before
+// would command the press at once.
+class ModbusLinkLossE2e : public BridgeE2e {
+ protected:
+  // The scenario `body` on bridge.yaml (on_loss as given, 2 cycles counted at the marker).
+  int testScenario(const std::string& onLoss, const std::string& body, std::string& out) {
+    ServerProcess plc(kExe, {"exec", "plc/controller.st", "--modbus", "127.0.0.1:0"}, kExample, kAnnounce);
+    EXPECT_GT(plc.port(), 0) << plc.errorOutput();
+    std::string cell = readFile(bridgeCell(plc.port(), onLoss));
+    cell.replace(cell.find("# cycle_done:"), 13, "cycle_done:");
+    std::ofstream(dir_ / "cycles.yaml") << cell << "run:\n  cycles: 2\n";
+    std::ofstream(dir_ / "loss.yaml") << "name: loss\ncell: cycles.yaml\ntime_limit: 20 s\n" << body;
+    const int status = shell(std::string(kExe) + " test " + (dir_ / "loss.yaml").string() + " --jobs 1", out);
+    EXPECT_EQ(plc.stop(), 0) << plc.errorOutput();
+    return status;
+  }
+};
+
+TEST_F(ModbusLinkLossE2e, OnLossFaultEndsTheRunAsAPlcFault) {
+  std::string out;
+  EXPECT_EQ(testScenario("fault", "faults:\n  - {link: plc, comm_loss: [{at: 0.5 s, duration: 1 s}]}\nexpect:\n  - {run_end: plc_fault}\n", out), 0)
+      << out;
+  EXPECT_NE(out.find("PASS  loss"), std::string::npos) << out;
+  // It ended at the window's first tick, not later.
+  EXPECT_NE(out.find("at 0.5 s)"), std::string::npos) << out;
+  // Without the cut the same assertion fails: the run completes its cycles.
+  out.clear();
+  EXPECT_EQ(testScenario("fault", "expect:\n  - {run_end: plc_fault}\n", out), 5) << out;
+  EXPECT_NE(out.find("FAIL  loss"), std::string::npos) << out;
+  EXPECT_NE(out.find("completed at "), std::string::npos) << out;
+}
+
+TEST_F(ModbusLinkLossE2e, OnLossHoldStallsTheCycleForTheWindowThenGoesOn) {
+  const std::string expect = "expect:\n  - {run_end: completed}\n";
+  // When the scenario's run ended ("completed at T s" of its PASS line), or -1.
+  auto completedAt = [](const std::string& out) {
+    const size_t at = out.find("completed at ");
+    return at == std::string::npos ? -1.0 : std::stod(out.substr(at + 13));
+  };
+  std::string held, plain;
+  EXPECT_EQ(testScenario("hold", "faults:\n  - {link: plc, comm_loss: [{at: 0.3 s, duration: 2 s}]}\n" + expect, held), 0) << held;
+  EXPECT_NE(held.find("PASS  loss"), std::string::npos) << held;
+  EXPECT_EQ(testScenario("hold", expect, plain), 0) << plain;
+  // Cut for 2 s, the cell waits (the devices keep their last commands, the PLC sees no status
+  // change) and the run completes the same cycles about 2 s later.
+  EXPECT_GT(completedAt(plain), 0.0) << plain;
+  EXPECT_GE(completedAt(held), completedAt(plain) + 1.5) << held << plain;
 }
 
 }  // namespace

@@ -8,7 +8,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iterator>
 #include <regex>
 #include <string>
@@ -160,6 +162,40 @@ TEST_F(TestCommand, CoverageAddsUpEveryCaseWhateverTheJobs) {
   EXPECT_GT(linesHit(readFile(path("screwer.info"))), 10u);
   ASSERT_EQ(shell("lcov --summary " + path("one.info"), out), 0) << out;
   EXPECT_NE(out.find("lines"), std::string::npos) << out;
+}
+
+// Compares with the golden file; VIRTCOM_UPDATE_GOLDEN=1 rewrites it for review in the diff.
+void expectGolden(const std::string& actual, const std::string& file) {
+  if (std::getenv("VIRTCOM_UPDATE_GOLDEN")) std::ofstream(file, std::ios::binary) << actual;
+  EXPECT_EQ(actual, readFile(file)) << "differs from " << file << " (VIRTCOM_UPDATE_GOLDEN=1 rewrites it)";
+}
+
+// Activity-diagram rules in the coverage files (docs/coverage.md): the two scenarios of
+// tests/e2e/data/scenarios/signal_plan exercise 3 of the 4 rules of signals.ad, whose comments
+// count every firing; the tracefile and the Cobertura XML are the golden files beside it,
+// whatever --jobs; Debian's lcov and genhtml read them.
+TEST_F(TestCommand, CoverageCountsActivityDiagramRules) {
+  const std::string plan = "tests/e2e/data/scenarios/signal_plan";
+  const std::string golden = kSource + "/tests/e2e/data/scenarios/signals/coverage";
+  std::string out;
+  ASSERT_EQ(test(plan + " --jobs 2 --coverage " + path("two.info") + " --coverage-xml " + path("two.xml"), out), 0) << out;
+  EXPECT_NE(out.find("2 scenario(s): 2 passed"), std::string::npos) << out;
+  EXPECT_TRUE(std::regex_search(out, std::regex("transitions +rules\n"))) << out;
+  EXPECT_TRUE(std::regex_search(out, std::regex("\nSignals.Lights +2/2 100.0% +- +- +- +2/2 100.0%\n"))) << out;
+  EXPECT_TRUE(std::regex_search(out, std::regex("\nSignals.Alarm +0/1 0.0% +- +- +- +0/1 0.0%\n"))) << out;
+  EXPECT_TRUE(std::regex_search(out, std::regex("\ntotal +[0-9/. %]+- +- +- +3/4 75.0%\n"))) << out;
+  const std::string info = readFile(path("two.info"));
+  expectGolden(info, golden + ".info");
+  expectGolden(readFile(path("two.xml")), golden + ".xml");
+  ASSERT_EQ(test(plan + " --jobs 1 --coverage " + path("one.info"), out), 0) << out;
+  EXPECT_EQ(readFile(path("one.info")), info);
+  // go.yaml alone never halts: the Stopping rule is not hit.
+  ASSERT_EQ(test(plan + " --filter go --coverage " + path("go.info"), out), 0) << out;
+  EXPECT_TRUE(std::regex_search(out, std::regex("\ntotal +[0-9/. %]+- +- +- +2/4 50.0%\n"))) << out;
+  EXPECT_NE(readFile(path("go.info")).find("\nDA:42,0\n"), std::string::npos) << readFile(path("go.info"));
+  ASSERT_EQ(shell("lcov --summary " + path("two.info"), out), 0) << out;
+  ASSERT_EQ(shell("cd " + kSource + " && genhtml -q -o " + path("html") + " " + path("two.info"), out), 0) << out;
+  EXPECT_TRUE(fs::exists(fs::path(path("html")) / "index.html"));
 }
 
 TEST_F(TestCommand, HelpNamesEveryOption) {

@@ -12,6 +12,14 @@ namespace virtcom::ad {
 
 namespace {
 
+// Where a rule is in the file (its line in the coverage files): the arc of its unit into its
+// first output, so each rule of a unit split into several has its own line.
+SourceLocation ruleLocation(const Diagram& d, const LogicUnit& unit, const Rule& rule) {
+  for (size_t a : unit.arcs)
+    if (!rule.actions.empty() && d.arcs[a].to == rule.actions.front().node) return d.arcs[a].loc;
+  return unit.arcs.empty() ? d.loc : d.arcs[unit.arcs.front()].loc;
+}
+
 class Lowering {
  public:
   Lowering(const Program& program, st::NodeId& nextNodeId) : program_(program), b_(nextNodeId) {}
@@ -54,7 +62,9 @@ class Lowering {
     action->loc = action->endLoc = d.loc;
     action->hasBody = true;
     for (const Node& n : d.nodes) declareNode(d, n, tables);
-    for (const Rule& rule : tables.rules) lowerRule(d, rule, action->body);
+    b_.generated(true);  // the rules count as rules (RuleFired), not by the lines of their parts
+    for (const Rule& rule : tables.rules) lowerRule(d, tables.units[rule.unit], rule, action->body);
+    b_.generated(false);
     action->ladder = ladderOf(d, tables);
     return action;
   }
@@ -105,8 +115,10 @@ class Lowering {
   }
 
   // The rule's IF goes into its fired flag first (evaluated once, before the rule's own writes,
-  // and readable by --trace-rules); the writes and the blocks' inputs then read the flag.
-  void lowerRule(const Diagram& d, const Rule& rule, st::StmtList& body) {
+  // and readable by --trace-rules); the writes and the blocks' inputs then read the flag. The
+  // writes' `IF __ad_fired[k]` is there for every rule (empty for one that only drives blocks):
+  // entering it is the rule's firing to code coverage (st::CoverRole::RuleFired).
+  void lowerRule(const Diagram& d, const LogicUnit& unit, const Rule& rule, st::StmtList& body) {
     for (const GroupDefinition& g : rule.groups) {
       st::ExprPtr value = condition(d, g.value);
       b_.at(d.nodes[g.bar].loc);
@@ -122,7 +134,11 @@ class Lowering {
       if (isBlock(target.kind)) continue;
       writes.push_back(b_.assign(activityState(target), b_.boolLit(a.on)));
     }
-    if (!writes.empty()) body.push_back(b_.ifThen(b_.index(kFiredVariable, flag), std::move(writes)));
+    st::StmtPtr fired = b_.ifThen(b_.index(kFiredVariable, flag), std::move(writes));
+    fired->cover = st::CoverRole::RuleFired;
+    fired->coverName = rule.index;
+    fired->coverLoc = ruleLocation(d, unit, rule);
+    body.push_back(std::move(fired));
     for (const RuleAction& a : rule.actions)
       if (isBlock(d.nodes[a.node].kind)) body.push_back(driveBlock(d.nodes[a.node], a.on, flag));
   }

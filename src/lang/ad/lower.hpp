@@ -21,9 +21,12 @@ inline constexpr std::string_view kFiredVariable = "__ad_fired";
 // - VAR: every port as a BOOL (`AT %IX0.0` when located), every timer and counter as an
 //   instance of its block, every grouped join as a BOOL, so all are readable as PROGRAM.name;
 // - per rule: its groups assigned (`K := C1 OR L;`), its fired flag `__ad_fired[k] := <IF>;`,
-//   then for normal activities `IF __ad_fired[k] THEN Y := TRUE (FALSE for NOT-OUT); END_IF`,
-//   for timers `T(IN := __ad_fired[k], PT := preset)` and counters `C(CU|CD := ..., PV := preset)`
-//   / `C.RESET|LOAD := __ad_fired[k]` every scan;
+//   then for normal activities `IF __ad_fired[k] THEN Y := TRUE (FALSE for NOT-OUT); END_IF`
+//   (the IF is there for every rule, empty without such writes: its THEN is the rule's firing
+//   to code coverage, at the line of the arc to the rule's first output; an empty one is only
+//   compiled with coverage), for timers `T(IN := __ad_fired[k], PT := preset)` and counters
+//   `C(CU|CD := ..., PV := preset)` / `C.RESET|LOAD := __ad_fired[k]` every scan; these
+//   statements do not count as lines to coverage, the call of each diagram's ACTION does;
 // - per diagram ACTION, its rules as ladder rungs (st::Pou::ladder, ladder.hpp) for the LD export.
 // The scan is the seed's: inputs are read before the rules (the PLC's input image), every rule
 // is checked in order and sees what earlier rules wrote, outputs go out after the last rule.

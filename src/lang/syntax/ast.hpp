@@ -168,8 +168,11 @@ struct CaseBranch {
 
 // What a statement is to PLC code coverage (docs/coverage.md). The user's statements count by
 // line; those a lowering generated (an SFC's bookkeeping) do not, except the one that marks a
-// step's activation or a transition's firing, which counts under the element's name.
-enum class CoverRole : uint8_t { Source, Generated, StepActivated, TransitionFired };
+// step's activation or a transition's firing, which counts under the element's name. An
+// activity-diagram rule's `IF __ad_fired[k] THEN ... END_IF` is RuleFired: entering its THEN
+// counts as the rule's firing (no branch probes); with an empty THEN (a rule that only drives
+// blocks) it is compiled only when coverage is on, so it costs nothing otherwise.
+enum class CoverRole : uint8_t { Source, Generated, StepActivated, TransitionFired, RuleFired };
 
 struct Stmt {
   StmtKind kind = StmtKind::Empty;
@@ -183,8 +186,9 @@ struct Stmt {
   bool hasElse = false;
   std::string label;        // Jump, Label: the label's name as written
   CoverRole cover = CoverRole::Source;
-  std::string coverName;    // StepActivated, TransitionFired: the step's or transition's name
-  SourceLocation coverLoc;  // ... and where the chart declares it
+  std::string coverName;    // StepActivated, TransitionFired: the step's or transition's name;
+                            // RuleFired: the rule's index
+  SourceLocation coverLoc;  // ... and where the chart declares it (the rule: the arc to its first output)
 };
 
 // ---- Declarations -----------------------------------------------------------------------

@@ -54,6 +54,7 @@ TEST(CoverageData, MergingIntoEmptyCopies) {
   ASSERT_EQ(empty.points().size(), 1u);
   EXPECT_EQ(empty.points()[0].count, 3u);
   EXPECT_STREQ(coverageKindName(CoverageKind::Transition), "transition");
+  EXPECT_STREQ(coverageKindName(CoverageKind::Rule), "rule");
 }
 
 }  // namespace

@@ -60,6 +60,24 @@ TEST(SpeedAxis, RampUpFollowsP1120) {
   EXPECT_TRUE(rig.zsw1() & (1u << 14));
 }
 
+// A scenario's `parameter:` step (docs/scenarios.md): p1120 from 2 s to 1 s in the middle of
+// the ramp-up; the ramp goes on from where it is at the new slope. The scaling p2000 stays.
+TEST(SpeedAxis, RampTimeChangesMidRamp) {
+  SpeedRig rig;  // 675 rpm/s up to 0.5 s (337.5 rpm), then 1350 rpm/s
+  SpeedAxisParams faster;
+  faster.p1120S = 1.0;
+  SpeedRig edited(TelegramId::Std1, faster);
+  EXPECT_TRUE(rig.drive->changesParameter("p1120"));
+  EXPECT_FALSE(rig.drive->changesParameter("p2000"));
+  EXPECT_FALSE(rig.drive->changesParameter("telegram"));
+  rig.stw(0x047E);
+  rig.stw(0x047F, 0x2000, 250);  // 0.5 s
+  EXPECT_NEAR(rig.drive->rfgOutputRpm(), 337.5, 2.0);
+  rig.drive->swapParameters(*edited.drive);
+  rig.stw(0x047F, 0x2000, 100);  // 0.2 s more: 270 rpm more
+  EXPECT_NEAR(rig.drive->rfgOutputRpm(), 607.5, 2.0);
+}
+
 TEST(SpeedAxis, RfgFreezeAndDisable) {
   SpeedRig rig;
   rig.stw(0x047E);

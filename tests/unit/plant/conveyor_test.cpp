@@ -3,6 +3,8 @@
 // pushers, bins and discharge.
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "plant/conveyor.hpp"
 #include "plant_rig.hpp"
 
@@ -42,6 +44,31 @@ TEST(Conveyor, PartTravelsAtBeltSpeedAndStopsAtTheEnd) {
   rig.tick(5 * kS);
   EXPECT_NEAR(c->partPositionM(0), 0.9, 1e-9);  // held by the end stopper
   EXPECT_TRUE(rig.getBool("Belt.atEnd"));
+}
+
+// A scenario's `parameter:` step (docs/scenarios.md): the speed changes mid-run, the part goes
+// on from where it is; the belt's geometry does not change.
+TEST(Conveyor, TakesANewSpeedMidRun) {
+  PlantRig rig, edits;
+  auto* c = static_cast<Conveyor*>(rig.add("conveyor", "Belt", kBelt));
+  std::string faster = kBelt;
+  faster.replace(faster.find("100 mm/s"), 8, "200 mm/s");
+  Device* edited = edits.add("conveyor", "Belt", faster);
+  ASSERT_NE(c, nullptr) << rig.renderedDiags();
+  ASSERT_NE(edited, nullptr) << edits.renderedDiags();
+  EXPECT_TRUE(c->changesParameter("speed"));
+  EXPECT_TRUE(c->changesParameter("spawn_interval"));
+  EXPECT_FALSE(c->changesParameter("length"));
+  EXPECT_FALSE(c->changesParameter("power"));
+  rig.setBool("Belt.run", true);
+  rig.tick();
+  rig.tick(kS);
+  EXPECT_NEAR(c->partPositionM(0), 0.1, 1e-9);
+  c->swapParameters(*edited);
+  rig.tick(kS);
+  EXPECT_NEAR(c->partPositionM(0), 0.3, 1e-9);
+  EXPECT_NEAR(c->params().speed, 0.2, 1e-12);
+  EXPECT_EQ(c->params().lengthNm, 1'000'000'000);
 }
 
 TEST(Conveyor, TakingThePartAtTheEndRemovesIt) {

@@ -88,4 +88,35 @@ TEST(CoverageSummary, OneRowPerPouAndATotal) {
             "total     4/6 66.7%         2/4 50.0%         1/1 100.0%        0/1 0.0%\n");
 }
 
+// An activity-diagram file: Lamp.Lights has rules at lines 8 (fired 7x) and 9 (never), the
+// PROGRAM's call of the diagram is at line 5 (7x).
+CoverageData diagram() {
+  const auto at = [](std::string pou, uint32_t line, CoverageKind kind, uint64_t count, std::string name = {}) {
+    return CoveragePoint{"cell/lamp.ad", std::move(pou), line, 3, kind, 0, 0, std::move(name), count};
+  };
+  return CoverageData({at("Lamp", 5, CoverageKind::Statement, 7), at("Lamp.Lights", 8, CoverageKind::Rule, 7, "1"),
+                       at("Lamp.Lights", 9, CoverageKind::Rule, 0, "2")});
+}
+
+TEST(CoverageRules, AreLinesOfTheDiagramFile) {
+  EXPECT_EQ(report::lcovTracefile(diagram(), "t"),
+            "TN:t\nSF:cell/lamp.ad\nFN:5,Lamp\nFN:8,Lamp.Lights\nFNDA:7,Lamp\nFNDA:7,Lamp.Lights\nFNF:2\nFNH:2\n"
+            "BRF:0\nBRH:0\nDA:5,7\nDA:8,7\nDA:9,0\nLF:3\nLH:2\nend_of_record\n");
+  const std::string xml = report::coberturaXml(diagram());
+  EXPECT_NE(xml.find("<class name=\"Lamp.Lights\" filename=\"cell/lamp.ad\" line-rate=\"0.5000\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<line number=\"9\" hits=\"0\" branch=\"false\"/>"), std::string::npos) << xml;
+}
+
+TEST(CoverageRules, HaveTheirColumnInTheSummaryOnlyWhenThereAreRules) {
+  EXPECT_EQ(report::coverageSummaryText(diagram()),
+            "Coverage     lines             branches          steps             transitions       rules\n"
+            "Lamp         1/1 100.0%        -                 -                 -                 -\n"
+            "Lamp.Lights  1/2 50.0%         -                 -                 -                 1/2 50.0%\n"
+            "total        2/3 66.7%         -                 -                 -                 1/2 50.0%\n");
+  const std::vector<report::PouCoverage> rows = report::coverageByPou(diagram());
+  EXPECT_EQ(rows.back().rules.hit, 1u);
+  EXPECT_EQ(rows.back().rules.total, 2u);
+  EXPECT_EQ(report::coverageSummaryText(sample()).find("rules"), std::string::npos);
+}
+
 }  // namespace

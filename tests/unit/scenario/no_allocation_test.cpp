@@ -1,7 +1,8 @@
 // A scenario's per-scan work allocates nothing (STYLE rule 7): with steps on the time line and on
-// conditions, a force and its release, and every per-tick assertion kind being judged, the
-// station cell is stepped through several clamp cycles under a counted global operator new
-// (tests/support/allocation_counter). The trace gets room for its records first.
+// conditions, a force and its release, a button pressed twice (the second press while the first
+// is held), and every per-tick assertion kind being judged, the station cell is stepped through
+// several clamp cycles under a counted global operator new (tests/support/allocation_counter).
+// The trace gets room for its records first.
 #include <gtest/gtest.h>
 
 #include "scenario/bind.hpp"
@@ -23,6 +24,8 @@ steps:
   - {at: 2 s, force: {MAIN.part: FALSE}}
   - {at: 3 s, release: MAIN.part}
   - {at: 3.5 s, facts: {partPresent: true}}
+  - {at: 4 s, press: {MAIN.busy: 100 ms}}
+  - {at: 4.05 s, press: {MAIN.busy: 200 ms}}
 expect:
   - {always: NOT MAIN.failed}
   - {never: "MAIN.state = 9"}

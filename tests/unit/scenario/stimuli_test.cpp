@@ -77,6 +77,37 @@ expect:
   EXPECT_EQ(r.verdict, Verdict::Pass) << text(r);
 }
 
+// A late done (the clamp's done 0.5 s after its 1 s close): the cycle ends 0.5 s later than the
+// 1.03 s of the plain run, still inside the PLC's 3 s watchdog.
+TEST_F(ScenarioTest, LateDoneFromAStepDelaysTheCycle) {
+  CaseResult r = run(R"(set: {MAIN.start: TRUE}
+steps:
+  - {at: 0 s, fault: {device: Clamp, extra_delay: 0.5 s}}
+expect:
+  - {cycle_time: {min: 1.5 s, max: 1.6 s}}
+  - {never: MAIN.failed}
+  - {at: 1.2 s, that: "MAIN.state = 1 AND NOT MAIN.done"}
+)");
+  EXPECT_EQ(r.verdict, Verdict::Pass) << text(r);
+}
+
+// An operator's push button: start pressed for 50 ms starts the cycle and is FALSE again after.
+TEST_F(ScenarioTest, PressHoldsAButtonForItsDurationThenReleasesIt) {
+  CaseResult r = run(R"(steps:
+  - {at: 0.1 s, press: {MAIN.start: 50 ms}}
+expect:
+  - {at: 0.05 s, that: NOT MAIN.start AND MAIN.state = 0}
+  - {at: 0.12 s, that: MAIN.start AND MAIN.state = 1}
+  - {at: 0.15 s, that: NOT MAIN.start}
+  - {eventually: MAIN.cycleDone, within: 1.2 s, from: 0.1 s}
+)");
+  EXPECT_EQ(r.verdict, Verdict::Pass) << text(r);
+  r = run("steps:\n  - {at: 0.1 s, press: {MAIN.state: 50 ms, MAIN.start: fast}}\n");
+  ASSERT_EQ(r.verdict, Verdict::Error);
+  EXPECT_NE(text(r).find("test.yaml:3:25: error[C060]: 'MAIN.state' is INT: a pressed button is a BOOL"), std::string::npos) << text(r);
+  EXPECT_NE(text(r).find("test.yaml:3:"), std::string::npos) << text(r);
+}
+
 TEST_F(ScenarioTest, ErrorAtTheSecondCommandOnly) {
   // The first command clamps, the second (the next part, at once) fails with the injected code.
   CaseResult r = run(R"(set: {MAIN.start: TRUE}

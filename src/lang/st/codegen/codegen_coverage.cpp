@@ -24,7 +24,8 @@ void PouCompiler::coverStatement(const Stmt& s) {
       break;
     case CoverRole::StepActivated: probe(CoverageKind::Step, s.coverLoc, 0, 0, s.coverName); break;
     case CoverRole::TransitionFired: probe(CoverageKind::Transition, s.coverLoc, 0, 0, s.coverName); break;
-    case CoverRole::Generated: break;
+    case CoverRole::Generated:
+    case CoverRole::RuleFired: break;  // its probe is its THEN's (ifStatement)
   }
 }
 

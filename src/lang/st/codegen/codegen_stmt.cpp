@@ -74,7 +74,15 @@ void PouCompiler::statements(const StmtList& list) {
   if (labelled) closeLabelScope();
 }
 
+// An activity-diagram rule's IF with nothing in its THEN is there for its coverage probe alone.
+static bool onlyForCoverage(const Stmt& s) {
+  return s.cover == CoverRole::RuleFired && std::all_of(s.branches.begin(), s.branches.end(), [](const CondBlock& b) {
+           return b.body.empty();
+         });
+}
+
 void PouCompiler::statement(const Stmt& s) {
+  if (!covering_ && onlyForCoverage(s)) return;
   uint16_t mark = regMark();
   uint32_t tempMark = tempTop_;
   if (s.kind != StmtKind::Empty && s.kind != StmtKind::Label) ctx_.module.lines.push_back({here(), s.loc});
@@ -165,6 +173,7 @@ void PouCompiler::ifStatement(const Stmt& s) {
     uint32_t skip = emitJump(Op::JZ, c);
     freeRegs(mark);
     if (arms) probe(CoverageKind::Branch, s.loc, arm++, arms);
+    if (covering_ && s.cover == CoverRole::RuleFired) probe(CoverageKind::Rule, s.coverLoc, 0, 0, s.coverName);
     statements(branch.body);
     if (&branch != &s.branches.back() || s.hasElse || arms) toEnd.push_back(emitJump(Op::JMP, 0));
     patchJump(skip, here());
@@ -230,6 +239,7 @@ void PouCompiler::caseStatement(const Stmt& s) {
     if (!single) toNext.push_back(emitJump(Op::JMP, 0));
     for (uint32_t j : toBody) patchJump(j, here());
     if (arms) probe(CoverageKind::Branch, s.loc, arm++, arms);
+    if (covering_ && s.cover == CoverRole::RuleFired) probe(CoverageKind::Rule, s.coverLoc, 0, 0, s.coverName);
     statements(branch.body);
     if (&branch != &s.cases.back() || s.hasElse || arms) toEnd.push_back(emitJump(Op::JMP, 0));
     for (uint32_t j : toNext) patchJump(j, here());

@@ -244,7 +244,7 @@ void LiveState::apply(Command& c, sim::Simulation& sim) {
     case Command::Kind::Write: {
       if (!plc_) break;
       Forced value{std::move(c.name), c.ref, std::move(c.bytes)};
-      audited(c.writer, value, sim.nowNs(), [&] {
+      audited(c.writer, value, [&] {
         if (writeBytes(value, plc_->machine().memory())) plc_->inputsTouched();
       });
       plc::syncInputImage(plc_->module(), value.ref, plc_->machine().memory(), plc_->inputImage());
@@ -274,10 +274,10 @@ void LiveState::apply(Command& c, sim::Simulation& sim) {
 }
 
 template <class Write>
-void LiveState::audited(const ExternalWriter& writer, const Forced& value, int64_t nowNs, Write&& write) {
+void LiveState::audited(const ExternalWriter& writer, const Forced& value, Write&& write) {
   if (!audit_) return write();
   const bc::Module& m = plc_->module();
-  audit_->setVirtualTime(nowNs);
+  audit_->setVirtualTime(plc_->nextTickNs());  // the scan boundary it crosses, as the servers' writes
   const uint8_t bitMask = value.ref.bit >= 0 ? static_cast<uint8_t>(1u << value.ref.bit) : 0;
   audit_->beforeEdit(writer, {plc_->machine().memory(), m.staticSize}, 0, value.ref.address,
                      static_cast<uint32_t>(value.bytes.size()), bitMask);

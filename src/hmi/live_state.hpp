@@ -171,7 +171,7 @@ class LiveState final : public TraceSink, public sim::RunControl {
   void applyForces(plc::Runtime& plc);
   // Runs write(), which lands `value`, between the audit's before and after looks (if audited).
   template <class Write>
-  void audited(const ExternalWriter& writer, const Forced& value, int64_t nowNs, Write&& write);
+  void audited(const ExternalWriter& writer, const Forced& value, Write&& write);
   void copyBelts();
   static bool writeBytes(const Forced& f, uint8_t* memory);
 

@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/trace.hpp"
 #include "plc/write_audit.hpp"
 
 namespace virtcom::cli {

@@ -26,7 +26,7 @@ TEST_F(Schema, RecordCreatesTheSchemaInWalModeAndReadOpensIt) {
   ASSERT_TRUE(db->queryInt("SELECT COUNT(*) FROM sqlite_schema WHERE type = 'table' AND name NOT LIKE 'sqlite_%'", tables));
   EXPECT_EQ(version, kSchemaVersion);
   EXPECT_EQ(appId, kApplicationId);
-  EXPECT_EQ(tables, 10);
+  EXPECT_EQ(tables, 11);  // schema 3 added `writes`
   Statement mode(*db, "PRAGMA journal_mode");
   ASSERT_TRUE(mode.step());
   EXPECT_EQ(mode.columnText(0), "wal");

@@ -5,7 +5,8 @@
 // Every ADS and OPC UA client also writes MAIN.sequence := 3 (its value already) once a second:
 // the write audit's count at the end must equal the writes acknowledged (nothing lost).
 // Measures requests served, errors and refusals per protocol, and from the stream frames how far
-// virtual time fell behind the wall clock (the pacing lag: a scan that ran late shows as lag).
+// virtual time fell behind the wall clock (the pacing lag: a scan that ran late shows as lag), and
+// the served run's own count of late ticks.
 // Run by hand, never by ctest (it measures time):
 //   npm ci --prefix tests/e2e/ads && npm ci --prefix tests/e2e/opcua
 //   node bench/load/load_test.js build/release/src/cli/virtcom [SECONDS=30]
@@ -153,6 +154,8 @@ async function main() {
   for (let i = 0; i < counts['OPC UA']; ++i) all.push(opcuaSession(ports.opcua, until));
   await Promise.all(all);
   await sleep(300);  // the last writes cross their scan boundary
+  // The served run's own count of ticks that started late (docs/performance.md, Late ticks).
+  const late = await fetch(`http://127.0.0.1:${ports.http}/api/model`).then((r) => r.json()).then((m) => m.lateTicks, () => '-');
   cell.child.kill('SIGTERM');
   const code = await new Promise((r) => cell.child.on('exit', r));
   const err = cell.stderr();
@@ -163,6 +166,7 @@ async function main() {
   lag.sort((a, b) => a - b);
   const pick = (q) => (lag.length ? lag[Math.min(lag.length - 1, Math.floor(q * lag.length))].toFixed(1) : '-');
   console.log(`pacing lag (wall - virtual since a stream's first frame, ms): median ${pick(0.5)}, p99 ${pick(0.99)}, max ${pick(1)}`);
+  console.log(`late ticks of the served run (GET /api/model): ${late}`);
   const audit = /audit: (\d+) external writes \(ads (\d+), modbus \d+, opcua (\d+)/.exec(err);
   const acked = stats.ADS.writes + stats['OPC UA'].writes;
   console.log(audit ? `audited writes ${audit[1]} (ads ${audit[2]}, opcua ${audit[3]}), acknowledged ${acked}: ${+audit[1] === acked ? 'none lost' : 'MISMATCH'}`

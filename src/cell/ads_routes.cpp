@@ -1,9 +1,10 @@
 #include "cell/ads_routes.hpp"
 
-#include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "cell/yaml_config.hpp"
+#include "core/atomic_file.hpp"
 #include "core/config_node.hpp"
 #include "core/endpoint.hpp"
 
@@ -68,13 +69,18 @@ std::optional<std::vector<AdsRoute>> parseAdsRoutes(const std::string& path, con
 }
 
 std::string appendAdsRoute(const std::string& path, const AdsRoute& route) {
-  std::error_code ec;
-  const bool fresh = !std::filesystem::exists(path, ec) || std::filesystem::file_size(path, ec) == 0;
-  std::ofstream out(path, std::ios::app);
-  if (fresh) out << "# ADS routes of the virtcom ADS server (docs/ads.md, Routes)\nroutes:\n";
-  out << "  - name: " << route.name << "\n    netid: " << formatNetId(route.netId) << "\n    address: " << formatIpv4(route.ipv4) << "\n";
-  out.flush();
-  if (!out) return "cannot write the ADS routes file '" + path + "'";
+  // The whole file is written anew and renamed into place (core/atomic_file.hpp): a kill -9 in
+  // the middle leaves the file as it was before, never half a route that would stop the next start.
+  std::string text;
+  if (std::ifstream in(path); in) {
+    std::ostringstream old;
+    old << in.rdbuf();
+    text = old.str();
+  }
+  if (text.empty()) text = "# ADS routes of the virtcom ADS server (docs/ads.md, Routes)\nroutes:\n";
+  else if (text.back() != '\n') text += '\n';
+  text += "  - name: " + route.name + "\n    netid: " + formatNetId(route.netId) + "\n    address: " + formatIpv4(route.ipv4) + "\n";
+  if (std::string why = replaceFile(path, text); !why.empty()) return "cannot write the ADS routes file '" + path + "': " + why;
   return "";
 }
 

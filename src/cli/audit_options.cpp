@@ -7,16 +7,27 @@ namespace virtcom::cli {
 void addAuditOption(CLI::App* cmd, AuditLevel& level) {
   const std::map<std::string, AuditLevel> levels{{"off", AuditLevel::Off}, {"summary", AuditLevel::Summary}, {"each", AuditLevel::Each}};
   cmd->add_option("--audit-writes", level,
-                  "audit of writes from ADS, Modbus and OPC UA clients on stderr: off, summary (default: the count per protocol "
+                  "audit of writes from ADS, Modbus, OPC UA and HMI (HTTP) clients on stderr: off, summary (default: the count per protocol "
                   "at the end) or each (also a line per write: times, protocol, peer, variable, old -> new value; docs/security.md)")
       ->transform(CLI::CheckedTransformer(levels, CLI::ignore_case));
 }
 
-std::unique_ptr<plc::WriteAudit> makeWriteAudit(AuditLevel level, const bc::Module& module, std::ostream& log) {
+std::unique_ptr<plc::WriteAudit> makeWriteAudit(AuditLevel level, const bc::Module& module, std::ostream& log,
+                                                plc::WriteAudit::Sink record) {
   if (level == AuditLevel::Off) return nullptr;
+  const bool each = level == AuditLevel::Each;
   plc::WriteAudit::Sink sink;
-  if (level == AuditLevel::Each) sink = [&log](const plc::WriteRecord& r) { log << "audit: " << plc::formatWriteRecordWithTimes(r) << "\n"; };
+  if (each || record)
+    sink = [&log, each, record = std::move(record)](const WriteRecord& r) {
+      if (each) log << "audit: " << plc::formatWriteRecordWithTimes(r) << "\n";
+      if (record) record(r);
+    };
   return std::make_unique<plc::WriteAudit>(module, std::move(sink));
+}
+
+void keepWriteCounts(const plc::WriteAudit& audit, Trace& trace) {
+  trace.writesAudited = true;
+  for (size_t p = 0; p < kWriteProtocolCount; ++p) trace.externalWrites[p] = audit.count(static_cast<WriteProtocol>(p));
 }
 
 std::string auditSummary(const plc::WriteAudit& audit) {

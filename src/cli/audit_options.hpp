@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/trace.hpp"
 #include "plc/write_audit.hpp"
 
 namespace virtcom::cli {
@@ -18,8 +19,12 @@ void addAuditOption(CLI::App* cmd, AuditLevel& level);
 
 // The audit the servers' queues report to (nullptr when --audit-writes off), logging each record
 // to `log` ("audit: 0.120s 2026-12-02T15:40:01.123Z modbus 127.0.0.1:50123 MAIN.speed (%MW0): 0 -> 5")
-// at level Each.
-std::unique_ptr<plc::WriteAudit> makeWriteAudit(AuditLevel level, const bc::Module& module, std::ostream& log);
+// at level Each, and handing each to `record` (if set: the historian) at every level but Off.
+std::unique_ptr<plc::WriteAudit> makeWriteAudit(AuditLevel level, const bc::Module& module, std::ostream& log,
+                                                plc::WriteAudit::Sink record = {});
+
+// After the run: the audit's counts into `trace` (Trace::externalWrites), for its reports.
+void keepWriteCounts(const plc::WriteAudit& audit, Trace& trace);
 
 // "audit: 3 external writes (ads 1, modbus 2, opcua 0, http 0)" (also with none: the run saw none).
 std::string auditSummary(const plc::WriteAudit& audit);

@@ -18,6 +18,7 @@
 #include "plc/retain_file.hpp"
 #include "plc/runtime.hpp"
 #include "proto/modbus/server.hpp"
+#include "report/summary.hpp"
 
 namespace virtcom::cli {
 
@@ -145,8 +146,14 @@ ExitCode runExec(const ExecOptions& o) {
   std::unique_ptr<Clock> clock;
   // A Modbus server talks to the real world, so it runs in real time unless told otherwise.
   double speed = o.speed > 0 ? o.speed : o.modbus.empty() && !o.ads.enabled() && !o.opcua.enabled() ? 0 : 1;
-  if (speed > 0) clock = std::make_unique<PacedClock>(speed);
-  else clock = std::make_unique<VirtualClock>();
+  PacedClock* paced = nullptr;  // counts the late ticks
+  if (speed > 0) {
+    auto pacedClock = std::make_unique<PacedClock>(speed);
+    paced = pacedClock.get();
+    clock = std::move(pacedClock);
+  } else {
+    clock = std::make_unique<VirtualClock>();
+  }
   plc::RuntimeOptions ropts;
   ropts.instructionBudget = o.budget;
   plc::Runtime runtime(*module, *clock, ropts);
@@ -225,6 +232,7 @@ ExitCode runExec(const ExecOptions& o) {
   const bool serving = modbus || ads || opcua;
   auto audit = serving ? makeWriteAudit(o.auditWrites, *module, std::cerr) : nullptr;
   int64_t cycles = o.cycles < 0 ? (forever ? INT64_MAX : 1) : o.cycles;
+  if (paced) paced->resume();  // paced from the first scan: the set-up above is no scan's work
   ExitCode exitCode = ExitCode::Ok;
   for (int64_t k = 0; k < cycles && !gStopRequested; ++k) {
     int64_t now = runtime.nextTickNs();
@@ -258,6 +266,7 @@ ExitCode runExec(const ExecOptions& o) {
     exitCode = ExitCode::PlcFault;
   }
   backend.logRun(runtime.tierStats());
+  if (paced) std::cerr << "timing: " << report::lateTicksText(paced->lateTicks(), runtime.ticks(), paced->maxLateNs()) << "\n";
   if (audit) std::cerr << auditSummary(*audit) << "\n";
   if (!o.retainFile.empty() && exitCode == ExitCode::Ok) {
     std::string problem = plc::saveRetainFile(o.retainFile, *module, runtime.machine().memory());

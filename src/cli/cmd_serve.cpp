@@ -45,7 +45,7 @@ struct ServeOptions {
   std::string modbusAllow;  // --modbus-allow: comma-separated peers; empty: any (loopback only)
   bool modbusReadOnly = false;
   PeerFlags peers;          // --allow-any-peer and the limits, for every server of the command
-  AuditLevel auditWrites = AuditLevel::Summary;  // --audit-writes: ADS and OPC UA writes into the soft PLC
+  AuditLevel auditWrites = AuditLevel::Summary;  // --audit-writes: ADS, OPC UA and HMI writes into the soft PLC
   AdsServeOptions ads;      // the soft PLC over ADS
   OpcuaServeOptions opcua;  // the soft PLC's variables over OPC UA
   HmiServeOptions hmi;      // the web HMI (--http)
@@ -173,7 +173,15 @@ ExitCode serveCell(const ServeOptions& o) {
     options.tierUp = backend->tierUp();
   }
   // A reset (which would replace the module) is refused while these serve.
-  auto audit = ads || opcua ? makeWriteAudit(o.auditWrites, *cell->module, std::cerr) : nullptr;
+  // The writes into the soft PLC from outside: its servers' clients and the HMI's page; each
+  // record also into the historian when one records (the recorder in use: a reset replaces it).
+  plc::WriteAudit::Sink intoHistory;
+  if (!o.history.path.empty())
+    intoHistory = [&current = *recorder](const WriteRecord& r) {
+      if (current) current->externalWrite(r);
+    };
+  auto audit = cell->module && (ads || opcua || hmiBinding) ? makeWriteAudit(o.auditWrites, *cell->module, std::cerr, intoHistory)
+                                                            : nullptr;
   if (ads || opcua) {
     // The first snapshot right after the cold start, then the announcement: a client that
     // connects at once reads the initial values, never an empty image.
@@ -201,6 +209,7 @@ ExitCode serveCell(const ServeOptions& o) {
   if (hmiBinding) {
     hmi.emplace(*cell, &gStopRequested, o.hmi.paused, options);
     hmi->keepHistory(o.history.path);
+    hmi->auditWrites(audit.get());
     if (!o.modbus.empty() || ads || opcua)
       hmi->refuseReset("reset is off while --modbus, --ads or --opcua serve the run: their clients hold the state of the run; restart serve");
   }
@@ -235,7 +244,10 @@ ExitCode serveCell(const ServeOptions& o) {
   if (ads) ads->stop();
   if (opcua) opcua->stop();
   if (hmi) hmi->stop();
-  if (audit) std::cerr << auditSummary(*audit) << "\n";
+  if (audit) {
+    std::cerr << auditSummary(*audit) << "\n";
+    keepWriteCounts(*audit, cell->trace);
+  }
   const Trace& trace = cell->trace;
   const report::Kpis kpis = report::computeKpis(trace);
   // --quiet drops the table, never the reason a run failed.

@@ -1,5 +1,6 @@
 #include "core/clock.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -34,7 +35,12 @@ void PacedClock::advanceTo(int64_t targetNs) {
   if (targetNs <= nowNs_) return;
   int64_t wallTarget = anchorWallNs_ + static_cast<int64_t>(static_cast<double>(targetNs - anchorVirtualNs_) / speed_);
   int64_t remaining = wallTarget - wallNs();
-  if (remaining > 0) std::this_thread::sleep_for(std::chrono::nanoseconds(remaining));
+  if (remaining > 0) {
+    std::this_thread::sleep_for(std::chrono::nanoseconds(remaining));
+  } else {
+    ++lateTicks_;
+    maxLateNs_ = std::max(maxLateNs_, -remaining);
+  }
   nowNs_ = targetNs;
 }
 

@@ -46,12 +46,18 @@ class PacedClock final : public Clock {
   void setSpeed(double speed);
   // After a pause: the time spent paused does not count.
   void resume();
+  // advanceTo() calls that found the wall clock already past the target (the work since the
+  // previous one overran it: a late tick), and by how much at most. Counting allocates nothing.
+  uint64_t lateTicks() const { return lateTicks_; }
+  int64_t maxLateNs() const { return maxLateNs_; }
 
  private:
   double speed_;
   int64_t anchorWallNs_;
   int64_t anchorVirtualNs_ = 0;
   int64_t nowNs_ = 0;
+  uint64_t lateTicks_ = 0;
+  int64_t maxLateNs_ = 0;
 };
 
 }  // namespace virtcom

@@ -1,5 +1,7 @@
 #include "core/external_write.hpp"
 
+#include "core/endpoint.hpp"
+
 namespace virtcom {
 
 std::string_view writeProtocolName(WriteProtocol p) {
@@ -11,5 +13,7 @@ std::string_view writeProtocolName(WriteProtocol p) {
   }
   return "?";
 }
+
+std::string writerAddress(const ExternalWriter& w) { return formatIpv4(w.ipv4) + ":" + std::to_string(w.port); }
 
 }  // namespace virtcom

@@ -1,11 +1,13 @@
 #pragma once
-// Who wrote into the PLC from outside (a client of a protocol server), and the hook through which
-// the servers' write queues report each edit as they apply it at a scan boundary. The write audit
+// Who wrote into the PLC from outside (a client of a protocol server or of the HMI), and the hook
+// through which the servers' write queues (and the HMI's commands) report each edit as they apply
+// it at a scan boundary. The write audit
 // (plc/write_audit.*) implements the hook, the queues (proto/*) call it: neither knows the other,
 // and every protocol is audited by the same code.
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "core/ams_net_id.hpp"
@@ -22,7 +24,22 @@ struct ExternalWriter {
   uint16_t port = 0;
   bool hasNetId = false;  // ADS: the AmsNetId the peer's packets came from
   AmsNetId netId{};
+  bool force = false;  // HTTP: the HMI forced the value (written again around every scan until released)
   bool operator==(const ExternalWriter&) const = default;
+};
+
+// "127.0.0.1:50123": the writer's address and port.
+std::string writerAddress(const ExternalWriter& w);
+
+// One audited write (plc/write_audit.hpp makes them): what the terminal log prints and the
+// historian keeps (docs/history.md, table `writes`).
+struct WriteRecord {
+  int64_t virtualNs = 0;  // the scan boundary the write crossed
+  int64_t wallNs = 0;     // UTC, ns since 1970
+  ExternalWriter writer;
+  std::string variable;  // qualified name ("MAIN.speed", "MAIN.a[3].x"); the location when none is declared there
+  std::string location;  // the IEC address of a located variable ("%QX0.3", "%MW4"), else empty
+  std::string oldValue, newValue;  // IEC literal text
 };
 
 class WriteObserver {
@@ -36,6 +53,9 @@ class WriteObserver {
                           uint32_t size, uint8_t bitMask) = 0;
   // After the last edit of a batch (one queue drained) has landed.
   virtual void endEdits() = 0;
+  // The PLC's state changed on a client's request (ADS WriteControl: RUN, STOP), from `from` to
+  // `to` (the states' names), at a scan boundary.
+  virtual void stateChanged(const ExternalWriter& writer, std::string_view from, std::string_view to) = 0;
 };
 
 }  // namespace virtcom

@@ -8,10 +8,12 @@
 // only the signals a report needs (sim::SimOptions::keptSignals); activities and cycles keep the
 // first and last of a long run and aggregates of the middle (core/trace_logs.hpp, bounded by
 // setWindow). Collisions and faults end a run or are rare, so they are all kept.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "core/external_write.hpp"
 #include "core/iec_value.hpp"
 #include "core/tag_bus.hpp"
 #include "core/trace_logs.hpp"
@@ -85,6 +87,11 @@ struct TimeSteps {
   uint64_t ticks = 0;
   uint64_t ticksSkipped = 0;
   uint64_t jumps = 0;
+  // A run paced to the wall clock: the ticks that started late (the wall clock already past their
+  // due time: the work before them overran it, PacedClock::lateTicks) and the latest such start.
+  bool paced = false;
+  uint64_t lateTicks = 0;
+  int64_t maxLateNs = 0;
 };
 
 struct Trace {
@@ -104,6 +111,10 @@ struct Trace {
   RunEnd end = RunEnd::Completed;
   std::string endMessage;
   TimeSteps time;
+  // The writes from outside (protocol clients, the HMI) into the soft PLC, per protocol, when
+  // they were audited (docs/security.md; `serve` fills it at the end).
+  bool writesAudited = false;
+  std::array<uint64_t, kWriteProtocolCount> externalWrites{};
 
   // Before the run: keep every activity and every cycle while there are at most `limit` of each,
   // beyond that the first and the last limit/2 (kDefaultTraceWindow unless set).

@@ -17,9 +17,12 @@ enum class EventKind : uint8_t {
   Text,       // kTextChunk bytes of a fault's text
   Cycle,      // index = number of cycles completed; the cycle's window
   Production, // index = the shift in the plan; one shift occurrence's row as it stands (virtcom monitor)
+  Write,      // index = write number; an audited external write, followed by text events holding its texts
 };
 
 inline constexpr size_t kTextChunk = 32;
+// The texts of a Write event, in the order its text events hold them.
+enum WriteText : uint8_t { kWritePeer, kWriteNetId, kWriteVariable, kWriteLocation, kWriteOld, kWriteNew, kWriteTextCount };
 
 struct ActivityEvent {
   uint32_t device, label;
@@ -35,6 +38,12 @@ struct FaultEvent {
 };
 struct CycleEvent {
   int64_t startNs, endNs;
+};
+struct WriteEvent {
+  int64_t wallNs;  // UTC
+  uint16_t textBytes[kWriteTextCount];
+  uint8_t protocol;  // WriteProtocol
+  bool forced;
 };
 // Local wall times: ns since 1970-01-01 00:00 local (the `production` table of docs/history.md).
 struct ProductionEvent {
@@ -54,6 +63,7 @@ struct Event {
     FaultEvent fault;
     CycleEvent cycle;
     ProductionEvent production;
+    WriteEvent write;
     char text[kTextChunk];
   };
 };

@@ -78,22 +78,54 @@ void Recorder::pushActivity(const Trace& trace, uint32_t index, bool wait) {
   });
 }
 
+template <class Head>
+void Recorder::pushWithTexts(std::span<const std::string_view> texts, bool wait, Head&& head) {
+  size_t bytes = 0;
+  for (std::string_view t : texts) bytes += t.size();
+  push(1 + (bytes + kTextChunk - 1) / kTextChunk, wait, [&](Event& e, size_t i) {
+    if (i == 0) return head(e);
+    e.kind = EventKind::Text;
+    size_t part = 0, at = (i - 1) * kTextChunk;  // the chunk's first byte: texts[part][at]
+    while (at >= texts[part].size()) at -= texts[part++].size();
+    for (size_t k = 0; k < kTextChunk && part < texts.size(); ++k) {
+      e.text[k] = texts[part][at];
+      if (++at == texts[part].size()) {
+        at = 0;
+        ++part;
+        while (part < texts.size() && texts[part].empty()) ++part;
+      }
+    }
+  });
+}
+
 // A fault's source and message follow it as text events, kTextChunk bytes each.
 void Recorder::pushFault(const Trace& trace, uint32_t index, bool wait) {
   const FaultRecord& f = trace.faults[index];
-  const size_t bytes = f.source.size() + f.message.size();
-  push(1 + (bytes + kTextChunk - 1) / kTextChunk, wait, [&](Event& e, size_t i) {
+  const std::string_view texts[] = {f.source, f.message};
+  pushWithTexts(texts, wait, [&](Event& e) {
+    e.kind = EventKind::Fault;
     e.index = index;
     e.timeNs = f.timeNs;
-    if (i == 0) {
-      e.kind = EventKind::Fault;
-      e.fault = {static_cast<uint32_t>(f.source.size()), static_cast<uint32_t>(f.message.size())};
-      return;
-    }
-    e.kind = EventKind::Text;
-    for (size_t k = 0, at = (i - 1) * kTextChunk; k < kTextChunk && at < bytes; ++k, ++at)
-      e.text[k] = at < f.source.size() ? f.source[at] : f.message[at - f.source.size()];
+    e.fault = {static_cast<uint32_t>(f.source.size()), static_cast<uint32_t>(f.message.size())};
   });
+}
+
+void Recorder::externalWrite(const WriteRecord& r) {
+  // Each text at most a u16's worth (a STRING variable holds at most 255 characters).
+  auto cut = [](std::string_view t) { return t.substr(0, UINT16_MAX); };
+  const std::string peer = writerAddress(r.writer), netId = r.writer.hasNetId ? formatNetId(r.writer.netId) : "";
+  const std::string_view texts[kWriteTextCount] = {cut(peer),       cut(netId),      cut(r.variable),
+                                                   cut(r.location), cut(r.oldValue), cut(r.newValue)};
+  pushWithTexts(texts, false, [&](Event& e) {
+    e.kind = EventKind::Write;
+    e.index = writesSeen_;
+    e.timeNs = r.virtualNs;
+    e.write.wallNs = r.wallNs;
+    for (size_t t = 0; t < kWriteTextCount; ++t) e.write.textBytes[t] = static_cast<uint16_t>(texts[t].size());
+    e.write.protocol = static_cast<uint8_t>(r.writer.protocol);
+    e.write.forced = r.writer.force;
+  });
+  ++writesSeen_;
 }
 
 void Recorder::follow(const Trace& trace, bool wait) {

@@ -12,10 +12,13 @@
 #include <expected>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
+#include "core/external_write.hpp"
 #include "core/trace.hpp"
 #include "history/event_queue.hpp"
 #include "history/retention.hpp"
@@ -59,6 +62,11 @@ class Recorder final : public TraceSink {
   // to the last commit. Never blocks nor allocates; a full queue drops it (counted).
   void production(uint32_t shift, const ProductionEvent& row);
 
+  // While recording, on the simulation thread: one audited write from outside (docs/security.md),
+  // a row of the table `writes` with the writer's next batch. Never blocks; a full queue drops it
+  // (counted).
+  void externalWrite(const WriteRecord& record);
+
   int64_t runId() const { return run_; }
   // Events the full queue refused so far (a fault's text counts as one event with its fault).
   uint64_t drops() const { return drops_.load(std::memory_order_relaxed); }
@@ -74,6 +82,10 @@ class Recorder final : public TraceSink {
   void push(size_t n, bool wait, Fill&& fill);
   void pushActivity(const Trace& trace, uint32_t index, bool wait);
   void pushFault(const Trace& trace, uint32_t index, bool wait);
+  // `head` (kind, index, time and its own fields set by head(event)), then `texts` one after the
+  // other in text events of kTextChunk bytes.
+  template <class Head>
+  void pushWithTexts(std::span<const std::string_view> texts, bool wait, Head&& head);
   // Hands over what the trace gained since the last call: activities begun or ended,
   // collisions, faults, a completed cycle.
   void follow(const Trace& trace, bool wait);
@@ -90,6 +102,7 @@ class Recorder final : public TraceSink {
   std::vector<uint32_t> openActivities_;
   size_t activitiesSeen_ = 0, collisionsSeen_ = 0, faultsSeen_ = 0;
   uint32_t cyclesSeen_ = 0;
+  uint32_t writesSeen_ = 0;
 
   std::atomic<uint64_t> drops_{0};
   std::atomic<int64_t> progressNs_{0};  // virtual time of the last tick handed over

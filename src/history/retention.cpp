@@ -9,7 +9,8 @@ namespace {
 // Every table keyed by run, in the order a run is deleted (the runs row last).
 constexpr const char* kDeleteRun[] = {
     "DELETE FROM changes WHERE run = ?1",  "DELETE FROM activities WHERE run = ?1", "DELETE FROM faults WHERE run = ?1",
-    "DELETE FROM collisions WHERE run = ?1", "DELETE FROM cycles WHERE run = ?1",   "DELETE FROM production WHERE run = ?1",   "DELETE FROM labels WHERE run = ?1",
+    "DELETE FROM collisions WHERE run = ?1", "DELETE FROM cycles WHERE run = ?1",   "DELETE FROM production WHERE run = ?1",
+    "DELETE FROM writes WHERE run = ?1",   "DELETE FROM labels WHERE run = ?1",
     "DELETE FROM devices WHERE run = ?1",  "DELETE FROM signals WHERE run = ?1",    "DELETE FROM runs WHERE id = ?1",
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/external_write.hpp"
 #include "core/iec_value.hpp"
 
 namespace virtcom::history {
@@ -41,7 +42,9 @@ RunWriter::RunWriter(Connection& db)
       label_(db, "INSERT OR IGNORE INTO labels (run, id, text) VALUES (?1, ?2, ?3)"),
       // The day is the local date the shift started on: local wall ns read as if they were UTC.
       production_(db, "INSERT OR REPLACE INTO production (run, start_wall_ns, end_wall_ns, watched_from_wall_ns, day, shift, plan, "
-                      "plan_now, actual) VALUES (?1, ?2, ?3, ?4, strftime('%Y-%m-%d', ?2 / 1000000000, 'unixepoch'), ?5, ?6, ?7, ?8)") {}
+                      "plan_now, actual) VALUES (?1, ?2, ?3, ?4, strftime('%Y-%m-%d', ?2 / 1000000000, 'unixepoch'), ?5, ?6, ?7, ?8)"),
+      write_(db, "INSERT OR REPLACE INTO writes (run, id, t_ns, wall_ns, protocol, peer, netid, variable, location, old_value, "
+                 "new_value, forced) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)") {}
 
 bool RunWriter::fail() {
   if (error_.empty()) error_ = db_.errorText();
@@ -79,17 +82,34 @@ int64_t RunWriter::writeStart(const Trace& trace, const RunIdentity& identity) {
   return run_;
 }
 
+std::string_view RunWriter::readTexts(const EventQueue& queue, size_t& i, size_t bytes) {
+  text_.clear();
+  for (size_t k = 0; k < bytes; k += kTextChunk) text_.append(queue.at(++i).text, std::min(kTextChunk, bytes - k));
+  return text_;
+}
+
 void RunWriter::writeFault(const EventQueue& queue, size_t& i) {
   const Event& header = queue.at(i);
-  const size_t bytes = header.fault.sourceBytes + header.fault.messageBytes;
-  faultText_.clear();
-  for (size_t k = 0; k < bytes; k += kTextChunk) faultText_.append(queue.at(++i).text, std::min(kTextChunk, bytes - k));
-  std::string_view text = faultText_;
+  std::string_view text = readTexts(queue, i, header.fault.sourceBytes + header.fault.messageBytes);
   fault_.bind(1, run_).bind(2, static_cast<int64_t>(header.index)).bind(3, header.timeNs)
       .bind(4, text.substr(0, header.fault.sourceBytes)).bind(5, text.substr(header.fault.sourceBytes));
 }
 
-// Binds event i (and, for a fault, its text events, advancing i past them) and runs it.
+void RunWriter::writeExternalWrite(const EventQueue& queue, size_t& i) {
+  const Event& header = queue.at(i);
+  const WriteEvent w = header.write;
+  size_t bytes = 0;
+  for (uint16_t n : w.textBytes) bytes += n;
+  write_.bind(1, run_).bind(2, static_cast<int64_t>(header.index)).bind(3, header.timeNs).bind(4, w.wallNs)
+      .bind(5, writeProtocolName(static_cast<WriteProtocol>(w.protocol))).bind(12, int64_t{w.forced});
+  std::string_view text = readTexts(queue, i, bytes);
+  for (size_t t = 0; t < kWriteTextCount; ++t) {
+    write_.bind(static_cast<int>(6 + t), text.substr(0, w.textBytes[t]));
+    text.remove_prefix(w.textBytes[t]);
+  }
+}
+
+// Binds event i (and, for a fault or write, its text events, advancing i past them) and runs it.
 bool RunWriter::writeEvent(const EventQueue& queue, size_t& i) {
   const Event& e = queue.at(i);
   const int64_t index = e.index;
@@ -118,8 +138,11 @@ bool RunWriter::writeEvent(const EventQueue& queue, size_t& i) {
       return production_.bind(1, run_).bind(2, p.startWallNs).bind(3, p.endWallNs).bind(4, p.watchedFromWallNs)
           .bind(5, shiftNames_[e.index]).bind(6, int64_t{p.plan}).bind(7, p.planNow).bind(8, int64_t{p.actual}).run();
     }
+    case EventKind::Write:
+      writeExternalWrite(queue, i);
+      return write_.run();
     case EventKind::Text:
-      return true;  // only after a fault, which consumed it
+      return true;  // only after a fault or write, which consumed it
   }
   return true;
 }

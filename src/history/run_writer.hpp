@@ -54,14 +54,17 @@ class RunWriter {
   bool fail();
   bool writeEvent(const EventQueue& queue, size_t& i);
   bool writeLabels(const Trace& trace);
+  // The `bytes` of text in the text events after event i (advancing i past them), in text_.
+  std::string_view readTexts(const EventQueue& queue, size_t& i, size_t bytes);
   void writeFault(const EventQueue& queue, size_t& i);
+  void writeExternalWrite(const EventQueue& queue, size_t& i);
 
   Connection& db_;
   int64_t run_ = -1;
-  Statement change_, activity_, collision_, fault_, cycle_, progress_, label_, production_;
+  Statement change_, activity_, collision_, fault_, cycle_, progress_, label_, production_, write_;
   std::vector<std::string> shiftNames_;
   std::string error_;
-  std::string faultText_;  // reused: the text of the fault being reassembled
+  std::string text_;  // reused: the texts of the fault or write being reassembled
 };
 
 }  // namespace virtcom::history

@@ -72,6 +72,15 @@ CREATE TABLE production (
   PRIMARY KEY (run, start_wall_ns)
 ) STRICT, WITHOUT ROWID;
 )sql",
+    // 3: the audited writes from outside (docs/security.md): ADS, Modbus, OPC UA and HMI clients.
+    R"sql(
+CREATE TABLE writes (
+  run INTEGER NOT NULL, id INTEGER NOT NULL, t_ns INTEGER NOT NULL, wall_ns INTEGER NOT NULL,
+  protocol TEXT NOT NULL, peer TEXT NOT NULL, netid TEXT NOT NULL, variable TEXT NOT NULL, location TEXT NOT NULL,
+  old_value TEXT NOT NULL, new_value TEXT NOT NULL, forced INTEGER NOT NULL,
+  PRIMARY KEY (run, id)
+) STRICT, WITHOUT ROWID;
+)sql",
 };
 static_assert(std::size(kMigrations) == kSchemaVersion);
 

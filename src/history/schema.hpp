@@ -14,7 +14,7 @@ namespace virtcom::history {
 inline constexpr int64_t kApplicationId = 0x56434849;
 // PRAGMA user_version: the schema version this build reads and writes. A newer file is refused;
 // older files are migrated step by step (kMigrations in schema.cpp).
-inline constexpr int64_t kSchemaVersion = 2;
+inline constexpr int64_t kSchemaVersion = 3;
 
 enum class OpenMode {
   Record,  // creates the file and the schema if missing (virtcom run/serve --history)

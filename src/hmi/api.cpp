@@ -54,13 +54,13 @@ void Api::attachHistory(HistoryApi& history, bool replay) {
   model_["replay"] = replay;
 }
 
-Response Api::handle(const ParsedRequest& r) {
+Response Api::handle(const ParsedRequest& r, const ExternalWriter& client) {
   switch (r.route) {
     case Route::Asset: return asset(r.asset);
     case Route::Model: return model();
     case Route::Vars: return vars(r.match);
     case Route::Control: return control(r);
-    case Route::Write: return write(r);
+    case Route::Write: return write(r, client);
     case Route::Release: {
       Command c;
       c.kind = Command::Kind::Release;
@@ -98,6 +98,7 @@ Response Api::model() const {
   live_.read([&](const Snapshot& s) {
     m["paused"] = s.paused;
     m["speed"] = s.speed;
+    m["lateTicks"] = s.lateTicks;
   });
   return ok(m);
 }
@@ -133,7 +134,7 @@ Response Api::control(const ParsedRequest& r) {
   return ok();
 }
 
-Response Api::write(const ParsedRequest& r) {
+Response Api::write(const ParsedRequest& r, const ExternalWriter& client) {
   if (!catalog_.module()) return errorResponse(409, "the cell has no soft PLC: there are no variables to write");
   auto ref = catalog_.find(r.name);
   if (!ref) return errorResponse(404, "unknown variable '" + r.name + "' (use the qualified name, e.g. MAIN.count or GVL.x)");
@@ -155,6 +156,8 @@ Response Api::write(const ParsedRequest& r) {
   c.bytes.assign(scratch.begin() + bc::Module::kNullGuard, scratch.end());
   c.name = r.name;
   c.force = r.force;
+  c.writer = client;
+  c.writer.force = r.force;
   live_.post(std::move(c));
   return ok();
 }

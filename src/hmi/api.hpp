@@ -42,8 +42,9 @@ class Api {
   void showSteps(std::vector<sfc::StepVariable> steps);
 
   const WriteAccess& access() const { return access_; }
-  // Any route but Route::Stream. Thread-safe (HTTP threads call it at once).
-  Response handle(const ParsedRequest& request);
+  // Any route but Route::Stream. Thread-safe (HTTP threads call it at once). `client`: who asks,
+  // as a write or force it makes is audited (LiveState::auditWrites).
+  Response handle(const ParsedRequest& request, const ExternalWriter& client = ExternalWriter{WriteProtocol::Http});
   // Route::Stream: a new viewer's session.
   std::unique_ptr<StreamSession> openStream(const ParsedRequest& request) const;
 
@@ -52,7 +53,7 @@ class Api {
   Response model() const;
   Response vars(const std::string& match) const;
   Response control(const ParsedRequest& r);
-  Response write(const ParsedRequest& r);
+  Response write(const ParsedRequest& r, const ExternalWriter& client);
   Response fault(const ParsedRequest& r);
 
   std::vector<std::string> deviceNames_;

@@ -50,7 +50,12 @@ Response HttpServer::refusal() { return errorResponse(403, "this address is not 
 
 HttpAnswer HttpServer::answer(const Request& request) {
   ParsedRequest parsed = parseRequest(request, api_.access());
-  if (parsed.route != Route::Stream) return {api_.handle(parsed), {}, {}};
+  if (parsed.route != Route::Stream) {
+    ExternalWriter client{WriteProtocol::Http};
+    if (auto ipv4 = parseIpv4(request.peer)) client.ipv4 = *ipv4;
+    client.port = request.peerPort;
+    return {api_.handle(parsed, client), {}, {}};
+  }
   if (streams_.fetch_add(1) >= kMaxStreams) {
     streams_.fetch_sub(1);
     return {errorResponse(503, "too many viewers at once"), {}, {}};

@@ -21,6 +21,8 @@ Request toRequest(const httplib::Request& in) {
   for (const auto& [key, value] : in.params) r.query.emplace_back(key, value);
   r.body = in.body;
   r.authorization = in.get_header_value("Authorization");
+  r.peer = in.remote_addr;
+  r.peerPort = static_cast<uint16_t>(in.remote_port);
   return r;
 }
 

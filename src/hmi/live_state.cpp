@@ -111,6 +111,7 @@ bool LiveState::publish(const Trace& trace, bool wait) {
   s.nowNs = nowNs_;
   s.paused = paused_ && stepsLeft_ == 0;
   s.speed = speed_;
+  s.lateTicks = lateTicks_;
   for (TagId id = 0; id < s.tags.size(); ++id) s.tags[id] = cell_->bus.raw(id);
   mirrorTrace(trace);
   if (const uint8_t* memory = plc_ ? plc_->machine().memory() : mirror_; memory && !s.memory.empty())
@@ -186,6 +187,7 @@ void LiveState::copyBelts() {
 bool LiveState::beforeTick(sim::Simulation& sim) {
   if (!plc_ && sim.hasPlc()) plc_ = &sim.plc();
   if (speed_ == 0) speed_ = sim.speed();
+  lateTicks_ = sim.lateTicks();
   if (rebound_) {
     sim.setSpeed(speed_);  // the speed chosen before the reset
     rebound_ = false;
@@ -242,7 +244,9 @@ void LiveState::apply(Command& c, sim::Simulation& sim) {
     case Command::Kind::Write: {
       if (!plc_) break;
       Forced value{std::move(c.name), c.ref, std::move(c.bytes)};
-      if (writeBytes(value, plc_->machine().memory())) plc_->inputsTouched();
+      audited(c.writer, value, [&] {
+        if (writeBytes(value, plc_->machine().memory())) plc_->inputsTouched();
+      });
       plc::syncInputImage(plc_->module(), value.ref, plc_->machine().memory(), plc_->inputImage());
       auto same = std::ranges::find_if(forced_, [&](const Forced& f) { return iequalsAscii(f.name, value.name); });
       if (same != forced_.end()) forced_.erase(same);  // a new write replaces (or ends) a force
@@ -267,6 +271,18 @@ void LiveState::apply(Command& c, sim::Simulation& sim) {
     snapshot_.forced.clear();
     for (const Forced& f : forced_) snapshot_.forced.push_back(f.name);
   }
+}
+
+template <class Write>
+void LiveState::audited(const ExternalWriter& writer, const Forced& value, Write&& write) {
+  if (!audit_) return write();
+  const bc::Module& m = plc_->module();
+  audit_->setVirtualTime(plc_->nextTickNs());  // the scan boundary it crosses, as the servers' writes
+  const uint8_t bitMask = value.ref.bit >= 0 ? static_cast<uint8_t>(1u << value.ref.bit) : 0;
+  audit_->beforeEdit(writer, {plc_->machine().memory(), m.staticSize}, 0, value.ref.address,
+                     static_cast<uint32_t>(value.bytes.size()), bitMask);
+  write();
+  audit_->endEdits();
 }
 
 void LiveState::applyForces(plc::Runtime& plc) {

@@ -23,6 +23,7 @@
 #include "plant/conveyor.hpp"
 #include "plc/rule_counter.hpp"
 #include "plc/runtime.hpp"
+#include "plc/write_audit.hpp"
 #include "sim/run_control.hpp"
 
 namespace virtcom::hmi {
@@ -59,6 +60,7 @@ struct Snapshot {
   bool paused = false;
   bool ended = false;
   double speed = 0;             // pace factor
+  uint64_t lateTicks = 0;       // ticks so far that started late (sim::Simulation::lateTicks)
   std::string endMessage;       // once ended
   std::vector<uint64_t> tags;   // raw value per TagId (TagBus representation)
   ActivityLog activities;       // bounded as the trace's (core/trace_logs.hpp)
@@ -88,6 +90,7 @@ struct Command {
   std::string name;              // Write/Release: the variable (Release: empty = all)
   bc::VarRef ref;                // Write: where (bit included)
   std::vector<uint8_t> bytes;    // Write: the value, the type's size (a BOOL bit: bit `ref.bit` of byte 0)
+  ExternalWriter writer{WriteProtocol::Http};  // Write: the HTTP client, as the write is audited
   uint32_t device = 0;           // Fault: index into Cell::devices
   int32_t code = 0;              // Fault: error code, 0 clears
 };
@@ -104,6 +107,10 @@ class LiveState final : public TraceSink, public sim::RunControl {
   // fired flags, addresses resolved once, so the scan looks nothing up), with the counter the
   // reports use. `taskCount`: the module's tasks.
   void watchRules(std::vector<plc::CountedRule> rules, size_t taskCount);
+  // Before the run: every write and force from the page is reported to `audit` (which must
+  // outlive this) as it lands, with the client's address (docs/security.md, Audit of external
+  // writes). The forced value written again around each scan is not a new write.
+  void auditWrites(plc::WriteAudit* audit) { audit_ = audit; }
 
   // ---- the simulation's thread, between runs ----
   // After a run that ended on a reset (resetting()): the fresh `cell` (the same cell file, the
@@ -162,6 +169,9 @@ class LiveState final : public TraceSink, public sim::RunControl {
   void applyCommands(sim::Simulation& sim);
   void apply(Command& c, sim::Simulation& sim);
   void applyForces(plc::Runtime& plc);
+  // Runs write(), which lands `value`, between the audit's before and after looks (if audited).
+  template <class Write>
+  void audited(const ExternalWriter& writer, const Forced& value, Write&& write);
   void copyBelts();
   static bool writeBytes(const Forced& f, uint8_t* memory);
 
@@ -179,6 +189,7 @@ class LiveState final : public TraceSink, public sim::RunControl {
   int64_t nowNs_ = 0;            // the last tick's virtual time
   int64_t lastPublishWallNs_ = 0;
   double speed_ = 0;
+  uint64_t lateTicks_ = 0;
   std::vector<Forced> forced_;
   std::vector<Command> applying_;
   std::vector<uint32_t> open_;   // indices of activities still running in the snapshot
@@ -187,6 +198,7 @@ class LiveState final : public TraceSink, public sim::RunControl {
   plc::RuleCounter rules_;
   std::vector<const plant::Conveyor*> conveyors_;  // parallel to snapshot_.belts
   std::function<void(ShiftProgress&)> shiftProgress_;
+  plc::WriteAudit* audit_ = nullptr;
 
   // HTTP threads -> simulation thread
   std::mutex commandMutex_;

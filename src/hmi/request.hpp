@@ -18,6 +18,8 @@ struct Request {
   std::vector<std::pair<std::string, std::string>> query;  // decoded
   std::string body;
   std::string authorization;  // the Authorization header, empty if none
+  std::string peer;           // the client's IPv4 address as text (its writes are audited with it)
+  uint16_t peerPort = 0;
 };
 
 struct Response {

@@ -6,6 +6,8 @@
 #include <map>
 #include <sstream>
 
+#include "core/atomic_file.hpp"
+
 namespace virtcom::plc {
 
 std::vector<RetainedVariable> retainedVariables(const bc::Module& m) {
@@ -75,20 +77,13 @@ std::string loadRetainText(std::istream& in, const std::string& path, const bc::
 }
 
 std::string saveRetainFile(const std::string& path, const bc::Module& m, const uint8_t* memory) {
-  const std::string temp = path + ".tmp";
-  {
-    std::ofstream out(temp, std::ios::trunc);
-    if (!out) return "cannot write " + temp;
-    for (const auto& v : retainedVariables(m)) {
-      const bc::TypeDesc& t = m.types[v.type];
-      out << v.name << ' ' << toHex(memory + v.address, t.size) << ' ' << t.name << '\n';
-    }
-    if (!out.flush()) return "cannot write " + temp;
+  std::ostringstream out;
+  for (const auto& v : retainedVariables(m)) {
+    const bc::TypeDesc& t = m.types[v.type];
+    out << v.name << ' ' << toHex(memory + v.address, t.size) << ' ' << t.name << '\n';
   }
-  // Renamed into place so that a crash while writing never leaves half a file.
-  std::error_code ec;
-  std::filesystem::rename(temp, path, ec);
-  if (ec) return "cannot replace " + path + ": " + ec.message();
+  // Never half a file, whenever the process dies (core/atomic_file.hpp).
+  if (std::string why = replaceFile(path, out.str()); !why.empty()) return "cannot write " + path + ": " + why;
   return {};
 }
 

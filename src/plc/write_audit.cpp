@@ -72,8 +72,7 @@ std::string hexBytes(std::span<const uint8_t> bytes) {
 }
 
 std::string peerText(const ExternalWriter& w) {
-  std::string out = std::to_string(w.ipv4 >> 24) + "." + std::to_string((w.ipv4 >> 16) & 0xff) + "." +
-                    std::to_string((w.ipv4 >> 8) & 0xff) + "." + std::to_string(w.ipv4 & 0xff) + ":" + std::to_string(w.port);
+  std::string out = writerAddress(w);
   if (w.hasNetId) out += " (AmsNetId " + formatNetId(w.netId) + ")";
   return out;
 }
@@ -93,7 +92,7 @@ std::string utcText(int64_t ns) {
 std::string formatWriteRecord(const WriteRecord& r) {
   std::string out = std::string(writeProtocolName(r.writer.protocol)) + " " + peerText(r.writer) + " " + r.variable;
   if (!r.location.empty() && r.location != r.variable) out += " (" + r.location + ")";
-  return out + ": " + r.oldValue + " -> " + r.newValue;
+  return out + ": " + r.oldValue + " -> " + r.newValue + (r.writer.force ? " (forced)" : "");
 }
 
 std::string formatWriteRecordWithTimes(const WriteRecord& r) {
@@ -193,6 +192,19 @@ void WriteAudit::endEdits() {
   pending_.clear();
   bytes_.clear();
   openFrom_ = 0;
+}
+
+void WriteAudit::stateChanged(const ExternalWriter& writer, std::string_view from, std::string_view to) {
+  ++counts_[static_cast<size_t>(writer.protocol)];
+  if (!sink_) return;
+  WriteRecord r;
+  r.virtualNs = virtualNs_;
+  r.wallNs = utcNowNs();
+  r.writer = writer;
+  r.variable = kPlcStateVariable;
+  r.oldValue = from;
+  r.newValue = to;
+  sink_(r);
 }
 
 }  // namespace virtcom::plc

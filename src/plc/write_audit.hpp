@@ -2,8 +2,9 @@
 // The audit of writes from outside (docs/security.md, Audit of external writes): every edit a
 // protocol server's write queue applies at a scan boundary becomes a record naming the time
 // (virtual and wall), the protocol, the peer, the variable written and its old and new value as
-// IEC text. One implementation for ADS, Modbus and OPC UA (core/external_write.hpp; the HMI is
-// not wired yet).
+// IEC text. One implementation for ADS, Modbus, OPC UA and the HMI's HTTP API
+// (core/external_write.hpp); a client's change of the PLC's state (ADS WriteControl) is a record
+// of the variable kPlcStateVariable.
 // Nothing is allocated or looked up while no external write happens; the records of a batch are
 // formatted (string work) only after it landed.
 #include <array>
@@ -17,16 +18,11 @@
 
 namespace virtcom::plc {
 
-struct WriteRecord {
-  int64_t virtualNs = 0;  // the scan boundary the write crossed
-  int64_t wallNs = 0;     // UTC, ns since 1970
-  ExternalWriter writer;
-  std::string variable;  // qualified name ("MAIN.speed", "MAIN.a[3].x"); the location when none is declared there
-  std::string location;  // the IEC address of a located variable ("%QX0.3", "%MW4"), else empty
-  std::string oldValue, newValue;  // IEC literal text
-};
+// What a state change's record names as its variable: "ads 127.0.0.1:50123 PLC state: RUN -> STOP".
+inline constexpr const char* kPlcStateVariable = "PLC state";
 
-// "ads 127.0.0.1:50123 (AmsNetId 127.0.0.1.1.1) MAIN.speed: 0 -> 5" (times left to the caller).
+// "ads 127.0.0.1:50123 (AmsNetId 127.0.0.1.1.1) MAIN.speed: 0 -> 5" (times left to the caller);
+// a force from the HMI ends in " (forced)".
 std::string formatWriteRecord(const WriteRecord& r);
 // "1.230s 2026-12-02T15:40:01.123Z " + formatWriteRecord(r): the terminal log's line body.
 std::string formatWriteRecordWithTimes(const WriteRecord& r);
@@ -43,6 +39,7 @@ class WriteAudit final : public WriteObserver {
   void beforeEdit(const ExternalWriter& writer, std::span<const uint8_t> target, uint32_t address, uint32_t offset, uint32_t size,
                   uint8_t bitMask) override;
   void endEdits() override;
+  void stateChanged(const ExternalWriter& writer, std::string_view from, std::string_view to) override;
 
   // Records so far, per protocol and in all.
   uint64_t count(WriteProtocol p) const { return counts_[static_cast<size_t>(p)]; }

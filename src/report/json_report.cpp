@@ -25,11 +25,26 @@ Json runJson(const Trace& trace, const Kpis& k) {
            {"cycles_completed", k.cyclesCompleted}};
   // How the clock went, known only to the simulation that ran (a history export has no ticks).
   const TimeSteps& t = trace.time;
-  if (t.ticks > 0)
+  if (t.ticks > 0) {
     run["time"] = Json{{"mode", t.eventDriven ? "event" : "tick"},
                        {"ticks", t.ticks},
                        {"ticks_skipped", t.ticksSkipped},
                        {"jumps", t.jumps}};
+    if (t.paced) {
+      run["time"]["late_ticks"] = t.lateTicks;
+      run["time"]["max_late_s"] = seconds(t.maxLateNs);
+    }
+  }
+  if (trace.writesAudited) {
+    uint64_t total = 0;
+    Json byProtocol;
+    for (size_t p = 0; p < kWriteProtocolCount; ++p) {
+      total += trace.externalWrites[p];
+      byProtocol[std::string(writeProtocolName(static_cast<WriteProtocol>(p)))] = trace.externalWrites[p];
+    }
+    run["external_writes"] = Json{{"total", total}};
+    run["external_writes"].update(byProtocol);
+  }
   return run;
 }
 

@@ -99,6 +99,8 @@ std::string summaryTable(const Trace& trace, const Kpis& kpis) {
   if (trace.time.ticksSkipped > 0)
     out += "Event time    " + std::to_string(trace.time.ticksSkipped) + " of " + std::to_string(trace.time.ticks) +
            " ticks skipped in " + std::to_string(trace.time.jumps) + " jumps\n";
+  if (trace.time.paced)
+    out += "Late ticks    " + lateTicksText(trace.time.lateTicks, trace.time.ticks, trace.time.maxLateNs) + "\n";
 
   out += "Collisions    " + std::to_string(trace.collisions.size()) + "\n";
   for (const CollisionRecord& c : trace.collisions) {
@@ -110,6 +112,12 @@ std::string summaryTable(const Trace& trace, const Kpis& kpis) {
            fitWidth(labelName(trace, c.activityB), kMaxNameWidth) + ")\n";
   }
   return out + runOutcome(trace, kpis);
+}
+
+std::string lateTicksText(uint64_t late, uint64_t ticks, int64_t maxLateNs) {
+  const std::string of = " of " + std::to_string(ticks) + (ticks == 1 ? " tick" : " ticks") + " started late";
+  if (late == 0) return "none" + of;
+  return std::to_string(late) + of + " (at most " + formatFixed(static_cast<double>(maxLateNs) * 1e-6, 3) + " ms)";
 }
 
 std::string runOutcome(const Trace& trace, const Kpis& kpis) {

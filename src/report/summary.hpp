@@ -18,4 +18,8 @@ std::string summaryTable(const Trace& trace, const Kpis& kpis);
 // What `--quiet` still prints, so a failed run never ends without saying why.
 std::string runOutcome(const Trace& trace, const Kpis& kpis);
 
+// "3 of 1000 ticks started late (at most 12.345 ms)" or "none of 1000 ticks started late": a
+// paced run's timing (TimeSteps::lateTicks), in the summary table and `exec --speed`'s end line.
+std::string lateTicksText(uint64_t late, uint64_t ticks, int64_t maxLateNs);
+
 }  // namespace virtcom::report

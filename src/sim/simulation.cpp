@@ -83,6 +83,9 @@ void Simulation::start() {
   for (TagId id = 0; id < cell_.bus.size(); ++id) cell_.trace.signals[id].initial = cell_.bus.raw(id);
   cell_.bus.clearChanges();
   for (TraceSink* sink : options_.traceSinks) sink->begin(cell_.trace);
+  // Paced from here: the set-up before (servers, cold start, a historian's first rows) is no
+  // tick's work, so the first ticks do not start late catching up with it.
+  if (paced_) paced_->resume();
 }
 
 void Simulation::recordChanges() {
@@ -116,6 +119,11 @@ void Simulation::finish(RunEnd end, std::string message) {
   trace.endMessage = std::move(message);
   trace.endNs = nowNs_;  // without a completed cycle the window stays empty: reports use the whole run
   trace.time.ticks = ticks_;
+  if (paced_) {
+    trace.time.paced = true;
+    trace.time.lateTicks = paced_->lateTicks();
+    trace.time.maxLateNs = paced_->maxLateNs();
+  }
   for (auto& d : cell_.devices) d->finish(nowNs_, trace);
   for (BusBridge* b : options_.bridges) b->simulationStopped();
   for (TraceSink* sink : options_.traceSinks) sink->end(trace);

@@ -103,6 +103,8 @@ class Simulation {
   void resumePacing() {
     if (paced_) paced_->resume();
   }
+  // Paced runs: the ticks so far that started late (PacedClock::lateTicks); 0 unpaced.
+  uint64_t lateTicks() const { return paced_ ? paced_->lateTicks() : 0; }
 
   // A wire as the per-tick transfer needs it: cell::Wire's hot fields in 12 bytes, no name.
   struct WireSlot {

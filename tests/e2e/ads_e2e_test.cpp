@@ -184,6 +184,25 @@ TEST(AdsE2e, ReadOnlyServerRefusesWrites) {
   EXPECT_EQ(server->stop(), 0) << server->errorOutput();
 }
 
+// A client's STOP and RUN (WriteControl) change the PLC's state: audited as a record of the PLC
+// state, with the client's address and AmsNetId, and counted with the ADS writes.
+TEST(AdsE2e, WriteControlIsAuditedAsAStateChange) {
+  auto server = startServer({"--audit-writes", "each"});
+  ASSERT_GT(server->port(), 0) << server->errorOutput();
+  LoopbackClient c(server->port());
+  ASSERT_TRUE(c.send(amsPacket(5, {6, 0, 0, 0, 0, 0, 0, 0})));  // WriteControl STOP
+  EXPECT_EQ(adsResult(frame(c)), 0u);
+  ASSERT_TRUE(server->waitFor("PLC state: RUN -> STOP\n")) << server->errorOutput();
+  ASSERT_TRUE(c.send(amsPacket(5, {5, 0, 0, 0, 0, 0, 0, 0})));  // WriteControl RUN
+  EXPECT_EQ(adsResult(frame(c)), 0u);
+  ASSERT_TRUE(server->waitFor("PLC state: STOP -> RUN\n")) << server->errorOutput();
+  EXPECT_EQ(server->stop(), 0) << server->errorOutput();
+  const std::string log = server->errorOutput();
+  EXPECT_NE(log.find(" ads 127.0.0.1:"), std::string::npos) << log;
+  EXPECT_NE(log.find("(AmsNetId 10.0.0.1.1.1) PLC state: RUN -> STOP"), std::string::npos) << log;
+  EXPECT_NE(log.find("audit: 2 external writes (ads 2, modbus 0, opcua 0, http 0)"), std::string::npos) << log;
+}
+
 TEST(AdsE2e, BadOptionsAreUsageErrors) {
   for (auto extra : std::vector<std::vector<std::string>>{{"--ads-netid", "1.2.3"}, {"--ads-allow", "nobody"}}) {
     ServerProcess p(kExe, {"exec", "ads/GVL.st", "ads/MAIN.st", "--ads", "127.0.0.1:0", extra[0], extra[1]}, kDataDir,

@@ -2,7 +2,8 @@
 // files in tests/e2e/data and checks its exit code, stdout and stderr as a user sees them.
 // The child runs with tests/e2e/data as its working directory, so diagnostics show the short
 // relative file names; anything it writes (--trace-file) goes to a per-test temporary folder.
-// Everything runs in virtual time except the one --speed test, which asserts no timing.
+// Everything runs in virtual time except the --speed tests: one asserts no timing, the other
+// only a gross overload (a scan 10 times its interval) against a scan with 50 ms to spare.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -10,6 +11,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -722,6 +724,21 @@ TEST_F(CliExec, SpeedPacesButFinishes) {
   RunResult r = run({"exec", "counter.st", "--speed", "1000", "--cycles", "3", "--print", "MAIN.count"});
   EXPECT_EQ(r.exitCode, 0) << show(r);
   EXPECT_EQ(r.out, "MAIN.count = 3\n");
+}
+
+// A paced run counts the ticks that started late (the scan before overran the interval) and says
+// so at the end: an overloaded program at 1 ms starts nearly every tick late, a light one at
+// 50 ms none (docs/performance.md, Late ticks).
+TEST_F(CliExec, APacedRunCountsTheTicksThatStartedLate) {
+  RunResult heavy = run({"exec", "overloaded.st", "--cycle-time", "1ms", "--speed", "1", "--cycles", "20"});
+  EXPECT_EQ(heavy.exitCode, 0) << show(heavy);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(heavy.err, m, std::regex(R"(timing: (\d+) of 20 ticks started late \(at most [0-9.]+ ms\)\n)")))
+      << show(heavy);
+  EXPECT_GE(std::stoi(m[1]), 15) << "the first tick has no period before it; the others overran: " << show(heavy);
+  RunResult light = run({"exec", "counter.st", "--cycle-time", "50ms", "--speed", "1", "--cycles", "6"});
+  EXPECT_EQ(light.exitCode, 0) << show(light);
+  EXPECT_NE(light.err.find("timing: none of 6 ticks started late\n"), std::string::npos) << show(light);
 }
 
 TEST_F(CliExec, TraceStepsPrintsTheActiveStepsOfEveryScan) {

@@ -254,4 +254,33 @@ TEST_F(History, ServeKilledWithSigkillLeavesAReadableHistory) {
   EXPECT_THAT(readFile(out("killed.json")), HasSubstr("the recording stopped before the run ended"));
 }
 
+// The audited writes of a served run (docs/security.md) go into its history, one row each, and
+// its JSON report counts them per protocol, beside the run's late ticks (a served run is paced).
+TEST_F(History, ServedWritesAreRecordedAndCountedInTheReport) {
+  const std::string db = out("h.sqlite"), json = out("served.json");
+  const std::string gearboxDir = fs::path(kGearbox).parent_path().string();
+  ServerProcess serve(kExe, {"serve", kGearbox, "--http", "127.0.0.1:0", "--quiet", "--history", db, "--json", json}, gearboxDir,
+                      "hmi: serving http://");
+  ASSERT_GT(serve.port(), 0) << serve.errorOutput();
+  std::string output;
+  ASSERT_EQ(shell("node -e \"fetch('http://127.0.0.1:" + std::to_string(serve.port()) +
+                      "/api/write', {method: 'POST', body: JSON.stringify({name: 'MAIN.jobCount', value: '9'})})"
+                      ".then((r) => process.exit(r.status === 200 ? 0 : 1))\"",
+                  output),
+            0)
+      << output;
+  // Committed by the historian's writer within its flush period (200 ms).
+  ASSERT_TRUE(virtcom::test::eventually([&] { return sqlInt(db, "SELECT COUNT(*) FROM writes WHERE run = 1") == 1; }))
+      << serve.errorOutput();
+  EXPECT_EQ(serve.stop(), 0) << serve.errorOutput();
+  EXPECT_EQ(sqlInt(db, "SELECT COUNT(*) FROM writes WHERE run = 1 AND protocol = 'http' AND peer LIKE '127.0.0.1:%' "
+                       "AND variable = 'MAIN.jobCount' AND new_value = '9' AND forced = 0"),
+            1);
+  EXPECT_THAT(serve.errorOutput(), HasSubstr("audit: 1 external writes (ads 0, modbus 0, opcua 0, http 1)"));
+  const std::string report = readFile(json);
+  EXPECT_THAT(report, HasSubstr("\"external_writes\": {\n      \"total\": 1,"));
+  EXPECT_THAT(report, HasSubstr("\"http\": 1"));
+  EXPECT_THAT(report, HasSubstr("\"late_ticks\": "));
+}
+
 }  // namespace

@@ -12,14 +12,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   namespace optimize = virtcom::optimize;
-  const std::string path = virtcom::fuzz::Scratch::get().write(virtcom::fuzz::kProcessModelInput, data, size);
-  virtcom::SourceManager sources;
-  virtcom::Diagnostics diags;
-  const auto model = optimize::readProcessModel(path, sources, diags);
-  if (!model) {
-    if (!diags.hasErrors()) __builtin_trap();  // a rejected model always says why
-    return 0;
-  }
+  const auto model = virtcom::fuzz::readInput(virtcom::fuzz::kProcessModelInput, data, size, optimize::readProcessModel);
+  if (!model) return 0;
   for (const optimize::UserSequence& s : model->sequences) {
     if (!optimize::checkCandidate(*model, s.candidate).empty()) continue;
     const optimize::JobList list = optimize::buildJobList(*model, s.candidate);

@@ -139,4 +139,17 @@ class Scratch {
   std::filesystem::path root_;
 };
 
+// The preamble of a file-based target: writes the input to `relative` (a k*Input path) of the
+// tree and reads it there with `read(path, sources, diags)`, which gives an optional; a file it
+// refuses must say why (a trap otherwise: a finding). What `read` gave.
+template <class Read>
+auto readInput(const char* relative, const uint8_t* data, size_t size, Read&& read) {
+  const std::string path = Scratch::get().write(relative, data, size);
+  SourceManager sources;
+  Diagnostics diags;
+  auto result = read(path, sources, diags);
+  if (!result && !diags.hasErrors()) __builtin_trap();
+  return result;
+}
+
 }  // namespace virtcom::fuzz

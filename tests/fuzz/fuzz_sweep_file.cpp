@@ -25,14 +25,8 @@ size_t pointCount(const virtcom::optimize::SweepSpec& spec) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   namespace optimize = virtcom::optimize;
-  const std::string path = virtcom::fuzz::Scratch::get().write(virtcom::fuzz::kSweepInput, data, size);
-  virtcom::SourceManager sources;
-  virtcom::Diagnostics diags;
-  const auto spec = optimize::readSweep(path, sources, diags);
-  if (!spec) {
-    if (!diags.hasErrors()) __builtin_trap();  // a rejected sweep always says why
-    return 0;
-  }
+  const auto spec = virtcom::fuzz::readInput(virtcom::fuzz::kSweepInput, data, size, optimize::readSweep);
+  if (!spec) return 0;
   if (pointCount(*spec) > kMaxPoints) return 0;
   const auto points = optimize::sweepPoints(*spec);
   std::vector<optimize::SweepRow> rows;

@@ -145,15 +145,15 @@ AdsError Device::writeBits(const ByteRange& area, uint32_t bitAddress, std::span
   return AdsError::None;
 }
 
-AdsError Device::requestState(uint16_t adsState) {
+AdsError Device::requestState(uint16_t adsState, const ExternalWriter& writer) {
   if (config_.readOnly) return AdsError::AccessDenied;
   if (adsState != kAdsStateRun && adsState != kAdsStateStop) return AdsError::ServiceNotSupported;
-  requestedState_ = adsState;
+  requestedState_ = StateRequest{adsState, writer};
   adsState_ = adsState;
   return AdsError::None;
 }
 
-std::optional<uint16_t> Device::takeStateRequest() {
+std::optional<StateRequest> Device::takeStateRequest() {
   auto r = requestedState_;
   requestedState_.reset();
   return r;

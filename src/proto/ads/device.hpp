@@ -31,6 +31,13 @@ struct DeviceConfig {
   size_t maxSumReadBytes = 1024 * 1024;          // data of one sum read reply; beyond: 0x705
 };
 
+// A RUN or STOP a client asked for (WriteControl), and who asked (audited when the scan takes it).
+struct StateRequest {
+  uint16_t adsState = kAdsStateRun;
+  ExternalWriter writer;
+  bool operator==(const StateRequest&) const = default;
+};
+
 class Device {
  public:
   Device(const SymbolTable& table, DeviceConfig config);
@@ -46,14 +53,14 @@ class Device {
   // the snapshot (so it reads back at once).
   AdsError write(uint32_t ig, uint32_t io, std::span<const uint8_t> data);
 
-  // WriteControl on port 851: RUN (5) or STOP (6).
-  AdsError requestState(uint16_t adsState);
+  // WriteControl on port 851: RUN (5) or STOP (6), asked for by `writer`.
+  AdsError requestState(uint16_t adsState, const ExternalWriter& writer);
   uint16_t adsState() const { return adsState_; }
   uint8_t symbolVersion() const { return symbolVersion_; }
   std::span<const uint8_t> snapshot() const { return snapshot_; }
 
   // Scan side (under the server's lock): see Server.
-  std::optional<uint16_t> takeStateRequest();
+  std::optional<StateRequest> takeStateRequest();
   void publish(std::span<const uint8_t> image, uint16_t adsState);
   WriteQueue& pendingWrites() { return pending_; }
   // Symbol handles, per AMS route: they outlive connections (handle_table.hpp).
@@ -77,7 +84,7 @@ class Device {
   WriteQueue pending_;
   HandleTable handles_;
   uint16_t adsState_ = kAdsStateRun;
-  std::optional<uint16_t> requestedState_;
+  std::optional<StateRequest> requestedState_;
   uint8_t symbolVersion_ = 1;
   uint16_t nextPort_ = 30000;
 };

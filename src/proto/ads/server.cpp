@@ -124,7 +124,7 @@ size_t Server::applyPendingWrites(const LiveImage& live, WriteObserver* audit) {
   return n;
 }
 
-std::optional<uint16_t> Server::takeStateRequest() {
+std::optional<StateRequest> Server::takeStateRequest() {
   std::lock_guard lock(mutex_);
   return device_.takeStateRequest();
 }

@@ -77,7 +77,7 @@ class Server {
   // Scan thread, before a scan: applies every queued write to `live`; returns how many edits.
   size_t applyPendingWrites(const LiveImage& live, WriteObserver* audit = nullptr);
   // Scan thread, before a scan: a RUN (5) or STOP (6) a client asked for with WriteControl.
-  std::optional<uint16_t> takeStateRequest();
+  std::optional<StateRequest> takeStateRequest();
   // Scan thread, after a scan: copies the data area into the snapshot and wakes the I/O thread
   // when notifications are registered.
   void publishSnapshot(std::span<const uint8_t> data, uint16_t adsState);

@@ -119,7 +119,7 @@ AdsError Session::plcCommand(const AmsHeader& h, std::span<const uint8_t> data) 
       w.u16(device_.adsState());
       w.u16(0);
       return AdsError::None;
-    case Command::WriteControl: return device_.requestState(*in.u16());
+    case Command::WriteControl: return device_.requestState(*in.u16(), writer_);
     case Command::AddDeviceNotification: {
       uint32_t handle = 0;
       AdsError e = addNotification(data.first(40), handle);

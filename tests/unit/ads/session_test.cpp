@@ -162,7 +162,11 @@ TEST_F(SessionTest, WriteQueueFullIsBusy) {
 TEST_F(SessionTest, WriteControlRunStop) {
   EXPECT_EQ(hex(call(kPlcPort, Command::WriteControl, {6, 0, 0, 0, 0, 0, 0, 0})), "00 00 00 00");
   EXPECT_EQ(hex(call(kPlcPort, Command::ReadState, {})), "00 00 00 00 06 00 00 00");
-  EXPECT_EQ(device.takeStateRequest(), std::optional<uint16_t>(kAdsStateStop));
+  auto request = device.takeStateRequest();
+  ASSERT_TRUE(request);
+  EXPECT_EQ(request->adsState, kAdsStateStop);
+  EXPECT_EQ(request->writer.protocol, WriteProtocol::Ads);
+  EXPECT_TRUE(request->writer.hasNetId) << "the AmsNetId of the frame that asked";
   EXPECT_EQ(hex(call(kPlcPort, Command::WriteControl, {15, 0, 0, 0, 0, 0, 0, 0})), "01 07 00 00");
 }
 

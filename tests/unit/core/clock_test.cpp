@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "core/clock.hpp"
 
 namespace virtcom {
@@ -69,6 +72,24 @@ TEST(MonotonicNow, DoesNotDecrease) {
   int64_t a = monotonicNowNs();
   int64_t b = monotonicNowNs();
   EXPECT_LE(a, b);
+}
+
+// A tick is late when the wall clock is already past its due time when it is reached (the work
+// since the previous one overran the period); a tick reached early sleeps and is on time. The
+// periods are long (100 ms) so a busy test machine does not make the on-time ticks late.
+TEST(PacedClock, CountsTheTicksThatStartLate) {
+  PacedClock clock(1.0);
+  clock.advanceTo(100'000'000);  // sleeps about 100 ms: on time
+  EXPECT_EQ(clock.lateTicks(), 0u);
+  std::this_thread::sleep_for(std::chrono::milliseconds(250));  // the next tick's work overruns
+  clock.advanceTo(200'000'000);
+  EXPECT_EQ(clock.lateTicks(), 1u);
+  EXPECT_GE(clock.maxLateNs(), 150'000'000);
+  clock.advanceTo(300'000'000);  // 250 + 100 ms past the anchor: still behind
+  EXPECT_EQ(clock.lateTicks(), 2u);
+  clock.resume();  // a pause's end: lateness before it is forgotten
+  clock.advanceTo(400'000'000);
+  EXPECT_EQ(clock.lateTicks(), 2u);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "history/query.hpp"
 #include "support/allocation_counter.hpp"
 #include "history/recorder.hpp"
+#include "history/schema.hpp"
 #include "history_fixture.hpp"
 
 namespace virtcom::history {
@@ -159,6 +160,42 @@ TEST_F(Recorder_, ProductionRowsAreWrittenWhileRecording) {
   EXPECT_EQ(back[0].actual, 5) << "the later row replaced the earlier one";
   EXPECT_EQ(back[1].shift, "Late");
   EXPECT_EQ(back[1].day, "2026-12-02");
+}
+
+// Audited writes from outside (docs/security.md) are rows of `writes`: times, protocol, peer, the
+// ADS client's AmsNetId, variable, location, old and new value, whether forced; long texts whole.
+TEST_F(Recorder_, ExternalWritesAreRecordedWithWhoWroteWhat) {
+  auto recorder = open("h.sqlite");
+  Trace t = sampleTrace();
+  recorder->begin(t);
+  WriteRecord modbus{120'000'000, 1'796'191'200'123'000'000, {WriteProtocol::Modbus, 0x0a000005, 50123}, "main.speed", "%MW0", "0", "300"};
+  WriteRecord ads{2'410'000'000, 1'796'191'202'000'000'000, {WriteProtocol::Ads, 0x7f000001, 40211, true, {192, 168, 1, 7, 1, 1}},
+                  "MAIN.name", "", "''", "'" + std::string(200, 'x') + "'"};
+  WriteRecord forced{3'000'000'000, 1'796'191'203'000'000'000, {WriteProtocol::Http, 0x7f000001, 8080}, "MAIN.failed", "", "FALSE", "TRUE"};
+  forced.writer.force = true;
+  recorder->externalWrite(modbus);
+  recorder->tick(t, 1'000'000);
+  recorder->externalWrite(ads);
+  recorder->externalWrite(forced);
+  t.endNs = 3'000'000'000;
+  recorder->end(t);
+  EXPECT_EQ(recorder->drops(), 0u);
+  EXPECT_EQ(recorder->error(), "");
+  recorder.reset();
+  auto db = openDatabase(path("h.sqlite"), OpenMode::Read);
+  ASSERT_TRUE(db.has_value()) << db.error();
+  Statement rows(*db, "SELECT id, t_ns, wall_ns, protocol, peer, netid, variable, location, old_value, new_value, forced "
+                      "FROM writes WHERE run = 1 ORDER BY id");
+  std::vector<std::string> got;
+  while (rows.step()) {
+    std::string row;
+    for (int c = 0; c < 11; ++c) row += (c ? "|" : "") + rows.columnText(c);
+    got.push_back(row);
+  }
+  ASSERT_EQ(got.size(), 3u);
+  EXPECT_EQ(got[0], "0|120000000|1796191200123000000|modbus|10.0.0.5:50123||main.speed|%MW0|0|300|0");
+  EXPECT_EQ(got[1], "1|2410000000|1796191202000000000|ads|127.0.0.1:40211|192.168.1.7.1.1|MAIN.name||''|'" + std::string(200, 'x') + "'|0");
+  EXPECT_EQ(got[2], "2|3000000000|1796191203000000000|http|127.0.0.1:8080||MAIN.failed||FALSE|TRUE|1");
 }
 
 TEST_F(Recorder_, RunsAccumulateInOneFile) {

@@ -26,7 +26,7 @@ TEST_F(Schema, RecordCreatesTheSchemaInWalModeAndReadOpensIt) {
   ASSERT_TRUE(db->queryInt("SELECT COUNT(*) FROM sqlite_schema WHERE type = 'table' AND name NOT LIKE 'sqlite_%'", tables));
   EXPECT_EQ(version, kSchemaVersion);
   EXPECT_EQ(appId, kApplicationId);
-  EXPECT_EQ(tables, 10);
+  EXPECT_EQ(tables, 11);  // schema 3 added `writes`
   Statement mode(*db, "PRAGMA journal_mode");
   ASSERT_TRUE(mode.step());
   EXPECT_EQ(mode.columnText(0), "wal");
@@ -90,17 +90,19 @@ TEST_F(Schema, Version1FileIsMigratedKeepingItsRuns) {
   {
     auto db = openDatabase(path("h.sqlite"), OpenMode::Record);
     ASSERT_TRUE(db.has_value());
-    ASSERT_TRUE(db->exec("DROP TABLE production; PRAGMA user_version = 1"));
+    ASSERT_TRUE(db->exec("DROP TABLE production; DROP TABLE writes; PRAGMA user_version = 1"));
     ASSERT_TRUE(db->exec("INSERT INTO runs (cell_name, cell_file, timeline, wall_start_ns) VALUES ('old', '/c.yaml', '', 0)"));
   }
   auto db = openDatabase(path("h.sqlite"), OpenMode::Read);
   ASSERT_TRUE(db.has_value()) << db.error();
-  int64_t version = 0, production = 0, runs = 0;
+  int64_t version = 0, production = 0, writes = 0, runs = 0;
   ASSERT_TRUE(db->queryInt("PRAGMA user_version", version));
   ASSERT_TRUE(db->queryInt("SELECT COUNT(*) FROM sqlite_schema WHERE name = 'production'", production));
+  ASSERT_TRUE(db->queryInt("SELECT COUNT(*) FROM sqlite_schema WHERE name = 'writes'", writes));
   ASSERT_TRUE(db->queryInt("SELECT COUNT(*) FROM runs WHERE cell_name = 'old'", runs));
-  EXPECT_EQ(version, 2);
+  EXPECT_EQ(version, kSchemaVersion);
   EXPECT_EQ(production, 1);
+  EXPECT_EQ(writes, 1) << "schema 3: the audited writes";
   EXPECT_EQ(runs, 1);
 }
 

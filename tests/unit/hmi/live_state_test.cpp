@@ -140,6 +140,34 @@ TEST_F(GearboxHmi, AForcedVariableHoldsAgainstTheProgramUntilReleased) {
   EXPECT_LT(jobsFinished(), 99) << "released: the program's value again";
 }
 
+// A write and a force from the page are audited as the queues' writes are (docs/security.md):
+// the HTTP client's address, the variable, old and new value; the force marked, and written again
+// around every scan without a new record.
+TEST_F(GearboxHmi, WritesAndForcesFromThePageAreAuditedWithTheClient) {
+  std::vector<WriteRecord> records;
+  plc::WriteAudit audit(*cell->module, [&](const WriteRecord& r) { records.push_back(r); });
+  live->auditWrites(&audit);
+  steps(1);
+  const ExternalWriter client{WriteProtocol::Http, 0x0a000009, 51000};
+  auto post = [&](const std::string& body) {
+    return api->handle(parseRequest({"POST", "/api/write", {}, body, ""}, api->access()), client).status;
+  };
+  ASSERT_EQ(post(R"({"name": "MAIN.jobsFinished", "value": "7"})"), 200);
+  steps(1);
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_EQ(plc::formatWriteRecord(records[0]), "http 10.0.0.9:51000 MAIN.jobsFinished: 0 -> 7");
+  EXPECT_EQ(records[0].virtualNs, 10'000'000) << "the scan boundary it crossed: the second tick's";
+  ASSERT_EQ(post(R"({"name": "MAIN.failed", "value": "TRUE", "force": true})"), 200);
+  steps(5);
+  ASSERT_EQ(records.size(), 2u) << "the force is written around every scan, audited once";
+  EXPECT_EQ(plc::formatWriteRecord(records[1]), "http 10.0.0.9:51000 MAIN.failed: FALSE -> TRUE (forced)");
+  EXPECT_EQ(audit.count(WriteProtocol::Http), 2u);
+  EXPECT_EQ(audit.total(), 2u);
+  EXPECT_EQ(post(R"({"name": "MAIN.nothing", "value": "1"})"), 404);
+  steps(1);
+  EXPECT_EQ(audit.total(), 2u) << "a refused write is no write";
+}
+
 TEST_F(GearboxHmi, BadWritesAreRefusedWithTheReason) {
   EXPECT_EQ(postJson("/api/write", R"({"name": "MAIN.nothing", "value": "1"})").status, 404);
   Response bad = postJson("/api/write", R"({"name": "MAIN.failed", "value": "maybe"})");

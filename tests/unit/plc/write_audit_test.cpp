@@ -151,5 +151,31 @@ TEST_F(Audited, NoEditNoRecordAndTheTimesLineCarriesBothClocks) {
   EXPECT_EQ(formatWriteRecordWithTimes(r), "1.500s 2025-12-02T00:00:01.123Z modbus 10.0.0.5:50123 speed: 0 -> 1");
 }
 
+// A client's RUN or STOP (ADS WriteControl) is a record of the PLC's state, counted with its
+// protocol's writes.
+TEST_F(Audited, AStateChangeIsARecordOfThePlcState) {
+  audit->setVirtualTime(2'000'000'000);
+  audit->stateChanged(kAdsPeer, "RUN", "STOP");
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_EQ(records[0].virtualNs, 2'000'000'000);
+  EXPECT_EQ(formatWriteRecord(records[0]), "ads 127.0.0.1:40001 (AmsNetId 192.168.1.7.1.1) PLC state: RUN -> STOP");
+  EXPECT_EQ(audit->count(WriteProtocol::Ads), 1u);
+}
+
+// A force from the HMI is marked as one; the same variable written and then forced by one client
+// within a batch is two records (a write and a force are not the same act).
+TEST_F(Audited, AForceIsMarkedAndNotMergedWithAWrite) {
+  ExternalWriter http{WriteProtocol::Http, 0x7f000001, 8080};
+  ExternalWriter forcing = http;
+  forcing.force = true;
+  const uint8_t five[4] = {5, 0, 0, 0}, six[4] = {6, 0, 0, 0};
+  edit(http, addressOf("MAIN.n"), five);
+  edit(forcing, addressOf("MAIN.n"), six);
+  audit->endEdits();
+  ASSERT_EQ(records.size(), 2u);
+  EXPECT_EQ(formatWriteRecord(records[0]), "http 127.0.0.1:8080 MAIN.n: 0 -> 5");
+  EXPECT_EQ(formatWriteRecord(records[1]), "http 127.0.0.1:8080 MAIN.n: 5 -> 6 (forced)");
+}
+
 }  // namespace
 }  // namespace virtcom::plc

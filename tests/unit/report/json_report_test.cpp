@@ -28,6 +28,24 @@ TEST(JsonReport, HeaderRunAndCycle) {
   EXPECT_DOUBLE_EQ(j["cycle"]["time_s"].get<double>(), 71.0);
 }
 
+// A paced run's late ticks and the audited external writes are in "run" only when known.
+TEST(JsonReport, LateTicksAndExternalWritesWhenKnown) {
+  Trace t = testing::exampleCellTrace();
+  t.time.ticks = 7500;
+  json plain = render(t);
+  EXPECT_FALSE(plain["run"]["time"].contains("late_ticks")) << "not paced";
+  EXPECT_FALSE(plain["run"].contains("external_writes")) << "not audited";
+  t.time.paced = true;
+  t.time.lateTicks = 3;
+  t.time.maxLateNs = 12'500'000;
+  t.writesAudited = true;
+  t.externalWrites = {1, 2, 0, 4};
+  json j = render(t);
+  EXPECT_EQ(j["run"]["time"]["late_ticks"], 3);
+  EXPECT_DOUBLE_EQ(j["run"]["time"]["max_late_s"].get<double>(), 0.0125);
+  EXPECT_EQ(j["run"]["external_writes"], json({{"total", 7}, {"ads", 1}, {"modbus", 2}, {"opcua", 0}, {"http", 4}}));
+}
+
 TEST(JsonReport, TotalsAndDevices) {
   json j = render(testing::exampleCellTrace());
   EXPECT_NEAR(j["totals"]["energy_j"].get<double>(), 22963.05, 1e-9);

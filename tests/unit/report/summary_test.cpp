@@ -83,6 +83,20 @@ TEST(SummaryTable, SeveralCyclesAreListed) {
 }
 
 // What --quiet prints: the faults and the end, the last lines of the table.
+// A paced run says how many of its ticks started late, and by how much at most.
+TEST(SummaryTable, APacedRunShowsItsLateTicks) {
+  Trace t = testing::exampleCellTrace();
+  t.time.ticks = 7500;
+  EXPECT_EQ(summaryTable(t, computeKpis(t)).find("Late ticks"), std::string::npos) << "not paced";
+  t.time.paced = true;
+  EXPECT_NE(summaryTable(t, computeKpis(t)).find("Late ticks    none of 7500 ticks started late\n"), std::string::npos);
+  t.time.lateTicks = 3;
+  t.time.maxLateNs = 12'345'678;
+  EXPECT_NE(summaryTable(t, computeKpis(t)).find("Late ticks    3 of 7500 ticks started late (at most 12.346 ms)\n"),
+            std::string::npos);
+  EXPECT_EQ(lateTicksText(0, 1, 0), "none of 1 tick started late");
+}
+
 TEST(SummaryTable, RunOutcomeIsTheTableEnd) {
   Trace t = testing::exampleCellTrace();
   const Kpis k = computeKpis(t);

@@ -14,9 +14,11 @@ uint16_t adsStateOf(plc::PlcState s) {
 }
 
 void beforeScan(Server& server, plc::Runtime& runtime, WriteObserver* audit) {
-  if (auto state = server.takeStateRequest()) {
-    if (*state == kAdsStateRun) runtime.start();
+  if (auto request = server.takeStateRequest()) {
+    const char* from = plc::stateName(runtime.state());
+    if (request->adsState == kAdsStateRun) runtime.start();
     else runtime.stop();
+    if (audit) audit->stateChanged(request->writer, from, plc::stateName(runtime.state()));
   }
   const bc::Module& m = runtime.module();
   LiveImage live{{runtime.machine().memory(), m.staticSize}, {runtime.inputImage(), m.inputs.size}};

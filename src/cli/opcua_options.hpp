@@ -54,7 +54,7 @@ class OpcuaPlcServer {
 std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions& o, const PeerFlags& peers,
                                                                               const bc::Module& module);
 
-// "opcua: serving opc.tcp://127.0.0.1:4840 (security None, anonymous read-write)" on stderr (the
+// "opcua: serving opc.tcp://127.0.0.1:4840 (security None, anonymous read-only)" on stderr (the
 // identities accepted: "anonymous read-only", "2 users", ...), once the
 // first image is published (e2e tests and scripts wait for it).
 void announceOpcuaServer(OpcuaPlcServer& server);

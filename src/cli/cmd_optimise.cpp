@@ -82,6 +82,10 @@ bool writeBest(const OptimiseOptions& o, const optimize::Evaluator& evaluator, c
 
 ExitCode optimise(const OptimiseOptions& o) {
   const optimize::Ranks ranks;
+  if (!ranks.problem().empty()) {
+    std::cerr << "error: " << ranks.problem() << "\n";
+    return ExitCode::Usage;
+  }
   SourceManager sources;
   Diagnostics diags;
   auto model = optimize::readProcessModel(o.model, sources, diags);

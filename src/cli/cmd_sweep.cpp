@@ -103,16 +103,40 @@ ExitCode merge(const std::vector<std::string>& files, const std::string& html) {
   return mergeCsv(files);
 }
 
+// Single-quoted for bash, so paths with spaces or $ reach virtcom as they are.
+std::string shellQuoted(const std::string& text) {
+  std::string quoted = "'";
+  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+// A slice's file as a bash word: "sweep.db" with middle "${SLURM_ARRAY_TASK_ID}" becomes
+// 'sweep-'${SLURM_ARRAY_TASK_ID}'.db' (middle left unquoted so bash expands or globs it).
+std::string sliceWord(const std::string& merged, const std::string& middle) {
+  const size_t dot = merged.rfind('.'), slash = merged.rfind('/');
+  const bool hasExtension = dot != std::string::npos && dot > 0 && (slash == std::string::npos || dot > slash + 1);
+  const std::string stem = hasExtension ? merged.substr(0, dot) : merged, extension = hasExtension ? merged.substr(dot) : "";
+  return shellQuoted(stem + "-") + middle + (extension.empty() ? "" : shellQuoted(extension));
+}
+
+// Each task writes its slice as CSV (named after --csv, default sweep.csv) or, with --sqlite, as a
+// database; the closing comment gives the merge that joins the slices into the single run's file.
 std::string slurmScript(const SweepOptions& o) {
   const std::string n = std::to_string(o.slurmTasks);
+  const bool database = !o.sqlite.empty();
+  const std::string merged = database ? o.sqlite : (o.csv.empty() ? "sweep.csv" : o.csv);
+  const std::string merge = "virtcom sweep --merge " + shellQuoted(merged) + " " + sliceWord(merged, "*") +
+                            (o.html.empty() ? "" : " --html " + shellQuoted(o.html));
   return "#!/bin/bash\n"
-         "# Runs " + o.file + " as a Slurm job array of " + n + " slices (docs/optimise.md \"Sweeps\").\n"
-         "# Submit: sbatch sweep.sbatch; afterwards: virtcom sweep --merge sweep.csv sweep-*.csv\n"
+         "# Runs " + o.file + " as a Slurm job array of " + n + " slices (docs/optimise.md \"On a cluster\").\n"
+         "# Submit: sbatch sweep.sbatch; when every task is done (or: sbatch --dependency=afterok:JOBID --wrap \"...\"):\n"
+         "#   " + merge + "\n"
          "#SBATCH --job-name=virtcom-sweep\n"
          "#SBATCH --array=1-" + n + "\n"
          "#SBATCH --cpus-per-task=1\n"
          "#SBATCH --output=sweep-%a.log\n"
-         "virtcom sweep " + o.file + " --shard ${SLURM_ARRAY_TASK_ID}/" + n + " --jobs ${SLURM_CPUS_PER_TASK:-1} --csv sweep-${SLURM_ARRAY_TASK_ID}.csv\n";
+         "virtcom sweep " + shellQuoted(o.file) + " --shard ${SLURM_ARRAY_TASK_ID}/" + n + " --jobs ${SLURM_CPUS_PER_TASK:-1} " +
+         (database ? "--sqlite " : "--csv ") + sliceWord(merged, "${SLURM_ARRAY_TASK_ID}") + "\n";
 }
 
 ExitCode sweep(const SweepOptions& o) {
@@ -128,6 +152,10 @@ ExitCode sweep(const SweepOptions& o) {
     return ExitCode::Usage;
   }
   if (o.slurmTasks) {
+    if (!o.html.empty() && o.sqlite.empty()) {
+      std::cerr << "error: --html with --slurm-script draws the merged slices' databases: add --sqlite FILE\n";
+      return ExitCode::Usage;
+    }
     std::cout << slurmScript(o);
     return ExitCode::Ok;
   }
@@ -137,6 +165,10 @@ ExitCode sweep(const SweepOptions& o) {
     return ExitCode::Usage;
   }
   const optimize::Ranks ranks;
+  if (!ranks.problem().empty()) {
+    std::cerr << "error: " << ranks.problem() << "\n";
+    return ExitCode::Usage;
+  }
   SourceManager sources;
   Diagnostics diags;
   auto spec = optimize::readSweep(o.file, sources, diags);
@@ -177,7 +209,7 @@ void addSweepCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_option("--csv", o->csv, "write the rows to this CSV file (default: stdout, unless --sqlite or --html)");
   cmd->add_option("--shard", o->shard, "run only slice I of N (points I-1, I-1+N, ...), e.g. 2/8, for a cluster job array");
   cmd->add_option("--merge", o->merge, "OUT IN...: join the slices' CSV files (or --sqlite databases) into one table ordered by point")->expected(2, 1 << 20);
-  cmd->add_option("--slurm-script", o->slurmTasks, "print a Slurm sbatch script running the sweep as a job array of this many slices")
+  cmd->add_option("--slurm-script", o->slurmTasks, "print a Slurm sbatch script running the sweep as a job array of this many slices, each writing its slice of --csv (default sweep.csv) or --sqlite")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--jobs", o->jobs, "points simulated in parallel (default: every core; under mpirun one per rank); never changes the rows")
       ->check(CLI::PositiveNumber);

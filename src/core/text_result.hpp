@@ -1,7 +1,8 @@
 #pragma once
 // The value read from a user's text, or the message saying why the text is wrong. The subset of
-// std::expected<T, std::string> that the text readers of core need, because core is also built
-// by the clang fuzz build (clang 14 with libstdc++ 12), which cannot compile <expected>.
+// std::expected<T, std::string> that the text readers of core need. It dates from when the fuzz
+// build was clang 14, which could not compile <expected>; the clang-19 fuzz build (Makefile
+// fuzz-build) can, so std::expected would now do here too.
 #include <string>
 #include <utility>
 

@@ -3,7 +3,7 @@
 // the response it gets. The routes, their bodies and the write permission are decided here, so
 // that every untrusted byte of a request is checked by one pure function (unit-tested and
 // fuzzed, tests/fuzz/fuzz_hmi_request.cpp); docs/hmi.md is the API's documentation.
-// Compiled by the clang fuzz build: no <expected>.
+// Compiled by the clang-19 fuzz build too (tests/fuzz/fuzz_hmi_request.cpp).
 #include <cstdint>
 #include <cstddef>
 #include <string>

@@ -1,4 +1,4 @@
-// MPI ranks (Open MPI's C API) when built with it, one rank otherwise.
+// MPI ranks through the module virtcom-mpi.so (Open MPI) when built with it, one rank otherwise.
 #include "optimize/ranks.hpp"
 
 #include <cstdlib>
@@ -6,12 +6,12 @@
 #include <string>
 
 #ifdef VIRTCOM_HAVE_MPI
-#include <mpi.h>
+#include "core/bundled_module.hpp"
+#include "optimize/mpi_module.hpp"
 #endif
 
 namespace virtcom::optimize {
 
-#ifdef VIRTCOM_HAVE_MPI
 namespace {
 
 // Whether a launcher started this process as one of several: Open MPI's mpirun, PMIx (srun),
@@ -21,6 +21,8 @@ bool launchedByMpi() {
     if (std::getenv(var)) return true;
   return false;
 }
+
+#ifdef VIRTCOM_HAVE_MPI
 
 // An evaluation as bytes: feasible, end, cycle, energy, the reason's length and text.
 void pack(const Evaluation& e, std::string& out) {
@@ -49,26 +51,27 @@ const char* unpack(const char* p, Evaluation& e) {
   return p + length;
 }
 
-}  // namespace
 #endif
+}  // namespace
 
 Ranks::Ranks() {
-#ifdef VIRTCOM_HAVE_MPI
   if (!launchedByMpi()) return;
-  int initialised = 0;
-  MPI_Initialized(&initialised);
-  if (!initialised) {
-    MPI_Init(nullptr, nullptr);
-    joined_ = true;
+#ifdef VIRTCOM_HAVE_MPI
+  auto calls = bundledModuleSymbol(kMpiModule, kMpiCallsSymbol);
+  if (!calls) {
+    problem_ = "started by an MPI launcher, but " + calls.error();
+    return;
   }
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  mpi_ = reinterpret_cast<GetMpiCalls>(*calls)();
+  joined_ = mpi_->join(&rank_, &size_);
+#else
+  problem_ = "started by an MPI launcher, but this virtcom was built without MPI (Debian libopenmpi-dev): each rank would run the whole work";
 #endif
 }
 
 Ranks::~Ranks() {
 #ifdef VIRTCOM_HAVE_MPI
-  if (joined_) MPI_Finalize();
+  if (joined_) mpi_->leave();
 #endif
 }
 
@@ -81,16 +84,16 @@ std::vector<Evaluation> Ranks::evaluateAll(size_t count, unsigned threads, const
   if (ranks == 1) return results;
   std::string bytes;
   for (size_t i = me; i < count; i += ranks) pack(results[i], bytes);
-  int length = static_cast<int>(bytes.size());
+  const int length = static_cast<int>(bytes.size());
   std::vector<int> lengths(ranks), offsets(ranks);
-  MPI_Allgather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  mpi_->gatherInts(length, lengths.data());
   int total = 0;
   for (size_t r = 0; r < ranks; ++r) {
     offsets[r] = total;
     total += lengths[r];
   }
   std::string all(static_cast<size_t>(total), '\0');
-  MPI_Allgatherv(bytes.data(), length, MPI_BYTE, all.data(), lengths.data(), offsets.data(), MPI_BYTE, MPI_COMM_WORLD);
+  mpi_->gatherBytes(bytes.data(), length, all.data(), lengths.data(), offsets.data());
   for (size_t r = 0; r < ranks; ++r) {
     if (r == me) continue;
     const char* p = all.data() + offsets[r];
@@ -102,11 +105,7 @@ std::vector<Evaluation> Ranks::evaluateAll(size_t count, unsigned threads, const
 
 bool Ranks::leaderDecides(bool value) const {
 #ifdef VIRTCOM_HAVE_MPI
-  if (size_ > 1) {
-    int v = value ? 1 : 0;
-    MPI_Bcast(&v, 1, MPI_INT, 0, MPI_COMM_WORLD);
-    return v != 0;
-  }
+  if (size_ > 1) return mpi_->broadcastInt(value ? 1 : 0) != 0;
 #endif
   return value;
 }

@@ -5,24 +5,31 @@
 // simulates its share on its threads and the evaluations are exchanged (MPI_Allgatherv), so
 // every rank holds the whole batch, in order, and takes the same next step: the result is the
 // single-process one, bit for bit. Decisions that depend on the wall clock (a time budget) are
-// the leader's (rank 0), broadcast. Without mpirun (or built without MPI) there is one rank.
+// the leader's (rank 0), broadcast. Without mpirun there is one rank. Open MPI is called only
+// by the module virtcom-mpi.so (mpi_module.hpp), loaded when a launcher started the process.
 #include <cstddef>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "optimize/evaluator.hpp"
 
 namespace virtcom::optimize {
 
+struct MpiCalls;
+
 class Ranks {
  public:
   // Joins MPI when this process was started by mpirun or srun (their environment says so);
-  // otherwise, or when virtcom was built without MPI, one rank. One per process.
+  // otherwise one rank. One per process. When it cannot join (the module missing, or virtcom
+  // built without MPI), problem() says why and the caller must not go on: each rank would
+  // do the whole work and write the same files.
   Ranks();
   ~Ranks();
   Ranks(const Ranks&) = delete;
   Ranks& operator=(const Ranks&) = delete;
 
+  const std::string& problem() const { return problem_; }
   int rank() const { return rank_; }
   int size() const { return size_; }
   // Rank 0: the one that prints and writes files.
@@ -36,7 +43,9 @@ class Ranks {
 
  private:
   int rank_ = 0, size_ = 1;
+  const MpiCalls* mpi_ = nullptr;
   bool joined_ = false;  // MPI_Init was called here
+  std::string problem_;
 };
 
 }  // namespace virtcom::optimize

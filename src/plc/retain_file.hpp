@@ -26,7 +26,7 @@ std::vector<RetainedVariable> retainedVariables(const bc::Module& m);
 
 // Loads `path` into `memory`. A missing file is not an error (the first run): 0 variables.
 // `restored` counts the variables loaded. Empty on success, else why the file cannot be read.
-// (No std::expected here: the clang fuzz build compiles this library too.)
+// (The clang-19 fuzz build compiles this library too: tests/fuzz/fuzz_retain_file.cpp.)
 std::string loadRetainFile(const std::string& path, const bc::Module& m, uint8_t* memory, size_t& restored);
 // The same over the file's text already open as `in`; `path` names it in the error text (the
 // fuzz target feeds it mutated files).

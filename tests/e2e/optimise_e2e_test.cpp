@@ -210,7 +210,34 @@ TEST(Sweep, SlurmScriptRunsOneSlicePerArrayTask) {
   ASSERT_EQ(virtcom::e2e::shell(kExe + " sweep " + kSweep + " --slurm-script 4", out), 0) << out;
   EXPECT_NE(out.find("#SBATCH --array=1-4"), std::string::npos) << out;
   EXPECT_NE(out.find("--shard ${SLURM_ARRAY_TASK_ID}/4"), std::string::npos) << out;
-  EXPECT_NE(out.find("virtcom sweep --merge"), std::string::npos) << out;
+  EXPECT_NE(out.find("--csv 'sweep-'${SLURM_ARRAY_TASK_ID}'.csv'"), std::string::npos) << out;
+  EXPECT_NE(out.find("virtcom sweep --merge 'sweep.csv' 'sweep-'*'.csv'"), std::string::npos) << out;
+  EXPECT_NE(virtcom::e2e::shell(kExe + " sweep " + kSweep + " --slurm-script 4 --html page.html", out), 0);
+  EXPECT_NE(out.find("add --sqlite FILE"), std::string::npos) << out;
+}
+
+// The script as Slurm runs it: each array task in the submit directory with its
+// SLURM_ARRAY_TASK_ID, then the merge its comment gives; the result is the single run's database
+// and page.
+TEST(Sweep, SlurmScriptTasksAndItsMergeGiveTheSingleRunsDatabase) {
+  const fs::path out = tempDir("slurm");
+  const fs::path single = out / "single", cluster = out / "my results";
+  fs::create_directories(single);
+  fs::create_directories(cluster);
+  std::string log;
+  ASSERT_EQ(virtcom::e2e::shell(kExe + " sweep " + kSweep + " --sqlite " + (single / "all.db").string() + " --html " +
+                                    (single / "all.html").string(), log), 0) << log;
+  const std::string inCluster = "cd '" + cluster.string() + "' && PATH='" + fs::path(kExe).parent_path().string() + "':$PATH ";
+  ASSERT_EQ(virtcom::e2e::shell(inCluster + "virtcom sweep " + kSweep + " --slurm-script 3 --sqlite all.db --html all.html > sweep.sbatch", log), 0) << log;
+  for (int task = 1; task <= 3; ++task)
+    ASSERT_EQ(virtcom::e2e::shell(inCluster + "SLURM_ARRAY_TASK_ID=" + std::to_string(task) + " bash sweep.sbatch", log), 0) << log;
+  const std::string script = virtcom::test::readFile((cluster / "sweep.sbatch").string());
+  const size_t merge = script.find("virtcom sweep --merge");
+  ASSERT_NE(merge, std::string::npos) << script;
+  ASSERT_EQ(virtcom::e2e::shell(inCluster + script.substr(merge, script.find('\n', merge) - merge), log), 0) << log;
+  EXPECT_EQ(points(cluster / "all.db"), points(single / "all.db"));
+  EXPECT_EQ(virtcom::test::readFile((cluster / "all.html").string()), virtcom::test::readFile((single / "all.html").string()));
+  fs::remove_all(out);
 }
 
 TEST(Optimise, HelpNamesEveryOption) {

@@ -22,13 +22,13 @@ const std::string kExe = VIRTCOM_EXE;
 const std::string kGearbox = std::string(VIRTCOM_SOURCE_DIR) + "/examples/gearbox-cell";
 const std::string kActivity = std::string(VIRTCOM_SOURCE_DIR) + "/examples/activity";
 
-TEST(StartUp, TheExecutableNeedsNeitherTheHttpNorTheGraphvizLibraries) {
+TEST(StartUp, TheExecutableNeedsNeitherTheHttpNorTheGraphvizNorTheMpiLibraries) {
   std::string out;
   ASSERT_EQ(shell("readelf -d " + kExe, out), 0) << out;
   ASSERT_NE(out.find("(NEEDED)"), std::string::npos) << out;
   // libcrypto is not in the list: the OPC UA server's password hashes (proto/opcua/user_accounts)
   // need it in the executable (docs/performance.md, start-up).
-  for (const char* library : {"libcpp-httplib", "libssl", "libbrotli", "libgvc", "libcgraph", "libgvplugin"})
+  for (const char* library : {"libcpp-httplib", "libssl", "libbrotli", "libgvc", "libcgraph", "libgvplugin", "libmpi", "libopen-"})
     EXPECT_EQ(out.find(library), std::string::npos) << library << " is loaded by every command:\n" << out;
 }
 
@@ -71,6 +71,18 @@ TEST_F(StartUpWithoutModules, ServingTheHmiNamesTheMissingHttpModule) {
                      (dir_ / "virtcom-httplib.so").string() + ": cannot open shared object file"),
             std::string::npos)
       << out;
+}
+
+// Under a launcher (its environment says so) a sweep without the MPI module stops before any
+// work: each rank alone would run every point and write the same files.
+TEST_F(StartUpWithoutModules, ASweepUnderMpiNamesTheMissingMpiModule) {
+  std::string out;
+  EXPECT_EQ(shell("cd " + kGearbox + " && OMPI_COMM_WORLD_SIZE=2 " + exe_ + " sweep sweep.yaml", out), 64) << out;
+  EXPECT_NE(out.find("error: started by an MPI launcher, but cannot load the module virtcom-mpi.so (built and installed beside the "
+                     "virtcom executable): " + (dir_ / "virtcom-mpi.so").string() + ": cannot open shared object file"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("points"), std::string::npos) << out;
 }
 
 // What the server sends on `client` until `text` arrives (or 5 s pass without data).

@@ -324,7 +324,7 @@ CompilationUnit Parser::parseUnit() {
     if (pos_ == before) advance();  // every branch consumes its keyword; this is a safety net
   }
   for (auto& outside : outsideActions) {
-    const std::string& owner = outside.first;  // (a named reference: clang 14 lambdas cannot capture bindings)
+    const std::string& owner = outside.first;  // the name the lambda below compares against
     auto& action = outside.second;
     auto pou = std::find_if(unit.pous.begin(), unit.pous.end(), [&](const std::unique_ptr<Pou>& p) {
       return iequalsAscii(p->name, owner) && (p->kind == PouKind::Program || p->kind == PouKind::FunctionBlock);

@@ -21,7 +21,7 @@ struct OpcuaServeOptions {
   bool readOnly = false;
   size_t maxSessions = 32;
   std::string usersFile;  // --opcua-users FILE: accounts for UserName identities; empty: none
-  std::string anonymous;  // --opcua-anonymous none|read|write; empty: write, or none with --opcua-users
+  std::string anonymous;  // --opcua-anonymous none|read|write; empty: read, or none with --opcua-users
   bool enabled() const { return !listen.empty(); }
 };
 

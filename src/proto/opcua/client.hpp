@@ -6,8 +6,8 @@
 // caller writes a service's request body and reads its response body. The channel's token is
 // renewed before three quarters of its lifetime have passed. Used on the simulation thread by
 // the client bridge (client_bridge.hpp).
-// Allocation: only when a request or response is larger than any before and when a failure's
-// text is made.
+// Allocation: only when a request or response is larger than any before, when the channel's
+// token is renewed (about every 45 minutes) and when a failure's text is made.
 #include <cstdint>
 #include <expected>
 #include <span>

@@ -29,7 +29,7 @@ for (const p of Object.keys(counts)) stats[p] = { connected: 0, requests: 0, wri
 
 function startCell() {
   const args = ['serve', path.join(root, 'examples/gearbox-cell/cell.yaml'), '--ads', '127.0.0.1:0', '--modbus', '127.0.0.1:0',
-    '--opcua', '127.0.0.1:0', '--http', '127.0.0.1:0', '--quiet'];
+    '--opcua', '127.0.0.1:0', '--opcua-anonymous', 'write', '--http', '127.0.0.1:0', '--quiet'];
   const child = spawn(exe, args, { stdio: ['ignore', 'ignore', 'pipe'] });
   let err = '';
   const ports = new Promise((resolve, reject) => {

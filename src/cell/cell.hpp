@@ -100,6 +100,30 @@ struct AdsClientSettings {
   std::vector<ExternalWire> wires;     // the device wiring, then cycle_done and record
 };
 
+// A node named for a PLC variable in `plc: opcua: nodes:` (`MAIN.start: "ns=2;i=17"`).
+struct OpcuaNodeName {
+  std::string variable;  // "MAIN.start"
+  std::string node;      // "ns=2;i=17", checked when the bridge starts
+};
+
+// `plc: opcua:` — the cell's controller is an external PLC reached over OPC UA (CODESYS, TwinCAT
+// TF6100, a Siemens PLC, or `virtcom exec --opcua`). The wiring names PLC variables as with
+// `plc: ads:`; each becomes the node `nodes:` gives it, else node_prefix + the variable (a
+// variable written as a node id, `ns=2;i=17`, is taken as it is).
+struct OpcuaClientSettings {
+  std::string url;                     // "opc.tcp://127.0.0.1:4840" as written
+  Endpoint server;                     // its host and port (port never 0)
+  SourceLocation endpointLoc;          // where connection problems are reported
+  std::string user, password;          // empty user: an anonymous session
+  std::string nodePrefix = "ns=4;s=|var|virtcom.Application.";  // CODESYS' form, virtcom's device name
+  std::vector<OpcuaNodeName> nodes;
+  int64_t pollNs = 10'000'000;         // read commands / write changed status this often
+  int64_t timeoutNs = 500'000'000;     // connect and each request
+  bool faultOnLoss = true;             // on_loss: fault (end the run) or hold (keep, reconnect)
+  bool disconnectWhenStopped = true;   // close the session and the channel when the run ends
+  std::vector<ExternalWire> wires;     // the device wiring, then cycle_done and record
+};
+
 struct Cell {
   std::string name;
   std::filesystem::path file;
@@ -114,8 +138,17 @@ struct Cell {
   modbus_map::SignalMap modbus;        // what `virtcom serve --modbus` serves: `modbus:` or automatic
   std::optional<ModbusClientSettings> plcModbus;
   std::optional<AdsClientSettings> plcAds;
+  std::optional<OpcuaClientSettings> plcOpcua;
   HmiSettings hmi;                     // `hmi:`: the HMI layout's placements and static shapes
   ProductionPlan plan;                 // `plan:`: shifts and their planned parts (virtcom monitor)
+
+  // The wires of an external PLC whose variables the wiring names (`plc: ads:` or `plc: opcua:`);
+  // null for the soft PLC, a Modbus PLC or none.
+  std::vector<ExternalWire>* namedWires() {
+    return plcAds ? &plcAds->wires : plcOpcua ? &plcOpcua->wires : nullptr;
+  }
+  // Whether the controller is an external PLC (`plc: modbus:`, `ads:` or `opcua:`).
+  bool externalPlc() const { return plcModbus || plcAds || plcOpcua; }
 };
 
 // Every device port as a signal a protocol map can name ("Press.execute"), in device and port

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cell/ads_settings.hpp"
+#include "cell/opcua_settings.hpp"
 #include "cell/cell.hpp"
 #include "cell/hmi_section.hpp"
 #include "cell/plan_section.hpp"
@@ -72,7 +73,7 @@ class Loader {
     // without a compiled PLC program the run settings and wiring cannot be checked.
     bool plcOk = compilePlc(*cell, top);
     plcBroken_ = !plcOk;
-    if (plcOk || cell->plcAds) readRun(*cell, top);
+    if (plcOk || cell->namedWires()) readRun(*cell, top);
     else top.child("run");  // known key; its conditions need the compiled program
     readWorld(*cell, top);
     readDevices(*cell, top);
@@ -83,10 +84,9 @@ class Loader {
     readPlanSection(*cell, top.child("plan"), diags_);
     top.child("extends");          // applied by takeBaseSections()
     top.child("replace_devices");  // applied by takeBaseSections()
-    if (plcAds_) {
-      readAdsClient(*cell->plcAds, *plcAds_, diags_);
-      addExternalRunWires(*cell);
-    }
+    if (plcAds_) readAdsClient(*cell->plcAds, *plcAds_, diags_);
+    if (cell->plcOpcua) readOpcuaClient(*cell->plcOpcua, *plcOpcua_, diags_);
+    if (cell->namedWires()) addExternalRunWires(*cell);
     top.rejectUnknownKeys();
     if (diags_.hasErrors()) return nullptr;
     return cell;
@@ -175,15 +175,22 @@ class Loader {
     const ConfigNode* srcs = plc.child("sources");
     plcModbus_ = plcNode->find("modbus");
     plcAds_ = plcNode->find("ads");
+    plcOpcua_ = plcNode->find("opcua");
+    // The external PLC sections given (one at most may be).
+    const std::pair<const char*, const ConfigNode*> externals[] = {{"modbus", plcModbus_}, {"ads", plcAds_}, {"opcua", plcOpcua_}};
+    std::vector<std::pair<const char*, const ConfigNode*>> given;
+    for (const auto& e : externals)
+      if (e.second) given.push_back(e);
     if (plcAds_) cell.plcAds.emplace();
-    if (srcs && (plcModbus_ || plcAds_)) {
-      const ConfigNode* external = plcModbus_ ? plcModbus_ : plcAds_;
-      plc.error(external->loc(), std::string("'plc' has either 'sources' (the soft PLC) or '") + (plcModbus_ ? "modbus" : "ads") +
-                                     "' (an external PLC), not both");
-    } else if (plcModbus_ && plcAds_) {
-      plc.error(plcAds_->loc(), "'plc' has either 'modbus' or 'ads' (one external PLC), not both");
-    } else if (plcModbus_ || plcAds_ || !srcs) {
-      // no soft PLC; `plc: modbus:` / `plc: ads:` are read with the devices' signals, see load()
+    else if (plcOpcua_) cell.plcOpcua.emplace();
+    if (srcs && !given.empty()) {
+      plc.error(given[0].second->loc(), std::string("'plc' has either 'sources' (the soft PLC) or '") + given[0].first +
+                                            "' (an external PLC), not both");
+    } else if (given.size() > 1) {
+      plc.error(given[1].second->loc(), std::string("'plc' has either '") + given[0].first + "' or '" + given[1].first +
+                                            "' (one external PLC), not both");
+    } else if (!given.empty() || !srcs) {
+      // no soft PLC; `plc: modbus:`, `ads:` and `opcua:` are read with the devices' signals, see load()
     } else if (srcs->kind() != ConfigNode::Kind::List || srcs->items().empty()) {
       plc.error(srcs->loc(), "'sources' must be a list of ST (.st), PLCopen XML (.xml) or TwinCAT 3 (.TcPOU, .TcGVL, .TcDUT, .TcIO) files relative to the cell file");
     } else if (!precompiled_) {
@@ -203,9 +210,10 @@ class Loader {
                 "'cycle_time' must be at least 1 us");
     plc.child("modbus");
     plc.child("ads");
+    plc.child("opcua");
     plc.rejectUnknownKeys();
     if (diags_.hasErrors()) return false;
-    if (precompiled_ && srcs && !plcModbus_ && !plcAds_) {
+    if (precompiled_ && srcs && given.empty()) {
       cell.module = std::make_unique<bc::Module>(*precompiled_);  // a copy of the image, no compile
     } else {
       if (inputs.empty()) return true;
@@ -243,7 +251,7 @@ class Loader {
     for (const std::string& key : keys) {
       const ConfigNode* n = run.child(key);
       if (!n) continue;
-      if (cell.plcAds) readExternalRunVariable(run, key, *n);
+      if (cell.namedWires()) readExternalRunVariable(cell, run, key, *n);
       else if (!cell.module) run.error(n->loc(), "'" + key + "' names PLC variables, but the cell has no soft PLC ('plc: sources')");
       else if (key == "until") cell.run.until = parseCondition(*cell.module, n->scalar(), n->loc(), diags_);
       else if (key == "cycle_done") readCycleDone(cell, run, *n);
@@ -253,9 +261,10 @@ class Loader {
 
   // `cycle_done` and `record` of a cell whose PLC is reached over ADS: kept by name (tags and
   // wires are added once the devices have theirs, see addExternalRunWires).
-  void readExternalRunVariable(ConfigReader& run, const std::string& key, const ConfigNode& n) {
+  void readExternalRunVariable(const Cell& cell, ConfigReader& run, const std::string& key, const ConfigNode& n) {
     if (key == "until") {
-      run.error(n.loc(), "'until' needs the soft PLC ('plc: sources'); with 'plc: ads' end the run with 'cycle_done' or 'time_limit'");
+      run.error(n.loc(), std::string("'until' needs the soft PLC ('plc: sources'); with 'plc: ") + (cell.plcAds ? "ads" : "opcua") +
+                             "' end the run with 'cycle_done' or 'time_limit'");
     } else if (key == "cycle_done") {
       if (n.kind() != ConfigNode::Kind::Scalar || n.scalar().empty()) run.error(n.loc(), "'cycle_done' must name a BOOL PLC variable");
       else externalRun_.push_back({n.scalar(), n.loc(), true});
@@ -277,7 +286,7 @@ class Loader {
         w.tag = tag != kNoTag ? tag : cell.bus.add(v.name, ElemType::Bool);
         cell.run.cycleDoneTag = w.tag;
       }
-      cell.plcAds->wires.push_back(std::move(w));
+      cell.namedWires()->push_back(std::move(w));
     }
   }
 
@@ -377,8 +386,8 @@ class Loader {
     const auto& ports = d.ports();
     for (size_t i = 0; i < ports.size(); ++i) d.bindPort(i, cell.bus.add(d.name() + "." + ports[i].name, ports[i].type));
     if (!wiring) return;  // an unwired device still simulates (e.g. driven only by faults, facts or a bridge)
-    if (cell.plcAds) {
-      bindExternal(*cell.plcAds, d, *wiring, static_cast<int>(cell.devices.size()));
+    if (std::vector<ExternalWire>* wires = cell.namedWires()) {
+      bindExternal(*wires, d, *wiring, static_cast<int>(cell.devices.size()));
       return;
     }
     if (!cell.module) {
@@ -386,7 +395,7 @@ class Loader {
       // would only bury its errors.
       if (plcBroken_) return;
       diags_.error(celldiag::C030, wiring->loc(), "'wiring' connects ports to PLC variables, but the cell has no soft PLC ('plc: sources') "
-                                          "and no ADS PLC ('plc: ads'); a Modbus PLC reaches the signals through its map");
+                                          "and no ADS or OPC UA PLC ('plc: ads', 'plc: opcua'); a Modbus PLC reaches the signals through its map");
       return;
     }
     if (wiring->kind() == ConfigNode::Kind::Scalar) {
@@ -425,7 +434,7 @@ class Loader {
 
   // Wiring to an external PLC's variables by name: checked against the PLC when the bridge
   // starts. The prefix form wires every port to PREFIX.port where the PLC has that variable.
-  void bindExternal(AdsClientSettings& ads, plant::Device& d, const ConfigNode& wiring, int deviceIndex) {
+  void bindExternal(std::vector<ExternalWire>& wires, plant::Device& d, const ConfigNode& wiring, int deviceIndex) {
     const auto& ports = d.ports();
     auto wire = [&](size_t i, std::string var, SourceLocation loc, bool optional) {
       ExternalWire w;
@@ -436,7 +445,7 @@ class Loader {
       w.loc = loc;
       w.optional = optional;
       w.prefixGroup = optional ? deviceIndex : -1;
-      ads.wires.push_back(std::move(w));
+      wires.push_back(std::move(w));
     };
     if (wiring.kind() == ConfigNode::Kind::Scalar) {
       for (size_t i = 0; i < ports.size(); ++i) wire(i, wiring.scalar() + "." + ports[i].name, wiring.loc(), true);
@@ -482,6 +491,7 @@ class Loader {
   bool plcBroken_ = false;                  // the `plc:` section or its program has errors
   const ConfigNode* plcModbus_ = nullptr;  // `plc: modbus:` inside the file's tree, read after the devices
   const ConfigNode* plcAds_ = nullptr;     // `plc: ads:` likewise
+  const ConfigNode* plcOpcua_ = nullptr;   // `plc: opcua:` likewise
   std::pair<uint32_t, uint32_t> plcFiles_{0, 0};
   struct ExternalRunVariable {
     std::string name;

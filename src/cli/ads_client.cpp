@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "cli/external_wires.hpp"
 #include "core/cell_diagnostic_codes.hpp"
 
 namespace virtcom::cli {
@@ -32,18 +33,11 @@ std::unique_ptr<proto::ads::ClientBridge> startAdsBridge(cell::Cell& cell, const
     const bool unknown = p.kind == ads::ClientBridge::Problem::Kind::Unknown;
     diags.error(unknown ? celldiag::C032 : celldiag::C033, s.wires[p.signal].loc, p.text);
   }
-  // Wiring by prefix: each such device needs at least one port whose variable the PLC has.
-  for (size_t i = 0; linked && i < s.wires.size(); ++i) {
-    const cell::ExternalWire& w = s.wires[i];
-    if (w.prefixGroup < 0 || (i > 0 && s.wires[i - 1].prefixGroup == w.prefixGroup)) continue;  // a group's first port
-    bool any = false;
-    for (size_t j = i; j < s.wires.size() && s.wires[j].prefixGroup == w.prefixGroup; ++j) any |= report.found[j];
-    if (any) continue;
-    std::string device = w.port.substr(0, w.port.find('.'));
-    std::string prefix = w.variable.substr(0, w.variable.size() - (w.port.size() - device.size()));
-    diags.error(celldiag::C030, w.loc, "ads: no port of '" + device + "' matches a variable under '" + prefix + "' on the PLC at " + s.address +
-                                   " (expected e.g. " + w.variable + ")");
-  }
+  if (linked)
+    reportUnmatchedPrefixes(s.wires, report.found, diags, [&s](const cell::ExternalWire& w, const std::string& device, const std::string& prefix) {
+      return "ads: no port of '" + device + "' matches a variable under '" + prefix + "' on the PLC at " + s.address + " (expected e.g. " +
+             w.variable + ")";
+    });
   if (diags.hasErrors()) {
     diags.sortByLocation();
     std::cerr << diags.render(sources);

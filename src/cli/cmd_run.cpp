@@ -11,6 +11,7 @@
 #include "cell/cell.hpp"
 #include "cli/commands.hpp"
 #include "cli/ads_client.hpp"
+#include "cli/opcua_client.hpp"
 #include "cli/common.hpp"
 #include "cli/coverage_options.hpp"
 #include "cli/plc_backend.hpp"
@@ -145,8 +146,9 @@ bool lingerForViewers(LiveHmi& hmi) {
 // Why the HMI's reset is refused for this run (null: it is allowed). An external PLC keeps its
 // own state, which a reset of the cell cannot bring back; a streamed file holds a single run.
 const char* resetRefusal(const cell::Cell& cell, bool streamedFiles) {
-  if (cell.plcModbus || cell.plcAds)
-    return "reset is off when an external PLC ('plc: modbus' or 'plc: ads') is the controller: it keeps its own state; restart the command";
+  if (cell.externalPlc())
+    return "reset is off when an external PLC ('plc: modbus', 'plc: ads' or 'plc: opcua') is the controller: it keeps its own state; "
+           "restart the command";
   if (streamedFiles) return "reset is off with --vcd or --csv: the file holds one run; restart the command";
   return nullptr;
 }
@@ -187,9 +189,9 @@ ExitCode runCell(const RunOptions& o) {
   SourceManager sources;
   auto cell = loadCellFile(o.cellFile, sources, o.coverage.compileOptions());
   if (!cell) return ExitCode::InputError;
-  if (!cell->module && !cell->plcModbus && !cell->plcAds) {
-    std::cerr << "error: " << o.cellFile << ": the cell has no controller: add 'plc: sources' (the soft PLC), 'plc: modbus' or "
-                 "'plc: ads' (an external PLC), or serve it to a PLC with virtcom serve\n";
+  if (!cell->module && !cell->externalPlc()) {
+    std::cerr << "error: " << o.cellFile << ": the cell has no controller: add 'plc: sources' (the soft PLC), 'plc: modbus', "
+                 "'plc: ads' or 'plc: opcua' (an external PLC), or serve it to a PLC with virtcom serve\n";
     return ExitCode::Usage;
   }
   if (!cell->module && (!o.until.empty() || !o.sets.empty() || o.traceRules || o.coverage.enabled())) {
@@ -267,6 +269,13 @@ ExitCode runCell(const RunOptions& o) {
     adsBridge = startAdsBridge(*cell, sources, "is the controller");
     if (!adsBridge) return ExitCode::InputError;
     options.bridges.push_back(adsBridge.get());
+    if (options.speed == 0) options.speed = 1;  // the external PLC runs in real time
+  }
+  std::unique_ptr<proto::opcua::ClientBridge> opcuaBridge;
+  if (cell->plcOpcua) {
+    opcuaBridge = startOpcuaBridge(*cell, sources, "is the controller");
+    if (!opcuaBridge) return ExitCode::InputError;
+    options.bridges.push_back(opcuaBridge.get());
     if (options.speed == 0) options.speed = 1;  // the external PLC runs in real time
   }
   // Only the report's timeline signals stay in memory; files get every change as the run goes.

@@ -10,6 +10,7 @@
 #include "bytecode/coverage.hpp"
 #include "cli/common.hpp"
 #include "cli/ads_client.hpp"
+#include "cli/opcua_client.hpp"
 #include "cli/coverage_options.hpp"
 #include "cli/modbus_options.hpp"
 #include "cli/plc_backend.hpp"
@@ -52,12 +53,21 @@ bool writeCaseReports(const std::string& dir, const scenario::CaseResult& r) {
   return writeFile(stem + ".vcd", report::vcdReport(trace)) && ok;
 }
 
-// The bridge to a case's external PLC (`plc: ads:` / `plc: modbus:`), as `virtcom run` starts
+// The bridge to a case's external PLC (`plc: ads:`, `modbus:` or `opcua:`), as `virtcom run` starts
 // it, added to the case's options; the case runs in real time, as the external PLC does.
 std::shared_ptr<void> startExternalPlcLink(cell::Cell& cell, const SourceManager& sources, sim::SimOptions& sim, std::string& error) {
   sim.speed = 1;
   if (cell.plcModbus) {
     std::shared_ptr<proto::modbus::ClientBridge> bridge = startClientBridge(*cell.plcModbus, "is the controller");
+    sim.bridges.push_back(bridge.get());
+    return bridge;
+  }
+  if (cell.plcOpcua) {
+    std::shared_ptr<proto::opcua::ClientBridge> bridge = startOpcuaBridge(cell, sources, "is the controller");
+    if (!bridge) {
+      error = "the external PLC at " + cell.plcOpcua->url + " could not be used (see the errors above)";
+      return nullptr;
+    }
     sim.bridges.push_back(bridge.get());
     return bridge;
   }

@@ -26,7 +26,8 @@ void addOpcuaServeOptions(CLI::App* cmd, OpcuaServeOptions& o) {
                   "create entries with `virtcom opcua-user add` (docs/opcua.md, Users and roles)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--opcua-anonymous", o.anonymous,
-                  "what an anonymous OPC UA session may do: none (refused), read or write (default: write, or none with --opcua-users)")
+                  "what an anonymous OPC UA session may do: none (refused), read (browse, read, subscribe) or write (default: read, "
+                  "or none with --opcua-users)")
       ->check(CLI::IsMember({"none", "read", "write"}));
 }
 

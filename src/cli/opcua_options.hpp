@@ -21,7 +21,7 @@ struct OpcuaServeOptions {
   bool readOnly = false;
   size_t maxSessions = 32;
   std::string usersFile;  // --opcua-users FILE: accounts for UserName identities; empty: none
-  std::string anonymous;  // --opcua-anonymous none|read|write; empty: write, or none with --opcua-users
+  std::string anonymous;  // --opcua-anonymous none|read|write; empty: read, or none with --opcua-users
   bool enabled() const { return !listen.empty(); }
 };
 
@@ -54,7 +54,7 @@ class OpcuaPlcServer {
 std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions& o, const PeerFlags& peers,
                                                                               const bc::Module& module);
 
-// "opcua: serving opc.tcp://127.0.0.1:4840 (security None, anonymous read-write)" on stderr (the
+// "opcua: serving opc.tcp://127.0.0.1:4840 (security None, anonymous read-only)" on stderr (the
 // identities accepted: "anonymous read-only", "2 users", ...), once the
 // first image is published (e2e tests and scripts wait for it).
 void announceOpcuaServer(OpcuaPlcServer& server);

@@ -147,9 +147,10 @@ class Binder {
     const ConfigNode& node = r.node();
     if (r.requireString("link") != "plc")
       diags_.error(celldiag::C063, node.find("link")->loc(), "'link' names the link to the cell's external PLC: 'plc'");
-    if (!cell_.plcAds && !cell_.plcModbus)
+    if (!cell_.externalPlc())
       diags_.error(celldiag::C063, node.keyLoc("link"),
-                   "the cell's controller is its soft PLC: only an external PLC ('plc: ads:' or 'plc: modbus:') has a link to lose");
+                   "the cell's controller is its soft PLC: only an external PLC ('plc: ads:', 'plc: modbus:' or 'plc: opcua:') has a "
+                   "link to lose");
     const ConfigNode* losses = r.child("comm_loss");
     if (!losses || losses->kind() != ConfigNode::Kind::List || losses->items().empty())
       diags_.error(celldiag::C063, losses ? losses->loc() : node.loc(), "'comm_loss' lists windows, e.g. [{at: 2 s, duration: 1 s}]");

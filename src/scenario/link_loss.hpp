@@ -1,5 +1,5 @@
 #pragma once
-// Communication loss of the link to an external PLC (`plc: ads:` / `plc: modbus:`) as a scenario
+// Communication loss of the link to an external PLC (`plc: ads:`, `modbus:`, `opcua:`) as a scenario
 // fault (docs/scenarios.md, `faults: - {link: plc, comm_loss: [...]}`): the cell's bridge
 // (made by `virtcom test`, as `virtcom run` makes it) is wrapped, and during each window the
 // link is cut as a real loss would cut it: with `on_loss: fault` the first tick of the window

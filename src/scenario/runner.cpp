@@ -42,9 +42,10 @@ std::unique_ptr<cell::Cell> loadScenario(const CaseSpec& spec, const st::Compile
   const std::filesystem::path cellPath = (std::filesystem::path(spec.file).parent_path() / cellName).lexically_normal();
   auto cell = cell::loadCell(cellPath.string(), sources, diags, plcOptions);
   if (!cell) return nullptr;
-  if (!cell->module && !cell->plcAds && !cell->plcModbus) {
+  if (!cell->module && !cell->externalPlc()) {
     diags.error(celldiag::C060, root.find("cell")->loc(),
-                "the cell '" + cellName + "' has no controller: scenarios drive its soft PLC ('plc: sources') or an external one ('plc: ads:', 'plc: modbus:')");
+                "the cell '" + cellName + "' has no controller: scenarios drive its soft PLC ('plc: sources') or an external one ('plc: ads:', "
+                "'plc: modbus:', 'plc: opcua:')");
     return nullptr;
   }
   plan = bindScenario(top, *cell);
@@ -91,7 +92,9 @@ CaseResult runCase(const CaseSpec& spec, const CaseOptions& options) {
   // The external PLC's link, cut in the scenario's windows (its bridges come from the hook).
   std::vector<std::unique_ptr<LinkLossBridge>> cutLinks;
   if (!plan.linkLosses.empty()) {
-    const bool faultOnLoss = cell->plcAds ? cell->plcAds->faultOnLoss : cell->plcModbus->faultOnLoss;
+    const bool faultOnLoss = cell->plcAds     ? cell->plcAds->faultOnLoss
+                             : cell->plcOpcua ? cell->plcOpcua->faultOnLoss
+                                              : cell->plcModbus->faultOnLoss;
     for (BusBridge*& b : o.bridges) b = cutLinks.emplace_back(std::make_unique<LinkLossBridge>(*b, plan.linkLosses, faultOnLoss)).get();
   }
   {

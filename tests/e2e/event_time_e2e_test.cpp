@@ -32,9 +32,9 @@ struct Case {
   std::string args;  // extra command-line arguments, e.g. --set MAIN.sequence=2
 };
 
-// A cell whose `plc:` is another process reached over Modbus or ADS (examples/*/bridge.yaml).
+// A cell whose `plc:` is another process reached over Modbus, ADS or OPC UA (examples/*/bridge.yaml, opcua-bridge.yaml).
 bool needsPeer(const fs::path& cell) {
-  return std::regex_search(readFile(cell), std::regex(R"(\nplc:[^\n]*\n([ \t]+[^\n]*\n)*?[ \t]+(modbus|ads):)"));
+  return std::regex_search(readFile(cell), std::regex(R"(\nplc:[^\n]*\n([ \t]+[^\n]*\n)*?[ \t]+(modbus|ads|opcua):)"));
 }
 
 std::string caseName(const fs::path& cell) {

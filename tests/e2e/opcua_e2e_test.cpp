@@ -70,7 +70,8 @@ std::string typeOf(const Bytes& m) { return m.size() >= 3 ? std::string(m.begin(
 TEST(OpcuaE2e, NodeOpcuaClientScenario) {
   ASSERT_TRUE(std::filesystem::exists(kClientDir + "/node_modules/node-opcua-client"))
       << "the npm node-opcua-client is missing: run `npm ci --prefix tests/e2e/opcua` (make test does)";
-  auto server = startServer({"--audit-writes", "each"});
+  // node-opcua's session is anonymous: it writes only because it is allowed to.
+  auto server = startServer({"--audit-writes", "each", "--opcua-anonymous", "write"});
   ASSERT_GT(server->port(), 0) << server->errorOutput();
   std::string output;
   int status = virtcom::e2e::shell("cd '" + kClientDir + "' && node check_opcua_client.js " + std::to_string(server->port()), output);
@@ -206,6 +207,20 @@ TEST(OpcuaE2e, UsersFileIdentities) {
   EXPECT_NE(out.find("ok: identities"), std::string::npos) << out;
   EXPECT_EQ(server->stop(), 0) << server->errorOutput();
   std::filesystem::remove_all(std::filesystem::path(users).parent_path());
+}
+
+TEST(OpcuaE2e, AnonymousReadsButMayNotWriteByDefault) {
+  // Issue 20: "writing disabled for anonymous unless configured", with or without a users file.
+  ASSERT_TRUE(std::filesystem::exists(kClientDir + "/node_modules/node-opcua-client"))
+      << "the npm node-opcua-client is missing: run `npm ci --prefix tests/e2e/opcua` (make test does)";
+  auto server = startServer();
+  ASSERT_GT(server->port(), 0) << server->errorOutput();
+  EXPECT_TRUE(server->waitFor("(security None, anonymous read-only)")) << server->errorOutput();
+  std::string out;
+  const std::string client = "cd '" + kClientDir + "' && node check_opcua_identity.js ";
+  EXPECT_EQ(virtcom::e2e::shell(client + std::to_string(server->port()) + " anonymous-only", out), 0) << out;
+  EXPECT_NE(out.find("ok: anonymous reads only"), std::string::npos) << out;
+  EXPECT_EQ(server->stop(), 0) << server->errorOutput();
 }
 
 TEST(OpcuaE2e, IdentityOptionErrors) {

@@ -40,7 +40,8 @@ ads::SymbolTable makeTable() {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const ads::SymbolTable table = makeTable();
   static ua::ServerCore core(table, [] {
-    ua::ServerConfig c;  // anonymous read-write, and one user so that UserName tokens are decoded too
+    ua::ServerConfig c;  // anonymous read-write (Write decoded to the end), and one user so that UserName tokens are decoded too
+    c.anonymous = ua::UserAccess::Write;
     c.users.push_back(ua::makeUserAccount("op", ua::UserAccess::Write, "pw", 10'000));
     return c;
   }());

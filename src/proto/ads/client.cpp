@@ -1,10 +1,7 @@
 #include "proto/ads/client.hpp"
 
 #include <arpa/inet.h>
-#include <fcntl.h>
 #include <netinet/in.h>
-#include <netinet/tcp.h>
-#include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -14,6 +11,7 @@
 
 #include "core/clock.hpp"
 #include "proto/ads/byte_io.hpp"
+#include "proto/net/tcp_client.hpp"
 
 namespace virtcom::proto::ads {
 
@@ -21,18 +19,6 @@ namespace {
 
 constexpr uint16_t kResponseFlag = 0x0001;  // state flags bit 0 (docs/ads.md, AMS/TCP and the AMS header)
 constexpr size_t kInitialBuffer = 4096;
-
-// Waits until `fd` is ready for `events` or the deadline passes; false on timeout.
-bool waitFor(int fd, short events, int64_t deadlineNs) {
-  while (true) {
-    int64_t leftNs = deadlineNs - monotonicNowNs();
-    if (leftNs <= 0) return false;
-    pollfd p{fd, events, 0};
-    int r = ::poll(&p, 1, static_cast<int>((leftNs + 999'999) / 1'000'000));
-    if (r > 0) return true;
-    if (r < 0 && errno != EINTR) return true;  // let the next call report the error
-  }
-}
 
 }  // namespace
 
@@ -67,24 +53,9 @@ ClientError Client::lost(std::string what) {
 
 std::expected<void, ClientError> Client::connect() {
   close();
-  const int64_t deadline = monotonicNowNs() + config_.timeoutNs;
-  fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
-  if (fd_ < 0) return std::unexpected(lost(net::errnoText("socket")));
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(config_.router.port);
-  addr.sin_addr.s_addr = htonl(config_.router.ipv4);
-  if (::connect(fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0) {
-    if (errno != EINPROGRESS) return std::unexpected(lost(std::strerror(errno)));
-    if (!waitFor(fd_, POLLOUT, deadline)) return std::unexpected(lost("no connection within the timeout"));
-    int error = 0;
-    socklen_t len = sizeof error;
-    ::getsockopt(fd_, SOL_SOCKET, SO_ERROR, &error, &len);
-    if (error != 0) return std::unexpected(lost(std::strerror(error)));
-  }
-  int one = 1;
-  ::setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);  // one small request per round trip
-  ::setsockopt(fd_, SOL_SOCKET, SO_KEEPALIVE, &one, sizeof one);
+  auto fd = net::connectTcp(config_.router, monotonicNowNs() + config_.timeoutNs);
+  if (!fd) return std::unexpected(lost(fd.error()));
+  fd_ = *fd;
   local_.port = config_.localPort;
   if (config_.localNetId) {
     local_.netId = *config_.localNetId;
@@ -165,17 +136,7 @@ std::expected<std::span<const uint8_t>, ClientError> Client::dataReply(std::span
 }
 
 std::expected<void, ClientError> Client::sendAll(int64_t deadlineNs) {
-  size_t sent = 0;
-  while (sent < tx_.size()) {
-    ssize_t n = ::send(fd_, tx_.data() + sent, tx_.size() - sent, MSG_NOSIGNAL);
-    if (n > 0) {
-      sent += static_cast<size_t>(n);
-    } else if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)) {
-      if (!waitFor(fd_, POLLOUT, deadlineNs)) return std::unexpected(lost("no progress sending within the timeout"));
-    } else {
-      return std::unexpected(lost(std::strerror(errno)));
-    }
-  }
+  if (auto sent = net::sendAll(fd_, tx_, deadlineNs); !sent) return std::unexpected(lost(sent.error()));
   return {};
 }
 
@@ -194,16 +155,10 @@ std::expected<void, ClientError> Client::receiveFrame(int64_t deadlineNs) {
     }
     if (scan.status == FrameStatus::Malformed) return std::unexpected(lost("a malformed AMS/TCP frame"));
     if (rxUsed_ == rx_.size()) rx_.resize(rx_.size() * 2);  // a frame longer than any before
-    ssize_t n = ::recv(fd_, rx_.data() + rxUsed_, rx_.size() - rxUsed_, 0);
-    if (n > 0) {
-      rxUsed_ += static_cast<size_t>(n);
-    } else if (n == 0) {
-      return std::unexpected(lost("the router closed the connection"));
-    } else if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) {
-      if (!waitFor(fd_, POLLIN, deadlineNs)) return std::unexpected(lost("no reply within the timeout"));
-    } else {
-      return std::unexpected(lost(std::strerror(errno)));
-    }
+    auto n = net::receiveSome(fd_, {rx_.data() + rxUsed_, rx_.size() - rxUsed_}, deadlineNs);
+    if (!n) return std::unexpected(lost(n.error()));
+    if (*n == 0) return std::unexpected(lost("the router closed the connection"));
+    rxUsed_ += *n;
   }
 }
 

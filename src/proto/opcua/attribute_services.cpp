@@ -8,13 +8,6 @@ namespace virtcom::proto::opcua {
 
 namespace {
 
-// Attribute ids (OPC 10000-6 Annex A.1).
-enum Attribute : uint32_t {
-  kNodeIdAttr = 1, kNodeClassAttr = 2, kBrowseNameAttr = 3, kDisplayNameAttr = 4, kDescriptionAttr = 5,
-  kWriteMaskAttr = 6, kUserWriteMaskAttr = 7, kEventNotifierAttr = 12, kValueAttr = 13, kDataTypeAttr = 14,
-  kValueRankAttr = 15, kArrayDimensionsAttr = 16, kAccessLevelAttr = 17, kUserAccessLevelAttr = 18,
-  kMinimumSamplingIntervalAttr = 19, kHistorizingAttr = 20,
-};
 constexpr uint32_t kTimestampsSource = 0, kTimestampsServer = 1, kTimestampsBoth = 2, kTimestampsNeither = 3;
 constexpr uint32_t kDecodingError = static_cast<uint32_t>(StatusCodeValue::BadDecodingError);
 constexpr uint32_t bad(StatusCodeValue v) { return static_cast<uint32_t>(v); }

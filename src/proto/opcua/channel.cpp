@@ -8,8 +8,6 @@ namespace virtcom::proto::opcua {
 
 namespace {
 
-constexpr uint32_t kOpenRequestId = 446, kOpenResponseId = 449, kCloseChannelRequestId = 452;
-constexpr uint32_t kRequestIssue = 0, kRequestRenew = 1, kSecurityModeNone = 1;
 // Channel token lifetimes the server grants (ms).
 constexpr uint32_t kMinLifetimeMs = 10'000, kMaxLifetimeMs = 3'600'000;
 // After the message header: channel id, token id, sequence number, request id.
@@ -83,20 +81,20 @@ bool Channel::onOpen(std::span<const uint8_t> body, std::vector<uint8_t>& tx) {
   RequestHeader header;
   uint32_t clientVersion = 0, requestType = 0, mode = 0, lifetime = 0;
   ByteString nonce;
-  if (!decode(r, typeId) || typeId != NodeId::num(0, kOpenRequestId) || !decode(r, header) || !r.u32(clientVersion) ||
+  if (!decode(r, typeId) || typeId != NodeId::num(0, kOpenSecureChannelRequestId) || !decode(r, header) || !r.u32(clientVersion) ||
       !r.u32(requestType) || !r.u32(mode) || !decode(r, nonce) || !r.u32(lifetime))
     return fail(tx, StatusCodeValue::BadDecodingError, "malformed OpenSecureChannel request");
   if (mode != kSecurityModeNone) return fail(tx, StatusCodeValue::BadSecurityModeRejected, "only security mode None is served");
-  if (requestType == kRequestIssue && channelId_ == 0) {
+  if (requestType == kSecureChannelIssue && channelId_ == 0) {
     channelId_ = core_.newChannelId();
-  } else if (requestType != kRequestRenew || channelId != channelId_ || channelId_ == 0) {
+  } else if (requestType != kSecureChannelRenew || channelId != channelId_ || channelId_ == 0) {
     return fail(tx, StatusCodeValue::BadRequestTypeInvalid, "OpenSecureChannel: issue once, then renew that channel");
   }
   previousTokenId_ = tokenId_;
   tokenId_ = core_.newTokenId();
   body_.clear();
   Writer w(body_);
-  encode(w, NodeId::num(0, kOpenResponseId));
+  encode(w, NodeId::num(0, kOpenSecureChannelResponseId));
   encodeResponseHeader(w, header.requestHandle, 0);
   w.u32(kProtocolVersion);
   w.u32(channelId_);
@@ -166,7 +164,7 @@ Channel::Reply Channel::serve(std::span<const uint8_t> request, uint32_t request
     encodeResponseHeader(w, 0, static_cast<uint32_t>(StatusCodeValue::BadDecodingError));
     return Reply::Send;
   }
-  if (typeId == NodeId::num(0, kCloseChannelRequestId)) return Reply::Close;
+  if (typeId == NodeId::num(0, kCloseSecureChannelRequestId)) return Reply::Close;
   const bool headerOk = decode(r, header);
   const ServiceEntry* service = typeId.ns == 0 && typeId.kind == NodeId::Kind::Numeric ? findService(typeId.numeric) : nullptr;
   ServiceContext ctx{core_, channelId_, nullptr, nowNs, requestId, header.requestHandle};

@@ -33,7 +33,8 @@ struct ServerConfig {
   size_t maxPublishRequests = 10;          // queued per session; beyond: BadTooManyPublishRequests
   bool readOnly = false;                   // every Write refused (BadUserAccessDenied), whoever the user
   std::vector<UserAccount> users;          // --opcua-users: who may log on with a password; empty: nobody
-  UserAccess anonymous = UserAccess::Write;  // what an anonymous session may do; None: anonymous refused
+  UserAccess anonymous = UserAccess::Read;  // what an anonymous session may do; None: anonymous refused. Not
+                                           // Write by default: writing is for who was let in (issue 20)
   size_t writeQueueBytes = 64 * 1024;      // written data between two scans
   AddressSpaceConfig names;
   std::string endpointUrl;                 // what GetEndpoints announces; empty: opc.tcp://listen

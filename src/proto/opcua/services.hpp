@@ -15,8 +15,20 @@
 namespace virtcom::proto::opcua {
 
 inline constexpr uint32_t kServiceFaultId = 397;
+// The secure channel's own messages (OPC 10000-6 §6.7.4, encoding ids of Annex A), outside the
+// service table: OpenSecureChannel issues or renews the channel's token (security mode None: 1).
+inline constexpr uint32_t kOpenSecureChannelRequestId = 446, kOpenSecureChannelResponseId = 449, kCloseSecureChannelRequestId = 452;
+inline constexpr uint32_t kSecureChannelIssue = 0, kSecureChannelRenew = 1, kSecurityModeNone = 1;
 inline constexpr const char* kSecurityPolicyNone = "http://opcfoundation.org/UA/SecurityPolicy#None";
 inline constexpr const char* kTransportProfileBinary = "http://opcfoundation.org/UA-Profile/Transport/uatcp-uasc-uabinary";
+
+// Attribute ids (OPC 10000-6 Annex A.1): what Read, Write and monitored items name.
+enum Attribute : uint32_t {
+  kNodeIdAttr = 1, kNodeClassAttr = 2, kBrowseNameAttr = 3, kDisplayNameAttr = 4, kDescriptionAttr = 5,
+  kWriteMaskAttr = 6, kUserWriteMaskAttr = 7, kEventNotifierAttr = 12, kValueAttr = 13, kDataTypeAttr = 14,
+  kValueRankAttr = 15, kArrayDimensionsAttr = 16, kAccessLevelAttr = 17, kUserAccessLevelAttr = 18,
+  kMinimumSamplingIntervalAttr = 19, kHistorizingAttr = 20,
+};
 
 enum class ServiceAccess : uint8_t { Channel, Session, Active };
 
@@ -70,6 +82,12 @@ void runSubscriptions(ServerCore& core, Session& session, int64_t nowNs, std::ve
                       const std::function<void(uint32_t requestId)>& send);
 // The earliest time a subscription of `session` needs the channel to run again.
 int64_t nextSubscriptionDueNs(const Session& session);
+
+// Reads past structures nothing here uses (the server: a client's; the client: a server's):
+// an ApplicationDescription, a String array, a SignatureData (Algorithm, Signature).
+bool skipApplicationDescription(Reader& in);
+bool skipStringArray(Reader& in);
+bool skipSignature(Reader& in);
 
 // An empty DiagnosticInfo array (every response's last field).
 inline void encodeNoDiagnostics(Writer& w) { w.i32(0); }

@@ -16,7 +16,7 @@ constexpr ServiceEntry kServices[] = {
 #undef X
 };
 
-constexpr uint32_t kApplicationTypeServer = 0, kSecurityModeNone = 1;
+constexpr uint32_t kApplicationTypeServer = 0;
 // Session timeouts the server grants (ms): clients ask for anything; 0 means "the server's choice".
 constexpr double kMinSessionTimeoutMs = 10'000, kMaxSessionTimeoutMs = 3'600'000, kDefaultSessionTimeoutMs = 60'000;
 constexpr size_t kNonceBytes = 32;
@@ -27,7 +27,15 @@ void encodeNonce(Writer& w) {
   for (size_t i = 0; i < kNonceBytes; ++i) w.u8(static_cast<uint8_t>(random()));
 }
 
-// Reads past an ApplicationDescription (the client's: nothing in it is used).
+void encodeNullSignature(Writer& w) {
+  w.nullString();
+  w.nullString();
+}
+
+constexpr uint32_t kDecodingError = static_cast<uint32_t>(StatusCodeValue::BadDecodingError);
+
+}  // namespace
+
 bool skipApplicationDescription(Reader& in) {
   std::string text;
   LocalizedText name;
@@ -54,15 +62,6 @@ bool skipSignature(Reader& in) {
   std::string s;
   return decode(in, s) && decode(in, s);
 }
-
-void encodeNullSignature(Writer& w) {
-  w.nullString();
-  w.nullString();
-}
-
-constexpr uint32_t kDecodingError = static_cast<uint32_t>(StatusCodeValue::BadDecodingError);
-
-}  // namespace
 
 const ServiceEntry* findService(uint32_t requestId) {
   for (const ServiceEntry& e : kServices)

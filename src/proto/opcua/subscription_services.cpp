@@ -19,7 +19,7 @@ constexpr uint32_t kBadSubscriptionIdInvalid = 0x80280000, kBadMonitoredItemIdIn
                    kBadMonitoredItemFilterUnsupported = 0x80440000;
 // Encoding ids: DataChangeNotification 811, DataChangeFilter 724, PublishResponse 829.
 constexpr uint32_t kDataChangeNotificationId = 811, kDataChangeFilterId = 724, kPublishResponseId = 829;
-constexpr uint32_t kDeadbandAbsolute = 1, kValueAttribute = 13;
+constexpr uint32_t kDeadbandAbsolute = 1;
 // Intervals the server grants (ms): sampling and publishing no faster than 10 ms.
 constexpr double kMinIntervalMs = 10, kMaxIntervalMs = 3'600'000;
 constexpr uint32_t kMaxQueueSize = 1000;
@@ -223,7 +223,7 @@ uint32_t handleCreateMonitoredItems(ServiceContext& ctx, Reader& in, Writer& out
     uint32_t status = 0;
     double deadband = 0;
     if (!node) status = bad(StatusCodeValue::BadNodeIdUnknown);
-    else if (attribute != kValueAttribute || ctx.core.space().node(*node).nodeClass != NodeClass::Variable)
+    else if (attribute != kValueAttr || ctx.core.space().node(*node).nodeClass != NodeClass::Variable)
       status = bad(StatusCodeValue::BadAttributeIdInvalid);
     else if (sub->items.size() >= ctx.core.config().maxMonitoredItems) status = kBadTooManyMonitoredItems;
     else if (filter.typeId == NodeId::num(0, kDataChangeFilterId)) {

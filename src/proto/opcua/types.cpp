@@ -1,5 +1,6 @@
 #include "proto/opcua/types.hpp"
 
+#include <charconv>
 #include <cstdio>
 
 namespace virtcom::proto::opcua {
@@ -50,6 +51,30 @@ std::string formatNodeId(const NodeId& id) {
     }
   }
   return out;
+}
+
+std::optional<NodeId> parseNodeId(std::string_view text) {
+  auto number = [](std::string_view digits, uint32_t limit) -> std::optional<uint32_t> {
+    uint32_t v = 0;
+    auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+    if (digits.empty() || error != std::errc{} || end != digits.data() + digits.size() || v > limit) return std::nullopt;
+    return v;
+  };
+  uint16_t ns = 0;
+  if (text.starts_with("ns=")) {
+    const size_t semi = text.find(';');
+    auto n = semi == std::string_view::npos ? std::nullopt : number(text.substr(3, semi - 3), 0xFFFF);
+    if (!n) return std::nullopt;
+    ns = static_cast<uint16_t>(*n);
+    text.remove_prefix(semi + 1);
+  }
+  if (text.starts_with("i=")) {
+    auto id = number(text.substr(2), UINT32_MAX);
+    if (!id) return std::nullopt;
+    return NodeId::num(ns, *id);
+  }
+  if (text.starts_with("s=") && text.size() > 2) return NodeId::str(ns, std::string(text.substr(2)));
+  return std::nullopt;
 }
 
 Variant Variant::scalar(Scalar s) {

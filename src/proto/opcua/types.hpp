@@ -5,7 +5,9 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -74,6 +76,9 @@ struct NodeId {
 };
 // "i=85", "ns=4;s=|var|...", "ns=1;g=...", "ns=2;b=<hex>" (OPC 10000-6 §5.3.1.10).
 std::string formatNodeId(const NodeId& id);
+// The numeric and string forms back ("i=85", "ns=4;s=|var|virtcom.Application.MAIN.x"); nullopt
+// for anything else (a namespace over 65535, an empty string id, g= and b= forms).
+std::optional<NodeId> parseNodeId(std::string_view text);
 
 struct ExpandedNodeId {
   NodeId id;

@@ -2,8 +2,10 @@
 // endpoint announces UserName identities only (the client then cannot even try anonymous; the
 // server's own refusal is a unit test), a wrong password is refused, a read-write user writes
 // and a read-only user reads but may not write. With `anonymous-read` (the server run with
-// `--opcua-anonymous read` too): anonymous is announced, reads and may not write.
-// Usage: node check_opcua_identity.js PORT [anonymous-read]. The users file holds
+// `--opcua-anonymous read` too): anonymous is announced, reads and may not write. With
+// `anonymous-only` (the server run with neither option): only anonymous is announced, and it
+// reads but may not write (the default).
+// Usage: node check_opcua_identity.js PORT [anonymous-read|anonymous-only]. The users file holds
 // operator/op-pass (read-write) and viewer/view-pass (read-only). Exits non-zero with a message
 // on the first failure.
 'use strict';
@@ -11,7 +13,7 @@ const assert = require('node:assert/strict');
 const { OPCUAClient, AttributeIds, DataType, StatusCodes, UserTokenType } = require('node-opcua-client');
 
 const port = Number(process.argv[2]);
-const anonymousRead = process.argv[3] === 'anonymous-read';
+const anonymousRead = process.argv[3] === 'anonymous-read', anonymousOnly = process.argv[3] === 'anonymous-only';
 const url = `opc.tcp://127.0.0.1:${port}`;
 const level = 'ns=4;s=|var|virtcom.Application.MAIN.level';
 
@@ -41,6 +43,13 @@ async function anonymousReads(client) {
   await client.connect(url);
   const endpoints = await client.getEndpoints();
   const tokens = endpoints[0].userIdentityTokens.map((t) => t.tokenType);
+  if (anonymousOnly) {
+    assert.deepEqual(tokens, [UserTokenType.Anonymous], 'only the anonymous identity is announced');
+    await anonymousReads(client);
+    await client.disconnect();
+    console.log('ok: anonymous reads only');
+    return;
+  }
   if (anonymousRead) {
     assert.deepEqual(tokens, [UserTokenType.Anonymous, UserTokenType.UserName], 'anonymous and UserName identities are announced');
     await anonymousReads(client);

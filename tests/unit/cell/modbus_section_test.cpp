@@ -212,7 +212,7 @@ TEST_F(ModbusSection, WiringNeedsASoftPlc) {
                     "      1: { name: Close, duration: 1 s }\n"
                     "    wiring: MAIN.Clamp\n"),
               ElementsAre("cell.yaml:6:13: error[C030]: 'wiring' connects ports to PLC variables, but the cell has no soft PLC "
-                          "('plc: sources') and no ADS PLC ('plc: ads'); a Modbus PLC reaches the signals through its map"));
+                          "('plc: sources') and no ADS or OPC UA PLC ('plc: ads', 'plc: opcua'); a Modbus PLC reaches the signals through its map"));
 }
 
 TEST_F(ModbusSection, DetachingTheSoftPlcDropsWhatNamesItsVariables) {

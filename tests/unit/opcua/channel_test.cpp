@@ -28,9 +28,16 @@ Bytes helloBytes(uint32_t receiveBuffer = 65536) {
   return b;
 }
 
+// The session below is anonymous: allowed to write, as `--opcua-anonymous write` does.
+ServerConfig anonymousWrites() {
+  ServerConfig c;
+  c.anonymous = UserAccess::Write;
+  return c;
+}
+
 class ChannelTest : public ::testing::Test {
  protected:
-  ChannelTest() : table_(ads::testing::makeTable()), core_(table_, ServerConfig{}), channel_(core_) {}
+  ChannelTest() : table_(ads::testing::makeTable()), core_(table_, anonymousWrites()), channel_(core_) {}
 
   // Sends one message; returns what the channel answered (and whether it keeps the connection).
   Bytes send(const Bytes& frame, bool* keep = nullptr) {

@@ -36,11 +36,16 @@ ServerConfig withUsers() {
   return c;
 }
 
-TEST(Identity, AnonymousIsReadWriteWithoutUsersAndRefusedWithThem) {
+TEST(Identity, AnonymousReadsByDefaultWritesOnlyWhenConfiguredAndIsRefusedWithUsers) {
   UserAccess access = UserAccess::None;
   EXPECT_EQ(checkIdentity(ServerConfig{}, kAnonymous, access), 0u);
-  EXPECT_EQ(access, UserAccess::Write);
+  EXPECT_EQ(access, UserAccess::Read) << "writing is disabled for anonymous unless configured (issue 20)";
   EXPECT_EQ(checkIdentity(ServerConfig{}, ExtensionObject{}, access), 0u) << "a null token is anonymous";
+  EXPECT_EQ(access, UserAccess::Read);
+  ServerConfig writeAnonymous;
+  writeAnonymous.anonymous = UserAccess::Write;
+  EXPECT_EQ(checkIdentity(writeAnonymous, kAnonymous, access), 0u);
+  EXPECT_EQ(access, UserAccess::Write);
   EXPECT_EQ(checkIdentity(withUsers(), kAnonymous, access), kInvalid);
   ServerConfig readAnonymous = withUsers();
   readAnonymous.anonymous = UserAccess::Read;

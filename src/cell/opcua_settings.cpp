@@ -1,0 +1,68 @@
+#include "cell/opcua_settings.hpp"
+
+#include "cell/peer_settings.hpp"
+
+namespace virtcom::cell {
+
+namespace {
+
+constexpr std::string_view kScheme = "opc.tcp://";
+
+// `endpoint: opc.tcp://HOST:PORT[/PATH]` into s.url and s.server.
+void readEndpoint(ConfigReader& r, const ConfigNode& node, OpcuaClientSettings& s) {
+  s.url = r.requireString("endpoint");
+  if (s.url.empty()) return;
+  const ConfigNode* at = node.find("endpoint");
+  s.endpointLoc = at->loc();
+  const char* expected = " (expected opc.tcp://HOST:PORT, e.g. opc.tcp://127.0.0.1:4840)";
+  if (!s.url.starts_with(kScheme)) {
+    r.error(at->loc(), "'endpoint': '" + s.url + "' is not an opc.tcp URL" + expected);
+    return;
+  }
+  std::string hostPort = s.url.substr(kScheme.size());
+  hostPort = hostPort.substr(0, hostPort.find('/'));
+  auto parsed = parseEndpoint(hostPort);
+  if (parsed && parsed->port != 0) {
+    s.server = *parsed;
+    return;
+  }
+  r.error(at->loc(), "'endpoint': " + (parsed ? std::string("port 0 cannot be connected to") : parsed.error()) + expected);
+}
+
+}  // namespace
+
+void readOpcuaClient(OpcuaClientSettings& s, const ConfigNode& node, Diagnostics& diags) {
+  ConfigReader r(node, diags, "'plc: opcua'");
+  if (node.kind() != ConfigNode::Kind::Map) {
+    r.error(node.loc(), "'plc: opcua' must be a map with 'endpoint: opc.tcp://HOST:PORT' of the external PLC's OPC UA server");
+    return;
+  }
+  s.endpointLoc = node.loc();
+  readEndpoint(r, node, s);
+  const std::string security = r.optString("security", "none");
+  if (security != "none")
+    r.error(node.find("security")->loc(), "'security': only 'none' is supported by the bridge (security policy None), not '" + security + "'");
+  s.user = r.optString("user", "");
+  s.password = r.optString("password", "");
+  if (s.user.empty() != s.password.empty())
+    r.error((s.user.empty() ? node.find("password") : node.find("user"))->loc(),
+            "'user' and 'password' go together (a UserName identity); leave both out for an anonymous session");
+  s.nodePrefix = r.optString("node_prefix", s.nodePrefix);
+  if (const ConfigNode* nodes = r.child("nodes")) {
+    if (nodes->kind() != ConfigNode::Kind::Map) {
+      r.error(nodes->loc(), "'nodes' must be a map PLC variable: node id (MAIN.start: \"ns=2;i=17\")");
+    } else {
+      for (const auto& [variable, id] : nodes->entries()) {
+        if (id.kind() != ConfigNode::Kind::Scalar || id.scalar().empty()) r.error(id.loc(), "'nodes': '" + variable + "' must name a node id");
+        else s.nodes.push_back({variable, id.scalar()});
+      }
+    }
+  }
+  s.pollNs = readLinkDurationNs(r, node, "poll", 0.01);
+  s.timeoutNs = readLinkDurationNs(r, node, "timeout", 0.5);
+  s.faultOnLoss = readFaultOnLoss(r, node);
+  s.disconnectWhenStopped = r.optBool("disconnect_when_simulation_stops", true);
+  r.rejectUnknownKeys();
+}
+
+}  // namespace virtcom::cell

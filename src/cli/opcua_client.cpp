@@ -1,0 +1,62 @@
+#include "cli/opcua_client.hpp"
+
+#include <iostream>
+
+#include "cli/external_wires.hpp"
+#include "core/cell_diagnostic_codes.hpp"
+
+namespace virtcom::cli {
+
+std::string opcuaNodeOf(const cell::OpcuaClientSettings& s, const std::string& variable) {
+  for (const cell::OpcuaNodeName& n : s.nodes)
+    if (n.variable == variable) return n.node;
+  if (variable.starts_with("ns=") || variable.starts_with("i=") || variable.starts_with("s=")) return variable;
+  return s.nodePrefix + variable;
+}
+
+std::unique_ptr<proto::opcua::ClientBridge> startOpcuaBridge(cell::Cell& cell, const SourceManager& sources, const std::string& role) {
+  namespace ua = proto::opcua;
+  const cell::OpcuaClientSettings& s = *cell.plcOpcua;
+  ua::BridgeConfig config;
+  config.client.server = s.server;
+  config.client.endpointUrl = s.url;
+  config.client.user = s.user;
+  config.client.password = s.password;
+  config.client.timeoutNs = s.timeoutNs;
+  config.pollNs = s.pollNs;
+  config.faultOnLoss = s.faultOnLoss;
+  config.disconnectWhenStopped = s.disconnectWhenStopped;
+  config.report = [](const std::string& line) { std::cerr << line << "\n"; };
+  for (const cell::ExternalWire& w : s.wires)
+    config.signals.push_back({opcuaNodeOf(s, w.variable), w.variable, w.port, w.tag, w.dir == plant::PortDir::Out, w.optional});
+  ua::ClientBridge::StartReport report;
+  auto bridge = ua::ClientBridge::start(config, cell.bus, report);
+  Diagnostics diags;
+  bool linked = true;
+  for (const auto& p : report.problems) {
+    if (p.signal == ua::ClientBridge::kNoSignal) {
+      diags.error(celldiag::C034, s.endpointLoc, p.text);
+      linked = false;
+      continue;
+    }
+    const bool unknown = p.kind == ua::ClientBridge::Problem::Kind::Unknown;
+    diags.error(unknown ? celldiag::C032 : celldiag::C033, s.wires[p.signal].loc, p.text);
+  }
+  if (linked)
+    reportUnmatchedPrefixes(s.wires, report.found, diags, [&s](const cell::ExternalWire& w, const std::string& device, const std::string& prefix) {
+      return "opcua: no port of '" + device + "' matches a node under '" + prefix + "' on " + s.url + " (expected e.g. " +
+             opcuaNodeOf(s, w.variable) + ")";
+    });
+  if (diags.hasErrors() || !bridge) {
+    diags.sortByLocation();
+    std::cerr << diags.render(sources);
+    return nullptr;
+  }
+  size_t wired = 0;
+  for (size_t i = 0; i < s.wires.size(); ++i) wired += report.found[i] && !s.wires[i].port.empty();  // found: one per wire after a start
+  std::cerr << "opcua: " << bridge->peerText() << " " << role << " (" << wired << " signals, a Read every "
+            << static_cast<double>(s.pollNs) / 1e6 << " ms)\n";
+  return bridge;
+}
+
+}  // namespace virtcom::cli

@@ -1,0 +1,371 @@
+#include "proto/opcua/client.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "core/clock.hpp"
+#include "proto/net/tcp_client.hpp"
+#include "proto/opcua/node_ids.hpp"
+#include "proto/opcua/services.hpp"
+#include "proto/opcua/transport.hpp"
+
+namespace virtcom::proto::opcua {
+
+namespace {
+
+constexpr uint32_t kCreateSessionRequestId = 461, kCreateSessionResponseId = 464, kActivateSessionRequestId = 467,
+                   kActivateSessionResponseId = 470, kCloseSessionRequestId = 473, kCloseSessionResponseId = 476;
+constexpr uint32_t kApplicationTypeClient = 1;
+constexpr uint32_t kTokenAnonymous = 0, kTokenUserName = 1;  // UserTokenType (OPC 10000-4 §7.43)
+constexpr uint32_t kRequestedLifetimeMs = 3'600'000;
+// After the message header of a MSG or CLO: channel id, token id, sequence number, request id.
+constexpr size_t kSymmetricHeaderSize = kMessageHeaderSize + 16;
+// How long close() waits for the server to answer CloseSession.
+constexpr int64_t kCloseWaitNs = 100'000'000;
+
+// The RequestHeader (OPC 10000-4 §7.32) of every request.
+void encodeRequestHeader(Writer& w, const NodeId& token, uint32_t handle, int64_t timeoutNs) {
+  encode(w, token);
+  encode(w, dateTimeNow());
+  w.u32(handle);
+  w.u32(0);          // ReturnDiagnostics: none
+  w.nullString();    // AuditEntryId
+  w.u32(static_cast<uint32_t>(timeoutNs / 1'000'000));  // TimeoutHint (ms)
+  encode(w, ExtensionObject{});
+}
+
+// The ResponseHeader (OPC 10000-4 §7.33): its ServiceResult, or nullopt if malformed.
+std::optional<uint32_t> decodeResponseHeader(Reader& r) {
+  DateTime time;
+  uint32_t handle = 0, result = 0;
+  DiagnosticInfo diagnostics;
+  ExtensionObject additional;
+  if (!decode(r, time) || !r.u32(handle) || !r.u32(result) || !decode(r, diagnostics) || !skipStringArray(r) ||
+      !decode(r, additional))
+    return std::nullopt;
+  return result;
+}
+
+// The identity token of ActivateSession: an ExtensionObject whose binary body is the token.
+ExtensionObject identityToken(uint32_t typeId, const std::string& policy, const std::string* user, const std::string* password) {
+  std::vector<uint8_t> body;
+  Writer w(body);
+  w.string(policy);
+  if (user) {
+    w.string(*user);
+    w.string(*password);  // plain: security policy None, the token's policy asks for no encryption
+    w.nullString();       // EncryptionAlgorithm
+  }
+  return ExtensionObject{NodeId::num(0, typeId), ExtensionObject::Body::Binary, std::string(body.begin(), body.end())};
+}
+
+}  // namespace
+
+Client::Client(ClientConfig config) : config_(std::move(config)) {
+  rx_.resize(config_.bufferBytes);
+  tx_.reserve(config_.bufferBytes);
+}
+
+Client::~Client() { close(); }
+
+ClientError Client::lost(std::string what) {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  rxUsed_ = frameSize_ = 0;
+  return ClientError{true, 0, std::move(what)};
+}
+
+void Client::close() {
+  if (fd_ < 0) return;
+  const int64_t saved = config_.timeoutNs;
+  config_.timeoutNs = std::min(saved, kCloseWaitNs);
+  if (!authenticationToken_.isNull()) {
+    Writer& w = beginRequest(kCloseSessionRequestId);
+    encode(w, true);  // DeleteSubscriptions
+    (void)call(kCloseSessionResponseId);
+  }
+  if (fd_ >= 0) {
+    // CloseSecureChannel: no response; the server closes the connection.
+    body_.clear();
+    Writer b(body_);
+    encode(b, NodeId::num(0, kCloseSecureChannelRequestId));
+    encodeRequestHeader(b, NodeId{}, ++requestHandle_, config_.timeoutNs);
+    beginMessage("CLO");
+    Writer w(tx_);
+    w.u32(++requestId_);
+    w.raw(body_);
+    w.put32(4, static_cast<uint32_t>(tx_.size()));
+    (void)net::sendAll(fd_, tx_, monotonicNowNs() + config_.timeoutNs);
+  }
+  config_.timeoutNs = saved;
+  authenticationToken_ = NodeId{};
+  (void)lost("closed");
+}
+
+std::expected<void, ClientError> Client::connect() {
+  close();
+  channelId_ = tokenId_ = sequence_ = 0;
+  auto fd = net::connectTcp(config_.server, monotonicNowNs() + config_.timeoutNs);
+  if (!fd) return std::unexpected(lost(fd.error()));
+  fd_ = *fd;
+  if (auto done = handshake(); !done) return done;
+  if (auto done = openChannel(kSecureChannelIssue); !done) return done;
+  if (auto done = createSession(); !done) return done;
+  if (auto done = activateSession(); !done) {
+    authenticationToken_ = NodeId{};
+    close();
+    return done;
+  }
+  return {};
+}
+
+std::expected<void, ClientError> Client::handshake() {
+  tx_.clear();
+  Writer w(tx_);
+  const size_t start = opcua::beginMessage(w, "HEL");
+  w.u32(kProtocolVersion);
+  w.u32(config_.bufferBytes);  // ReceiveBufferSize
+  w.u32(config_.bufferBytes);  // SendBufferSize
+  w.u32(static_cast<uint32_t>(config_.maxResponseBytes));
+  w.u32(0);  // MaxChunkCount: no limit
+  w.string(config_.endpointUrl);
+  finishMessage(w, start);
+  const int64_t deadline = monotonicNowNs() + config_.timeoutNs;
+  if (auto sent = net::sendAll(fd_, tx_, deadline); !sent) return std::unexpected(lost(sent.error()));
+  std::span<const uint8_t> frame;
+  if (auto got = receiveMessage(deadline, frame); !got) return got;
+  if (messageTypeOf(frame) != MessageType::Acknowledge) return std::unexpected(lost("the server answered HEL with no ACK"));
+  Reader r(frame.subspan(kMessageHeaderSize));
+  uint32_t version = 0, receive = 0, send = 0;
+  if (!r.u32(version) || !r.u32(receive) || !r.u32(send)) return std::unexpected(lost("a malformed ACK"));
+  peerReceiveBuffer_ = std::max(receive, kMinBufferSize);
+  return {};
+}
+
+void Client::beginMessage(const char* type) {
+  tx_.clear();
+  Writer w(tx_);
+  (void)opcua::beginMessage(w, type);
+  w.u32(channelId_);
+  if (std::strcmp(type, "OPN") != 0) {
+    w.u32(tokenId_);
+    w.u32(++sequence_);
+  }
+}
+
+std::expected<void, ClientError> Client::openChannel(uint32_t requestType) {
+  body_.clear();
+  Writer b(body_);
+  encode(b, NodeId::num(0, kOpenSecureChannelRequestId));
+  encodeRequestHeader(b, NodeId{}, ++requestHandle_, config_.timeoutNs);
+  b.u32(kProtocolVersion);
+  b.u32(requestType);
+  b.u32(kSecurityModeNone);
+  b.nullString();  // ClientNonce: none with policy None
+  b.u32(kRequestedLifetimeMs);
+  beginMessage("OPN");
+  Writer w(tx_);
+  w.string(kSecurityPolicyNone);
+  w.nullString();  // SenderCertificate
+  w.nullString();  // ReceiverCertificateThumbprint
+  w.u32(++sequence_);
+  w.u32(++requestId_);
+  w.raw(body_);
+  w.put32(4, static_cast<uint32_t>(tx_.size()));
+  const int64_t now = monotonicNowNs();
+  if (auto done = transact(requestId_, now + config_.timeoutNs); !done) return done;
+  Reader r(std::span<const uint8_t>(body_).subspan(bodyStart_));
+  NodeId type;
+  uint32_t version = 0, channel = 0, token = 0, lifetimeMs = 0;
+  DateTime created;
+  if (!decode(r, type)) return std::unexpected(lost("a malformed OpenSecureChannel response"));
+  auto result = decodeResponseHeader(r);
+  if (!result) return std::unexpected(lost("a malformed OpenSecureChannel response"));
+  if (type == NodeId::num(0, kServiceFaultId) || isBad(*result))
+    return std::unexpected(lost("the server refused to open a secure channel: " + statusName(*result)));
+  if (type != NodeId::num(0, kOpenSecureChannelResponseId) || !r.u32(version) || !r.u32(channel) || !r.u32(token) ||
+      !decode(r, created) || !r.u32(lifetimeMs))
+    return std::unexpected(lost("a malformed OpenSecureChannel response"));
+  channelId_ = channel;
+  tokenId_ = token;
+  renewAtNs_ = now + static_cast<int64_t>(lifetimeMs) * 750'000;  // 75 % of the lifetime (OPC 10000-4 §5.5.2)
+  return {};
+}
+
+std::expected<void, ClientError> Client::createSession() {
+  Writer& w = beginRequest(kCreateSessionRequestId);
+  w.string("urn:virtcom:bridge");  // ApplicationUri
+  w.string("urn:virtcom");         // ProductUri
+  encode(w, LocalizedText{"en", "virtcom bridge"});
+  w.u32(kApplicationTypeClient);
+  w.nullString();  // GatewayServerUri
+  w.nullString();  // DiscoveryProfileUri
+  w.i32(0);        // DiscoveryUrls
+  w.nullString();  // ServerUri
+  w.string(config_.endpointUrl);
+  w.string("virtcom bridge");
+  w.nullString();  // ClientNonce
+  w.nullString();  // ClientCertificate
+  encode(w, config_.sessionTimeoutMs);
+  w.u32(static_cast<uint32_t>(config_.maxResponseBytes));
+  auto r = call(kCreateSessionResponseId);
+  if (!r) return std::unexpected(r.error().linkLost ? r.error() : lost("CreateSession refused: " + r.error().text));
+  NodeId sessionId;
+  double timeout = 0;
+  ByteString nonce, certificate;
+  uint32_t endpoints = 0;
+  if (!decode(*r, sessionId) || !decode(*r, authenticationToken_) || !decode(*r, timeout) || !decode(*r, nonce) ||
+      !decode(*r, certificate) || !r->arrayLength(endpoints, 4))
+    return std::unexpected(lost("a malformed CreateSession response"));
+  // The policy ids of the identity tokens, from the endpoint with security None (the servers
+  // name them as they like: "anonymous", "Anonymous", "0", ...).
+  for (uint32_t e = 0; e < endpoints; ++e) {
+    std::string url, policyUri, policyId, text;
+    ByteString cert;
+    uint32_t mode = 0, tokens = 0, tokenType = 0;
+    if (!decode(*r, url) || !skipApplicationDescription(*r) || !decode(*r, cert) || !r->u32(mode) || !decode(*r, policyUri) ||
+        !r->arrayLength(tokens, 4))
+      return std::unexpected(lost("a malformed EndpointDescription in the CreateSession response"));
+    for (uint32_t t = 0; t < tokens; ++t) {
+      if (!decode(*r, policyId) || !r->u32(tokenType) || !decode(*r, text) || !decode(*r, text) || !decode(*r, text))
+        return std::unexpected(lost("a malformed UserTokenPolicy in the CreateSession response"));
+      if (mode != kSecurityModeNone) continue;
+      if (tokenType == kTokenAnonymous) anonymousPolicy_ = policyId;
+      if (tokenType == kTokenUserName) userNamePolicy_ = policyId;
+    }
+    uint8_t level = 0;
+    if (!decode(*r, text) || !r->u8(level)) return std::unexpected(lost("a malformed EndpointDescription in the CreateSession response"));
+  }
+  return {};
+}
+
+std::expected<void, ClientError> Client::activateSession() {
+  Writer& w = beginRequest(kActivateSessionRequestId);
+  w.nullString();  // ClientSignature: Algorithm
+  w.nullString();  //                  Signature
+  w.i32(0);        // ClientSoftwareCertificates
+  w.i32(0);        // LocaleIds
+  if (config_.user.empty())
+    encode(w, identityToken(ids::kAnonymousIdentityToken, anonymousPolicy_, nullptr, nullptr));
+  else
+    encode(w, identityToken(ids::kUserNameIdentityToken, userNamePolicy_, &config_.user, &config_.password));
+  w.nullString();  // UserTokenSignature: Algorithm
+  w.nullString();  //                     Signature
+  auto r = call(kActivateSessionResponseId);
+  if (!r) {
+    if (r.error().linkLost) return std::unexpected(r.error());
+    const std::string who = config_.user.empty() ? "an anonymous session" : "user '" + config_.user + "'";
+    return std::unexpected(ClientError{false, r.error().status, "the server refused " + who + ": " + r.error().text});
+  }
+  return {};
+}
+
+Writer& Client::beginRequest(uint32_t requestTypeId) {
+  body_.clear();
+  Writer w(body_);
+  encode(w, NodeId::num(0, requestTypeId));
+  encodeRequestHeader(w, authenticationToken_, ++requestHandle_, config_.timeoutNs);
+  return request_;
+}
+
+std::expected<Reader, ClientError> Client::call(uint32_t responseTypeId) {
+  if (fd_ < 0) return std::unexpected(ClientError{true, 0, "not connected"});
+  const int64_t now = monotonicNowNs();
+  if (channelId_ != 0 && now >= renewAtNs_) {
+    std::vector<uint8_t> request;
+    request.swap(body_);  // the request waits while the channel's token is renewed (once an hour)
+    auto renewed = openChannel(kSecureChannelRenew);
+    body_.swap(request);
+    if (!renewed) return std::unexpected(renewed.error());
+  }
+  // The request as MSG chunks of at most the server's receive buffer.
+  const size_t room = peerReceiveBuffer_ - kSymmetricHeaderSize;
+  const uint32_t requestId = ++requestId_;
+  tx_.clear();
+  std::span<const uint8_t> rest(body_);
+  do {
+    auto part = rest.first(std::min(room, rest.size()));
+    rest = rest.subspan(part.size());
+    Writer w(tx_);
+    const size_t start = opcua::beginMessage(w, "MSG", rest.empty() ? 'F' : 'C');
+    w.u32(channelId_);
+    w.u32(tokenId_);
+    w.u32(++sequence_);
+    w.u32(requestId);
+    w.raw(part);
+    finishMessage(w, start);
+  } while (!rest.empty());
+  if (auto done = transact(requestId, now + config_.timeoutNs); !done) return std::unexpected(done.error());
+  Reader r(std::span<const uint8_t>(body_).subspan(bodyStart_));
+  NodeId type;
+  if (!decode(r, type)) return std::unexpected(lost("a malformed response"));
+  auto result = decodeResponseHeader(r);
+  if (!result) return std::unexpected(lost("a malformed ResponseHeader"));
+  if (type == NodeId::num(0, kServiceFaultId) || isBad(*result)) return std::unexpected(ClientError{false, *result, statusName(*result)});
+  if (type != NodeId::num(0, responseTypeId))
+    return std::unexpected(lost("the response is " + formatNodeId(type) + ", expected i=" + std::to_string(responseTypeId)));
+  return r;
+}
+
+std::expected<void, ClientError> Client::receiveMessage(int64_t deadlineNs, std::span<const uint8_t>& frame) {
+  // Drop the previous message, keeping whatever followed it.
+  if (frameSize_ > 0) {
+    std::memmove(rx_.data(), rx_.data() + frameSize_, rxUsed_ - frameSize_);
+    rxUsed_ -= frameSize_;
+    frameSize_ = 0;
+  }
+  while (true) {
+    FrameScan scan = scanFrame({rx_.data(), rxUsed_}, config_.maxResponseBytes);
+    if (scan.status == FrameStatus::Complete) {
+      frameSize_ = scan.size;
+      frame = {rx_.data(), frameSize_};
+      if (messageTypeOf(frame) != MessageType::Error) return {};
+      Reader r(frame.subspan(kMessageHeaderSize));
+      uint32_t status = 0;
+      std::string reason;
+      (void)(r.u32(status) && decode(r, reason));
+      return std::unexpected(lost("the server sent ERR " + statusName(status) + (reason.empty() ? "" : ": " + reason)));
+    }
+    if (scan.status == FrameStatus::Malformed) return std::unexpected(lost("a malformed message from the server"));
+    if (rxUsed_ == rx_.size()) rx_.resize(rx_.size() * 2);  // a message longer than any before
+    auto n = net::receiveSome(fd_, {rx_.data() + rxUsed_, rx_.size() - rxUsed_}, deadlineNs);
+    if (!n) return std::unexpected(lost(n.error()));
+    if (*n == 0) return std::unexpected(lost("the server closed the connection"));
+    rxUsed_ += *n;
+  }
+}
+
+std::expected<void, ClientError> Client::transact(uint32_t requestId, int64_t deadlineNs) {
+  ++requests_;
+  if (auto sent = net::sendAll(fd_, tx_, deadlineNs); !sent) return std::unexpected(lost(sent.error()));
+  body_.clear();
+  bodyStart_ = 0;
+  while (true) {
+    std::span<const uint8_t> frame;
+    if (auto got = receiveMessage(deadlineNs, frame); !got) return got;
+    const MessageType type = messageTypeOf(frame);
+    const char chunk = static_cast<char>(frame[3]);
+    Reader r(frame.subspan(kMessageHeaderSize));
+    uint32_t channel = 0, token = 0, sequence = 0, id = 0;
+    if (type == MessageType::Open) {
+      std::string policy;
+      ByteString certificate, thumbprint;
+      if (!r.u32(channel) || !decode(r, policy) || !decode(r, certificate) || !decode(r, thumbprint) || !r.u32(sequence) || !r.u32(id))
+        return std::unexpected(lost("a malformed OPN header"));
+    } else if (type == MessageType::Message) {
+      if (!r.u32(channel) || !r.u32(token) || !r.u32(sequence) || !r.u32(id)) return std::unexpected(lost("a malformed MSG header"));
+    } else {
+      return std::unexpected(lost("an unexpected message from the server"));
+    }
+    if (id != requestId) continue;  // a late answer to an earlier request
+    if (chunk == 'A') return std::unexpected(lost("the server aborted its response"));
+    auto payload = r.rest();
+    if (body_.size() + payload.size() > config_.maxResponseBytes) return std::unexpected(lost("a response over the size limit"));
+    body_.insert(body_.end(), payload.begin(), payload.end());
+    if (chunk == 'F') return {};
+  }
+}
+
+}  // namespace virtcom::proto::opcua

@@ -1,0 +1,87 @@
+#pragma once
+// A small blocking OPC UA client (docs/opcua.md, The client bridge): one opc.tcp connection,
+// security policy None, one session (anonymous, or a user name and password), one request at a
+// time, each answered within the timeout or the link counts as lost. Requests and responses are
+// built and read with the server's codec (binary_codec.hpp, transport.hpp, services.hpp); the
+// caller writes a service's request body and reads its response body. The channel's token is
+// renewed before three quarters of its lifetime have passed. Used on the simulation thread by
+// the client bridge (client_bridge.hpp).
+// Allocation: only when a request or response is larger than any before, when the channel's
+// token is renewed (about every 45 minutes) and when a failure's text is made.
+#include <cstdint>
+#include <expected>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "proto/net/endpoint.hpp"
+#include "proto/opcua/binary_codec.hpp"
+
+namespace virtcom::proto::opcua {
+
+struct ClientConfig {
+  net::Endpoint server{0x7f000001, 4840};
+  std::string endpointUrl = "opc.tcp://127.0.0.1:4840";  // sent in Hello and CreateSession
+  std::string user, password;                            // empty user: an anonymous session
+  int64_t timeoutNs = 500'000'000;                       // connect and each request
+  double sessionTimeoutMs = 60'000;
+  uint32_t bufferBytes = 65536;                          // our receive and send buffers (Hello)
+  size_t maxResponseBytes = 16 * 1024 * 1024;            // a longer response is a broken link
+};
+
+struct ClientError {
+  bool linkLost = true;  // the connection failed and is closed (refused, reset, timeout, ERR, garbage)
+  uint32_t status = 0;   // else: the Bad status of the service (a ServiceFault or its ServiceResult)
+  std::string text;      // one line, e.g. "BadNodeIdUnknown" or "connection refused"
+};
+
+class Client {
+ public:
+  explicit Client(ClientConfig config);
+  ~Client();  // close()
+  Client(const Client&) = delete;
+  Client& operator=(const Client&) = delete;
+
+  // Connects, opens the secure channel and creates and activates the session. Blocks.
+  std::expected<void, ClientError> connect();
+  // Closes the session and the channel (best effort, not waiting long), then the socket.
+  void close();
+  bool connected() const { return fd_ >= 0; }
+  const ClientConfig& config() const { return config_; }
+
+  // A request of the service whose request encoding id is `requestTypeId` (OPC 10000-6 Annex A,
+  // services.def): its RequestHeader is written; append the body to the Writer returned.
+  Writer& beginRequest(uint32_t requestTypeId);
+  // Sends it and waits for its response; a Reader at the body after the ResponseHeader, valid
+  // until the next request. A ServiceFault or a Bad ServiceResult is an error with linkLost false.
+  std::expected<Reader, ClientError> call(uint32_t responseTypeId);
+
+  // Requests sent so far (session and channel requests included).
+  uint64_t requests() const { return requests_; }
+
+ private:
+  std::expected<void, ClientError> handshake();
+  std::expected<void, ClientError> openChannel(uint32_t requestType);
+  std::expected<void, ClientError> createSession();
+  std::expected<void, ClientError> activateSession();
+  // Sends tx_ (a whole message) and receives the whole response to `requestId` into body_ (the
+  // chunks of a MSG joined; of OPN its body after the asymmetric header).
+  std::expected<void, ClientError> transact(uint32_t requestId, int64_t deadlineNs);
+  std::expected<void, ClientError> receiveMessage(int64_t deadlineNs, std::span<const uint8_t>& frame);
+  void beginMessage(const char* type);
+  ClientError lost(std::string what);
+
+  ClientConfig config_;
+  int fd_ = -1;
+  uint32_t channelId_ = 0, tokenId_ = 0, sequence_ = 0, requestId_ = 0, requestHandle_ = 0;
+  int64_t renewAtNs_ = 0;
+  uint32_t peerReceiveBuffer_ = 0;
+  NodeId authenticationToken_;
+  std::string anonymousPolicy_ = "anonymous", userNamePolicy_ = "username";  // from the server's endpoints
+  std::vector<uint8_t> tx_, rx_, body_;  // body_: the request being built, then the response's body
+  Writer request_{body_};                 // what beginRequest() hands out: appends to body_
+  size_t rxUsed_ = 0, frameSize_ = 0, bodyStart_ = 0;
+  uint64_t requests_ = 0;
+};
+
+}  // namespace virtcom::proto::opcua

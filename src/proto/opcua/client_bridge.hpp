@@ -1,0 +1,117 @@
+#pragma once
+// The OPC UA client bridge: an external PLC with an OPC UA server (CODESYS, TwinCAT TF6100, a
+// Siemens PLC, or `virtcom exec --opcua`) is the cell's controller. Every signal names a node:
+//  - at start one Read asks for the Value and UserAccessLevel of every node: its built-in type
+//    (checked against the device port) and, for device outputs, that this session may write it;
+//    every problem is collected, none is left for the run;
+//  - every `poll` of simulated time pull() reads the PLC's outputs (the device commands) with one
+//    Read and push() writes the device outputs whose value changed since they were last written
+//    with one Write;
+//  - when the simulation stops, with disconnectWhenStopped the session and channel are closed.
+// A lost link (refused, reset, timeout, ERR) fails the next pull() with faultOnLoss; otherwise it
+// is reported once, the devices keep the last commands, and each poll tries to reconnect (which
+// checks the nodes again and rewrites every device output). A Bad status of a node in a reply (a
+// node the server no longer has, a refused write) always fails: the PLC program changed.
+// Values cross as their bytes (numbers are little endian on the wire as in the PLC's image, as
+// plc_values.cpp serves them); nothing is allocated per poll after start.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/bus_bridge.hpp"
+#include "core/iec_value.hpp"
+#include "proto/opcua/client.hpp"
+
+namespace virtcom::proto::opcua {
+
+struct BridgeSignal {
+  std::string node;       // the node id, e.g. "ns=4;s=|var|virtcom.Application.MAIN.Robot1.execute"
+  std::string name;       // what the cell file names (a variable or the node id), for messages
+  std::string port;       // what it is wired to, for messages, e.g. "Robot1.execute"
+  TagId tag = kNoTag;     // kNoTag: a value only observed (recorded); start() adds its tag
+  bool toPlc = false;     // true: a device output written to the PLC; false: read from the PLC
+  bool optional = false;  // a missing node is skipped (wiring by prefix), not an error
+};
+
+struct BridgeConfig {
+  ClientConfig client;
+  int64_t pollNs = 10'000'000;
+  bool faultOnLoss = true;
+  bool disconnectWhenStopped = true;
+  std::vector<BridgeSignal> signals;
+  std::function<void(const std::string&)> report;  // connection events, one line each
+};
+
+class ClientBridge final : public BusBridge {
+ public:
+  static constexpr size_t kNoSignal = static_cast<size_t>(-1);
+  struct Problem {
+    enum class Kind { Link, Unknown, Mismatch };  // connection / no such node / not as wired
+    size_t signal = kNoSignal;  // index into BridgeConfig::signals; kNoSignal: the connection
+    std::string text;
+    Kind kind = Kind::Mismatch;
+  };
+  struct StartReport {
+    std::vector<Problem> problems;  // every failure, at most one per signal
+    std::vector<bool> found;        // per signal: the server has the node (empty: it was not asked)
+  };
+
+  // Connects and checks every signal; observed-only signals get a tag of the node's type on
+  // `bus`. Null when anything failed; `report` then lists every failure.
+  static std::unique_ptr<ClientBridge> start(BridgeConfig config, TagBus& bus, StartReport& report);
+  ~ClientBridge() override;
+
+  bool pull(TagBus& bus, int64_t nowNs) override;
+  void push(const TagBus& bus, int64_t nowNs) override;
+  std::string failure() const override { return failure_; }
+  void simulationStopped() override;
+
+  // The tag of signal i (the one start() added for an observed node).
+  TagId tag(size_t signal) const { return slots_[signal].tag; }
+  // "the OPC UA server at opc.tcp://127.0.0.1:4840".
+  std::string peerText() const;
+  uint64_t requests() const { return client_.requests(); }
+
+ private:
+  // A checked signal: its built-in type, the elementary type its bytes hold, where they are.
+  struct Slot {
+    bool found = false;   // checked: the server has it, as wired
+    bool exists = false;  // the server has a node of that id
+    TagId tag = kNoTag;
+    BuiltinType wire = BuiltinType::Null;
+    ElemType type = ElemType::Bool;
+    uint32_t size = 0;
+    uint32_t offset = 0;  // in image_ (the values as last read / written)
+    bool dirty = true;    // must be written even if unchanged (after connecting)
+  };
+
+  explicit ClientBridge(BridgeConfig config);
+  // Reads every node's Value and UserAccessLevel and checks them. False if anything failed
+  // (`problems` says what). With addTags, observed-only signals get their tags (start); else
+  // the types must not have changed since (reconnecting).
+  bool resolve(TagBus& bus, bool addTags, std::vector<Problem>& problems);
+  bool reconnect(TagBus& bus);
+  void lose(const std::string& what);
+  void fail(const std::string& what);
+
+  BridgeConfig config_;
+  Client client_;
+  std::vector<Slot> slots_;
+  std::vector<std::vector<uint8_t>> nodeIds_;  // each signal's NodeId, encoded once
+  std::vector<size_t> reads_, writes_;         // signals read each poll / written on change
+  std::vector<uint8_t> image_;                 // one value per found signal
+  std::vector<size_t> changed_;                // signals written this poll (capacity reserved)
+  bool reportedLoss_ = false;
+  bool pollNow_ = false;
+  int64_t nextPollNs_ = 0;
+  std::string failure_;
+};
+
+// The elementary type a scalar of built-in type `t` holds as the same bytes (Boolean: BOOL,
+// Int16: INT, Double: LREAL, ...); nullopt for strings and the structured built-ins.
+std::optional<ElemType> elemTypeOfBuiltin(BuiltinType t);
+
+}  // namespace virtcom::proto::opcua

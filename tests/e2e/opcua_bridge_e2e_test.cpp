@@ -1,0 +1,159 @@
+// End-to-end: the OPC UA client bridge. `virtcom exec plc/*.st --opcua ... --opcua-anonymous
+// write` of examples/ads-cell in a second process is the PLC of opcua-bridge.yaml (`plc: opcua:`):
+// the cell completes the same cycles as with the soft PLC in process; problems (a server not
+// there, the default anonymous session that may not write, unknown nodes) are reported at start
+// with their position; a PLC lost mid-run ends the run as a fault, and a scenario's comm_loss
+// cuts the link.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "server_process.hpp"
+#include "shell_command.hpp"
+#include "support/read_file.hpp"
+
+namespace {
+
+using virtcom::e2e::ServerProcess;
+using virtcom::e2e::shell;
+using virtcom::test::readFile;
+
+const std::string kExe = VIRTCOM_EXE;
+const std::string kExample = std::string(VIRTCOM_SOURCE_DIR) + "/examples/ads-cell";
+
+// "Cycle time    1.530 s (measured ..." of a summary table, in seconds; -1 if absent.
+double cycleTime(const std::string& summary) {
+  auto at = summary.find("Cycle time");
+  return at == std::string::npos ? -1 : std::atof(summary.c_str() + at + 10);
+}
+
+class OpcuaBridgeE2e : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::path(::testing::TempDir()) / ("virtcom_opcua_bridge_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  // The example's program served over OPC UA in its own process.
+  std::unique_ptr<ServerProcess> startPlc(std::vector<std::string> extra = {"--opcua-anonymous", "write"}) {
+    std::vector<std::string> args{"exec", "plc/types.st", "plc/main.st", "--opcua", "127.0.0.1:0"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return std::make_unique<ServerProcess>(kExe, args, kExample, "opcua: serving opc.tcp://");
+  }
+  // opcua-bridge.yaml with the PLC's port, and `from` replaced by `to` (if given); its path.
+  std::string bridgeCell(int port, const std::string& from = "", const std::string& to = "") {
+    std::string text = readFile(kExample + "/opcua-bridge.yaml");
+    const std::string url = "opc.tcp://127.0.0.1:4840\n";
+    text.replace(text.find(url), url.size(), "opc.tcp://127.0.0.1:" + std::to_string(port) + "\n");
+    if (!from.empty()) text.replace(text.find(from), from.size(), to);
+    std::ofstream(dir_ / "opcua-bridge.yaml") << text;
+    return (dir_ / "opcua-bridge.yaml").string();
+  }
+  int testScenario(const std::string& cell, const std::string& body, std::string& out) {
+    std::ofstream(dir_ / "loss.yaml") << "name: loss\ncell: " << cell << "\n" << body;
+    return shell(kExe + " test " + (dir_ / "loss.yaml").string() + " --jobs 1", out);
+  }
+
+  std::filesystem::path dir_;
+};
+
+TEST_F(OpcuaBridgeE2e, TheCellCompletesTheSameCyclesAsWithTheSoftPlcInProcess) {
+  std::string inProcess;
+  ASSERT_EQ(shell(kExe + " run " + kExample + "/cell.yaml", inProcess), 0) << inProcess;
+  auto plc = startPlc();
+  ASSERT_GT(plc->port(), 0) << plc->errorOutput();
+  std::string bridged;
+  EXPECT_EQ(shell(kExe + " run " + bridgeCell(plc->port()), bridged), 0) << bridged;
+  EXPECT_NE(bridged.find("opcua: the OPC UA server at opc.tcp://127.0.0.1:" + std::to_string(plc->port()) +
+                         " is the controller (12 signals, a Read every 10 ms)"),
+            std::string::npos)
+      << bridged;
+  for (const std::string* out : {&inProcess, &bridged})
+    EXPECT_NE(out->find("Run ended     completed: 2 cycle(s) completed"), std::string::npos) << *out;
+  // The same cycle, give or take the polls each handshake waits for the other process.
+  double softCycle = cycleTime(inProcess), bridgedCycle = cycleTime(bridged);
+  EXPECT_GT(softCycle, 1.0) << inProcess;
+  EXPECT_NEAR(bridgedCycle, softCycle, 0.25 * softCycle) << bridged;
+  EXPECT_EQ(plc->stop(), 0) << plc->errorOutput();
+}
+
+TEST_F(OpcuaBridgeE2e, ProblemsAreReportedAtStartWithTheirPosition) {
+  int closedPort = 0;
+  {  // a port that was free a moment ago: nothing listens there any more
+    auto plc = startPlc();
+    closedPort = plc->port();
+    ASSERT_GT(closedPort, 0) << plc->errorOutput();
+    EXPECT_EQ(plc->stop(), 0);
+  }
+  std::string out;
+  EXPECT_EQ(shell(kExe + " run " + bridgeCell(closedPort), out), 1) << out;
+  EXPECT_NE(out.find("opcua-bridge.yaml:12:15: error[C034]: opcua: cannot connect to the OPC UA server at opc.tcp://127.0.0.1:" +
+                     std::to_string(closedPort) + ": Connection refused"),
+            std::string::npos)
+      << out;
+
+  // The server's default: anonymous sessions read but may not write the devices' outputs.
+  auto readOnly = startPlc({});
+  ASSERT_GT(readOnly->port(), 0) << readOnly->errorOutput();
+  out.clear();
+  EXPECT_EQ(shell(kExe + " run " + bridgeCell(readOnly->port()), out), 1) << out;
+  EXPECT_NE(out.find("opcua-bridge.yaml:28:13: error[C033]: opcua: 'MAIN.Clamp.done' (ns=4;s=|var|virtcom.Application.MAIN.Clamp.done) "
+                     "is not writable for this session"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("--opcua-anonymous write"), std::string::npos) << out;
+  EXPECT_EQ(readOnly->stop(), 0);
+
+  auto plc = startPlc();
+  ASSERT_GT(plc->port(), 0) << plc->errorOutput();
+  out.clear();
+  EXPECT_EQ(shell(kExe + " run " + bridgeCell(plc->port(), "    wiring: MAIN.Press\n", "    wiring: { execute: MAIN.Press.exec, done: MAIN.step }\n"),
+                  out),
+            1)
+      << out;
+  EXPECT_NE(out.find("error[C032]: opcua: the server has no node 'MAIN.Press.exec' (ns=4;s=|var|virtcom.Application.MAIN.Press.exec) "
+                     "to wire to Press.execute"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("error[C033]: opcua: 'MAIN.step' (ns=4;s=|var|virtcom.Application.MAIN.step) is Int16 on the server but output "
+                     "'Press.done' is BOOL"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(plc->stop(), 0) << plc->errorOutput();
+}
+
+TEST_F(OpcuaBridgeE2e, APlcLostMidRunEndsTheRunAsAFault) {
+  auto plc = startPlc();
+  ASSERT_GT(plc->port(), 0) << plc->errorOutput();
+  ServerProcess run(kExe, {"run", bridgeCell(plc->port(), "cycles: 2", "cycles: 1000"), "--quiet"}, dir_.string(),
+                    "opcua: the OPC UA server at opc.tcp://");
+  ASSERT_EQ(run.port(), plc->port()) << run.errorOutput();
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(plc->stop(), 0);
+  EXPECT_EQ(run.waitExit(), 2) << run.errorOutput();
+  EXPECT_NE(run.errorOutput().find("opcua: link to the OPC UA server at opc.tcp://127.0.0.1:"), std::string::npos) << run.errorOutput();
+}
+
+TEST_F(OpcuaBridgeE2e, AScenariosCommLossEndsTheRunAsAPlcFault) {
+  auto plc = startPlc();
+  ASSERT_GT(plc->port(), 0) << plc->errorOutput();
+  const std::string body = "faults:\n  - {link: plc, comm_loss: [{at: 0.5 s, duration: 1 s}]}\nexpect:\n  - {run_end: plc_fault}\n";
+  std::string out;
+  EXPECT_EQ(testScenario(bridgeCell(plc->port()), body, out), 0) << out;
+  EXPECT_NE(out.find("PASS  loss"), std::string::npos) << out;
+  // Without the loss the run completes (against a PLC that starts afresh: the first run left
+  // the other in the middle of its sequence).
+  EXPECT_EQ(plc->stop(), 0);
+  auto fresh = startPlc();
+  ASSERT_GT(fresh->port(), 0) << fresh->errorOutput();
+  out.clear();
+  EXPECT_EQ(testScenario(bridgeCell(fresh->port()), "expect:\n  - {run_end: completed}\n", out), 0) << out;
+  EXPECT_NE(out.find("PASS  loss"), std::string::npos) << out;
+}
+
+}  // namespace

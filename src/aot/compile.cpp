@@ -232,17 +232,8 @@ CompileResult loadFromCache(const bc::Module& m, const fs::path& library) {
 // KEY.module holds the file name. Written once the shared object is in place.
 fs::path indexFile(const fs::path& dir, const std::string& key) { return dir / (key + ".module"); }
 
-// The cheap key with the compiler command: the same program under another compiler or other
-// flags is other machine code, so `--backend aot`, which honours CC, may trust the index too.
-std::string indexKey(const bc::Module& m, const CompileOptions& options) {
-  const std::string key = moduleKey(m, options.unitInstructions);
-  if (key.empty()) return {};
-  return hashHex(key + '\0' + joined(compilerCommand(options, kCompileFlags)) + '\0' +
-                 joined(compilerCommand(options, kLinkFlags)));
-}
-
 void rememberLibrary(const bc::Module& m, const CompileOptions& options, const fs::path& library) {
-  const std::string key = indexKey(m, options);
+  const std::string key = moduleKey(m, options.unitInstructions);
   if (key.empty()) return;
   const fs::path index = indexFile(library.parent_path(), key), tmp = library.parent_path() / temporaryName(key);
   std::error_code ec;
@@ -251,7 +242,7 @@ void rememberLibrary(const bc::Module& m, const CompileOptions& options, const f
 }
 
 fs::path rememberedLibrary(const bc::Module& m, const CompileOptions& options) {
-  const std::string key = indexKey(m, options);
+  const std::string key = moduleKey(m, options.unitInstructions);
   if (key.empty()) return {};
   const fs::path dir = cacheDirectory(options);
   std::string name;

@@ -42,10 +42,10 @@ struct CompileResult {
 // and the entry table only.
 CompileResult compileModule(const bc::Module& m, const CompileOptions& options = {});
 
-// The module's machine code when a former compileModule of the same module by this build, with
-// the same compiler command, put it in the cache, else null code (error "not in the cache").
-// Found by the cheap key of aot/module_key.hpp and the compiler command: generates no C, runs no
-// compiler, writes no file. What `--backend auto` and `--backend aot` look for before the first scan.
+// The module's machine code when a former compileModule of the same module by this build put
+// it in the cache, else null code (error "not in the cache"). Found by the cheap key of
+// aot/module_key.hpp: generates no C, runs no compiler, writes no file. What `--backend auto`
+// looks for before the first scan.
 CompileResult loadCachedModule(const bc::Module& m, const CompileOptions& options = {});
 
 }  // namespace virtcom::aot

@@ -99,10 +99,7 @@ void addBackendOption(CLI::App& cmd, std::string& backend) {
 
 PlcBackend::PlcBackend(const std::string& backend, const bc::Module& m) : requested_(backend) {
   if (backend == "aot") {
-    // The cheap look-up first: compileModule finds a cached module too, but only after generating
-    // and hashing the whole C source, which costs a short run more than the run itself.
-    aot::CompileResult r = aot::loadCachedModule(m);
-    if (!r.code) r = aot::compileModule(m);
+    aot::CompileResult r = aot::compileModule(m);
     if (!r.code) std::cerr << "notice: --backend aot unavailable, using the interpreter: " << r.error << "\n";
     compiled_ = std::move(r.code);
     return;

@@ -26,7 +26,7 @@ StProgram::StProgram(std::string_view fileName, Backend backend, bool coverage) 
   text << in.rdbuf();
   SourceManager sources;
   Diagnostics diags;
-  module_ = st::compileProgram({st::SourceInput{path, text.str()}}, sources, diags, {.coverage = coverage});
+  module_ = st::compileProgram({st::SourceInput{path, text.str()}}, sources, diags, st::coverageOptions(coverage));
   if (!module_) {
     error_ = "compile error:\n" + diags.render(sources);
     return;

@@ -10,6 +10,7 @@
 
 #include "aot/opcode_snippets.hpp"
 #include "aot/register_plan.hpp"
+#include "core/content_hash.hpp"
 #include "vm/compiled.hpp"
 #include "vm/natives.hpp"
 
@@ -495,12 +496,6 @@ CUnit writeTable(const bc::Module& m, const PouTable& t) {
 }
 
 }  // namespace
-
-uint64_t hashText(std::string_view text) {
-  uint64_t h = 0xcbf29ce484222325ull;
-  for (unsigned char ch : text) h = (h ^ ch) * 0x100000001b3ull;
-  return h;
-}
 
 std::vector<CUnit> generateCUnits(const bc::Module& m, uint32_t unitInstructions) {
   const PouTable table(m);

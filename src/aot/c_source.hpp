@@ -17,9 +17,6 @@ inline constexpr const char* kEntriesSymbol = "virtcom_aot_entries";
 inline constexpr const char* kCountSymbol = "virtcom_aot_count";
 inline constexpr const char* kAbiSymbol = "virtcom_aot_abi";
 
-// FNV-1a, 64 bits: stable across builds and platforms, unlike std::hash (cache keys, unit cuts).
-uint64_t hashText(std::string_view text);
-
 // A unit closes once its POUs hold this many instructions (a bigger POU gets a unit of its
 // own). GCC's time and memory per unit grow faster than its size, and smaller units compile
 // in parallel; but every unit repeats the prelude and a call into another unit is not

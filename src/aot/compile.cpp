@@ -19,6 +19,7 @@
 
 #include "aot/module_key.hpp"
 #include "bytecode/verifier.hpp"
+#include "core/content_hash.hpp"
 
 extern char** environ;
 
@@ -59,12 +60,6 @@ fs::path cacheDirectory(const CompileOptions& o) {
   if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return fs::path(d) / "virtcom" / "aot";
   if (const char* d = std::getenv("HOME"); d && *d) return fs::path(d) / ".cache" / "virtcom" / "aot";
   return fs::temp_directory_path() / ("virtcom-aot-" + std::to_string(getuid()));
-}
-
-std::string hashHex(std::string_view text) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hashText(text)));
-  return buf;
 }
 
 // A prefix for temporary files no other process or thread uses at the same time: concurrent
@@ -229,24 +224,33 @@ CompileResult loadFromCache(const bc::Module& m, const fs::path& library) {
 }
 
 // The index from a module's cheap key (aot/module_key.hpp) to the name of its shared object:
-// KEY.module holds the file name. Written once the shared object is in place.
+// KEY.module holds the file name and, on a second line, the hash of the compiler commands that
+// made it. The key leaves the compiler out so that `auto` finds a former run's code without a
+// reachable compiler; `aot` promises code from the compiler of now, so it checks the second line.
+// Written once the shared object is in place.
 fs::path indexFile(const fs::path& dir, const std::string& key) { return dir / (key + ".module"); }
+
+std::string compilerKey(const CompileOptions& options) {
+  return hashHex(joined(compilerCommand(options, kCompileFlags)) + '\0' + joined(compilerCommand(options, kLinkFlags)));
+}
 
 void rememberLibrary(const bc::Module& m, const CompileOptions& options, const fs::path& library) {
   const std::string key = moduleKey(m, options.unitInstructions);
   if (key.empty()) return;
   const fs::path index = indexFile(library.parent_path(), key), tmp = library.parent_path() / temporaryName(key);
   std::error_code ec;
-  if (std::ofstream(tmp) << library.filename().string()) fs::rename(tmp, index, ec);
+  if (std::ofstream(tmp) << library.filename().string() << '\n' << compilerKey(options) << '\n') fs::rename(tmp, index, ec);
   fs::remove(tmp, ec);
 }
 
-fs::path rememberedLibrary(const bc::Module& m, const CompileOptions& options) {
+fs::path rememberedLibrary(const bc::Module& m, const CompileOptions& options, CachedCompiler compiler) {
   const std::string key = moduleKey(m, options.unitInstructions);
   if (key.empty()) return {};
   const fs::path dir = cacheDirectory(options);
-  std::string name;
-  if (!(std::ifstream(indexFile(dir, key)) >> name) || name.find('/') != std::string::npos) return {};
+  std::ifstream index(indexFile(dir, key));
+  std::string name, madeBy;
+  if (!(index >> name) || name.find('/') != std::string::npos) return {};
+  if (compiler == CachedCompiler::Same && (!(index >> madeBy) || madeBy != compilerKey(options))) return {};
   return dir / name;
 }
 
@@ -285,10 +289,10 @@ CompileResult compileModule(const bc::Module& m, const CompileOptions& options) 
   return loaded;
 }
 
-CompileResult loadCachedModule(const bc::Module& m, const CompileOptions& options) {
+CompileResult loadCachedModule(const bc::Module& m, const CompileOptions& options, CachedCompiler compiler) {
   CompileResult r;
   if (r.error = untranslatable(m); !r.error.empty()) return r;
-  return loadFromCache(m, rememberedLibrary(m, options));
+  return loadFromCache(m, rememberedLibrary(m, options, compiler));
 }
 
 }  // namespace virtcom::aot

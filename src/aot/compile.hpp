@@ -42,10 +42,16 @@ struct CompileResult {
 // and the entry table only.
 CompileResult compileModule(const bc::Module& m, const CompileOptions& options = {});
 
+// Whether cached machine code must come from the compiler the options name now (`--backend aot`:
+// a changed $CC compiles again) or may come from any (`--backend auto`: a warm cache serves a
+// run on a machine whose compiler is gone).
+enum class CachedCompiler { Any, Same };
+
 // The module's machine code when a former compileModule of the same module by this build put
 // it in the cache, else null code (error "not in the cache"). Found by the cheap key of
 // aot/module_key.hpp: generates no C, runs no compiler, writes no file. What `--backend auto`
-// looks for before the first scan.
-CompileResult loadCachedModule(const bc::Module& m, const CompileOptions& options = {});
+// looks for before the first scan, and `--backend aot` before it generates the C.
+CompileResult loadCachedModule(const bc::Module& m, const CompileOptions& options = {},
+                               CachedCompiler compiler = CachedCompiler::Any);
 
 }  // namespace virtcom::aot

@@ -119,8 +119,8 @@ ExitCode runTests(const TestOptions& o) {
   // so the result does not depend on the order the cases end in (nor on --jobs).
   CoverageData coverage;
   std::mutex coverageMutex;
+  options.plc = withModuleCache(o.coverage.compileOptions());
   if (o.coverage.enabled()) {
-    options.plc = o.coverage.compileOptions();
     options.hooks.afterRun = [&](sim::Simulation& simulation) {
       if (!simulation.hasPlc()) return;
       CoverageData counted = bc::collectCoverage(simulation.plc().module(), simulation.plc().machine().memory());

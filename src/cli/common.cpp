@@ -15,6 +15,7 @@
 #include "core/head_tail_log.hpp"
 #include "lang/ad/reader.hpp"
 #include "lang/plcopen/importer.hpp"
+#include "lang/st/compile_cache.hpp"
 #include "lang/st/compiler.hpp"
 #include "plc/variable_text.hpp"
 
@@ -35,12 +36,17 @@ std::optional<std::vector<st::SourceInput>> readSources(const std::vector<std::s
   return inputs;
 }
 
+st::CompileOptions withModuleCache(st::CompileOptions options) {
+  if (options.cacheDir.empty()) options.cacheDir = st::defaultModuleCacheDir();
+  return options;
+}
+
 namespace {
 std::unique_ptr<bc::Module> compileWith(const std::vector<std::string>& paths, SourceManager& sources,
                                         Diagnostics& diags, bool printWarnings, st::CompileOptions options) {
   auto inputs = readSources(paths);
   if (!inputs) return nullptr;
-  auto module = st::compileProgram(*inputs, sources, diags, options);
+  auto module = st::compileProgram(*inputs, sources, diags, withModuleCache(std::move(options)));
   if (!module || printWarnings) std::cerr << diags.render(sources);
   return module;
 }
@@ -53,13 +59,15 @@ std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, 
 
 std::unique_ptr<bc::Module> compileLibraryFiles(const std::vector<std::string>& paths, SourceManager& sources,
                                                 Diagnostics& diags) {
-  return compileWith(paths, sources, diags, true, {.library = true});
+  st::CompileOptions options;
+  options.library = true;
+  return compileWith(paths, sources, diags, true, options);
 }
 
 std::unique_ptr<cell::Cell> loadCellFile(const std::string& path, SourceManager& sources,
                                          st::CompileOptions plcOptions) {
   Diagnostics diags;
-  auto cell = cell::loadCell(path, sources, diags, plcOptions);
+  auto cell = cell::loadCell(path, sources, diags, withModuleCache(std::move(plcOptions)));
   std::cerr << diags.render(sources);
   return cell;
 }

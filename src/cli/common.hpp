@@ -15,7 +15,12 @@
 
 namespace virtcom::cli {
 
-// Reads and compiles the files; prints diagnostics to stderr. Null on a read or compile error.
+// The compile options of the command line: `options` with the module cache of
+// st::defaultModuleCacheDir (a program compiled once is read back next time).
+st::CompileOptions withModuleCache(st::CompileOptions options);
+
+// Reads and compiles the files (through the module cache); prints diagnostics to stderr. Null on
+// a read or compile error.
 std::unique_ptr<bc::Module> compileFiles(const std::vector<std::string>& paths, SourceManager& sources,
                                          Diagnostics& diags, bool printWarnings = true,
                                          st::CompileOptions options = {});
@@ -32,7 +37,8 @@ std::optional<std::vector<st::SourceInput>> readSources(const std::vector<std::s
 // diagnostics to stderr. Nullopt on a read or diagram error. `ad tables|convert|export|render`.
 std::optional<ad::Program> readDiagramFile(const std::string& path);
 
-// Loads a cell file and prints its diagnostics to stderr. Null on any error.
+// Loads a cell file (its program through the module cache) and prints its diagnostics to stderr.
+// Null on any error.
 std::unique_ptr<cell::Cell> loadCellFile(const std::string& path, SourceManager& sources,
                                          st::CompileOptions plcOptions = {});
 

@@ -99,7 +99,9 @@ void addBackendOption(CLI::App& cmd, std::string& backend) {
 
 PlcBackend::PlcBackend(const std::string& backend, const bc::Module& m) : requested_(backend) {
   if (backend == "aot") {
-    aot::CompileResult r = aot::compileModule(m);
+    // A former compile by the same compiler is taken without generating the C again.
+    aot::CompileResult r = aot::loadCachedModule(m, {}, aot::CachedCompiler::Same);
+    if (!r.code) r = aot::compileModule(m);
     if (!r.code) std::cerr << "notice: --backend aot unavailable, using the interpreter: " << r.error << "\n";
     compiled_ = std::move(r.code);
     return;

@@ -235,6 +235,21 @@ TEST_F(CliBackend, AutoRunsAFormerCompileFromTheFirstScan) {
   EXPECT_TRUE(contains(other.err, "tier: --backend auto: 5 scans interpreted, 0 on machine code")) << show(other);
 }
 
+// `--backend aot` serves a former compile from the cache only when the compiler of now made it: with
+// $CC changed to a compiler that does not exist it falls back to the interpreter, as without a cache.
+TEST_F(CliBackend, AotTakesCachedCodeOnlyFromTheSameCompiler) {
+  const std::vector<std::string> args{"exec", "counter.st", "--cycles", "5", "--print", "MAIN.count", "--backend", "aot"};
+  RunResult warm = run(args);
+  ASSERT_EQ(warm.exitCode, 0) << show(warm);
+  RunResult again = run(args);
+  EXPECT_EQ(again.out, "MAIN.count = 5\n");
+  EXPECT_EQ(again.err, "") << show(again);
+  ::setenv("CC", "virtcom-no-such-compiler", 1);
+  RunResult other = run(args);
+  EXPECT_EQ(other.out, "MAIN.count = 5\n");
+  EXPECT_TRUE(contains(other.err, "notice: --backend aot unavailable, using the interpreter")) << show(other);
+}
+
 // The default is auto; the same fault report as the interpreter after a switch before the faulting scan.
 TEST_F(CliBackend, AutoIsTheDefaultAndReportsTheSameFault) {
   RunResult interp = run({"exec", "divzero.st", "--cycles", "5", "--backend", "interp"});
@@ -416,6 +431,34 @@ TEST_F(CliExec, PrintAfterCycles) {
   EXPECT_EQ(r.exitCode, 0) << show(r);
   EXPECT_EQ(r.out, "MAIN.count = 5\n");
   EXPECT_EQ(r.err, "");
+}
+
+// A program compiled once is read back from the module cache: the second run prints the same,
+// leaves the cached module untouched; a program with a warning is never kept (its warning shows
+// each time); VIRTCOM_MODULE_CACHE=off keeps nothing.
+TEST_F(CliExec, TheSecondRunReadsTheCompiledModuleBack) {
+  const fs::path cache = work_ / "modules";
+  ::setenv("VIRTCOM_MODULE_CACHE", cache.c_str(), 1);
+  const std::vector<std::string> args{"exec", "counter.st", "--cycles", "5", "--print", "MAIN.count", "--backend", "interp"};
+  RunResult first = run(args);
+  ASSERT_EQ(first.exitCode, 0) << show(first);
+  std::vector<fs::path> kept;
+  for (const auto& e : fs::directory_iterator(cache)) kept.push_back(e.path());
+  ASSERT_EQ(kept.size(), 1u);
+  const auto written = fs::last_write_time(kept[0]);
+  RunResult second = run(args);
+  EXPECT_EQ(second.out, first.out);
+  EXPECT_EQ(second.err, first.err);
+  EXPECT_EQ(fs::last_write_time(kept[0]), written);
+  run({"exec", "warning.st", "--cycles", "1"});
+  RunResult warnedAgain = run({"exec", "warning.st", "--cycles", "1"});
+  EXPECT_TRUE(contains(warnedAgain.err, "warning[W302]")) << show(warnedAgain);
+  EXPECT_EQ(std::distance(fs::directory_iterator(cache), fs::directory_iterator()), 1);
+  ::setenv("VIRTCOM_MODULE_CACHE", "off", 1);
+  fs::remove_all(cache);
+  EXPECT_EQ(run(args).out, first.out);
+  EXPECT_FALSE(fs::exists(cache));
+  ::unsetenv("VIRTCOM_MODULE_CACHE");
 }
 
 TEST_F(CliExec, RetainFileGivesAWarmStart) {

@@ -418,7 +418,7 @@ TEST_P(Golden, CoverageChangesNothing) {
   SourceManager plainSources, coveredSources;
   Diagnostics plainDiags, coveredDiags;
   auto plain = compileCase(c, h, plainSources, plainDiags);
-  auto covered = compileCase(c, h, coveredSources, coveredDiags, {.coverage = true});
+  auto covered = compileCase(c, h, coveredSources, coveredDiags, st::coverageOptions(true));
   ASSERT_NE(plain, nullptr) << plainDiags.render(plainSources);
   ASSERT_NE(covered, nullptr) << coveredDiags.render(coveredSources);
   EXPECT_TRUE(plain->coverage.probes.empty());
@@ -457,7 +457,7 @@ TEST_P(Golden, CoverageSameOnAot) {
   if (h.expectErrors) GTEST_SKIP() << "does not compile";
   SourceManager sources;
   Diagnostics diags;
-  auto module = compileCase(c, h, sources, diags, {.coverage = true});
+  auto module = compileCase(c, h, sources, diags, st::coverageOptions(true));
   ASSERT_NE(module, nullptr) << diags.render(sources);
   ASSERT_FALSE(module->coverage.probes.empty());
   setCycleTime(*module, h);

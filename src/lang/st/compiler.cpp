@@ -5,6 +5,7 @@
 
 #include "bytecode/verifier.hpp"
 #include "lang/st/codegen/codegen.hpp"
+#include "lang/st/compile_cache.hpp"
 #include "lang/syntax/diagnostic_codes.hpp"
 #include "lang/st/codegen/init_program.hpp"
 #include "lang/st/parse/parser.hpp"
@@ -144,12 +145,14 @@ std::vector<CompilationUnit> parseInputs(const std::vector<SourceInput>& inputs,
   return units;
 }
 
-std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& inputs, SourceManager& sources,
-                                           Diagnostics& diags, CompileOptions options) {
+namespace {
+
+std::unique_ptr<bc::Module> compileFresh(const std::vector<SourceInput>& inputs, SourceManager& sources,
+                                         Diagnostics& diags, const CompileOptions& options) {
   auto module = std::make_unique<bc::Module>();
   std::vector<CompilationUnit> units;
   NodeId nextId = 0;
-  uint32_t libraryFile = sources.addFile("<standard library>", std::string(standardLibrarySource()));
+  uint32_t libraryFile = sources.addFile(std::string(kStandardLibraryPath), std::string(standardLibrarySource()));
   units.push_back(parseFile(libraryFile, sources.text(libraryFile), diags, nextId));
   size_t libraryPous = units.front().pous.size();
   for (CompilationUnit& unit : parseInputs(inputs, sources, diags, nextId)) units.push_back(std::move(unit));
@@ -228,6 +231,19 @@ std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& input
     diags.error("E999", {kNoFile, 0, 0}, "internal compiler error: generated code failed verification: " + problem);
     return nullptr;
   }
+  return module;
+}
+
+}  // namespace
+
+std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& inputs, SourceManager& sources,
+                                           Diagnostics& diags, CompileOptions options) {
+  const std::string key = options.cacheDir.empty() ? std::string() : moduleCacheKey(inputs, sources, options);
+  if (!key.empty())
+    if (auto cached = loadCachedModule(options.cacheDir, key, inputs, sources)) return cached;
+  const size_t diagnosticsBefore = diags.all().size();
+  auto module = compileFresh(inputs, sources, diags, options);
+  if (module && !key.empty() && diags.all().size() == diagnosticsBefore) storeCachedModule(options.cacheDir, key, *module);
   return module;
 }
 

@@ -37,11 +37,22 @@ struct CompileOptions {
   // and transition firing, counting in module.coverage's counters. Off, the code is exactly the
   // code compiled without this option.
   bool coverage = false;
+  // The folder of compiled modules (lang/st/compile_cache.hpp); empty: compile every time.
+  // A member added here must also go into moduleCacheKey.
+  std::string cacheDir;
 };
+
+// Default options with coverage probes on or off.
+inline CompileOptions coverageOptions(bool coverage) {
+  CompileOptions options;
+  options.coverage = coverage;
+  return options;
+}
 
 // Compiles every file as one program (plus the standard library). All diagnostics go to `diags`
 // (sorted by location); the sources are registered in `sources`. Returns the module, or null if
-// there was any error. Never throws on bad input.
+// there was any error. Never throws on bad input. With `options.cacheDir`, a former compile of
+// the same inputs is read back instead, and a compile without diagnostics is kept.
 std::unique_ptr<bc::Module> compileProgram(const std::vector<SourceInput>& inputs, SourceManager& sources,
                                            Diagnostics& diags, CompileOptions options = {});
 

@@ -27,7 +27,7 @@ std::unique_ptr<bc::Module> compileSignals(bool coverage) {
   SourceManager sources;
   Diagnostics diags;
   std::vector<st::SourceInput> inputs{plcopen::sourceInput("signals.ad", virtcom::test::readFile(kSignals))};
-  auto module = st::compileProgram(inputs, sources, diags, {.coverage = coverage});
+  auto module = st::compileProgram(inputs, sources, diags, st::coverageOptions(coverage));
   EXPECT_NE(module, nullptr) << diags.render(sources);
   return module;
 }

@@ -464,5 +464,23 @@ TEST(Aot, LoadsAFormerCompileByTheCheapKeyOnly) {
   fs::remove_all(o.cacheDir);
 }
 
+// `--backend aot` takes a former compile only from the compiler it would run now; `auto` from any.
+TEST(Aot, TheCheapKeyServesAotOnlyTheSameCompilersCode) {
+  aot::CompileOptions o;
+  o.cacheDir = (fs::path(VIRTCOM_AOT_TEST_CACHE) / ("compiler-key-test-" + std::to_string(getpid()))).string();
+  fs::remove_all(o.cacheDir);
+  std::mt19937 rng(11);
+  const bc::Module m = randomModule(rng, 3);
+  ASSERT_TRUE(aot::compileModule(m, o).code);
+  EXPECT_TRUE(aot::loadCachedModule(m, o, aot::CachedCompiler::Same).code);
+  aot::CompileOptions otherCompiler = o;
+  otherCompiler.compiler = "virtcom-no-such-compiler";
+  const aot::CompileResult refused = aot::loadCachedModule(m, otherCompiler, aot::CachedCompiler::Same);
+  EXPECT_EQ(refused.code, nullptr);
+  EXPECT_EQ(refused.error, "not in the cache");
+  EXPECT_TRUE(aot::loadCachedModule(m, otherCompiler, aot::CachedCompiler::Any).code);
+  fs::remove_all(o.cacheDir);
+}
+
 }  // namespace
 }  // namespace virtcom

@@ -31,7 +31,7 @@ std::unique_ptr<bc::Module> compileHandCounted(bool coverage) {
     inputs.push_back({std::string("programs/") + name, readFile(kDir / name)});
   SourceManager sources;
   Diagnostics diags;
-  auto module = st::compileProgram(inputs, sources, diags, {.coverage = coverage});
+  auto module = st::compileProgram(inputs, sources, diags, st::coverageOptions(coverage));
   EXPECT_NE(module, nullptr) << diags.render(sources);
   return module;
 }
@@ -168,7 +168,7 @@ TEST(Coverage, ProbesLeaveComparisonsFused) {
       "IF x < 10 THEN y := 1; END_IF;\n"
       "CASE x OF 1: y := 10; 2..5: y := 20; END_CASE;\n"
       "END_PROGRAM\n";
-  auto m = st::compileProgram({{"fused.st", text}}, sources, diags, {.coverage = true});
+  auto m = st::compileProgram({{"fused.st", text}}, sources, diags, st::coverageOptions(true));
   ASSERT_NE(m, nullptr) << diags.render(sources);
   std::string listing;
   for (uint32_t p = 0; p < m->pous.size(); ++p)

@@ -168,6 +168,12 @@ void detachSoftPlc(Cell& cell);
 std::unique_ptr<Cell> loadCell(const std::string& path, SourceManager& sources, Diagnostics& diags,
                                st::CompileOptions plcOptions = {});
 
+// A cell from a tree built in memory rather than read from a file (a scenario's `program:`, a
+// PLC program alone: `root` holds only `plc:`), its relative paths read against `file`'s folder;
+// built and checked as loadCell() does, diagnostics at the tree's own locations.
+std::unique_ptr<Cell> loadCellTree(const std::filesystem::path& file, const ConfigNode& root, SourceManager& sources,
+                                   Diagnostics& diags, st::CompileOptions plcOptions = {});
+
 // The generic keys of a device's `faults:` entry (error_code, at_command, extra_delay,
 // done_stuck, stuck_output) as a plan; at_command defaults to `defaultAtCommand` when an
 // error_code is given (0: every command fails). Reports through `f`; shared by the cell file and

@@ -530,13 +530,29 @@ void readDeviceFaults(plant::Device& d, ConfigReader& f) {
   f.rejectUnknownKeys();
 }
 
+namespace {
+
+// The PLC program's compile errors first: they are the cause the user must read first.
+void sortPlcErrorsFirst(Diagnostics& diags, const Loader& loader) {
+  diags.sortByLocation();
+  diags.moveFilesFirst(loader.plcFiles().first, loader.plcFiles().second);
+}
+
+}  // namespace
+
 std::unique_ptr<Cell> loadCell(const std::string& path, SourceManager& sources, Diagnostics& diags,
                                st::CompileOptions plcOptions) {
   Loader loader(sources, diags, plcOptions);
   auto cell = loader.load(path);
-  diags.sortByLocation();
-  // The PLC program's compile errors first: they are the cause the user must read first.
-  diags.moveFilesFirst(loader.plcFiles().first, loader.plcFiles().second);
+  sortPlcErrorsFirst(diags, loader);
+  return cell;
+}
+
+std::unique_ptr<Cell> loadCellTree(const std::filesystem::path& file, const ConfigNode& root, SourceManager& sources,
+                                   Diagnostics& diags, st::CompileOptions plcOptions) {
+  Loader loader(sources, diags, plcOptions);
+  auto cell = loader.build(file, root);
+  sortPlcErrorsFirst(diags, loader);
   return cell;
 }
 
@@ -546,8 +562,7 @@ std::unique_ptr<CellTemplate> loadCellTemplate(const std::string& path, SourceMa
   Loader loader(sources, diags);
   std::unique_ptr<Cell> cell;
   if (loader.readTree(path, tmpl->root)) cell = loader.build(tmpl->file, tmpl->root);
-  diags.sortByLocation();
-  diags.moveFilesFirst(loader.plcFiles().first, loader.plcFiles().second);
+  sortPlcErrorsFirst(diags, loader);
   if (!cell) return nullptr;
   tmpl->module = std::move(cell->module);
   return tmpl;

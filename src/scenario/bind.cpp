@@ -35,14 +35,16 @@ constexpr RunEndWord kRunEnds[] = {{"completed", RunEnd::Completed},      {"time
 
 class Binder {
  public:
-  Binder(ConfigReader& top, cell::Cell& cell) : top_(top), cell_(cell), diags_(top.diags()) {
+  Binder(ConfigReader& top, cell::Cell& cell, Controlled controlled)
+      : top_(top), cell_(cell), controlled_(controlled), diags_(top.diags()) {
     scope_ = {cell.module.get(), &cell.bus, &cell.world};
   }
 
   Plan bind() {
     readRunSettings();
     if (const ConfigNode* sets = top_.child("set")) readAssignments(*sets, Action::Kind::Set, plan_.presets);
-    if (const ConfigNode* faults = top_.child("faults")) readLoadFaults(*faults);
+    if (!refusedWithoutCell(top_, "faults"))
+      if (const ConfigNode* faults = top_.child("faults")) readLoadFaults(*faults);
     if (const ConfigNode* steps = top_.child("steps")) forEachItem(*steps, "steps", [&](const ConfigNode& n) { readStep(n); });
     if (const ConfigNode* expect = top_.child("expect")) forEachItem(*expect, "expect", [&](const ConfigNode& n) { readAssertion(n); });
     plan_.xfail = top_.optString("xfail", "");
@@ -63,9 +65,22 @@ class Binder {
   void readRunSettings() {
     cell::RunSettings& run = cell_.run;
     run.timeLimitNs = plant::optDurationNs(top_, "time_limit", run.timeLimitNs);
-    run.cycles = static_cast<uint32_t>(top_.optInt("cycles", run.cycles));
-    run.stopOnDeviceError = top_.optBool("stop_on_device_error", run.stopOnDeviceError);
-    run.stopOnCollision = top_.optBool("stop_on_collision", run.stopOnCollision);
+    if (!refusedWithoutCell(top_, "cycles")) run.cycles = static_cast<uint32_t>(top_.optInt("cycles", run.cycles));
+    if (!refusedWithoutCell(top_, "stop_on_device_error"))
+      run.stopOnDeviceError = top_.optBool("stop_on_device_error", run.stopOnDeviceError);
+    if (!refusedWithoutCell(top_, "stop_on_collision")) run.stopOnCollision = top_.optBool("stop_on_collision", run.stopOnCollision);
+  }
+
+  // In a scenario of a PLC program alone, a key about devices, their world or the cell's cycle is
+  // a mistake, said so at the key (rather than "no device named ..." or an assertion that holds
+  // vacuously).
+  bool refusedWithoutCell(ConfigReader& r, const char* key) {
+    if (controlled_ != Controlled::ProgramAlone || !r.has(key)) return false;
+    r.child(key);
+    r.error(r.node().keyLoc(key), std::string("'") + key +
+                                      "' needs a cell (devices, their world, its cycle): this scenario runs a PLC program alone "
+                                      "('program:')");
+    return true;
   }
 
   Expression condition(const ConfigNode& node) {
@@ -175,9 +190,10 @@ class Binder {
     if (const ConfigNode* forces = r.child("force")) readAssignments(*forces, Action::Kind::Force, step.actions);
     if (const ConfigNode* presses = r.child("press")) readPresses(*presses, step.actions);
     if (const ConfigNode* release = r.child("release")) readRelease(*release, step.actions);
-    if (const ConfigNode* facts = r.child("facts")) readFacts(*facts, step.actions);
-    if (const ConfigNode* fault = r.child("fault")) readStepFault(*fault, step.actions);
-    if (const ConfigNode* parameters = r.child("parameter")) readParameters(*parameters, step.actions);
+    if (const ConfigNode* facts = r.child("facts"); facts && !refusedWithoutCell(r, "facts")) readFacts(*facts, step.actions);
+    if (const ConfigNode* fault = r.child("fault"); fault && !refusedWithoutCell(r, "fault")) readStepFault(*fault, step.actions);
+    if (const ConfigNode* parameters = r.child("parameter"); parameters && !refusedWithoutCell(r, "parameter"))
+      readParameters(*parameters, step.actions);
     if (r.has("power_loss")) {
       Action a;
       a.kind = Action::Kind::PowerLoss;
@@ -300,6 +316,8 @@ class Binder {
         r.error(order->loc(), "'in_order' lists at least two conditions, e.g. [Robot1.busy, Press.busy]");
       else
         for (const ConfigNode& c : order->items()) a.conditions.push_back(condition(c));
+    } else if (refusedWithoutCell(r, "cycle_time") || refusedWithoutCell(r, "energy") || refusedWithoutCell(r, "no_collision")) {
+      return;
     } else if (const ConfigNode* cycle = r.child("cycle_time")) {
       a.kind = Assertion::Kind::CycleTime;
       readBounds(*cycle, Dimension::Time, 1e9, a);
@@ -363,6 +381,7 @@ class Binder {
 
   ConfigReader& top_;
   cell::Cell& cell_;
+  Controlled controlled_;
   Diagnostics& diags_;
   NameScope scope_;
   Plan plan_;
@@ -371,6 +390,6 @@ class Binder {
 
 }  // namespace
 
-Plan bindScenario(ConfigReader& top, cell::Cell& cell) { return Binder(top, cell).bind(); }
+Plan bindScenario(ConfigReader& top, cell::Cell& cell, Controlled controlled) { return Binder(top, cell, controlled).bind(); }
 
 }  // namespace virtcom::scenario

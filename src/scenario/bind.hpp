@@ -8,9 +8,14 @@
 
 namespace virtcom::scenario {
 
-// `top` is the scenario's top-level map with `cell:` (and `name:`, `description:`) already read;
-// rejects unknown keys at the end. Changes `cell`'s run settings and device fault plans.
-Plan bindScenario(ConfigReader& top, cell::Cell& cell);
+// What a scenario runs: a cell file, or a PLC program alone (`program:`: a cell with no devices,
+// no world and no cycle, where the keys about them are mistakes, reported as such).
+enum class Controlled { Cell, ProgramAlone };
+
+// `top` is the scenario's top-level map with `cell:` or `program:` (and `name:`, `description:`)
+// already read; rejects unknown keys at the end. Changes `cell`'s run settings and device fault
+// plans.
+Plan bindScenario(ConfigReader& top, cell::Cell& cell, Controlled controlled);
 
 // "100.25 s": a virtual time for messages, to the nanosecond without trailing zeros.
 std::string formatSeconds(int64_t ns);

@@ -27,6 +27,33 @@ bool verdictFails(Verdict v) { return v == Verdict::Fail || v == Verdict::Error 
 
 namespace {
 
+// The cell of `program:`, a PLC program alone: `program: main.st`, a list of sources, or
+// `{sources: [...], cycle_time: 10 ms}`, read as a cell file's `plc:` section (sources relative to
+// the scenario) into a cell with an empty device list. Null, with the mistakes in `diags`, on any error.
+std::unique_ptr<cell::Cell> loadProgramCell(const std::string& scenarioFile, const ConfigNode& program,
+                                            const st::CompileOptions& plcOptions, SourceManager& sources, Diagnostics& diags) {
+  ConfigNode plc = ConfigNode::makeMap(program.loc());
+  if (program.kind() == ConfigNode::Kind::Map) {
+    ConfigReader r(program, diags, "'program'");
+    if (const ConfigNode* srcs = r.child("sources")) plc.add("sources", program.keyLoc("sources"), *srcs);
+    else r.error(program.loc(), "'program' names its 'sources', e.g. {sources: [main.st], cycle_time: 10 ms}");
+    if (const ConfigNode* cycle = r.child("cycle_time")) plc.add("cycle_time", program.keyLoc("cycle_time"), *cycle);
+    r.rejectUnknownKeys();
+  } else {
+    ConfigNode list = ConfigNode::makeList(program.loc());
+    if (program.kind() == ConfigNode::Kind::List)
+      for (const ConfigNode& item : program.items()) list.push(item);
+    else
+      list.push(program);
+    plc.add("sources", program.loc(), std::move(list));
+  }
+  if (diags.hasErrors()) return nullptr;
+  ConfigNode root = ConfigNode::makeMap(program.loc());
+  root.add("plc", program.loc(), std::move(plc));
+  root.add("devices", program.loc(), ConfigNode::makeList(program.loc()));
+  return cell::loadCellTree(scenarioFile, root, sources, diags, plcOptions);
+}
+
 // The scenario's cell and plan, or null with the diagnostics in `diags`.
 std::unique_ptr<cell::Cell> loadScenario(const CaseSpec& spec, const st::CompileOptions& plcOptions, SourceManager& sources,
                                          Diagnostics& diags, Plan& plan) {
@@ -37,6 +64,23 @@ std::unique_ptr<cell::Cell> loadScenario(const CaseSpec& spec, const st::Compile
   ConfigReader top(root, diags, "the scenario");
   top.optString("name", "");
   top.optString("description", "");
+  const ConfigNode* program = top.child("program");
+  if (program && root.has("cell")) {
+    diags.error(celldiag::C060, root.keyLoc("program"),
+                "a scenario runs either a cell ('cell:') or a PLC program alone ('program:'), not both");
+    return nullptr;
+  }
+  if (program) {
+    auto cell = loadProgramCell(spec.file, *program, plcOptions, sources, diags);
+    if (!cell) return nullptr;
+    plan = bindScenario(top, *cell, Controlled::ProgramAlone);
+    return diags.hasErrors() ? nullptr : std::move(cell);
+  }
+  if (!root.has("cell")) {
+    diags.error(celldiag::C060, root.loc(),
+                "a scenario names the cell it runs ('cell: ../cell.yaml') or a PLC program alone ('program: main.st')");
+    return nullptr;
+  }
   const std::string cellName = top.requireString("cell");
   if (cellName.empty()) return nullptr;
   const std::filesystem::path cellPath = (std::filesystem::path(spec.file).parent_path() / cellName).lexically_normal();
@@ -48,7 +92,7 @@ std::unique_ptr<cell::Cell> loadScenario(const CaseSpec& spec, const st::Compile
                 "'plc: modbus:', 'plc: opcua:')");
     return nullptr;
   }
-  plan = bindScenario(top, *cell);
+  plan = bindScenario(top, *cell, Controlled::Cell);
   if (diags.hasErrors()) return nullptr;
   return cell;
 }

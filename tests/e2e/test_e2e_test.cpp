@@ -164,6 +164,27 @@ TEST_F(TestCommand, CoverageAddsUpEveryCaseWhateverTheJobs) {
   EXPECT_NE(out.find("lines"), std::string::npos) << out;
 }
 
+// Scenarios of a PLC program alone (`program:`, tests/e2e/data/scenarios/program): the passing and
+// the failing case as with a cell, the failure's time and values, JUnit, and the program's
+// coverage (its 6 statements and 3 branch arms all reached by the two cases together).
+TEST_F(TestCommand, ProgramAloneScenariosRunWithJunitAndCoverage) {
+  std::string out;
+  ASSERT_EQ(test("tests/e2e/data/scenarios/program --junit " + path("program.xml") + " --coverage " + path("program.info"), out), 5)
+      << out;
+  EXPECT_NE(out.find("PASS  latch holds and runs on  (tests/e2e/data/scenarios/program/latch_passes.yaml, time limit reached at 3 s)"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("latch_both_pressed.yaml:9: at 0.25 s that MAIN.running: at 0.25 s: 'MAIN.running' is false (MAIN.running = FALSE)"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("2 scenario(s): 1 passed, 1 failed"), std::string::npos) << out;
+  expectValidJunit(path("program.xml"));
+  const std::string info = readFile(path("program.info"));
+  EXPECT_NE(info.find("SF:tests/e2e/data/scenarios/program/latch.st"), std::string::npos) << info;
+  EXPECT_EQ(linesHit(info), 6u) << info;
+  EXPECT_NE(out.find("MAIN      6/6 100.0%        3/3 100.0%"), std::string::npos) << out;
+}
+
 // Compares with the golden file; VIRTCOM_UPDATE_GOLDEN=1 rewrites it for review in the diff.
 void expectGolden(const std::string& actual, const std::string& file) {
   if (std::getenv("VIRTCOM_UPDATE_GOLDEN")) std::ofstream(file, std::ios::binary) << actual;

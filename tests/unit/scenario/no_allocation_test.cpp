@@ -41,7 +41,7 @@ expect:
   ConfigReader top(file.root, diags, "the scenario");
   auto cell = cell::loadCell(top.requireString("cell"), sources, diags);
   ASSERT_NE(cell, nullptr) << diags.render(sources);
-  Plan plan = bindScenario(top, *cell);
+  Plan plan = bindScenario(top, *cell, Controlled::Cell);
   ASSERT_FALSE(diags.hasErrors()) << diags.render(sources);
   Stimuli stimuli(plan, *cell);
   Checker checker(plan, *cell);

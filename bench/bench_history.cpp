@@ -66,7 +66,7 @@ void BM_HistoryWriterCommit(benchmark::State& state) {
     return;
   }
   history::RunWriter writer(*db);
-  writer.writeStart(benchTrace(), {"bench", "bench.yaml", 0, {}});
+  writer.writeStart(benchTrace(), {"bench", "bench.yaml", 0, {}, {}});
   const auto batch = static_cast<size_t>(state.range(0));
   history::EventQueue queue(batch);
   int64_t now = 0;

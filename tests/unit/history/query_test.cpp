@@ -113,7 +113,10 @@ TEST_F(Query, RowsNamingUnknownSignalsDevicesOrLabelsAreLeftOut) {
   EXPECT_EQ(t.collisions.size(), 1u);
   report::Kpis kpis = report::computeKpis(t);
   EXPECT_FALSE(report::jsonReport(t, kpis).empty());
-  EXPECT_FALSE(report::htmlReport(t, kpis, {"sample", "", {"Press.busy", "MAIN.count", "nothing"}}).empty());
+  report::HtmlOptions html;
+  html.title = "sample";
+  html.signals = {"Press.busy", "MAIN.count", "nothing"};
+  EXPECT_FALSE(report::htmlReport(t, kpis, html).empty());
   EXPECT_FALSE(report::vcdReport(t).empty());
   EXPECT_FALSE(report::csvChanges(t).empty());
 }

@@ -1,6 +1,8 @@
 // The HMI's history routes over a recorded gearbox run: the runs, a range's activities (the Gantt
 // chart's rows) and decimated signals (the trends), the state at a time, and their refusals.
 #include <gtest/gtest.h>
+
+#include "requests.hpp"
 #include <unistd.h>
 
 #include <filesystem>
@@ -52,7 +54,7 @@ class HistoryApiTest : public ::testing::Test {
   }
 
   Response get(const std::string& path, std::vector<std::pair<std::string, std::string>> query = {}) {
-    return api_->handle(parseRequest({"GET", path, std::move(query), "", ""}, {}));
+    return api_->handle(parseRequest(test::get(path, std::move(query)), {}));
   }
   Json getJson(const std::string& path, std::vector<std::pair<std::string, std::string>> query = {}) {
     Response r = get(path, std::move(query));
@@ -140,12 +142,12 @@ TEST_F(HistoryApiTest, BadRunsAndSignalsAreRefusedClearly) {
 TEST_F(HistoryApiTest, TheLiveApiAnswersHistoryOnlyWhenGivenOne) {
   LiveState live(*cell_, nullptr);
   Api page(*cell_, live, cell_->run.plcCycleNs, {});
-  ParsedRequest runs = parseRequest({"GET", "/api/history/runs", {}, "", ""}, {});
+  ParsedRequest runs = parseRequest(test::get("/api/history/runs"), {});
   EXPECT_EQ(page.handle(runs).status, 404);
-  EXPECT_FALSE(Json::parse(page.handle(parseRequest({"GET", "/api/model", {}, "", ""}, {})).body)["history"].get<bool>());
+  EXPECT_FALSE(Json::parse(page.handle(parseRequest(test::get("/api/model"), {})).body)["history"].get<bool>());
   page.attachHistory(*api_, true);
   EXPECT_EQ(page.handle(runs).status, 200);
-  Json model = Json::parse(page.handle(parseRequest({"GET", "/api/model", {}, "", ""}, {})).body);
+  Json model = Json::parse(page.handle(parseRequest(test::get("/api/model"), {})).body);
   EXPECT_TRUE(model["history"].get<bool>());
   EXPECT_TRUE(model["replay"].get<bool>());
 }

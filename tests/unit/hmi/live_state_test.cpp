@@ -2,6 +2,8 @@
 // ticks (pause, single step, force, fault), the stations, and the API's answers over it.
 #include <gtest/gtest.h>
 
+#include "requests.hpp"
+
 #include <cstring>
 
 #include <nlohmann/json.hpp>
@@ -40,7 +42,7 @@ struct GearboxHmi : ::testing::Test {
   }
 
   Response call(const Request& r) { return api->handle(parseRequest(r, api->access())); }
-  Response postJson(const std::string& path, const std::string& body) { return call({"POST", path, {}, body, ""}); }
+  Response postJson(const std::string& path, const std::string& body) { return call(test::post(path, body)); }
   void steps(int n) {
     for (int i = 0; i < n; ++i) ASSERT_TRUE(simulation->step());
   }
@@ -53,7 +55,7 @@ struct GearboxHmi : ::testing::Test {
 };
 
 TEST_F(GearboxHmi, TheModelListsEveryDeviceWithItsPortsAndPlace) {
-  Json model = Json::parse(call({"GET", "/api/model", {}, "", ""}).body);
+  Json model = Json::parse(call(test::get("/api/model")).body);
   ASSERT_EQ(model["devices"].size(), 5u);
   EXPECT_EQ(model["devices"][0]["name"], "Robot1");
   EXPECT_EQ(model["devices"][0]["geometry"]["locations"].size(), 8u);
@@ -63,7 +65,7 @@ TEST_F(GearboxHmi, TheModelListsEveryDeviceWithItsPortsAndPlace) {
 }
 
 TEST_F(GearboxHmi, TheModelCarriesTheCellFilesPlacementsAndShapes) {
-  Json model = Json::parse(call({"GET", "/api/model", {}, "", ""}).body);
+  Json model = Json::parse(call(test::get("/api/model")).body);
   const Json& robot2 = model["devices"][1];
   EXPECT_EQ(robot2["label"], "Robot2 (IRB 2600)");
   EXPECT_DOUBLE_EQ(robot2["place"]["originX"].get<double>(), 2600) << "hmi: Robot2: base";
@@ -87,7 +89,7 @@ TEST_F(GearboxHmi, TheModelCarriesTheCellFilesPlacementsAndShapes) {
 
 TEST_F(GearboxHmi, TheFirstFrameHasEverythingThenOnlyChanges) {
   steps(1);
-  auto stream = api->openStream(parseRequest({"GET", "/api/stream", {{"watch", "MAIN.jobsFinished,MAIN.nothing"}}, "", ""}, {}));
+  auto stream = api->openStream(parseRequest(test::get("/api/stream", {{"watch", "MAIN.jobsFinished,MAIN.nothing"}}), {}));
   live->end(simulation->trace());  // publishes now, whatever the wall clock says
   Json first = Json::parse(stream->nextFrame());
   EXPECT_EQ(first["signals"].size(), cell->bus.size());
@@ -99,7 +101,7 @@ TEST_F(GearboxHmi, TheFirstFrameHasEverythingThenOnlyChanges) {
 // virtcom monitor with a production plan: the KPIs carry the current shift's parts and plan.
 TEST_F(GearboxHmi, TheKpisCarryTheShiftsProgressWhenAPlanIsWatched) {
   steps(1);
-  auto stream = api->openStream(parseRequest({"GET", "/api/stream", {}, "", ""}, {}));
+  auto stream = api->openStream(parseRequest(test::get("/api/stream"), {}));
   live->end(simulation->trace());
   EXPECT_FALSE(Json::parse(stream->nextFrame())["kpi"].contains("shift")) << "no plan, no shift";
   live->watchShifts([](ShiftProgress& p) {
@@ -131,7 +133,7 @@ TEST_F(GearboxHmi, AForcedVariableHoldsAgainstTheProgramUntilReleased) {
   EXPECT_EQ(jobsFinished(), 99);
   EXPECT_GE(simulation->trace().cyclesCompleted, 1u) << "cycleDone := jobsFinished >= jobCount";
   live->end(simulation->trace());  // publishes now
-  Json vars = Json::parse(call({"GET", "/api/vars", {{"match", "jobsfinished"}}, "", ""}).body)["vars"];
+  Json vars = Json::parse(call(test::get("/api/vars", {{"match", "jobsfinished"}})).body)["vars"];
   EXPECT_EQ(vars[0]["value"], "99");
   EXPECT_EQ(vars[0]["forced"], true);
   ASSERT_EQ(postJson("/api/release", "{}").status, 200);
@@ -150,7 +152,7 @@ TEST_F(GearboxHmi, WritesAndForcesFromThePageAreAuditedWithTheClient) {
   steps(1);
   const ExternalWriter client{WriteProtocol::Http, 0x0a000009, 51000};
   auto post = [&](const std::string& body) {
-    return api->handle(parseRequest({"POST", "/api/write", {}, body, ""}, api->access()), client).status;
+    return api->handle(parseRequest(test::post("/api/write", body), api->access()), client).status;
   };
   ASSERT_EQ(post(R"({"name": "MAIN.jobsFinished", "value": "7"})"), 200);
   steps(1);
@@ -191,7 +193,7 @@ TEST_F(GearboxHmi, AnInjectedFaultFailsTheDevicesNextCommand) {
 // start of its device's running activity, an idle one the end of its last; the stream sends a
 // station again only when it changed.
 TEST_F(GearboxHmi, EachStationShowsItsRunningOperationAndSinceWhen) {
-  auto stream = api->openStream(parseRequest({"GET", "/api/stream", {}, "", ""}, {}));
+  auto stream = api->openStream(parseRequest(test::get("/api/stream"), {}));
   steps(150);
   live->end(simulation->trace());
   Json first = Json::parse(stream->nextFrame());

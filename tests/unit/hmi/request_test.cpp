@@ -1,17 +1,15 @@
 // The HMI's request layer: routes, bodies and write access read from untrusted requests.
 #include <gtest/gtest.h>
 
+#include "requests.hpp"
+
 #include "hmi/request.hpp"
 
 namespace virtcom::hmi {
 namespace {
 
-Request get(std::string path, std::vector<std::pair<std::string, std::string>> query = {}) {
-  return {"GET", std::move(path), std::move(query), "", ""};
-}
-Request post(std::string path, std::string body, std::string authorization = "") {
-  return {"POST", std::move(path), {}, std::move(body), std::move(authorization)};
-}
+using test::get;
+using test::post;
 
 TEST(HmiRequest, GetsRouteToThePageModelStreamAndSearch) {
   WriteAccess open;
@@ -82,7 +80,7 @@ TEST(HmiRequest, ATokenIsNeededWhenSet) {
 }
 
 TEST(HmiRequest, OtherMethodsAreRefused) {
-  EXPECT_EQ(parseRequest({"DELETE", "/api/model", {}, "", ""}, {}).error.status, 405);
+  EXPECT_EQ(parseRequest(test::request("DELETE", "/api/model"), {}).error.status, 405);
 }
 
 TEST(HmiRequest, HistoryRangesAreChecked) {

@@ -3,6 +3,8 @@
 // fired rules of the tank's activity diagrams, and the parts on the conveyor cell's belt.
 #include <gtest/gtest.h>
 
+#include "requests.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <set>
@@ -70,9 +72,9 @@ struct Served {
   }
 
   Response post(const std::string& path, const std::string& body) {
-    return api->handle(parseRequest({"POST", path, {}, body, ""}, api->access()));
+    return api->handle(parseRequest(test::post(path, body), api->access()));
   }
-  Json model() { return Json::parse(api->handle(parseRequest({"GET", "/api/model", {}, "", ""}, api->access())).body); }
+  Json model() { return Json::parse(api->handle(parseRequest(test::get("/api/model"), api->access())).body); }
   void steps(int n) {
     for (int i = 0; i < n; ++i) ASSERT_TRUE(simulation->step());
   }
@@ -87,7 +89,7 @@ struct Served {
 TEST(HmiReset, TheRunStartsAgainFromTimeZeroAndViewersStartOver) {
   Served s("gearbox-cell/cell.yaml");
   s.steps(300);
-  auto stream = s.api->openStream(parseRequest({"GET", "/api/stream", {}, "", ""}, {}));
+  auto stream = s.api->openStream(parseRequest(test::get("/api/stream"), {}));
   s.publish();
   Json before = Json::parse(stream->nextFrame());
   ASSERT_GT(before["t"].get<int64_t>(), 2'000'000'000);
@@ -163,7 +165,7 @@ TEST(HmiPanels, TheSfcPanelShowsTheActiveStepAndItsTime) {
   Json steps = s.model()["sfcSteps"];
   ASSERT_FALSE(steps.empty());
   EXPECT_NE(std::ranges::find(steps, Json("MAIN.Load")), steps.end()) << steps.dump();
-  auto stream = s.api->openStream(parseRequest({"GET", "/api/stream", {}, "", ""}, {}));
+  auto stream = s.api->openStream(parseRequest(test::get("/api/stream"), {}));
   s.steps(1);
   s.publish();
   Json first = Json::parse(stream->nextFrame());
@@ -204,7 +206,7 @@ TEST(HmiPanels, TheRulePanelCountsEveryScanWhoseIfHeld) {
   Served s("activity/tank-cell.yaml", rules, flags);
   EXPECT_EQ(s.model()["rules"].size(), rules.size());
   EXPECT_EQ(s.model()["rules"][1]["index"], "2");
-  auto stream = s.api->openStream(parseRequest({"GET", "/api/stream", {}, "", ""}, {}));
+  auto stream = s.api->openStream(parseRequest(test::get("/api/stream"), {}));
   s.steps(500);
   s.publish();
   Json frame = Json::parse(stream->nextFrame());
@@ -221,7 +223,9 @@ TEST(HmiPanels, TheRulePanelCountsEveryScanWhoseIfHeld) {
   s.steps(100);
   s.publish();
   Json next = Json::parse(stream->nextFrame());
-  if (next.contains("rules")) EXPECT_LT(next["rules"].size(), rules.size()) << "only the rules that fired since";
+  if (next.contains("rules")) {
+    EXPECT_LT(next["rules"].size(), rules.size()) << "only the rules that fired since";
+  }
 }
 
 TEST(HmiPanels, PartsMoveAlongTheConveyorsBelt) {
@@ -232,7 +236,7 @@ TEST(HmiPanels, PartsMoveAlongTheConveyorsBelt) {
   EXPECT_EQ(belt["geometry"]["kinds"][0], "steel");
   EXPECT_EQ(belt["geometry"]["discharge"], true);
   EXPECT_DOUBLE_EQ(belt["geometry"]["partLength"].get<double>(), 100);
-  auto stream = s.api->openStream(parseRequest({"GET", "/api/stream", {}, "", ""}, {}));
+  auto stream = s.api->openStream(parseRequest(test::get("/api/stream"), {}));
   s.steps(300);  // 3 s: the first part is on the belt
   s.publish();
   Json frame = Json::parse(stream->nextFrame());

@@ -11,6 +11,7 @@
 #include "cell/cell.hpp"
 #include "cli/commands.hpp"
 #include "cli/ads_client.hpp"
+#include "cli/audit_options.hpp"
 #include "cli/opcua_client.hpp"
 #include "cli/common.hpp"
 #include "cli/coverage_options.hpp"
@@ -48,6 +49,7 @@ struct RunOptions {
   std::string timeMode = "event";  // --time-mode: jump over idle ticks, or step every tick
   size_t traceWindow = kDefaultTraceWindow;
   HmiServeOptions hmi;  // --hmi: watch and steer the run in a browser
+  AuditLevel auditWrites = AuditLevel::Summary;  // --audit-writes: the page's writes into the soft PLC
   PeerFlags peers;      // --allow-any-peer
   HistoryRecordOptions history;
   CoverageOptions coverage;
@@ -295,10 +297,14 @@ ExitCode runCell(const RunOptions& o) {
   ChangePrinter printer;
   if (o.step) options.traceSinks.push_back(&printer);
   std::optional<LiveHmi> hmi;
+  // The page's writes and forces into the soft PLC, audited as serve audits them.
+  std::unique_ptr<plc::WriteAudit> audit;
   if (hmiBinding) {
     hmi.emplace(*cell, &gStopRequested, o.hmi.paused, options);  // paced: speed 1 unless --speed
     hmi->keepHistory(o.history.path);
     if (const char* why = resetRefusal(*cell, !files.empty())) hmi->refuseReset(why);
+    if (cell->module) audit = makeWriteAudit(o.auditWrites, *cell->module, std::cerr, intoRecorder(*recorder));
+    hmi->auditWrites(audit.get());
   }
   stopOnSignals();
   RunEnd end = RunEnd::Completed;
@@ -321,6 +327,10 @@ ExitCode runCell(const RunOptions& o) {
     }
     bool reset = hmi && hmi->resetRequested();
     if (!reset) {
+      if (audit) {
+        std::cerr << auditSummary(*audit) << "\n";
+        keepWriteCounts(*audit, cell->trace);
+      }
       ok = writeRunOutputs(o, *cell, timeline, ruleTables, files);
       if (hmi) reset = lingerForViewers(*hmi);
     }
@@ -377,6 +387,7 @@ void addRunCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_flag("--quiet", o->quiet, "do not print the summary table (the faults and how the run ended still go to stderr)");
   cmd->add_flag("--step", o->step, "single step: advance one PLC tick per line read from stdin, printing changed signals");
   addHmiOptions(cmd, o->hmi, "--hmi");
+  addAuditOption(cmd, o->auditWrites);
   addPeerFlags(cmd, o->peers, false);
   cmd->add_flag("--trace-rules", o->traceRules,
                 "print the activity-diagram rules whose IF held, after every PLC tick: scan N  Supply rule 3 fired: Valve := FALSE");

@@ -175,13 +175,9 @@ ExitCode serveCell(const ServeOptions& o) {
   // A reset (which would replace the module) is refused while these serve.
   // The writes into the soft PLC from outside: its servers' clients and the HMI's page; each
   // record also into the historian when one records (the recorder in use: a reset replaces it).
-  plc::WriteAudit::Sink intoHistory;
-  if (!o.history.path.empty())
-    intoHistory = [&current = *recorder](const WriteRecord& r) {
-      if (current) current->externalWrite(r);
-    };
-  auto audit = cell->module && (ads || opcua || hmiBinding) ? makeWriteAudit(o.auditWrites, *cell->module, std::cerr, intoHistory)
-                                                            : nullptr;
+  auto audit = cell->module && (ads || opcua || hmiBinding)
+                   ? makeWriteAudit(o.auditWrites, *cell->module, std::cerr, intoRecorder(*recorder))
+                   : nullptr;
   if (ads || opcua) {
     // The first snapshot right after the cold start, then the announcement: a client that
     // connects at once reads the initial values, never an empty image.

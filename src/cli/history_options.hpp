@@ -11,6 +11,7 @@
 
 #include "cell/cell.hpp"
 #include "history/recorder.hpp"
+#include "plc/write_audit.hpp"
 
 namespace virtcom::cli {
 
@@ -42,5 +43,9 @@ bool reportRecording(const HistoryRecordOptions& o, const history::Recorder& rec
 // opened again; the runs then go on unrecorded.
 bool recordNextRun(const HistoryRecordOptions& o, std::unique_ptr<history::Recorder>& recorder, const cell::Cell& cell,
                    const std::string& cellFile, std::vector<std::string> timeline, bool paced, std::vector<TraceSink*>& sinks);
+
+// Where the write audit puts each record besides the log: into the recorder in use (a reset
+// replaces it), or nowhere while none records.
+plc::WriteAudit::Sink intoRecorder(std::unique_ptr<history::Recorder>& recorder);
 
 }  // namespace virtcom::cli

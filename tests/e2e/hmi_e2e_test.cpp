@@ -237,11 +237,11 @@ TEST(Hmi, TheMonitorsHistoryIsServedToThePage) {
   fs::remove(db);
 }
 
-// A write and a force POSTed to the served HMI (by node's fetch, no browser needed) are audited
-// with the HTTP client's address, and counted in the end summary (docs/security.md).
-TEST(Hmi, WritesAndForcesThroughTheHttpApiAreAudited) {
-  ServerProcess cell(kExe, {"serve", kGearbox + "/cell.yaml", "--http", "127.0.0.1:0", "--quiet", "--audit-writes", "each"}, kGearbox,
-                     kAnnounce);
+// A write and a force POSTed to the HMI of `virtcom ARGS` (by node's fetch, no browser needed) are
+// audited with the HTTP client's address, and counted in the end summary (docs/security.md).
+// `exitStatus`: the command's, once stopped (SIGTERM).
+void expectHttpWritesAudited(const std::vector<std::string>& args, int exitStatus) {
+  ServerProcess cell(kExe, args, kGearbox, kAnnounce);
   ASSERT_GT(cell.port(), 0) << cell.errorOutput();
   const std::string post = "node -e \"const u = 'http://127.0.0.1:" + std::to_string(cell.port()) +
                            "/api/write'; const w = (b) => fetch(u, {method: 'POST', body: JSON.stringify(b)}).then((r) => r.status);"
@@ -252,13 +252,22 @@ TEST(Hmi, WritesAndForcesThroughTheHttpApiAreAudited) {
   std::string out;
   ASSERT_EQ(shell(post, out), 0) << out;
   ASSERT_TRUE(cell.waitFor("(forced)")) << cell.errorOutput();
-  EXPECT_EQ(cell.stop(), 0) << cell.errorOutput();
+  EXPECT_EQ(cell.stop(), exitStatus) << cell.errorOutput();
   const std::string log = cell.errorOutput();
   EXPECT_NE(log.find(" http 127.0.0.1:"), std::string::npos) << log;
   EXPECT_NE(log.find(" MAIN.jobCount: "), std::string::npos) << log;
   EXPECT_NE(log.find(" -> 7\n"), std::string::npos) << log;
   EXPECT_NE(log.find(" MAIN.failed: FALSE -> TRUE (forced)\n"), std::string::npos) << log;
   EXPECT_NE(log.find("audit: 2 external writes (ads 0, modbus 0, opcua 0, http 2)"), std::string::npos) << log;
+}
+
+TEST(Hmi, WritesAndForcesThroughTheHttpApiAreAudited) {
+  expectHttpWritesAudited({"serve", kGearbox + "/cell.yaml", "--http", "127.0.0.1:0", "--quiet", "--audit-writes", "each"}, 0);
+}
+
+// `run --hmi` audits the page's writes as `serve --http` does.
+TEST(Hmi, RunWithTheHmiAuditsItsWritesToo) {
+  expectHttpWritesAudited({"run", kGearbox + "/cell.yaml", "--hmi", "127.0.0.1:0", "--quiet", "--audit-writes", "each"}, 3);  // 3: interrupted
 }
 
 TEST(Hmi, BindingBeyondLoopbackNeedsAnAllowList) {

@@ -1,5 +1,6 @@
 #include "cli/audit_options.hpp"
 
+#include <array>
 #include <map>
 
 namespace virtcom::cli {
@@ -31,12 +32,9 @@ void keepWriteCounts(const plc::WriteAudit& audit, Trace& trace) {
 }
 
 std::string auditSummary(const plc::WriteAudit& audit) {
-  std::string out = "audit: " + std::to_string(audit.total()) + " external writes (";
-  for (size_t p = 0; p < kWriteProtocolCount; ++p) {
-    const auto protocol = static_cast<WriteProtocol>(p);
-    out += (p ? ", " : "") + std::string(writeProtocolName(protocol)) + " " + std::to_string(audit.count(protocol));
-  }
-  return out + ")";
+  std::array<uint64_t, kWriteProtocolCount> counts{};
+  for (size_t p = 0; p < kWriteProtocolCount; ++p) counts[p] = audit.count(static_cast<WriteProtocol>(p));
+  return "audit: " + externalWritesText(counts);
 }
 
 }  // namespace virtcom::cli

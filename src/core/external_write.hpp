@@ -17,6 +17,9 @@ namespace virtcom {
 enum class WriteProtocol : uint8_t { Ads, Modbus, OpcUa, Http };
 inline constexpr size_t kWriteProtocolCount = 4;
 std::string_view writeProtocolName(WriteProtocol p);  // "ads", "modbus", "opcua", "http"
+// Writes counted by protocol, as the audit's summary and the reports say it:
+// "3 external writes (ads 1, modbus 2, opcua 0, http 0)".
+std::string externalWritesText(std::span<const uint64_t, kWriteProtocolCount> counts);
 
 struct ExternalWriter {
   WriteProtocol protocol = WriteProtocol::Ads;

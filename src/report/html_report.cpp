@@ -238,6 +238,9 @@ std::string htmlReport(const Trace& trace, const Kpis& kpis, const HtmlOptions& 
   if (trace.activities.elidedCount() > 0)
     out += " \u00b7 a long run: the chart shows its first and last activities";
   if (!kpis.endMessage.empty()) out += " \u00b7 " + escapeHtml(kpis.endMessage);
+  // Writes into the PLC from outside (ADS, Modbus, OPC UA clients, the HMI's page): a reader of
+  // the report must know the PLC did not run on its own (docs/security.md).
+  if (trace.writesAudited) out += " \u00b7 " + externalWritesText(trace.externalWrites);
   out += "</p>\n";
   out += cards(kpis);
 

@@ -50,6 +50,18 @@ TEST(HtmlReport, IsWellFormedAndSelfContained) {
   EXPECT_EQ(html.find("src="), std::string::npos);
 }
 
+// The writes into the PLC from outside, counted by protocol under the heading (docs/security.md);
+// a run whose writes were not audited says nothing about them.
+TEST(HtmlReport, SaysHowManyExternalWritesTheRunSaw) {
+  Trace t = testing::exampleCellTrace();
+  EXPECT_EQ(render(t).find("external writes"), std::string::npos);
+  t.writesAudited = true;
+  t.externalWrites = {1, 2, 0, 4};
+  EXPECT_NE(render(t).find(" \u00b7 7 external writes (ads 1, modbus 2, opcua 0, http 4)</p>"), std::string::npos);
+  t.externalWrites = {};
+  EXPECT_NE(render(t).find(" \u00b7 0 external writes (ads 0, modbus 0, opcua 0, http 0)</p>"), std::string::npos);
+}
+
 TEST(HtmlReport, KpiSummary) {
   std::string html = render(testing::exampleCellTrace());
   EXPECT_NE(html.find(">Cycle time</div><div class=\"v\">71.00<small>s</small>"), std::string::npos);

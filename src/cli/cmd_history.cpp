@@ -12,6 +12,7 @@
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "cli/hmi_options.hpp"
+#include "plc/write_audit.hpp"
 #include "history/query.hpp"
 #include "report/html_report.hpp"
 #include "report/json_report.hpp"
@@ -29,6 +30,7 @@ struct HistoryOptions {
   std::string from, to;
   std::string csv, vcd, html, json;
   std::vector<std::string> signals;
+  bool writes = false;   // --writes: list the run's audited writes from outside
   HmiServeOptions http;  // --http: browse in the web HMI
   PeerFlags peers;       // --allow-any-peer
   std::string cell;      // --cell: the cell file the page draws (default: the run's)
@@ -52,12 +54,12 @@ std::string endText(const history::RunSummary& r) {
 void printRuns(const std::vector<history::RunSummary>& runs) {
   std::cout << std::left << std::setw(5) << "run" << std::setw(22) << "cell" << std::setw(21) << "started (UTC)" << std::right
             << std::setw(14) << "virtual s" << "  " << std::left << std::setw(30) << "end" << std::right << std::setw(10) << "changes"
-            << std::setw(12) << "activities" << std::setw(8) << "drops" << "\n";
+            << std::setw(12) << "activities" << std::setw(8) << "drops" << std::setw(8) << "writes" << "\n";
   for (const auto& r : runs)
     std::cout << std::left << std::setw(5) << r.id << std::setw(22) << r.cellName << std::setw(21) << utcText(r.wallStartNs) << std::right
               << std::setw(14) << std::fixed << std::setprecision(3) << static_cast<double>(r.endNs) * 1e-9 << "  " << std::left
               << std::setw(30) << endText(r) << std::right << std::setw(10) << r.changes << std::setw(12) << r.activities << std::setw(8)
-              << r.drops << "\n";
+              << r.drops << std::setw(8) << r.writes << "\n";
 }
 
 // A monitored run's shifts against its plan (virtcom monitor with a `plan:`), if it has any.
@@ -162,16 +164,17 @@ ExitCode browseHistory(const HistoryOptions& o, history::HistoryReader& reader) 
 ExitCode showHistory(const HistoryOptions& o) {
   auto range = timeRange(o);
   if (!range) return ExitCode::Usage;
-  if (o.http.enabled() && (o.exports() || !range->whole() || !o.signals.empty())) {
-    std::cerr << "error: --http browses the history in the web HMI: it takes no --csv, --vcd, --report, --json, --from, --to or --signal\n";
+  if (o.http.enabled() && (o.exports() || o.writes || !range->whole() || !o.signals.empty())) {
+    std::cerr << "error: --http browses the history in the web HMI: it takes no --csv, --vcd, --report, --json, --writes, --from, --to or --signal\n";
     return ExitCode::Usage;
   }
   if (!o.http.enabled() && (!o.cell.empty() || !o.http.allow.empty() || o.peers.anyPeer)) {
     std::cerr << "error: --cell, --http-allow and --allow-any-peer go with --http\n";
     return ExitCode::Usage;
   }
-  if (!o.exports() && (!range->whole() || !o.signals.empty())) {
-    std::cerr << "error: --from, --to and --signal select what is exported: add --csv, --vcd, --report or --json\n";
+  if (!o.exports() && (!range->whole() || !o.signals.empty()) && !(o.writes && o.signals.empty())) {
+    std::cerr << "error: --from, --to and --signal select what is exported: add --csv, --vcd, --report or --json (--from and --to also "
+                 "go with --writes)\n";
     return ExitCode::Usage;
   }
   auto reader = history::HistoryReader::open(o.file);
@@ -181,7 +184,7 @@ ExitCode showHistory(const HistoryOptions& o) {
   }
   if (o.http.enabled()) return browseHistory(o, *reader);
   const int64_t id = o.run > 0 ? o.run : reader->lastRunId();
-  if (o.run == 0 && !o.exports()) {
+  if (o.run == 0 && !o.exports() && !o.writes) {
     printRuns(reader->runs());
     return ExitCode::Ok;
   }
@@ -190,6 +193,11 @@ ExitCode showHistory(const HistoryOptions& o) {
     std::cerr << "error: " << o.file << ": " << (id == 0 ? "no run recorded yet" : "no run " + std::to_string(id))
               << " (virtcom history " << o.file << " lists the runs)\n";
     return ExitCode::HistoryError;
+  }
+  if (o.writes) {
+    // As `--audit-writes each` logged them while the run went on (docs/security.md).
+    for (const WriteRecord& w : reader->writes(id, *range)) std::cout << plc::formatWriteRecordWithTimes(w) << "\n";
+    if (!o.exports()) return ExitCode::Ok;
   }
   if (!o.exports()) {
     printRuns({*run});
@@ -214,6 +222,9 @@ void addHistoryCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_option("--vcd", o->vcd, "write the signal changes as VCD (as run --vcd) to this file");
   cmd->add_option("--report", o->html, "write the HTML report (as run --report) to this file");
   cmd->add_option("--json", o->json, "write the JSON report (as run --json) to this file");
+  cmd->add_flag("--writes", o->writes,
+                "list the run's audited writes from outside (ADS, Modbus, OPC UA, HMI), one line each as --audit-writes each "
+                "logged them: virtual and UTC time, protocol, peer, variable, old -> new value (with --from/--to: in that range)");
   cmd->add_option("--signal", o->signals, "signal shown in the report's timeline (repeatable); default: those of the recorded run");
   addHttpOptions(cmd, o->http, "--http",
                  "browse the runs in the web HMI instead (their Gantt chart, trends and layout over time, read-only)");

@@ -1,7 +1,9 @@
 #include "history/query.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 
+#include "core/endpoint.hpp"
 #include "core/signal_number.hpp"
 #include "history/query_sql.hpp"
 #include "history/schema.hpp"
@@ -13,7 +15,8 @@ namespace {
 constexpr const char* kRunColumns =
     "SELECT id, cell_name, cell_file, wall_start_ns, end_ns, end_reason, end_message, drops, writer_error, "
     "cycles_completed, cycle_start_ns, cycle_end_ns, timeline, "
-    "(SELECT COUNT(*) FROM changes c WHERE c.run = runs.id), (SELECT COUNT(*) FROM activities a WHERE a.run = runs.id) FROM runs";
+    "(SELECT COUNT(*) FROM changes c WHERE c.run = runs.id), (SELECT COUNT(*) FROM activities a WHERE a.run = runs.id), "
+    "(SELECT COUNT(*) FROM writes w WHERE w.run = runs.id) FROM runs";
 
 RunSummary readRun(const Statement& s) {
   RunSummary r;
@@ -38,7 +41,26 @@ RunSummary readRun(const Statement& s) {
   }
   r.changes = s.columnInt(13);
   r.activities = s.columnInt(14);
+  r.writes = s.columnInt(15);
   return r;
+}
+
+// The writer of a `writes` row back from its texts (Recorder::externalWrite wrote them).
+ExternalWriter writerOf(const std::string& protocol, const std::string& peer, const std::string& netId, bool forced) {
+  ExternalWriter w;
+  for (size_t p = 0; p < kWriteProtocolCount; ++p)
+    if (writeProtocolName(static_cast<WriteProtocol>(p)) == protocol) w.protocol = static_cast<WriteProtocol>(p);
+  const size_t colon = peer.rfind(':');
+  if (auto ip = parseIpv4(peer.substr(0, colon)); ip && colon != std::string::npos) {
+    w.ipv4 = *ip;
+    w.port = static_cast<uint16_t>(std::strtoul(peer.c_str() + colon + 1, nullptr, 10));
+  }
+  if (auto id = parseNetId(netId); id && !netId.empty()) {
+    w.hasNetId = true;
+    w.netId = *id;
+  }
+  w.force = forced;
+  return w;
 }
 
 RunEnd runEndByName(const std::string& name) {
@@ -280,6 +302,18 @@ std::vector<ProductionRow> HistoryReader::production(int64_t run) {
   return result;
 }
 
+std::vector<WriteRecord> HistoryReader::writes(int64_t run, TimeRange range) {
+  std::vector<WriteRecord> result;
+  Statement s(db_,
+              "SELECT t_ns, wall_ns, protocol, peer, netid, variable, location, old_value, new_value, forced FROM writes "
+              "WHERE run = ?1 AND t_ns BETWEEN ?2 AND ?3 ORDER BY id");
+  s.bind(1, run).bind(2, range.fromNs).bind(3, range.toNs);
+  while (s.step())
+    result.push_back({s.columnInt(0), s.columnInt(1), writerOf(s.columnText(2), s.columnText(3), s.columnText(4), s.columnInt(9) != 0),
+                      s.columnText(5), s.columnText(6), s.columnText(7), s.columnText(8)});
+  return result;
+}
+
 std::vector<ActivityRecord> HistoryReader::activities(int64_t run, TimeRange range) {
   std::vector<ActivityRecord> result;
   Statement s(db_, sql::kActivitiesInRange);
@@ -334,6 +368,10 @@ Trace HistoryReader::trace(int64_t runId, TimeRange range, size_t* skipped) {
   Statement faults(db_, "SELECT t_ns, source, message FROM faults WHERE run = ?1 AND t_ns BETWEEN ?2 AND ?3 ORDER BY id");
   faults.bind(1, runId).bind(2, from).bind(3, to);
   while (faults.step()) trace.faults.push_back({faults.columnInt(0) - from, faults.columnText(1), faults.columnText(2)});
+  // The audited writes of the range, counted by protocol for the reports; a run that recorded
+  // none (no client wrote, or the audit was off) says nothing about them.
+  for (const WriteRecord& w : writes(runId, {from, to})) ++trace.externalWrites[static_cast<size_t>(w.writer.protocol)];
+  trace.writesAudited = summary->writes > 0;
   trace.endNs = to - from;
   trace.end = summary->ended ? runEndByName(summary->endReason) : RunEnd::Interrupted;
   trace.endMessage = summary->ended ? summary->endMessage : "the recording stopped before the run ended (the process was killed)";

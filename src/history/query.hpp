@@ -31,6 +31,7 @@ struct RunSummary {
   int64_t changes = 0;
   int64_t activities = 0;
   int64_t drops = 0;         // events the recorder's full queue refused
+  int64_t writes = 0;        // audited writes from outside (the table `writes`, docs/security.md)
   std::string writerError;   // the database error that stopped recording, if any
 };
 
@@ -85,6 +86,10 @@ class HistoryReader {
   std::vector<ActivityRecord> activities(int64_t run, TimeRange range);
   // The shifts a monitored run worked against its plan, in time order (none for other runs).
   std::vector<ProductionRow> production(int64_t run);
+  // The run's audited writes from outside in the order they landed, within `range`, as the audit
+  // made them (writer, variable, old and new value); a row whose protocol or peer does not read
+  // back (a file edited by hand) keeps the writer's defaults.
+  std::vector<WriteRecord> writes(int64_t run, TimeRange range);
 
   // The run as a Trace, as `virtcom run` had it at its end, for the report writers: the whole
   // run gives the same VCD, CSV and JSON as the run wrote. A part of a run is shifted to start

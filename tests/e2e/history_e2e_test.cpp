@@ -98,9 +98,9 @@ TEST_F(History, ListsEveryRunWithHowItEnded) {
   ASSERT_EQ(virtcom("run " + kData + "/cells/pressing_forever.yaml --time-limit 5s --quiet --history " + db, output), 3) << output;
   ASSERT_EQ(virtcom("history " + db, output), 0) << output;
   EXPECT_THAT(output, HasSubstr("run  cell"));
-  EXPECT_THAT(output, HasSubstr("changes  activities   drops"));
-  EXPECT_THAT(output, ::testing::ContainsRegex("\n1    gearbox-cell +[0-9-]+ [0-9:]+ +[0-9.]+  completed +[0-9]+ +[0-9]+ +0\n"));
-  EXPECT_THAT(output, ::testing::ContainsRegex("\n2    pressing-forever +[0-9-]+ [0-9:]+ +5.000  time limit reached +[0-9]+ +[0-9]+ +0\n"));
+  EXPECT_THAT(output, HasSubstr("changes  activities   drops  writes"));
+  EXPECT_THAT(output, ::testing::ContainsRegex("\n1    gearbox-cell +[0-9-]+ [0-9:]+ +[0-9.]+  completed +[0-9]+ +[0-9]+ +0 +0\n"));
+  EXPECT_THAT(output, ::testing::ContainsRegex("\n2    pressing-forever +[0-9-]+ [0-9:]+ +5.000  time limit reached +[0-9]+ +[0-9]+ +0 +0\n"));
   ASSERT_EQ(virtcom("history " + db + " --run 1", output), 0) << output;
   EXPECT_THAT(output, HasSubstr("gearbox-cell"));
   EXPECT_EQ(output.find("pressing-forever"), std::string::npos) << output;
@@ -211,7 +211,7 @@ TEST_F(History, FullQueueDropsAreCountedAndReported) {
   const int64_t drops = sqlInt(db, "SELECT drops FROM runs WHERE id = 1");
   EXPECT_GT(drops, 0);
   ASSERT_EQ(virtcom("history " + db, output), 0) << output;
-  EXPECT_THAT(output, HasSubstr(" " + std::to_string(drops) + "\n"));
+  EXPECT_THAT(output, HasSubstr(" " + std::to_string(drops) + "       0\n"));
 }
 
 // In virtual time nothing is late: the same tiny queue makes the simulation wait, nothing is lost.
@@ -281,6 +281,18 @@ TEST_F(History, ServedWritesAreRecordedAndCountedInTheReport) {
   EXPECT_THAT(report, HasSubstr("\"external_writes\": {\n      \"total\": 1,"));
   EXPECT_THAT(report, HasSubstr("\"http\": 1"));
   EXPECT_THAT(report, HasSubstr("\"late_ticks\": "));
+  // `virtcom history` counts them in its table and lists them as the audit logged them.
+  ASSERT_EQ(virtcom("history " + db, output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("  writes\n"));
+  EXPECT_THAT(output, testing::MatchesRegex("(.|\n)*   1\n$"));
+  ASSERT_EQ(virtcom("history " + db + " --run 1 --writes", output), 0) << output;
+  EXPECT_THAT(output, testing::MatchesRegex("[0-9]+\\.[0-9]{3}s 20[0-9-]+T[0-9:.]+Z http 127\\.0\\.0\\.1:[0-9]+ MAIN\\.jobCount: [0-9]+ -> 9\n"));
+  ASSERT_EQ(virtcom("history " + db + " --writes --from 1000s", output), 0) << output;
+  EXPECT_EQ(output, "") << "no write after 1000 s";
+  // Its reports exported from the history count them as the served run's did.
+  ASSERT_EQ(virtcom("history " + db + " --json " + out("history.json") + " --report " + out("history.html"), output), 0) << output;
+  EXPECT_THAT(readFile(out("history.json")), HasSubstr("\"external_writes\": {\n      \"total\": 1,"));
+  EXPECT_THAT(readFile(out("history.html")), HasSubstr("1 external writes (ads 0, modbus 0, opcua 0, http 1)"));
 }
 
 }  // namespace

@@ -35,14 +35,6 @@ class ProgramAlone : public ScenarioTest {
     std::ofstream(path) << scenario;
     return runCase(CaseSpec{path, SIZE_MAX, "test", "test"}, {});
   }
-  // The first diagnostic line, the temporary folder cut off.
-  std::string firstLine(const CaseResult& r) const {
-    if (r.messages.empty()) return "";
-    std::string line = r.messages[0].substr(0, r.messages[0].find('\n'));
-    const std::string dir = dir_.string() + "/";
-    if (line.starts_with(dir)) line.erase(0, dir.size());
-    return line;
-  }
 };
 
 TEST_F(ProgramAlone, StimuliAndAssertionsOnItsVariablesPass) {
@@ -124,7 +116,7 @@ class ProgramAloneRefusals : public ProgramAlone, public ::testing::WithParamInt
 TEST_P(ProgramAloneRefusals, ReportedAtTheKey) {
   CaseResult r = runProgram(GetParam().scenario);
   ASSERT_EQ(r.verdict, Verdict::Error) << text(r);
-  EXPECT_TRUE(firstLine(r).starts_with(GetParam().diagnostic)) << firstLine(r);
+  EXPECT_TRUE(firstDiagnostic(r).starts_with(GetParam().diagnostic)) << firstDiagnostic(r);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenario, ProgramAloneRefusals, ::testing::ValuesIn(kRefusals),
@@ -136,7 +128,7 @@ TEST_F(ProgramAlone, ACompileErrorIsReportedInTheProgram) {
   std::ofstream(path) << "program: bad.st\n";
   CaseResult r = runCase(CaseSpec{path, SIZE_MAX, "test", "test"}, {});
   ASSERT_EQ(r.verdict, Verdict::Error);
-  EXPECT_TRUE(firstLine(r).starts_with("bad.st:3:6: error[")) << firstLine(r);
+  EXPECT_TRUE(firstDiagnostic(r).starts_with("bad.st:3:6: error[")) << firstDiagnostic(r);
 }
 
 }  // namespace

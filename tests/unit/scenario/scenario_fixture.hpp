@@ -34,6 +34,14 @@ class ScenarioTest : public ::testing::Test {
     CaseSpec spec{write(body), row, "test", "test"};
     return runCase(spec, {});
   }
+  // The first line of an ERROR result's diagnostics, with the temporary folder cut off.
+  std::string firstDiagnostic(const CaseResult& r) const {
+    if (r.messages.empty()) return "";
+    std::string line = r.messages[0].substr(0, r.messages[0].find('\n'));
+    const std::string dir = dir_.string() + "/";
+    if (line.starts_with(dir)) line.erase(0, dir.size());
+    return line;
+  }
   // Every message of the result, one string.
   static std::string text(const CaseResult& r) {
     std::string all;

@@ -323,15 +323,18 @@ class Forwarder {
   std::vector<bool> run() {
     findBlocks();
     const std::vector<std::optional<Facts>> in = blockEntryFacts();
+    // The facts are followed on the code as it was, exactly as blockEntryFacts did: the entry
+    // facts of the next blocks say which register holds what in that code. Were a removed load
+    // to keep the facts of the register it wrote, a later load into another register could be
+    // served from the older one and removed, while the next block still counts on that other
+    // register (issue 17: `done` in a job-list program read from a register never written).
+    const std::vector<Instr> original(code_.begin() + begin_, code_.begin() + begin_ + n_);
     for (uint32_t k = 0; k < n_; ++k) {
       if (!leader_[k] || !in[k]) continue;
       Facts facts = *in[k];
       for (uint32_t j = k; j < n_ && (j == k || !leader_[j]); ++j) {
-        const Instr& ins = code_[begin_ + j];
-        // A removed instruction changes nothing, so the facts about its register stay (the
-        // entry facts of the next blocks, computed on the code as it was, are fewer: still true).
-        if (const Fact* held = holder(facts, ins)) removed_[j] = rename(j, held->reg);
-        if (!removed_[j]) transfer(ins, facts, indexes_);
+        if (const Fact* held = holder(facts, original[j])) removed_[j] = rename(j, held->reg);
+        transfer(original[j], facts, indexes_);
       }
     }
     return removed_;

@@ -25,6 +25,7 @@
 namespace {
 
 using virtcom::e2e::ServerProcess;
+using virtcom::e2e::portClosedAfter;
 using virtcom::e2e::shell;
 using virtcom::test::eventually;
 using virtcom::test::LoopbackClient;
@@ -159,13 +160,8 @@ TEST_F(AdsBridgeE2e, TheCellCompletesTheSameCyclesAsWithTheSoftPlcInProcess) {
 }
 
 TEST_F(AdsBridgeE2e, ProblemsAreReportedAtStartWithTheirPosition) {
-  int closedPort = 0;
-  {  // a port that was free a moment ago: nothing listens there any more
-    auto plc = startPlc();
-    closedPort = plc->port();
-    ASSERT_GT(closedPort, 0) << plc->errorOutput();
-    EXPECT_EQ(plc->stop(), 0);
-  }
+  const int closedPort = portClosedAfter([this] { return startPlc(); });
+  ASSERT_GT(closedPort, 0);
   std::string out;
   EXPECT_EQ(shell(kExe + " run " + bridgeCell(closedPort), out), 1) << out;
   EXPECT_NE(out.find("bridge.yaml:12:14: error[C034]: ads: cannot connect to the PLC at 127.0.0.1:" + std::to_string(closedPort) +

@@ -19,6 +19,7 @@
 namespace {
 
 using virtcom::e2e::ServerProcess;
+using virtcom::e2e::portClosedAfter;
 using virtcom::e2e::shell;
 using virtcom::test::readFile;
 
@@ -83,13 +84,8 @@ TEST_F(OpcuaBridgeE2e, TheCellCompletesTheSameCyclesAsWithTheSoftPlcInProcess) {
 }
 
 TEST_F(OpcuaBridgeE2e, ProblemsAreReportedAtStartWithTheirPosition) {
-  int closedPort = 0;
-  {  // a port that was free a moment ago: nothing listens there any more
-    auto plc = startPlc();
-    closedPort = plc->port();
-    ASSERT_GT(closedPort, 0) << plc->errorOutput();
-    EXPECT_EQ(plc->stop(), 0);
-  }
+  const int closedPort = portClosedAfter([this] { return startPlc(); });
+  ASSERT_GT(closedPort, 0);
   std::string out;
   EXPECT_EQ(shell(kExe + " run " + bridgeCell(closedPort), out), 1) << out;
   EXPECT_NE(out.find("opcua-bridge.yaml:12:15: error[C034]: opcua: cannot connect to the OPC UA server at opc.tcp://127.0.0.1:" +

@@ -134,4 +134,13 @@ class ServerProcess {
   std::string err_;
 };
 
+// A port that was free a moment ago: the server `start()` returns announced it and was stopped,
+// so nothing listens there any more. 0 if it did not start or did not stop cleanly.
+template <class Start>
+int portClosedAfter(Start start) {
+  auto server = start();
+  const int port = server->port();
+  return server->stop() == 0 ? port : 0;
+}
+
 }  // namespace virtcom::e2e

@@ -50,7 +50,10 @@ std::vector<uint8_t> nameBytes(const std::string& name) {
 
 }  // namespace
 
-ClientBridge::ClientBridge(BridgeConfig config) : config_(std::move(config)), client_(config_.client) {
+ClientBridge::ClientBridge(BridgeConfig config)
+    : config_(std::move(config)),
+      client_(config_.client),
+      link_({"ads", peerText(), "every step", config_.faultOnLoss, config_.report}) {
   slots_.resize(config_.signals.size());
   for (size_t i = 0; i < slots_.size(); ++i) slots_[i].tag = config_.signals[i].tag;
 }
@@ -193,17 +196,7 @@ bool ClientBridge::resolve(TagBus& bus, bool addTags, std::vector<Problem>& prob
 
 void ClientBridge::lose(const std::string& what) {
   client_.close();
-  std::string text = "ads: link to " + peerText() + " lost: " + what;
-  if (config_.faultOnLoss) {
-    if (failure_.empty()) failure_ = text;
-    return;
-  }
-  if (!reportedLoss_ && config_.report) config_.report(text + " (holding the last commands, retrying every step)");
-  reportedLoss_ = true;
-}
-
-void ClientBridge::fail(const std::string& what) {
-  if (failure_.empty()) failure_ = "ads: " + peerText() + " " + what;
+  link_.lost(what);
 }
 
 bool ClientBridge::reconnect(TagBus& bus) {
@@ -214,25 +207,24 @@ bool ClientBridge::reconnect(TagBus& bus) {
   std::vector<Problem> problems;
   if (!resolve(bus, false, problems)) {
     if (problems.front().signal == kNoSignal) lose(problems.front().text);
-    else fail("no longer matches the cell after reconnecting: " + problems.front().text);
+    else link_.refused("no longer matches the cell after reconnecting: " + problems.front().text);
     return false;
   }
-  if (reportedLoss_ && config_.report) config_.report("ads: reconnected to " + peerText());
-  reportedLoss_ = false;
+  link_.reconnected();
   return true;
 }
 
 bool ClientBridge::pull(TagBus& bus, int64_t) {
-  if (!failure_.empty()) return false;
-  if (!client_.connected() && !reconnect(bus)) return failure_.empty();
+  if (link_.failed()) return false;
+  if (!client_.connected() && !reconnect(bus)) return !link_.failed();
   if (reads_.empty()) return true;
   const uint32_t n = static_cast<uint32_t>(reads_.size());
   const uint32_t length = static_cast<uint32_t>(4 * n + image_.size());  // an upper bound: results + read data
   auto reply = client_.readWrite(kIgSumRead, n, length, readRequest_);
   if (!reply) {
     if (reply.error().linkLost) lose("reading the PLC's outputs: " + reply.error().text);
-    else fail("refused the sum read of its outputs: " + reply.error().text);
-    return failure_.empty();
+    else link_.refused("refused the sum read of its outputs: " + reply.error().text);
+    return !link_.failed();
   }
   // Reply: n results, then each item's data at its requested length (docs/ads.md, Sum commands).
   size_t at = 4 * n;
@@ -240,7 +232,7 @@ bool ClientBridge::pull(TagBus& bus, int64_t) {
     const Slot& slot = slots_[reads_[k]];
     const uint32_t result = LittleEndianReader(reply->subspan(4 * k)).u32().value_or(0);
     if (result != 0 || at + slot.size > reply->size()) {
-      fail("refused reading '" + config_.signals[reads_[k]].variable + "': " +
+      link_.refused("refused reading '" + config_.signals[reads_[k]].variable + "': " +
            (result ? adsErrorText(result) : std::string("short sum read reply")));
       return false;
     }
@@ -251,7 +243,7 @@ bool ClientBridge::pull(TagBus& bus, int64_t) {
 }
 
 void ClientBridge::push(const TagBus& bus, int64_t) {
-  if (!failure_.empty() || !client_.connected() || writes_.empty()) return;
+  if (link_.failed() || !client_.connected() || writes_.empty()) return;
   changed_.clear();
   for (size_t i : writes_) {
     Slot& slot = slots_[i];
@@ -263,7 +255,7 @@ void ClientBridge::push(const TagBus& bus, int64_t) {
     auto done = client_.write(kIgValueByHandle, slot.handle, {image_.data() + slot.offset, slot.size});
     if (!done) {
       if (done.error().linkLost) lose("writing '" + config_.signals[changed_[0]].variable + "': " + done.error().text);
-      else fail("refused writing '" + config_.signals[changed_[0]].variable + "': " + done.error().text);
+      else link_.refused("refused writing '" + config_.signals[changed_[0]].variable + "': " + done.error().text);
       return;
     }
   } else {
@@ -276,13 +268,13 @@ void ClientBridge::push(const TagBus& bus, int64_t) {
     auto reply = client_.readWrite(kIgSumWrite, n, 4 * n, writeRequest_);
     if (!reply) {
       if (reply.error().linkLost) lose("writing the device outputs: " + reply.error().text);
-      else fail("refused the sum write of the device outputs: " + reply.error().text);
+      else link_.refused("refused the sum write of the device outputs: " + reply.error().text);
       return;
     }
     for (uint32_t k = 0; k < n; ++k) {
       const uint32_t result = reply->size() >= 4 * n ? LittleEndianReader(reply->subspan(4 * k)).u32().value_or(0) : 1;
       if (result != 0) {
-        fail("refused writing '" + config_.signals[changed_[k]].variable + "': " + adsErrorText(result));
+        link_.refused("refused writing '" + config_.signals[changed_[k]].variable + "': " + adsErrorText(result));
         return;
       }
     }

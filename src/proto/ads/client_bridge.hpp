@@ -23,6 +23,7 @@
 
 #include "core/bus_bridge.hpp"
 #include "core/iec_value.hpp"
+#include "proto/net/link_loss.hpp"
 #include "proto/ads/byte_io.hpp"
 #include "proto/ads/client.hpp"
 
@@ -46,18 +47,9 @@ struct BridgeConfig {
 
 class ClientBridge final : public BusBridge {
  public:
-  static constexpr size_t kNoSignal = static_cast<size_t>(-1);
-  struct Problem {
-    enum class Kind { Link, Unknown, Mismatch };  // connection / no such variable / not as wired
-    size_t signal = kNoSignal;  // index into BridgeConfig::signals; kNoSignal: the connection
-    std::string text;
-    Kind kind = Kind::Mismatch;
-  };
-
-  struct StartReport {
-    std::vector<Problem> problems;  // every failure, at most one per signal
-    std::vector<bool> found;        // per signal: the PLC has the variable (false: unknown, or not asked)
-  };
+  static constexpr size_t kNoSignal = net::kNoSignal;
+  using Problem = net::SignalProblem;
+  using StartReport = net::BridgeStartReport;
 
   // Connects and resolves every signal; observed-only signals get a tag of the variable's type
   // on `bus`. Null when anything failed; `report` then lists every failure.
@@ -66,7 +58,7 @@ class ClientBridge final : public BusBridge {
 
   bool pull(TagBus& bus, int64_t nowNs) override;
   void push(const TagBus& bus, int64_t nowNs) override;
-  std::string failure() const override { return failure_; }
+  std::string failure() const override { return link_.failure(); }
   void simulationStopped() override;
 
   // The tag of signal i (the one start() added for an observed variable).
@@ -96,19 +88,17 @@ class ClientBridge final : public BusBridge {
   void releaseHandles();
   bool reconnect(TagBus& bus);
   void lose(const std::string& what);
-  void fail(const std::string& what);
   void writeSumHeaders(LittleEndianWriter& w, const std::vector<size_t>& slots) const;
 
   BridgeConfig config_;
   Client client_;
+  net::LinkLoss link_;  // after config_: built from it
   std::vector<Slot> slots_;
   std::vector<size_t> reads_, writes_;  // signals read each step / written on change
   std::vector<uint8_t> image_;          // one value per found signal
   std::vector<uint8_t> readRequest_;    // the sum read, built once per connection
   std::vector<uint8_t> writeRequest_;   // the sum write, rebuilt each step in its capacity
   std::vector<size_t> changed_;         // signals written this step (capacity reserved)
-  bool reportedLoss_ = false;
-  std::string failure_;
 };
 
 }  // namespace virtcom::proto::ads

@@ -68,7 +68,10 @@ std::optional<ElemType> elemTypeOfBuiltin(BuiltinType t) {
   }
 }
 
-ClientBridge::ClientBridge(BridgeConfig config) : config_(std::move(config)), client_(config_.client) {
+ClientBridge::ClientBridge(BridgeConfig config)
+    : config_(std::move(config)),
+      client_(config_.client),
+      link_({"opcua", peerText(), "every poll", config_.faultOnLoss, config_.report}) {
   slots_.resize(config_.signals.size());
   for (size_t i = 0; i < slots_.size(); ++i) slots_[i].tag = config_.signals[i].tag;
 }
@@ -200,42 +203,31 @@ bool ClientBridge::resolve(TagBus& bus, bool addTags, std::vector<Problem>& prob
 
 void ClientBridge::lose(const std::string& what) {
   client_.close();
-  std::string text = "opcua: link to " + peerText() + " lost: " + what;
-  if (config_.faultOnLoss) {
-    if (failure_.empty()) failure_ = text;
-    return;
-  }
-  if (!reportedLoss_ && config_.report) config_.report(text + " (holding the last commands, retrying every poll)");
-  reportedLoss_ = true;
-}
-
-void ClientBridge::fail(const std::string& what) {
-  if (failure_.empty()) failure_ = "opcua: " + peerText() + " " + what;
+  link_.lost(what);
 }
 
 bool ClientBridge::reconnect(TagBus& bus) {
   if (auto up = client_.connect(); !up) {
     if (up.error().linkLost) lose("cannot connect: " + up.error().text);
-    else fail("refused the session after reconnecting: " + up.error().text);
+    else link_.refused("refused the session after reconnecting: " + up.error().text);
     return false;
   }
   std::vector<Problem> problems;
   if (!resolve(bus, false, problems)) {
     if (problems.front().signal == kNoSignal) lose(problems.front().text);
-    else fail("no longer matches the cell after reconnecting: " + problems.front().text);
+    else link_.refused("no longer matches the cell after reconnecting: " + problems.front().text);
     return false;
   }
-  if (reportedLoss_ && config_.report) config_.report("opcua: reconnected to " + peerText());
-  reportedLoss_ = false;
+  link_.reconnected();
   return true;
 }
 
 bool ClientBridge::pull(TagBus& bus, int64_t nowNs) {
-  if (!failure_.empty()) return false;
+  if (link_.failed()) return false;
   pollNow_ = nowNs >= nextPollNs_;
   if (!pollNow_) return true;
   nextPollNs_ = nowNs + config_.pollNs;
-  if (!client_.connected() && !reconnect(bus)) return failure_.empty();
+  if (!client_.connected() && !reconnect(bus)) return !link_.failed();
   if (reads_.empty()) return true;
   Writer& w = client_.beginRequest(kReadRequestId);
   encode(w, 0.0);
@@ -248,23 +240,23 @@ bool ClientBridge::pull(TagBus& bus, int64_t nowNs) {
   auto reply = client_.call(kReadResponseId);
   if (!reply) {
     if (reply.error().linkLost) lose("reading the PLC's outputs: " + reply.error().text);
-    else fail("refused the Read of its outputs: " + reply.error().text);
-    return failure_.empty();
+    else link_.refused("refused the Read of its outputs: " + reply.error().text);
+    return !link_.failed();
   }
   uint32_t count = 0;
   if (!reply->arrayLength(count, 1) || count != reads_.size()) {
     lose("a Read response with " + std::to_string(count) + " results for " + std::to_string(reads_.size()));
-    return failure_.empty();
+    return !link_.failed();
   }
   for (size_t i : reads_) {
     const Slot& slot = slots_[i];
     RawValue value;
     if (!readRawValue(*reply, value)) {
       lose("a malformed Read response");
-      return failure_.empty();
+      return !link_.failed();
     }
     if (isBad(value.status) || value.type != slot.wire || value.isArray) {
-      fail("refused reading '" + config_.signals[i].name + "': " +
+      link_.refused("refused reading '" + config_.signals[i].name + "': " +
            (isBad(value.status) ? statusName(value.status) : std::string("its type changed to ") + builtinTypeName(value.type)));
       return false;
     }
@@ -274,7 +266,7 @@ bool ClientBridge::pull(TagBus& bus, int64_t nowNs) {
 }
 
 void ClientBridge::push(const TagBus& bus, int64_t) {
-  if (!pollNow_ || !failure_.empty() || !client_.connected() || writes_.empty()) return;
+  if (!pollNow_ || link_.failed() || !client_.connected() || writes_.empty()) return;
   changed_.clear();
   for (size_t i : writes_) {
     Slot& slot = slots_[i];
@@ -293,7 +285,7 @@ void ClientBridge::push(const TagBus& bus, int64_t) {
   auto reply = client_.call(kWriteResponseId);
   if (!reply) {
     if (reply.error().linkLost) lose("writing the device outputs: " + reply.error().text);
-    else fail("refused the Write of the device outputs: " + reply.error().text);
+    else link_.refused("refused the Write of the device outputs: " + reply.error().text);
     return;
   }
   uint32_t count = 0;
@@ -308,7 +300,7 @@ void ClientBridge::push(const TagBus& bus, int64_t) {
       return;
     }
     if (isBad(status)) {
-      fail("refused writing '" + config_.signals[i].name + "': " + statusName(status));
+      link_.refused("refused writing '" + config_.signals[i].name + "': " + statusName(status));
       return;
     }
   }

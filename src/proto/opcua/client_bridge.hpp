@@ -23,6 +23,7 @@
 
 #include "core/bus_bridge.hpp"
 #include "core/iec_value.hpp"
+#include "proto/net/link_loss.hpp"
 #include "proto/opcua/client.hpp"
 
 namespace virtcom::proto::opcua {
@@ -47,17 +48,9 @@ struct BridgeConfig {
 
 class ClientBridge final : public BusBridge {
  public:
-  static constexpr size_t kNoSignal = static_cast<size_t>(-1);
-  struct Problem {
-    enum class Kind { Link, Unknown, Mismatch };  // connection / no such node / not as wired
-    size_t signal = kNoSignal;  // index into BridgeConfig::signals; kNoSignal: the connection
-    std::string text;
-    Kind kind = Kind::Mismatch;
-  };
-  struct StartReport {
-    std::vector<Problem> problems;  // every failure, at most one per signal
-    std::vector<bool> found;        // per signal: the server has the node (empty: it was not asked)
-  };
+  static constexpr size_t kNoSignal = net::kNoSignal;
+  using Problem = net::SignalProblem;
+  using StartReport = net::BridgeStartReport;
 
   // Connects and checks every signal; observed-only signals get a tag of the node's type on
   // `bus`. Null when anything failed; `report` then lists every failure.
@@ -66,7 +59,7 @@ class ClientBridge final : public BusBridge {
 
   bool pull(TagBus& bus, int64_t nowNs) override;
   void push(const TagBus& bus, int64_t nowNs) override;
-  std::string failure() const override { return failure_; }
+  std::string failure() const override { return link_.failure(); }
   void simulationStopped() override;
 
   // The tag of signal i (the one start() added for an observed node).
@@ -95,19 +88,17 @@ class ClientBridge final : public BusBridge {
   bool resolve(TagBus& bus, bool addTags, std::vector<Problem>& problems);
   bool reconnect(TagBus& bus);
   void lose(const std::string& what);
-  void fail(const std::string& what);
 
   BridgeConfig config_;
   Client client_;
+  net::LinkLoss link_;  // after config_: built from it
   std::vector<Slot> slots_;
   std::vector<std::vector<uint8_t>> nodeIds_;  // each signal's NodeId, encoded once
   std::vector<size_t> reads_, writes_;         // signals read each poll / written on change
   std::vector<uint8_t> image_;                 // one value per found signal
   std::vector<size_t> changed_;                // signals written this poll (capacity reserved)
-  bool reportedLoss_ = false;
   bool pollNow_ = false;
   int64_t nextPollNs_ = 0;
-  std::string failure_;
 };
 
 // The elementary type a scalar of built-in type `t` holds as the same bytes (Boolean: BOOL,

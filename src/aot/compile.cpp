@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <mutex>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -156,18 +157,36 @@ unsigned jobCount(const CompileOptions& o) {
   return std::clamp(std::thread::hardware_concurrency(), 1u, kMaxJobs);
 }
 
+// Every dlopen and dlclose of compiled code, one at a time. glibc's loader serialises them
+// itself, but with a lock of its own that ThreadSanitizer does not see: `virtcom test --jobs 2
+// --backend aot` (each case loads and unloads the program's code) was reported as a race inside
+// _dl_close_worker. Loading is rare, so holding a lock of ours costs nothing and states the order.
+std::mutex& loaderMutex() {
+  static std::mutex m;
+  return m;
+}
+
 CompileResult load(const bc::Module& m, const fs::path& object) {
   CompileResult r;
-  void* handle = dlopen(object.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle) {
-    const char* why = dlerror();
-    r.error = std::string("cannot load ") + object.string() + ": " + (why ? why : "?");
-    return r;
+  void* handle = nullptr;
+  const uint32_t *abi = nullptr, *count = nullptr;
+  const vm::AotEntry* entries = nullptr;
+  {
+    std::lock_guard loading(loaderMutex());
+    handle = dlopen(object.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+      const char* why = dlerror();
+      r.error = std::string("cannot load ") + object.string() + ": " + (why ? why : "?");
+      return r;
+    }
+    abi = static_cast<const uint32_t*>(dlsym(handle, kAbiSymbol));
+    count = static_cast<const uint32_t*>(dlsym(handle, kCountSymbol));
+    entries = static_cast<const vm::AotEntry*>(dlsym(handle, kEntriesSymbol));
   }
-  auto library = std::shared_ptr<void>(handle, [](void* h) { dlclose(h); });
-  const auto* abi = static_cast<const uint32_t*>(dlsym(handle, kAbiSymbol));
-  const auto* count = static_cast<const uint32_t*>(dlsym(handle, kCountSymbol));
-  const auto* entries = static_cast<const vm::AotEntry*>(dlsym(handle, kEntriesSymbol));
+  auto library = std::shared_ptr<void>(handle, [](void* h) {
+    std::lock_guard unloading(loaderMutex());
+    dlclose(h);
+  });
   if (!abi || !count || !entries || *abi != vm::kAotAbiVersion || *count != m.pous.size()) {
     r.error = object.string() + " does not match this module";
     return r;

@@ -22,7 +22,10 @@ std::vector<ClientBridge::ReadBlock> readBlocks(std::vector<MapEntry> entries);
 }  // namespace
 
 ClientBridge::ClientBridge(ClientConfig config)
-    : config_(std::move(config)), mirror_(tablesFor(config_.map)), written_(tablesFor(config_.map)) {
+    : config_(std::move(config)),
+      mirror_(tablesFor(config_.map)),
+      written_(tablesFor(config_.map)),
+      link_({"modbus", "the PLC at " + net::formatEndpoint(config_.peer), "every poll", config_.faultOnLoss, config_.report}) {
   for (const MapEntry& e : config_.map.entries) (e.dir == SignalDir::Command ? commands_ : status_).push_back(e);
   blocks_ = readBlocks(commands_);
   dirty_.assign(status_.size(), true);
@@ -47,8 +50,7 @@ bool ClientBridge::connect() {
     return false;
   }
   connected_ = true;
-  if (reportedLoss_ && config_.report) config_.report("modbus: reconnected to the PLC at " + net::formatEndpoint(config_.peer));
-  reportedLoss_ = false;
+  link_.reconnected();
   std::fill(dirty_.begin(), dirty_.end(), true);  // the PLC may have lost what was written
   return true;
 }
@@ -56,13 +58,7 @@ bool ClientBridge::connect() {
 void ClientBridge::lose(const std::string& what) {
   if (connected_) modbus_close(ctx_);
   connected_ = false;
-  std::string text = "modbus: link to the PLC at " + net::formatEndpoint(config_.peer) + " lost: " + what;
-  if (config_.faultOnLoss) {
-    if (failure_.empty()) failure_ = text;
-    return;
-  }
-  if (!reportedLoss_ && config_.report) config_.report(text + " (holding the last commands, retrying every poll)");
-  reportedLoss_ = true;
+  link_.lost(what);
 }
 
 bool ClientBridge::readBlock(const ReadBlock& b) {
@@ -80,7 +76,7 @@ bool ClientBridge::readBlock(const ReadBlock& b) {
     int error = errno;
     std::string what = std::string("reading ") + tableName(b.table) + " " + std::to_string(b.address) + ".." +
                        std::to_string(b.address + b.count - 1) + ": " + modbus_strerror(error);
-    if (isException(error)) failure_ = "modbus: the PLC at " + net::formatEndpoint(config_.peer) + " refused " + what;
+    if (isException(error)) link_.refused("refused " + what);
     else lose(what);
     return false;
   }
@@ -106,7 +102,7 @@ bool ClientBridge::writeEntry(const MapEntry& e) {
   if (n < 0) {
     int error = errno;
     std::string what = std::string("writing ") + e.signal + " to " + tableName(e.table) + " " + std::to_string(e.address) + ": " + modbus_strerror(error);
-    if (isException(error)) failure_ = "modbus: the PLC at " + net::formatEndpoint(config_.peer) + " refused " + what;
+    if (isException(error)) link_.refused("refused " + what);
     else lose(what);
     return false;
   }
@@ -126,12 +122,12 @@ bool ClientBridge::pull(TagBus& bus, int64_t nowNs) {
     if (ok)
       for (const MapEntry& e : commands_) loadSignal(e, mirror_.view(), bus);
   }
-  return failure_.empty();
+  return !link_.failed();
 }
 
 void ClientBridge::push(const TagBus& bus, int64_t) {
   if (!pollNow_ || !connected_) return;
-  for (size_t i = 0; i < status_.size() && connected_ && failure_.empty(); ++i) {
+  for (size_t i = 0; i < status_.size() && connected_ && !link_.failed(); ++i) {
     const MapEntry& e = status_[i];
     storeSignal(e, bus, mirror_.view());
     std::span<const uint8_t> now = tableBytes(mirror_.view(), e.table), done = tableBytes(written_.view(), e.table);

@@ -18,6 +18,7 @@
 #include "proto/modbus/signal_codec.hpp"
 #include "proto/modbus/signal_map.hpp"
 #include "proto/net/endpoint.hpp"
+#include "proto/net/link_loss.hpp"
 
 struct _modbus;
 
@@ -49,7 +50,7 @@ class ClientBridge final : public BusBridge {
 
   bool pull(TagBus& bus, int64_t nowNs) override;
   void push(const TagBus& bus, int64_t nowNs) override;
-  std::string failure() const override { return failure_; }
+  std::string failure() const override { return link_.failure(); }
 
   // Requests sent and failed so far (for statistics and tests).
   uint64_t requests() const { return requests_; }
@@ -68,11 +69,10 @@ class ClientBridge final : public BusBridge {
   std::vector<bool> dirty_;  // per status entry: must be written even if unchanged (after connecting)
   _modbus* ctx_ = nullptr;
   bool connected_ = false;
-  bool reportedLoss_ = false;
+  net::LinkLoss link_;  // what a lost link or a refusal does to the run (shared with the ADS and OPC UA bridges)
   bool pollNow_ = false;
   int64_t nextPollNs_ = 0;
   uint64_t requests_ = 0;
-  std::string failure_;
 };
 
 }  // namespace virtcom::proto::modbus

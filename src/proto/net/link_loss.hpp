@@ -1,5 +1,5 @@
 #pragma once
-// The link-loss policy every protocol client bridge (ADS, OPC UA) follows, kept in one place so
+// The link-loss policy every protocol client bridge (ADS, OPC UA, Modbus) follows, kept in one place so
 // the bridges cannot drift apart in what a lost link does to a run:
 //  - a lost link (refused, reset, timeout) fails the run with faultOnLoss; otherwise it is
 //    reported once, the devices hold the last commands and the bridge retries;

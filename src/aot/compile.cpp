@@ -20,6 +20,7 @@
 
 #include "aot/module_key.hpp"
 #include "bytecode/verifier.hpp"
+#include "core/atomic_file.hpp"
 #include "core/content_hash.hpp"
 
 extern char** environ;
@@ -63,11 +64,6 @@ fs::path cacheDirectory(const CompileOptions& o) {
   return fs::temp_directory_path() / ("virtcom-aot-" + std::to_string(getuid()));
 }
 
-// A prefix for temporary files no other process or thread uses at the same time: concurrent
-// loads (of one module too) never see a half-written file, and renames put finished ones in place.
-std::string temporaryName(const std::string& key) {
-  return key + "." + std::to_string(getpid()) + "." + std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()));
-}
 
 std::string firstLine(const fs::path& file) {
   std::ifstream in(file);

@@ -6,6 +6,8 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <functional>
+#include <thread>
 
 namespace virtcom {
 
@@ -51,6 +53,11 @@ std::string replaceFile(const std::string& path, std::string_view content) {
     ::close(dirFd);
   }
   return "";
+}
+
+std::string temporaryName(std::string_view base) {
+  return std::string(base) + "." + std::to_string(::getpid()) + "." +
+         std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()));
 }
 
 }  // namespace virtcom

@@ -14,4 +14,9 @@ namespace virtcom {
 // reason on failure (the system's message), "" on success.
 std::string replaceFile(const std::string& path, std::string_view content);
 
+// `base` + "." + the process id + "." + a hash of the thread id: a temporary name no other process
+// or thread uses at the same time, for the caches' files written beside their place and renamed
+// into it (concurrent writers of one entry never share a temporary file).
+std::string temporaryName(std::string_view base);
+
 }  // namespace virtcom

@@ -1,16 +1,13 @@
 #include "lang/st/compile_cache.hpp"
 
-#include <unistd.h>
-
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <iterator>
-#include <thread>
 
 #include "bytecode/module_file.hpp"
 #include "bytecode/verifier.hpp"
+#include "core/atomic_file.hpp"
 #include "core/build_id.hpp"
 #include "core/content_hash.hpp"
 #include "lang/st/prelude.hpp"
@@ -82,8 +79,7 @@ void storeCachedModule(const std::string& dir, const std::string& key, const bc:
   std::error_code ec;
   fs::create_directories(dir, ec);
   const fs::path target = cacheFile(dir, key);
-  const fs::path tmp = target.string() + "." + std::to_string(getpid()) + "." +
-                       std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()));
+  const fs::path tmp = temporaryName(target.string());
   const std::string bytes = bc::encodeModule(m);
   if (std::ofstream(tmp, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size())))
     fs::rename(tmp, target, ec);

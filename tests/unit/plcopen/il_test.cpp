@@ -56,6 +56,34 @@ TEST(Il, EveryInstructionFormMatchesItsStTwinScanByScan) {
   EXPECT_GE(pulses, 35) << "the TON fires every 5th scan (30 ms, then one scan off); RETCN skips the count otherwise";
 }
 
+// ILMore and ILMoreST: the forms ILForms leaves out (ANDN(, XORN, STN, MUL/SUB/DIV/MOD, GE/LE/GT,
+// CALC, CALCN, JMPCN, RETC), on the same inputs.
+TEST(Il, TheConditionalAndNegatedFormsMatchTheirStTwinScanByScan) {
+  auto c = compileGolden("beremiz_il_fbd.xml");
+  ASSERT_NE(c->module, nullptr) << c->rendered();
+  Plc plc(*c->module);
+  uint32_t seed = 777;
+  auto next = [&] { return seed = seed * 1103515245u + 12345u; };
+  int returnedEarly = 0;
+  for (int scan = 0; scan < 300; ++scan) {
+    plc.set("main.forms.a", next() & 0x10000 ? "TRUE" : "FALSE");
+    plc.set("main.forms.b", next() & 0x10000 ? "TRUE" : "FALSE");
+    plc.set("main.forms.c", next() & 0x10000 ? "TRUE" : "FALSE");
+    const int raw = static_cast<int>(next() >> 16) % 300 - 100;
+    plc.set("main.forms.raw", std::to_string(raw));
+    plc.scan();
+    returnedEarly += raw > 90;
+    for (const char* out : {"andNot", "xorNot", "notA", "arith", "inRange", "fromA", "fromNotB", "hits", "kept"})
+      ASSERT_EQ(plc.get(std::string("main.more.") + out), plc.get(std::string("main.moreTwin.") + out))
+          << out << " at scan " << scan << " (raw " << raw << ")";
+  }
+  EXPECT_EQ(std::stoi(plc.get("main.more.kept")), 300 - returnedEarly) << "RETC left the body when raw > 90";
+  EXPECT_GT(returnedEarly, 0);
+  EXPECT_GT(std::stoi(plc.get("main.more.fromA")), 5) << "CALC called countA";
+  EXPECT_GT(std::stoi(plc.get("main.more.fromNotB")), 5) << "CALCN called countNotB";
+  EXPECT_GT(std::stoi(plc.get("main.more.hits")), 50) << "JMPCN skipped the count only when c was FALSE";
+}
+
 struct IlError {
   const char* body;
   const char* message;

@@ -23,7 +23,8 @@ void PouCompiler::compile() {
   const size_t firstLine = ctx_.module.lines.size();
   tempTop_ = 0;
   tempMax_ = 0;
-  if (pou_.ast->hasBody || !pou_.ast->body.empty()) {
+  const bool hasBody = pou_.ast->hasBody || !pou_.ast->body.empty();
+  if (hasBody) {
     const StmtList frameInits = buildFrameInitCalls(model(), types(), pou_);
     statements(frameInits);
     edgeInputs();
@@ -34,6 +35,7 @@ void PouCompiler::compile() {
   }
   uint32_t end = here();
   for (uint32_t r : returns_) patchJump(r, end);
+  if (hasBody) statements(buildFrameExitCalls(model(), types(), pou_));
   emit(Op::RET, 0, 0, 0);
   if (!diags().hasErrors()) optimizePou(ctx_.module, codeStart_, firstLine, maxReg_);
   bc::PouInfo& info = ctx_.module.pous[pou_.bcIndex];

@@ -128,6 +128,8 @@ class InitCalls {
     // them) follow bInitRetains and bInCopyCode, FB_init's first two inputs; the flags are then
     // passed by position too, so the call is in one form and the ordinary argument binding
     // reports a wrong count.
+    // The declaration's arguments are FB_init's; FB_exit takes bInCopyCode alone.
+    if (method_ != "FB_INIT") args = nullptr;
     bool positional = args && !args->empty() && args->front().name.empty();
     auto flag = [&](const char* name, bool value) {
       for (const VarInfo* p : init.params)
@@ -189,13 +191,26 @@ std::unique_ptr<Pou> buildExitProgram(const ProgramModel& model, const TypeTable
   return buildLifecycleProgram(model, types, Lifecycle::Exit);
 }
 
-StmtList buildFrameInitCalls(const ProgramModel& model, const TypeTable& types, const PouSym& pou) {
+namespace {
+
+StmtList buildFrameLifecycleCalls(const ProgramModel& model, const TypeTable& types, const PouSym& pou, Lifecycle kind) {
   StmtList body;
-  InitCalls calls(model, types, body);
+  InitCalls calls(model, types, body, kind);
   for (const VarInfo& v : pou.locals)
     if ((v.section == VarSection::Var || v.section == VarSection::Temp) && !v.byReference)
       calls.visit(*makeExpr(ExprKind::Name, v.loc, v.name), v.type, v.decl ? &v.decl->fbInitArgs : nullptr, v.loc);
+  if (kind == Lifecycle::Exit) std::reverse(body.begin(), body.end());
   return body;
+}
+
+}  // namespace
+
+StmtList buildFrameInitCalls(const ProgramModel& model, const TypeTable& types, const PouSym& pou) {
+  return buildFrameLifecycleCalls(model, types, pou, Lifecycle::Init);
+}
+
+StmtList buildFrameExitCalls(const ProgramModel& model, const TypeTable& types, const PouSym& pou) {
+  return buildFrameLifecycleCalls(model, types, pou, Lifecycle::Exit);
 }
 
 }  // namespace virtcom::st

@@ -16,11 +16,14 @@ std::unique_ptr<Pou> buildInitProgram(const ProgramModel& model, const TypeTable
 // The exit program (__EXIT, Module::exitPou): METHOD FB_exit of every such instance with
 // bInCopyCode := FALSE, run once when the PLC program ends (CODESYS: before a new download or
 // a reset), in the reverse order of FB_init. Null when no instance has an FB_exit. Instances
-// in a frame get no FB_exit call.
+// in a frame get theirs at the end of every call instead (buildFrameExitCalls).
 std::unique_ptr<Pou> buildExitProgram(const ProgramModel& model, const TypeTable& types);
 // The FB_init calls for the instances among `pou`'s frame variables (VAR of a FUNCTION or
 // METHOD, VAR_TEMP of any POU), run before its body: these are initialised on every call, so
 // CODESYS calls their FB_init on every call too. Empty when none has an FB_init.
 StmtList buildFrameInitCalls(const ProgramModel& model, const TypeTable& types, const PouSym& pou);
+// The FB_exit calls for the same instances, in the reverse order, run when the call ends
+// (after the body or a RETURN): the frame is given up then, as a stack frame is.
+StmtList buildFrameExitCalls(const ProgramModel& model, const TypeTable& types, const PouSym& pou);
 
 }  // namespace virtcom::st

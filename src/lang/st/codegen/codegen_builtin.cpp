@@ -94,12 +94,16 @@ Value PouCompiler::stringResult(Native n, std::vector<uint16_t> args, TypeId str
 
 std::optional<Value> PouCompiler::builtin(const std::string& name, const Expr& e, TypeId expected) {
   if (auto op = codesysOperator(name, e)) return op;
-  if (name == kClockIntrinsic) {
+  // TIME() (CODESYS/TwinCAT: the time since the PLC started, as OSCAT's T_PLC_MS reads it) and
+  // LTIME(): the task clock, as every timer reads it, so virtual time.
+  const bool clockOperator = (name == "TIME" || name == "LTIME") && e.args.empty();
+  if (name == kClockIntrinsic || clockOperator) {
     if (!orderStandardArguments(diags(), name, ParameterNaming::Numbered, "", e)) return Value::error();
     registerStringResults(types());
     uint16_t r = allocReg();
     emit(Op::SYSTIME, r, 0, 0);
-    return regValue(TypeTable::elem(ElemType::Ltime), r);
+    const Value now = regValue(TypeTable::elem(ElemType::Ltime), r);
+    return name == "TIME" ? convert(now, TypeTable::elem(ElemType::Time), e.loc) : now;
   }
   std::optional<StandardFunction> fn = findStandardFunction(name);
   if (!fn) return std::nullopt;

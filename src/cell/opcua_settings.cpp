@@ -6,30 +6,29 @@ namespace virtcom::cell {
 
 namespace {
 
-constexpr std::string_view kScheme = "opc.tcp://";
-
 // `endpoint: opc.tcp://HOST:PORT[/PATH]` into s.url and s.server.
 void readEndpoint(ConfigReader& r, const ConfigNode& node, OpcuaClientSettings& s) {
   s.url = r.requireString("endpoint");
   if (s.url.empty()) return;
   const ConfigNode* at = node.find("endpoint");
   s.endpointLoc = at->loc();
-  const char* expected = " (expected opc.tcp://HOST:PORT, e.g. opc.tcp://127.0.0.1:4840)";
-  if (!s.url.starts_with(kScheme)) {
-    r.error(at->loc(), "'endpoint': '" + s.url + "' is not an opc.tcp URL" + expected);
-    return;
-  }
-  std::string hostPort = s.url.substr(kScheme.size());
-  hostPort = hostPort.substr(0, hostPort.find('/'));
-  auto parsed = parseEndpoint(hostPort);
-  if (parsed && parsed->port != 0) {
-    s.server = *parsed;
-    return;
-  }
-  r.error(at->loc(), "'endpoint': " + (parsed ? std::string("port 0 cannot be connected to") : parsed.error()) + expected);
+  auto server = opcuaServerOf(s.url);
+  if (server) s.server = *server;
+  else r.error(at->loc(), "'endpoint': " + server.error());
 }
 
 }  // namespace
+
+std::expected<Endpoint, std::string> opcuaServerOf(std::string_view url) {
+  constexpr std::string_view kScheme = "opc.tcp://";
+  const std::string expected = " (expected opc.tcp://HOST:PORT, e.g. opc.tcp://127.0.0.1:4840)";
+  if (!url.starts_with(kScheme)) return std::unexpected("'" + std::string(url) + "' is not an opc.tcp URL" + expected);
+  std::string_view hostPort = url.substr(kScheme.size());
+  hostPort = hostPort.substr(0, hostPort.find('/'));
+  auto parsed = parseEndpoint(std::string(hostPort));
+  if (parsed && parsed->port != 0) return *parsed;
+  return std::unexpected((parsed ? std::string("port 0 cannot be connected to") : parsed.error()) + expected);
+}
 
 void readOpcuaClient(OpcuaClientSettings& s, const ConfigNode& node, Diagnostics& diags) {
   ConfigReader r(node, diags, "'plc: opcua'");

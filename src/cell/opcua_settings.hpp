@@ -1,5 +1,10 @@
 #pragma once
-// The cell file's `plc: opcua:` (loader internals): the OPC UA client bridge to an external PLC.
+// The cell file's `plc: opcua:`: the OPC UA client bridge to an external PLC (read by the loader;
+// `virtcom monitor --opcua` takes an endpoint URL the same way).
+#include <expected>
+#include <string>
+#include <string_view>
+
 #include "cell/cell.hpp"
 #include "core/config_node.hpp"
 
@@ -8,5 +13,9 @@ namespace virtcom::cell {
 // The keys of `plc: opcua:` into `s` (its wires are the loader's business); reports every
 // problem at its position.
 void readOpcuaClient(OpcuaClientSettings& s, const ConfigNode& node, Diagnostics& diags);
+
+// The server of an endpoint URL, `opc.tcp://HOST:PORT[/PATH]`; the reason (with the expected
+// form) if it is not one.
+std::expected<Endpoint, std::string> opcuaServerOf(std::string_view url);
 
 }  // namespace virtcom::cell

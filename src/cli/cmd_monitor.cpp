@@ -1,7 +1,7 @@
 // `virtcom monitor`: the cell model and its HMI watching the real plant (docs/monitor.md). No
 // device is simulated: every wired PLC variable of the cell (commands and feedback alike) is
-// read from the real controller each poll onto the cell's tag bus, over ADS (the wiring's
-// variables) or Modbus TCP (the cell's Modbus map); one loop watches either link. The devices'
+// read from the real controller each poll onto the cell's tag bus, over ADS or OPC UA (the
+// wiring's variables) or Modbus TCP (the cell's Modbus map); one loop watches any link. The devices'
 // operations are recognised from their handshake (sim/operation_recogniser.hpp) and recorded
 // as a simulated run's would be, so the HMI, the reports and the summary work unchanged. The
 // digital shadow: the cell model, run once in virtual time at start-up, predicts each
@@ -19,7 +19,9 @@
 #include "cli/common.hpp"
 #include "cli/history_options.hpp"
 #include "cli/hmi_options.hpp"
+#include "cell/opcua_settings.hpp"
 #include "cli/modbus_options.hpp"
+#include "cli/opcua_client.hpp"
 #include "cli/sfc_mirror.hpp"
 #include "report/json_report.hpp"
 #include "report/kpis.hpp"
@@ -35,6 +37,7 @@ struct MonitorOptions {
   std::string cellFile;
   std::string ads;          // HOST:PORT of the PLC's AMS router
   std::string modbus;       // HOST:PORT of the PLC's Modbus TCP server (instead of --ads)
+  std::string opcua;        // opc.tcp://HOST:PORT of the PLC's OPC UA server (instead of --ads)
   std::string netId;        // the PLC's AmsNetId; empty: the cell's, or 127.0.0.1.1.1
   std::string poll = "10ms";
   double deviationPercent = 20;
@@ -46,10 +49,24 @@ struct MonitorOptions {
   HistoryRecordOptions history;
 };
 
+// The variables a watch over ADS or OPC UA reads from the real PLC when the cell's controller is
+// its soft PLC: every wire by its variable name, `cycle_done` (its tag, returned) and the
+// `record` variables (the cycle tag unchanged without `cycle_done`). All are read, none written.
+TagId watchSoftPlcVariables(cell::Cell& cell, std::vector<cell::ExternalWire>& wires) {
+  for (const cell::Wire& w : cell.wires) wires.push_back({w.tag, plant::PortDir::In, w.varName, cell.bus.name(w.tag), {}, false, -1});
+  TagId cycleTag = cell.run.cycleDoneTag;
+  if (!cell.run.cycleDoneVar.empty()) {
+    cycleTag = cell.bus.find(cell.run.cycleDoneVar);  // a Modbus map's cycle_done has given it one
+    if (cycleTag == kNoTag) cycleTag = cell.bus.add(cell.run.cycleDoneVar, ElemType::Bool);
+    wires.push_back({cycleTag, plant::PortDir::In, cell.run.cycleDoneVar, {}, {}, false, -1});
+  }
+  for (const auto& name : cell.run.recordVars) wires.push_back({kNoTag, plant::PortDir::In, name, {}, {}, false, -1});
+  return cycleTag;
+}
+
 // The cell's wiring as variables to read from the real PLC: the soft PLC's wires by their
-// variable names (or a `plc: ads:` cell's own), every one read, none written; `cycle_done` and
-// `record` variables observed too, and the steps of the program's charts (`mirror`). Replaces
-// the cell's controller by that read-only link.
+// variable names (or a `plc: ads:` cell's own), and the steps of the program's charts
+// (`mirror`). Replaces the cell's controller by that read-only link.
 std::expected<void, std::string> watchOverAds(cell::Cell& cell, const MonitorOptions& o, const SfcMirror& mirror) {
   auto router = parseEndpoint(o.ads);
   if (!router) return std::unexpected("--ads: " + router.error());
@@ -63,19 +80,33 @@ std::expected<void, std::string> watchOverAds(cell::Cell& cell, const MonitorOpt
   }
   TagId cycleTag = cell.run.cycleDoneTag;  // `plc: ads:`: the loader's
   if (!cell.plcAds) {
-    for (const cell::Wire& w : cell.wires) watch.wires.push_back({w.tag, w.dir, w.varName, cell.bus.name(w.tag), {}, false, -1});
-    if (!cell.run.cycleDoneVar.empty()) {
-      cycleTag = cell.bus.find(cell.run.cycleDoneVar);  // a Modbus map's cycle_done has given it one
-      if (cycleTag == kNoTag) cycleTag = cell.bus.add(cell.run.cycleDoneVar, ElemType::Bool);
-      watch.wires.push_back({cycleTag, plant::PortDir::In, cell.run.cycleDoneVar, {}, {}, false, -1});
-    }
-    for (const auto& name : cell.run.recordVars) watch.wires.push_back({kNoTag, plant::PortDir::In, name, {}, {}, false, -1});
+    cycleTag = watchSoftPlcVariables(cell, watch.wires);
     mirror.addWires(watch.wires);
   }
   for (cell::ExternalWire& w : watch.wires) w.dir = plant::PortDir::In;  // the monitor never writes to the PLC
   watch.faultOnLoss = true;
   cell::detachSoftPlc(cell);
   cell.plcAds = std::move(watch);
+  cell.run.cycleDoneTag = cycleTag;
+  return {};
+}
+
+// The same over OPC UA: a `plc: opcua:` cell's own wiring and node names, else the soft PLC's
+// variables under the CODESYS-form prefix (ns=4;s=|var|virtcom.Application.), which a CODESYS
+// PLC or `virtcom exec --opcua` serves them as. Each poll is one Read of every node.
+std::expected<void, std::string> watchOverOpcua(cell::Cell& cell, const MonitorOptions& o, int64_t pollNs) {
+  auto server = cell::opcuaServerOf(o.opcua);
+  if (!server) return std::unexpected("--opcua: " + server.error());
+  cell::OpcuaClientSettings watch = cell.plcOpcua.value_or(cell::OpcuaClientSettings{});
+  watch.url = o.opcua;
+  watch.server = *server;
+  watch.pollNs = pollNs;
+  TagId cycleTag = cell.run.cycleDoneTag;  // `plc: opcua:`: the loader's
+  if (!cell.plcOpcua) cycleTag = watchSoftPlcVariables(cell, watch.wires);
+  for (cell::ExternalWire& w : watch.wires) w.dir = plant::PortDir::In;  // the monitor never writes to the PLC
+  watch.faultOnLoss = true;
+  cell::detachSoftPlc(cell);
+  cell.plcOpcua = std::move(watch);
   cell.run.cycleDoneTag = cycleTag;
   return {};
 }
@@ -102,7 +133,7 @@ std::expected<cell::ModbusClientSettings, std::string> watchOverModbus(cell::Cel
   return watch;
 }
 
-// The read-only link to the plant's PLC (--ads or --modbus) over the cell's tag bus; the cell's
+// The read-only link to the plant's PLC (--ads, --opcua or --modbus) over the cell's tag bus; the cell's
 // own controller is detached. Null, the problem printed, if it cannot start; `failure` says how.
 std::unique_ptr<BusBridge> openLink(cell::Cell& cell, const SourceManager& sources, const MonitorOptions& o, int64_t pollNs,
                                     SfcMirror& mirror, ExitCode& failure) {
@@ -114,6 +145,14 @@ std::unique_ptr<BusBridge> openLink(cell::Cell& cell, const SourceManager& sourc
       return nullptr;
     }
     return startClientBridge(*watch, "is watched (read only)");
+  }
+  if (!o.opcua.empty()) {
+    if (auto watched = watchOverOpcua(cell, o, pollNs); !watched) {
+      std::cerr << "error: " << watched.error() << "\n";
+      return nullptr;
+    }
+    failure = ExitCode::InputError;
+    return startOpcuaBridge(cell, sources, "is watched (read only)");
   }
   if (auto watched = watchOverAds(cell, o, mirror); !watched) {
     std::cerr << "error: " << watched.error() << "\n";
@@ -259,8 +298,8 @@ void printShadow(const Trace& trace, const sim::OperationRecogniser& recogniser)
 }
 
 ExitCode monitorCell(const MonitorOptions& o) {
-  if (o.ads.empty() == o.modbus.empty()) {
-    std::cerr << "error: give the plant's PLC as either --ads HOST:PORT or --modbus HOST:PORT\n";
+  if (o.ads.empty() + o.modbus.empty() + o.opcua.empty() != 2) {
+    std::cerr << "error: give the plant's PLC as one of --ads HOST:PORT, --opcua opc.tcp://HOST:PORT or --modbus HOST:PORT\n";
     return ExitCode::Usage;
   }
   auto pollNs = parseDurationNs(o.poll);
@@ -293,7 +332,7 @@ ExitCode monitorCell(const MonitorOptions& o) {
   stopOnSignals();
   ExitCode linkFailure = ExitCode::Ok;
   // Over ADS, the charts of the cell's program are looked for in the PLC by their step names.
-  SfcMirror mirror(o.modbus.empty() ? std::move(cell->module) : nullptr);
+  SfcMirror mirror(!o.ads.empty() ? std::move(cell->module) : nullptr);
   auto bridge = openLink(*cell, sources, o, *pollNs, mirror, linkFailure);
   if (!bridge) return linkFailure;
   // The monitor's own time follows the wall clock: a full queue drops events, never waits.
@@ -362,12 +401,15 @@ ExitCode monitorCell(const MonitorOptions& o) {
 void addMonitorCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   auto o = std::make_shared<MonitorOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "monitor", "Watch the real plant through the cell's wiring until SIGINT/SIGTERM: its PLC's variables read over ADS or Modbus TCP, the "
+      "monitor", "Watch the real plant through the cell's wiring until SIGINT/SIGTERM: its PLC's variables read over ADS, OPC UA or Modbus TCP, the "
                  "devices' operations recognised and compared with the cell model (digital shadow), optionally in the web HMI");
   cmd->add_option("cell", o->cellFile, "the cell file (YAML) whose wiring names the PLC's variables")->required()->check(CLI::ExistingFile);
   CLI::Option* ads = cmd->add_option("--ads", o->ads, "the PLC's AMS router, HOST:PORT (TwinCAT: 48898; or a virtcom serve --ads)");
   cmd->add_option("--modbus", o->modbus, "instead of --ads: the PLC's Modbus TCP server, HOST:PORT, read through the cell's Modbus map "
                                         "(plc: modbus: map, else the modbus: one; see virtcom modbus-map)")
+      ->excludes(ads);
+  cmd->add_option("--opcua", o->opcua, "instead of --ads: the PLC's OPC UA server, opc.tcp://HOST:PORT (the cell's plc: opcua: nodes, else "
+                                      "the wired variables as ns=4;s=|var|virtcom.Application.VAR, CODESYS' form and virtcom exec --opcua's)")
       ->excludes(ads);
   cmd->add_option("--netid", o->netId, "the PLC's AmsNetId (default: the cell's plc: ads: netid, else 127.0.0.1.1.1)");
   cmd->add_option("--poll", o->poll, "read every wired variable this often (default 10ms; shorter than the shortest handshake pulse)");

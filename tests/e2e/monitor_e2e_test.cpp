@@ -100,6 +100,30 @@ TEST_F(Monitor, SeesTheServedPlantsOperationsInTheirOrder) {
   expectAStretchOfThePlants(readFile(path("monitor.json")), readFile(path("plant.json")), 2);
 }
 
+// Over OPC UA the monitor reads the soft PLC's wired variables by their CODESYS-form node ids,
+// as `serve --opcua` serves them, one Read a poll (a consistent image of a scan, as over ADS).
+TEST_F(Monitor, SeesTheServedPlantsOperationsOverOpcua) {
+  ServerProcess plant(kExe, {"serve", kExample + "/cell.yaml", "--opcua", "127.0.0.1:0", "--quiet", "--json", path("plant.json")}, kExample,
+                      "opcua: serving opc.tcp://");
+  ASSERT_GT(plant.port(), 0) << plant.errorOutput();
+  ServerProcess monitor(kExe,
+                        {"monitor", kExample + "/cell.yaml", "--opcua", "opc.tcp://127.0.0.1:" + std::to_string(plant.port()), "--poll",
+                         "5ms", "--quiet", "--json", path("monitor.json")},
+                        kExample, "opcua: the OPC UA server at opc.tcp://");
+  ASSERT_EQ(monitor.port(), plant.port()) << monitor.errorOutput();
+  ASSERT_TRUE(monitor.waitFor("monitor: cycle 3 completed")) << monitor.errorOutput();
+  EXPECT_EQ(monitor.stop(), 0) << monitor.errorOutput();
+  EXPECT_EQ(plant.stop(), 0) << plant.errorOutput();
+  EXPECT_NE(monitor.errorOutput().find("is watched (read only)"), std::string::npos) << monitor.errorOutput();
+  expectAStretchOfThePlants(readFile(path("monitor.json")), readFile(path("plant.json")), 2);
+}
+
+TEST_F(Monitor, AnOpcuaEndpointThatIsNotAUrlIsAUsageError) {
+  std::string out;
+  EXPECT_EQ(shell(kExe + " monitor " + kExample + "/cell.yaml --opcua 127.0.0.1:4840 --quiet", out), 64) << out;
+  EXPECT_NE(out.find("--opcua: '127.0.0.1:4840' is not an opc.tcp URL (expected opc.tcp://HOST:PORT"), std::string::npos) << out;
+}
+
 // Over Modbus the monitor reads the cell's (automatic) Modbus map, as `serve --modbus` serves
 // it; the soft PLC runs in the plant because --ads is served too. A Modbus PLC has no cycle
 // marker, so the test watches a few of the plant's 1.3 s cycles instead of counting them. The
@@ -142,9 +166,11 @@ TEST_F(Monitor, AModbusPlcThatCannotBeReachedEndsTheMonitorAsALostLink) {
 TEST_F(Monitor, NeedsExactlyOneLink) {
   std::string out;
   EXPECT_EQ(shell(kExe + " monitor " + kExample + "/cell.yaml", out), 64) << out;
-  EXPECT_NE(out.find("either --ads HOST:PORT or --modbus HOST:PORT"), std::string::npos) << out;
+  EXPECT_NE(out.find("one of --ads HOST:PORT, --opcua opc.tcp://HOST:PORT or --modbus HOST:PORT"), std::string::npos) << out;
   EXPECT_NE(shell(kExe + " monitor " + kExample + "/cell.yaml --ads 127.0.0.1:1 --modbus 127.0.0.1:1", out), 0) << out;
   EXPECT_NE(out.find("excludes"), std::string::npos) << out;
+  EXPECT_EQ(shell(kExe + " monitor " + kExample + "/cell.yaml --opcua opc.tcp://127.0.0.1:1 --modbus 127.0.0.1:1", out), 64) << out;
+  EXPECT_NE(out.find("one of --ads"), std::string::npos) << out;
 }
 
 // The text of examples/ads-cell/cell.yaml for a file elsewhere: its PLC sources by absolute path,

@@ -152,7 +152,7 @@ ExitCode serveCell(const ServeOptions& o) {
   }
   std::unique_ptr<OpcuaPlcServer> opcua;
   if (o.opcua.enabled()) {
-    auto server = startOpcuaServer(o.opcua, o.peers, *cell->module);
+    auto server = startOpcuaServer(o.opcua, o.peers, *cell->module, cell.get());
     if (!server) {
       std::cerr << "error: " << server.error() << "\n";
       return ExitCode::Usage;

@@ -1,11 +1,14 @@
 #include "cli/opcua_options.hpp"
 
+#include <bit>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
 
+#include "cell/cell.hpp"
 #include "proto/ads/plc/module_symbols.hpp"
 #include "proto/net/endpoint.hpp"
 #include "proto/opcua/crypto.hpp"
@@ -42,8 +45,30 @@ std::expected<std::vector<proto::opcua::UserAccount>, std::string> readOpcuaUser
   return *accounts;
 }
 
+// Every port of every device whose type OPC UA serves (not STRING), one 8-byte slot each.
+proto::opcua::AddressSpaceConfig OpcuaPlcServer::deviceNodes(const cell::Cell& cell) {
+  namespace ua = proto::opcua;
+  ua::AddressSpaceConfig names;
+  bus_ = &cell.bus;
+  for (const auto& device : cell.devices) {
+    ua::ExtraObject object{device->name(), {}};
+    for (size_t i = 0; i < device->ports().size(); ++i) {
+      const plant::PortSpec& port = device->ports()[i];
+      const ua::BuiltinType type = ua::builtinOf(proto::ads::adsTypeOf(port.type));
+      if (type == ua::BuiltinType::Null || type == ua::BuiltinType::String) continue;
+      const auto slot = static_cast<uint32_t>(signals_.size());
+      object.variables.push_back({port.name, type, slot * 8, elemTypeInfo(port.type).sizeBytes});
+      signals_.push_back({device->tag(i), port.type == ElemType::Real});
+    }
+    names.devices.push_back(std::move(object));
+  }
+  names.extraBytes = static_cast<uint32_t>(signals_.size() * 8);
+  deviceImage_.assign(names.extraBytes, 0);
+  return names;
+}
+
 std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions& o, const PeerFlags& peers,
-                                                                              const bc::Module& module) {
+                                                                              const bc::Module& module, const cell::Cell* cell) {
   namespace ua = proto::opcua;
   auto endpoint = proto::net::parseEndpoint(o.listen);
   if (!endpoint) return std::unexpected("--opcua: " + endpoint.error());
@@ -68,6 +93,7 @@ std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(con
   if (!policy) return std::unexpected(policy.error());
   config.peers = std::move(*policy);
   std::unique_ptr<OpcuaPlcServer> s(new OpcuaPlcServer(proto::ads::buildSymbolTable(module)));
+  if (cell) config.names = s->deviceNodes(*cell);
   auto server = ua::Server::start(config, s->table_);
   if (!server) return std::unexpected("--opcua: " + server.error());
   s->server_ = std::move(*server);
@@ -81,7 +107,12 @@ void OpcuaPlcServer::beforeScan(plc::Runtime& runtime, WriteObserver* audit) {
 }
 
 void OpcuaPlcServer::afterScan(plc::Runtime& runtime) {
-  server_->publishSnapshot({runtime.machine().memory(), runtime.module().staticSize});
+  for (size_t k = 0; k < signals_.size(); ++k) {
+    uint64_t raw = bus_->raw(signals_[k].tag);  // little endian: a narrower type is its low bytes
+    if (signals_[k].asFloat) raw = std::bit_cast<uint32_t>(static_cast<float>(std::bit_cast<double>(raw)));
+    std::memcpy(deviceImage_.data() + k * 8, &raw, 8);
+  }
+  server_->publishSnapshot({runtime.machine().memory(), runtime.module().staticSize}, deviceImage_);
 }
 
 void announceOpcuaServer(OpcuaPlcServer& server) {

@@ -8,10 +8,15 @@
 #include <CLI/CLI.hpp>
 
 #include "bytecode/module.hpp"
+#include "core/tag_bus.hpp"
 #include "cli/peer_options.hpp"
 #include "plc/runtime.hpp"
 #include "proto/ads/symbol_table.hpp"
 #include "proto/opcua/server.hpp"
+
+namespace virtcom::cell {
+struct Cell;
+}
 
 namespace virtcom::cli {
 
@@ -32,8 +37,9 @@ void addOpcuaServeOptions(CLI::App* cmd, OpcuaServeOptions& o);
 std::expected<std::vector<proto::opcua::UserAccount>, std::string> readOpcuaUsers(const std::string& path, bool missingIsEmpty = false);
 
 // A compiled program served over OPC UA: its ADS symbol table (the address space is generated
-// from it) and the server; the scan loop calls afterScan() once after the cold start, then
-// beforeScan()/afterScan() around every scan. Neither allocates.
+// from it), serving a cell also its devices' signals, and the server; the scan loop calls
+// afterScan() once after the cold start, then beforeScan()/afterScan() around every scan.
+// Neither allocates.
 class OpcuaPlcServer {
  public:
   void beforeScan(plc::Runtime& runtime, WriteObserver* audit = nullptr);
@@ -43,16 +49,26 @@ class OpcuaPlcServer {
 
  private:
   friend std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions&, const PeerFlags&,
-                                                                                      const bc::Module&);
+                                                                                      const bc::Module&, const cell::Cell*);
+  // A device signal in the image's extra part: 8 bytes per signal, in serving order.
+  struct DeviceSignal {
+    TagId tag;
+    bool asFloat;  // a REAL: the bus holds a double, OPC UA serves a Float
+  };
   explicit OpcuaPlcServer(proto::ads::SymbolTable table) : table_(std::move(table)) {}
+  proto::opcua::AddressSpaceConfig deviceNodes(const cell::Cell& cell);
   proto::ads::SymbolTable table_;
+  const TagBus* bus_ = nullptr;
+  std::vector<DeviceSignal> signals_;
+  std::vector<uint8_t> deviceImage_;
   std::unique_ptr<proto::opcua::Server> server_;
 };
 
-// Checks the options and starts the server over `module` (which must outlive it). The error
-// text names the option at fault ("--opcua: ...").
+// Checks the options and starts the server over `module` (which must outlive it) and, when
+// `cell` is given (`serve`), its devices' signals read only in Objects/Devices (which must
+// outlive it too). The error text names the option at fault ("--opcua: ...").
 std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions& o, const PeerFlags& peers,
-                                                                              const bc::Module& module);
+                                                                              const bc::Module& module, const cell::Cell* cell = nullptr);
 
 // "opcua: serving opc.tcp://127.0.0.1:4840 (security None, anonymous read-only)" on stderr (the
 // identities accepted: "anonymous read-only", "2 users", ...), once the

@@ -208,8 +208,10 @@ void Simulation::scanPlc() {
   if (touched) runtime_->inputsTouched();
   if (options_.beforeScan) options_.beforeScan(*runtime_);
   runtime_->tick();
-  if (options_.afterScan) options_.afterScan(*runtime_);
   readFromPlc(mem);
+  // After the outputs reached the bus: what afterScan publishes of the PLC and of the devices'
+  // signals (serve --opcua) is one image of this scan.
+  if (options_.afterScan) options_.afterScan(*runtime_);
 }
 
 void Simulation::readFromPlc(const uint8_t* mem) {

@@ -44,7 +44,7 @@ struct SimOptions {
   std::vector<BusBridge*> bridges;
   // Around every scan of the soft PLC, on the simulation's thread (an ADS server serving it:
   // queued writes and RUN/STOP before, the image snapshot after; its first snapshot is taken
-  // in `preset`). Must not allocate.
+  // in `preset`). afterScan runs once the scan's outputs are on the bus. Must not allocate.
   std::function<void(plc::Runtime& plc)> beforeScan, afterScan;
   // afterScan is only an observer that accounts for the scans a jump of event-driven time
   // passed over itself (from the task's scan count, as plc::RuleCounter does): it does not

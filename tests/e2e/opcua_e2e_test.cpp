@@ -165,6 +165,23 @@ TEST(OpcuaE2e, ServeCellsSoftPlcOverOpcua) {
   EXPECT_EQ(server.stop(), 0) << server.errorOutput();
 }
 
+// The cell's devices as objects: check_opcua_devices.js browses Objects/Devices, reads each
+// signal's type, sees the clamp's `done` change while the cell runs, its `execute` equal to the PLC
+// variable wired to it in every Read (one image of a scan), and a write refused.
+TEST(OpcuaE2e, ServeCellsDevicesAsObjectsOfTheirSignals) {
+  ServerProcess server(kExe, {"serve", "cell.yaml", "--opcua", "127.0.0.1:0"}, VIRTCOM_SOURCE_DIR "/examples/ads-cell",
+                       "opcua: serving opc.tcp://");
+  ASSERT_GT(server.port(), 0) << server.errorOutput();
+  std::string output;
+  int status = virtcom::e2e::shell("cd '" + kClientDir + "' && node check_opcua_devices.js " + std::to_string(server.port()), output);
+  EXPECT_EQ(status, 0) << output;
+  EXPECT_NE(output.find("device Clamp: programNumber:Int16 execute:Boolean done:Boolean error:Int16 busy:Boolean"), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("actualForce:Double position:Double"), std::string::npos) << output;
+  EXPECT_NE(output.find("write refused: BadNotWritable"), std::string::npos) << output;
+  EXPECT_EQ(server.stop(), 0) << server.errorOutput();
+}
+
 // A users file made by `virtcom opcua-user add` (the passwords on stdin), in a fresh folder.
 std::string makeUsersFile() {
   const auto dir = std::filesystem::temp_directory_path() / ("virtcom-opcua-users-" + std::to_string(::getpid()));

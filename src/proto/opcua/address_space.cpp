@@ -10,26 +10,6 @@ namespace {
 // An array of structs is served element by element up to this many (beyond: the first ones).
 constexpr uint32_t kMaxStructElements = 1000;
 
-// The built-in type an ADS type id reads as (docs/opcua.md, Data types).
-BuiltinType builtinOf(uint32_t adsType) {
-  namespace adst = ads::adst;
-  switch (adsType) {
-    case adst::kBit: return BuiltinType::Boolean;
-    case adst::kInt8: return BuiltinType::SByte;
-    case adst::kUint8: return BuiltinType::Byte;
-    case adst::kInt16: return BuiltinType::Int16;
-    case adst::kUint16: return BuiltinType::UInt16;
-    case adst::kInt32: return BuiltinType::Int32;
-    case adst::kUint32: return BuiltinType::UInt32;
-    case adst::kInt64: return BuiltinType::Int64;
-    case adst::kUint64: return BuiltinType::UInt64;
-    case adst::kReal32: return BuiltinType::Float;
-    case adst::kReal64: return BuiltinType::Double;
-    case adst::kString:
-    case adst::kWstring: return BuiltinType::String;
-    default: return BuiltinType::Null;
-  }
-}
 
 Node object(NodeId id, uint16_t ns, std::string name, uint32_t typeDefinition) {
   Node n;
@@ -111,6 +91,29 @@ AddressSpace::AddressSpace(const ads::SymbolTable& table, const AddressSpaceConf
       continue;
     }
     addPlcVariable(parent, s.name, name, s.type, offset, &s);
+  }
+  addDevices();
+}
+
+void AddressSpace::addDevices() {
+  if (config_.devices.empty()) return;
+  const std::string prefix = "|dev|" + config_.applicationName;
+  const uint32_t folder = add(object(NodeId::str(ids::kPlcNamespace, prefix), ids::kPlcNamespace, "Devices", ids::kFolderType));
+  link(*find(NodeId::num(0, ids::kObjectsFolder)), ids::kOrganizes, folder);
+  const uint32_t extraStart = table_.layout().dataSize;
+  for (const ExtraObject& device : config_.devices) {
+    const std::string path = prefix + "." + device.name;
+    const uint32_t index = add(object(NodeId::str(ids::kPlcNamespace, path), ids::kPlcNamespace, device.name, ids::kBaseObjectType));
+    link(folder, ids::kOrganizes, index);
+    for (const ExtraVariable& v : device.variables) {
+      Node n = object(NodeId::str(ids::kPlcNamespace, path + "." + v.name), ids::kPlcNamespace, v.name, ids::kBaseDataVariableType);
+      n.nodeClass = NodeClass::Variable;
+      n.source = ValueSource::Plc;
+      n.plc = PlcValue{v.type, extraStart + v.offset, v.size, 1, -1, false, false, {}};
+      n.dataType = NodeId::num(0, static_cast<uint32_t>(v.type));
+      n.writable = false;  // the simulation's state: what the devices do, not an input
+      link(index, ids::kHasComponent, add(std::move(n)));
+    }
   }
 }
 
@@ -236,6 +239,26 @@ void AddressSpace::addPlcVariable(uint32_t parent, const std::string& path, std:
   n.writable = !symbolReadOnly && !table_.touchesReadOnly(offset, v.elementSize * v.count);
   n.plc = std::move(v);
   link(parent, ids::kHasComponent, add(std::move(n)));
+}
+
+BuiltinType builtinOf(uint32_t adsType) {
+  namespace adst = ads::adst;
+  switch (adsType) {
+    case adst::kBit: return BuiltinType::Boolean;
+    case adst::kInt8: return BuiltinType::SByte;
+    case adst::kUint8: return BuiltinType::Byte;
+    case adst::kInt16: return BuiltinType::Int16;
+    case adst::kUint16: return BuiltinType::UInt16;
+    case adst::kInt32: return BuiltinType::Int32;
+    case adst::kUint32: return BuiltinType::UInt32;
+    case adst::kInt64: return BuiltinType::Int64;
+    case adst::kUint64: return BuiltinType::UInt64;
+    case adst::kReal32: return BuiltinType::Float;
+    case adst::kReal64: return BuiltinType::Double;
+    case adst::kString:
+    case adst::kWstring: return BuiltinType::String;
+    default: return BuiltinType::Null;
+  }
 }
 
 }  // namespace virtcom::proto::opcua

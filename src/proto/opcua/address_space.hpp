@@ -3,7 +3,8 @@
 // connect (Root, Objects, Types, Views, Server with ServerStatus, NamespaceArray, ServerArray) and
 // the PLC's variables, generated from the ADS SymbolTable: Objects → a folder per POU or GVL →
 // a variable per symbol, structs as objects of variables, arrays of elementary types as array
-// values. Built once at start; read only afterwards (no lock needed to browse it).
+// values; and, serving a cell, Objects → Devices → an object per device → its signals. Built
+// once at start; read only afterwards (no lock needed to browse it).
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -66,9 +67,24 @@ struct Node {
 // Access level bits (OPC 10000-3 §8.57).
 inline constexpr uint8_t kAccessRead = 0x01, kAccessWrite = 0x02;
 
+// A value outside the PLC's memory, served read only (a cell device's signal): `size` bytes
+// at `offset` of the image's extra part, which follows the PLC's data area.
+struct ExtraVariable {
+  std::string name;
+  BuiltinType type = BuiltinType::Null;
+  uint32_t offset = 0, size = 0;
+};
+// An object of such values (a cell device) in Objects/Devices, ns=4;s=|dev|<application>.<name>.
+struct ExtraObject {
+  std::string name;
+  std::vector<ExtraVariable> variables;
+};
+
 struct AddressSpaceConfig {
   std::string applicationName = "virtcom";  // CODESYS' device name in |var|<name>.Application...
   std::string applicationUri = "urn:virtcom:plc";
+  std::vector<ExtraObject> devices;         // the cell's devices; none without a cell
+  uint32_t extraBytes = 0;                  // the image's extra part (every ExtraVariable fits in it)
 };
 
 class AddressSpace {
@@ -92,6 +108,7 @@ class AddressSpace {
   // Adds a variable (or an object of members for a struct) named `name` under `parent`.
   void addPlcVariable(uint32_t parent, const std::string& path, std::string_view name, const std::string& type,
                       uint32_t offset, const ads::Symbol* symbol);
+  void addDevices();
 
   const ads::SymbolTable& table_;
   AddressSpaceConfig config_;
@@ -101,6 +118,9 @@ class AddressSpace {
   std::unordered_map<std::string, uint32_t> named_;   // ns=4 string id -> index
   std::unordered_map<std::string, uint32_t> folders_; // POU / GVL name -> folder index
 };
+
+// The built-in type an ADS type id reads as (docs/opcua.md, Data types); Null if not served.
+BuiltinType builtinOf(uint32_t adsType);
 
 // True if reference type `type` is `base` or (with subtypes) one of its subtypes.
 bool isReferenceSubtype(uint32_t type, uint32_t base, bool includeSubtypes);

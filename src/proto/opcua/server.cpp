@@ -70,9 +70,9 @@ size_t Server::applyPendingWrites(const LiveImage& live, WriteObserver* audit) {
   return n;
 }
 
-void Server::publishSnapshot(std::span<const uint8_t> data) {
+void Server::publishSnapshot(std::span<const uint8_t> data, std::span<const uint8_t> extra) {
   std::lock_guard lock(mutex_);
-  core_.publish(data);
+  core_.publish(data, extra);
 }
 
 void Server::run() {

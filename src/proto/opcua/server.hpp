@@ -43,8 +43,9 @@ class Server {
 
   // Scan thread, before a scan: applies every queued write to `live`; returns how many edits.
   size_t applyPendingWrites(const LiveImage& live, WriteObserver* audit = nullptr);
-  // Scan thread, after a scan: copies the data area into the snapshot.
-  void publishSnapshot(std::span<const uint8_t> data);
+  // Scan thread, after a scan: copies the data area (and the values of the extra objects, the
+  // cell's devices) into the snapshot.
+  void publishSnapshot(std::span<const uint8_t> data, std::span<const uint8_t> extra = {});
 
   size_t connectionCount() const { return connections_.load(); }
   void stop() { io_.stop(); }

@@ -19,7 +19,7 @@ DateTime dateTimeNow() { return DateTime{kUnixEpochTicks + utcNowNs() / 100}; }
 ServerCore::ServerCore(const ads::SymbolTable& table, ServerConfig config)
     : config_(std::move(config)),
       space_(table, config_.names),
-      snapshot_(table.layout().dataSize, 0),
+      snapshot_(table.layout().dataSize + config_.names.extraBytes, 0),
       pending_(config_.writeQueueBytes),
       startTime_(dateTimeNow()) {
   // Authentication tokens must not be guessable from the session ids clients see.
@@ -44,8 +44,10 @@ uint32_t ServerCore::write(const PlcValue& v, std::span<const uint8_t> bytes) {
   return 0;
 }
 
-void ServerCore::publish(std::span<const uint8_t> image) {
-  std::copy_n(image.begin(), std::min(image.size(), snapshot_.size()), snapshot_.begin());
+void ServerCore::publish(std::span<const uint8_t> image, std::span<const uint8_t> extra) {
+  const size_t dataSize = snapshot_.size() - config_.names.extraBytes;
+  std::copy_n(image.begin(), std::min(image.size(), dataSize), snapshot_.begin());
+  std::copy_n(extra.begin(), std::min<size_t>(extra.size(), config_.names.extraBytes), snapshot_.begin() + static_cast<std::ptrdiff_t>(dataSize));
   // Writes not yet taken by the scan stay visible, so a client reads back what it wrote.
   pending_.applyTo(snapshot_);
 }

@@ -80,7 +80,7 @@ class ServerCore {
   // the caller has checked the session may write.
   uint32_t write(const PlcValue& v, std::span<const uint8_t> bytes);
   ads::WriteQueue& pendingWrites() { return pending_; }
-  void publish(std::span<const uint8_t> image);
+  void publish(std::span<const uint8_t> image, std::span<const uint8_t> extra = {});
 
   // Sessions: nullptr when there are maxSessions already (after dropping timed-out ones).
   Session* createSession(uint32_t channelId, double timeoutMs, std::string name, int64_t nowNs);

@@ -11,46 +11,13 @@ namespace virtcom::proto::ads {
 
 namespace {
 
-// ADST of an elementary type (docs/ads.md, Wire reference: ADS data type ids and flags).
-uint32_t adsTypeOf(ElemType e) {
-  switch (e) {
-    case ElemType::Bool: return adst::kBit;
-    case ElemType::Byte:
-    case ElemType::Usint:
-    case ElemType::Char: return adst::kUint8;
-    case ElemType::Word:
-    case ElemType::Uint:
-    case ElemType::Wchar: return adst::kUint16;
-    case ElemType::Dword:
-    case ElemType::Udint:
-    case ElemType::Time:
-    case ElemType::Date:
-    case ElemType::Tod:
-    case ElemType::Dt: return adst::kUint32;
-    case ElemType::Lword:
-    case ElemType::Ulint:
-    case ElemType::Ltime:
-    case ElemType::Ldate:
-    case ElemType::Ltod:
-    case ElemType::Ldt: return adst::kUint64;
-    case ElemType::Sint: return adst::kInt8;
-    case ElemType::Int: return adst::kInt16;
-    case ElemType::Dint: return adst::kInt32;
-    case ElemType::Lint: return adst::kInt64;
-    case ElemType::Real: return adst::kReal32;
-    case ElemType::Lreal: return adst::kReal64;
-    case ElemType::String: return adst::kString;
-    case ElemType::Wstring: return adst::kWstring;
-  }
-  return adst::kVoid;
-}
 
 uint32_t adsTypeOf(const bc::Module& m, bc::TypeId id) {
   const bc::TypeDesc& t = m.types[id];
   switch (t.kind) {
     case bc::TypeKind::Elementary:
     case bc::TypeKind::String:
-    case bc::TypeKind::Enum: return adsTypeOf(t.elem);
+    case bc::TypeKind::Enum: return ads::adsTypeOf(t.elem);
     case bc::TypeKind::Array: return t.element < m.types.size() ? adsTypeOf(m, t.element) : adst::kBigType;
     case bc::TypeKind::Struct: return adst::kBigType;
     case bc::TypeKind::Pointer:
@@ -122,7 +89,7 @@ class Builder {
     const auto& info = elemTypeInfo(e);
     std::string name(info.name);
     if (!firstTime(name)) return;
-    types_.push_back(DataType{name, "", info.sizeBytes, adsTypeOf(e), kTypeFlagDataType, {}, {}, {}});
+    types_.push_back(DataType{name, "", info.sizeBytes, ads::adsTypeOf(e), kTypeFlagDataType, {}, {}, {}});
   }
 
   void collectType(bc::TypeId id) {
@@ -198,6 +165,39 @@ SymbolTable buildSymbolTable(const bc::Module& m) {
     return Builder::symbolFor(m, path, *ref);
   };
   return SymbolTable(b.takeSymbols(), b.takeTypes(), std::move(layout), resolver);
+}
+
+uint32_t adsTypeOf(ElemType e) {
+  switch (e) {
+    case ElemType::Bool: return adst::kBit;
+    case ElemType::Byte:
+    case ElemType::Usint:
+    case ElemType::Char: return adst::kUint8;
+    case ElemType::Word:
+    case ElemType::Uint:
+    case ElemType::Wchar: return adst::kUint16;
+    case ElemType::Dword:
+    case ElemType::Udint:
+    case ElemType::Time:
+    case ElemType::Date:
+    case ElemType::Tod:
+    case ElemType::Dt: return adst::kUint32;
+    case ElemType::Lword:
+    case ElemType::Ulint:
+    case ElemType::Ltime:
+    case ElemType::Ldate:
+    case ElemType::Ltod:
+    case ElemType::Ldt: return adst::kUint64;
+    case ElemType::Sint: return adst::kInt8;
+    case ElemType::Int: return adst::kInt16;
+    case ElemType::Dint: return adst::kInt32;
+    case ElemType::Lint: return adst::kInt64;
+    case ElemType::Real: return adst::kReal32;
+    case ElemType::Lreal: return adst::kReal64;
+    case ElemType::String: return adst::kString;
+    case ElemType::Wstring: return adst::kWstring;
+  }
+  return adst::kVoid;
 }
 
 }  // namespace virtcom::proto::ads

@@ -10,4 +10,7 @@ namespace virtcom::proto::ads {
 // `m` must outlive the table (paths are resolved against it). Allocates; called once at start.
 SymbolTable buildSymbolTable(const bc::Module& m);
 
+// The ADS data type id (ADST_*) of an elementary type (docs/ads.md, Wire reference).
+uint32_t adsTypeOf(ElemType e);
+
 }  // namespace virtcom::proto::ads

@@ -28,6 +28,16 @@ class Chart : public ::testing::Test {
     plc_->scan();
     set(variable, "FALSE");
   }
+  // With `variable` at `holding` the chart stays in `from`; at `firing` it moves on to `to`.
+  void expectFiresOn(const std::string& variable, const std::string& holding, const std::string& firing,
+                     const std::string& from, const std::string& to) {
+    set(variable, holding);
+    plc_->scan();
+    EXPECT_EQ(active(), from) << variable << " = " << holding;
+    set(variable, firing);
+    plc_->scan();
+    EXPECT_EQ(active(), to) << variable << " = " << firing;
+  }
   std::unique_ptr<Compiled> compiled_;
   std::unique_ptr<Plc> plc_;
   std::string program_;
@@ -48,12 +58,7 @@ TEST_F(Conditions, EachFormHoldsUntilItsConditionBecomesTrue) {
   EXPECT_EQ(active(), "S1");
   pulse("a");
   EXPECT_EQ(active(), "S2") << "inline LD: the coil assigns the inline's name";
-  set("level", "2");
-  plc_->scan();
-  EXPECT_EQ(active(), "S2");
-  set("level", "3");
-  plc_->scan();
-  EXPECT_EQ(active(), "S3") << "inline FBD: level >= 3";
+  expectFiresOn("level", "2", "3", "S2", "S3");  // inline FBD: level >= 3
   pulse("ready");
   EXPECT_EQ(active(), "S4") << "reference to an FBD transition";
 }
@@ -65,18 +70,8 @@ TEST_F(Conditions, WiredFromContactsAndAFunction) {
   plc_->scan(4);
   ASSERT_EQ(active(), "S4");
   set("b", "TRUE");
-  set("c", "TRUE");
-  plc_->scan();
-  EXPECT_EQ(active(), "S4") << "b AND NOT c: the negated contact c blocks";
-  set("c", "FALSE");
-  plc_->scan();
-  EXPECT_EQ(active(), "S5") << "b AND NOT c";
-  set("pressure", "5");
-  plc_->scan();
-  EXPECT_EQ(active(), "S5");
-  set("pressure", "6");
-  plc_->scan();
-  EXPECT_EQ(active(), "S6") << "GT(pressure, 5)";
+  expectFiresOn("c", "TRUE", "FALSE", "S4", "S5");  // b AND NOT c: the negated contact c blocks
+  expectFiresOn("pressure", "5", "6", "S5", "S6");  // GT(pressure, 5)
 }
 
 TEST_F(Conditions, WiredFromAnFbInstanceAnEdgeAndNegated) {

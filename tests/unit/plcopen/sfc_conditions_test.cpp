@@ -129,27 +129,5 @@ TEST_F(MacroStep, IsEnteredThroughItsInitialStepAndLeftThroughItsFinalStep) {
   EXPECT_EQ(active(), "Fill__Open") << "a jump to the macro step enters its initial step";
 }
 
-// Export writes the expanded chart: plain steps named Macro__Step, no macroStep; imported again
-// it evolves the same.
-TEST(MacroStepExport, WritesTheExpandedChart) {
-  std::string xml = exportOf({input("sfc_macro_step.xml", readFile(kGoldenDir / "sfc_macro_step.xml"))});
-  EXPECT_NE(xml.find("name=\"Fill__Dose__Pump\""), std::string::npos) << xml;
-  EXPECT_EQ(xml.find("macroStep"), std::string::npos) << xml;
-  auto original = compileGolden("sfc_macro_step.xml");
-  auto reimported = compile({input("exported.xml", xml)});
-  ASSERT_NE(original->module, nullptr) << original->rendered();
-  ASSERT_NE(reimported->module, nullptr) << reimported->rendered() << xml;
-  Plc a(*original->module), b(*reimported->module);
-  for (const char* input : {"go", "full", "dosed", "settled", "closed", "again"}) {
-    for (Plc* plc : {&a, &b}) {
-      plc->set(std::string("tank.") + input, "TRUE");
-      plc->scan();
-      plc->set(std::string("tank.") + input, "FALSE");
-    }
-    for (const char* step : {"Idle", "Fill__Open", "Fill__Dose__Pump", "Fill__Dose__Wait", "Fill__Close", "Done"})
-      EXPECT_EQ(a.get(std::string("tank.") + step + ".X"), b.get(std::string("tank.") + step + ".X")) << step << " after " << input;
-  }
-}
-
 }  // namespace
 }  // namespace virtcom::plcopen::testing

@@ -101,23 +101,10 @@ TEST_F(Conditions, WiredFromAnFbInstanceAnEdgeAndNegated) {
   EXPECT_EQ(active(), "S0") << "negated: NOT hold, then the jump to S0";
 }
 
-// Two transitions wired from one rising-edge contact: each keeps its own hidden variables (edge
-// memory, transition name), so the POU declares no name twice.
+// Two transitions wired from one rising-edge contact (sfc_shared_condition.xml): each keeps its
+// own hidden variables (edge memory, transition name), so the POU declares no name twice.
 TEST(WiredConditions, TwoTransitionsMayReadOneElement) {
-  std::string xml =
-      "<project xmlns=\"http://www.plcopen.org/xml/tc6_0201\"><types><pous><pou name=\"P\" pouType=\"program\">"
-      "<interface><localVars><variable name=\"e\"><type><BOOL/></type></variable></localVars></interface><body><SFC>"
-      "<step localId=\"1\" name=\"S0\" initialStep=\"true\"/>"
-      "<leftPowerRail localId=\"10\"/>"
-      "<contact localId=\"11\" edge=\"rising\"><connectionPointIn><connection refLocalId=\"10\"/></connectionPointIn><variable>e</variable></contact>"
-      "<transition localId=\"2\" priority=\"0\"><connectionPointIn><connection refLocalId=\"1\"/></connectionPointIn>"
-      "<condition><connectionPointIn><connection refLocalId=\"11\"/></connectionPointIn></condition></transition>"
-      "<step localId=\"3\" name=\"S1\"><connectionPointIn><connection refLocalId=\"2\"/></connectionPointIn></step>"
-      "<transition localId=\"4\" priority=\"1\"><connectionPointIn><connection refLocalId=\"1\"/></connectionPointIn>"
-      "<condition><connectionPointIn><connection refLocalId=\"11\"/></connectionPointIn></condition></transition>"
-      "<step localId=\"5\" name=\"S2\"><connectionPointIn><connection refLocalId=\"4\"/></connectionPointIn></step>"
-      "</SFC></body></pou></pous></types></project>";
-  auto c = compile({input("p.xml", xml)});
+  auto c = compileGolden("sfc_shared_condition.xml");
   ASSERT_NE(c->module, nullptr) << c->rendered();
   Plc plc(*c->module);
   plc.scan(2);

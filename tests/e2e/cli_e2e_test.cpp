@@ -869,6 +869,29 @@ TEST_F(CliPlcopen, ExportedSfcChartTracesTheSameSteps) {
   EXPECT_EQ(fromXml.out, st.out);
 }
 
+// Macro steps run as the steps they expand to, named Macro__Step (sfc_macro_step.xml).
+TEST_F(CliPlcopen, MacroStepsAreTracedAsTheirExpandedSteps) {
+  RunResult r = run({"exec", "../../golden/plcopen/sfc_macro_step.xml", "--cycles", "4", "--set", "tank.go=TRUE",
+                     "--set", "tank.full=TRUE", "--trace-steps"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_EQ(r.out,
+            "scan 0 (0 ms): tank.Idle\n"
+            "scan 1 (10 ms): tank.Fill__Open\n"
+            "scan 2 (20 ms): tank.Fill__Dose__Pump\n"
+            "scan 3 (30 ms): tank.Fill__Dose__Pump\n");
+}
+
+// Conditions wired from LD contacts, an FBD function and a TON of the SFC body (sfc_conditions.xml):
+// the TON (T#30ms) is called from scan 7 on, while S6 is active, and clears the transition in scan 10.
+TEST_F(CliPlcopen, WiredTransitionConditionsFireWhenTheirNetworkIsTrue) {
+  RunResult r = run({"exec", "../../golden/plcopen/sfc_conditions.xml", "--cycles", "12", "--set", "seq.start=TRUE",
+                     "--set", "seq.a=TRUE", "--set", "seq.level=3", "--set", "seq.ready=TRUE", "--set", "seq.b=TRUE",
+                     "--set", "seq.pressure=6", "--trace-steps"});
+  EXPECT_EQ(r.exitCode, 0) << show(r);
+  EXPECT_TRUE(contains(r.out, "scan 5 (50 ms): seq.S5\nscan 6 (60 ms): seq.S6\n")) << show(r);
+  EXPECT_TRUE(contains(r.out, "scan 9 (90 ms): seq.S6\nscan 10 (100 ms): seq.S7\n")) << show(r);
+}
+
 // A ladder program in XML and an ST function block checked together (as a cell's sources).
 TEST_F(CliPlcopen, CheckAcceptsXmlAndStMixed) {
   RunResult r = run({"check", "cells/ld_handshake.xml", "cells/edge_counter.st"});

@@ -1,6 +1,7 @@
 #pragma once
 // A graphical body (LD or FBD) as read from the XML: elements by localId and the connections
-// between their pins. network_read.cpp builds it; network_translate.cpp turns it into ST.
+// between their pins. network_read.cpp builds it; network_translate.cpp turns it into ST. The
+// LD/FBD elements of an SFC body, which compute transition conditions, are a network too.
 #include <pugixml.hpp>
 
 #include <cstdint>
@@ -14,6 +15,7 @@ namespace virtcom::plcopen::detail {
 enum class ElementKind : uint8_t {
   LeftRail, RightRail, Contact, Coil, InVariable, OutVariable, InOutVariable, Block,
   Connector, Continuation, Jump, Label, Return, Comment,
+  Condition,  // an SFC transition's <condition><connectionPointIn>: reads one value, runs nothing
 };
 
 enum class Edge : uint8_t { None, Rising, Falling };
@@ -64,6 +66,7 @@ inline constexpr size_t kNoElement = std::numeric_limits<size_t>::max();
 
 struct Network {
   bool ladder = false;  // LD (power flow) rather than FBD
+  bool inChart = false;  // the LD/FBD elements of an SFC body (which reports its own elements)
   std::vector<Element> elements;  // document order
   std::unordered_map<uint32_t, size_t> byLocalId;  // localId -> index into elements
 

@@ -25,6 +25,12 @@ constexpr KindName kKinds[] = {
     {"return", ElementKind::Return},            {"comment", ElementKind::Comment},
 };
 
+const KindName* kindOf(std::string_view element) {
+  for (const auto& k : kKinds)
+    if (k.element == element) return &k;
+  return nullptr;
+}
+
 bool parseUint(std::string_view text, uint32_t& out) {
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
   return ec == std::errc() && end == text.data() + text.size() && !text.empty();
@@ -50,9 +56,11 @@ class NetworkReader {
     for (pugi::xml_node node = body.first_child(); node; node = node.next_sibling()) {
       if (node.type() != pugi::node_element) continue;
       std::string_view name = localName(node);
-      const KindName* kind = nullptr;
-      for (const auto& k : kKinds)
-        if (k.element == name) kind = &k;
+      const KindName* kind = kindOf(name);
+      if (net_.inChart) {
+        readChartElement(node, kind);
+        continue;
+      }
       if (!kind) {
         if (name != "addData" && name != "documentation")
           imp_.unsupported(node, "<" + std::string(name) + "> in " + (net_.ladder ? "an LD" : "an FBD") + " body");
@@ -64,6 +72,31 @@ class NetworkReader {
   }
 
  private:
+  // In an SFC body the chart reader reports the SFC elements; LD/FBD elements only compute the
+  // values that transition conditions read, so elements that would run statements are refused.
+  void readChartElement(pugi::xml_node node, const KindName* kind) {
+    if (localName(node) == "transition") {
+      pugi::xml_node wired = child(child(node, "condition"), "connectionPointIn");
+      if (!wired) return;
+      Element e;
+      e.kind = ElementKind::Condition;
+      e.node = node;
+      if (!readLocalId(node, e.localId)) return;
+      e.inputs.push_back(readPin(wired));
+      add(std::move(e));
+      return;
+    }
+    if (!kind) return;
+    switch (kind->kind) {
+      case ElementKind::Coil: case ElementKind::OutVariable: case ElementKind::InOutVariable:
+      case ElementKind::RightRail: case ElementKind::Jump: case ElementKind::Label: case ElementKind::Return:
+        imp_.unsupported(node, "<" + std::string(localName(node)) +
+                                   "> in an SFC body (its LD/FBD elements may only compute transition conditions)");
+        return;
+      default: readElement(node, kind->kind);
+    }
+  }
+
   void readElement(pugi::xml_node node, ElementKind kind) {
     Element e;
     e.kind = kind;
@@ -90,12 +123,17 @@ class NetworkReader {
       e.name = kind == ElementKind::Jump || kind == ElementKind::Label ? node.attribute("label").value()
                                                                       : node.attribute("name").value();
     }
-    if (net_.byLocalId.count(e.localId) && kind != ElementKind::Comment) {
-      imp_.error(diag::X007, node, describe(node) + ": localId " + std::to_string(e.localId) +
-                                       " is already used by another element of this body");
+    add(std::move(e));
+  }
+
+  void add(Element e) {
+    if (net_.byLocalId.count(e.localId) && e.kind != ElementKind::Comment) {
+      if (!net_.inChart)  // the chart reader checks the localIds of all the elements of an SFC body
+        imp_.error(diag::X007, e.node, describe(e.node) + ": localId " + std::to_string(e.localId) +
+                                           " is already used by another element of this body");
       return;
     }
-    if (kind != ElementKind::Comment) net_.byLocalId[e.localId] = net_.elements.size();
+    if (e.kind != ElementKind::Comment) net_.byLocalId[e.localId] = net_.elements.size();
     net_.elements.push_back(std::move(e));
   }
 
@@ -188,5 +226,14 @@ Network readNetwork(Importer& imp, pugi::xml_node body, bool ladder) {
   NetworkReader(imp, net).read(body);
   return net;
 }
+
+Network readChartNetwork(Importer& imp, pugi::xml_node sfc) {
+  Network net;
+  net.inChart = true;
+  NetworkReader(imp, net).read(sfc);
+  return net;
+}
+
+bool isNetworkElement(std::string_view element) { return kindOf(element) != nullptr; }
 
 }  // namespace virtcom::plcopen::detail

@@ -29,8 +29,10 @@ class Translator {
   }
 
   st::StmtList run();
+  st::ExprPtr condition(size_t i, st::StmtList& before);
 
  private:
+  void addHiddenVariables();
   enum class State : uint8_t { Unvisited, InProgress, Done };
 
   // ---- values ----
@@ -469,15 +471,38 @@ st::StmtList Translator::run() {
     execute(i);
   }
   st::StmtList body = joinSections(b_, std::move(sections), jumpVar_, owner_.loc);
+  addHiddenVariables();
+  return body;
+}
+
+// A function's EN in the condition's path gates the value as it gates an assignment: the
+// transition does not clear while EN is FALSE.
+st::ExprPtr Translator::condition(size_t i, st::StmtList& before) {
+  out_ = &before;
+  st::ExprPtr value = requiredInput(net_.elements[i], 0, "the transition's condition");
+  for (st::ExprPtr& guard : guards_) value = b_.binary(st::BinaryOp::And, std::move(guard), std::move(value));
+  guards_.clear();
+  addHiddenVariables();
+  return value;
+}
+
+void Translator::addHiddenVariables() {
   if (!memories_.vars.empty()) owner_.varBlocks.push_back(std::move(memories_));
   if (!temps_.vars.empty()) owner_.varBlocks.push_back(std::move(temps_));
-  return body;
 }
 
 }  // namespace
 
 st::StmtList translateNetwork(Importer& imp, const Network& net, st::Pou& owner, std::string_view prefix) {
   return Translator(imp, net, owner, prefix).run();
+}
+
+st::ExprPtr translateCondition(Importer& imp, const Network& net, uint32_t transitionId, st::Pou& owner,
+                               std::string_view prefix, st::StmtList& before) {
+  size_t i = net.find(transitionId);
+  // No such element: the transition's localId was missing, malformed or taken (reported).
+  if (i == kNoElement || net.elements[i].kind != ElementKind::Condition) return imp.build().boolLit(false, owner.loc);
+  return Translator(imp, net, owner, prefix).condition(i, before);
 }
 
 }  // namespace virtcom::plcopen::detail

@@ -19,8 +19,19 @@
 namespace virtcom::plcopen::detail {
 
 Network readNetwork(Importer& imp, pugi::xml_node body, bool ladder);
+// The LD/FBD elements of an SFC body and the transitions whose condition they feed (a
+// `Condition` element with the transition's localId).
+Network readChartNetwork(Importer& imp, pugi::xml_node sfc);
+// True for the element names of LD and FBD bodies (contact, block, inVariable, ...).
+bool isNetworkElement(std::string_view element);
 
 // Translates the network; hidden variables go into `owner` (names start with "__" + prefix).
 st::StmtList translateNetwork(Importer& imp, const Network& net, st::Pou& owner, std::string_view prefix);
+
+// The value wired into the condition of transition `transitionId` of a chart network, as an
+// expression; the statements it needs first (FB calls, edge memories, shared values) go to
+// `before`. Hidden variables as for translateNetwork.
+st::ExprPtr translateCondition(Importer& imp, const Network& net, uint32_t transitionId, st::Pou& owner,
+                               std::string_view prefix, st::StmtList& before);
 
 }  // namespace virtcom::plcopen::detail

@@ -59,7 +59,19 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"mixed_languages.xml",
                            {"station.Idle.X", "station.Filling.X", "station.lamp", "station.ticks", "station.level"},
                            {{"station.go", "TRUE"}, {"station.go", "FALSE"}, {"station.go", "TRUE"}}},
-                      Case{"codesys_st.xml", {"PLC_PRG.resets", "GVL.gScans", "PLC_PRG.axis.pos"}, {}}),
+                      Case{"codesys_st.xml", {"PLC_PRG.resets", "GVL.gScans", "PLC_PRG.axis.pos"}, {}},
+                      // Wired conditions come back as named transitions with ST bodies, macro
+                      // steps as their expanded steps.
+                      Case{"sfc_conditions.xml",
+                           {"seq.S0.X", "seq.S1.X", "seq.S2.X", "seq.S3.X", "seq.S4.X", "seq.S5.X", "seq.S6.X", "seq.S7.X", "seq.S8.X"},
+                           {{"seq.start", "TRUE"}, {"seq.a", "TRUE"}, {"seq.level", "3"}, {"seq.ready", "TRUE"},
+                            {"seq.b", "TRUE"}, {"seq.pressure", "6"}, {"seq.hold", "TRUE"}, {"seq.pulse", "TRUE"},
+                            {"seq.hold", "FALSE"}}},
+                      Case{"sfc_macro_step.xml",
+                           {"tank.Idle.X", "tank.Fill__Open.X", "tank.Fill__Dose__Pump.X", "tank.Fill__Dose__Wait.X",
+                            "tank.Fill__Close.X", "tank.Done.X", "tank.valve", "tank.pumping"},
+                           {{"tank.go", "TRUE"}, {"tank.full", "TRUE"}, {"tank.dosed", "TRUE"}, {"tank.settled", "TRUE"},
+                            {"tank.closed", "TRUE"}, {"tank.again", "TRUE"}}}),
     [](const auto& info) {
       std::string n = info.param.file.substr(0, info.param.file.find('.'));
       return n;

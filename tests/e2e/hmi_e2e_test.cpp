@@ -22,6 +22,7 @@
 
 #include "server_process.hpp"
 #include "shell_command.hpp"
+#include "support/read_file.hpp"
 
 namespace {
 
@@ -261,13 +262,26 @@ void expectHttpWritesAudited(const std::vector<std::string>& args, int exitStatu
   EXPECT_NE(log.find("audit: 2 external writes (ads 0, modbus 0, opcua 0, http 2)"), std::string::npos) << log;
 }
 
+// The run's HTML report lists them: heading with the counts, a row per write.
+void expectWritesListed(const std::string& reportFile) {
+  const std::string html = virtcom::test::readFile(reportFile);
+  EXPECT_NE(html.find("<h2>2 external writes (ads 0, modbus 0, opcua 0, http 2)<span"), std::string::npos) << html;
+  for (const char* cells : {"</td><td class=\"l\">http</td><td class=\"l\">127.0.0.1:", "</td><td class=\"l\">MAIN.jobCount</td>",
+                            " \u2192 7</td></tr>", "<td class=\"l\">MAIN.failed</td><td class=\"l wrap\">FALSE \u2192 TRUE (forced)</td></tr>"})
+    EXPECT_NE(html.find(cells), std::string::npos) << cells << "\n" << html;
+}
+
 TEST(Hmi, WritesAndForcesThroughTheHttpApiAreAudited) {
   expectHttpWritesAudited({"serve", kGearbox + "/cell.yaml", "--http", "127.0.0.1:0", "--quiet", "--audit-writes", "each"}, 0);
 }
 
-// `run --hmi` audits the page's writes as `serve --http` does.
+// `run --hmi` audits the page's writes as `serve --http` does, and its HTML report lists them.
 TEST(Hmi, RunWithTheHmiAuditsItsWritesToo) {
-  expectHttpWritesAudited({"run", kGearbox + "/cell.yaml", "--hmi", "127.0.0.1:0", "--quiet", "--audit-writes", "each"}, 3);  // 3: interrupted
+  const std::string report = (fs::temp_directory_path() / ("virtcom-hmi-writes-" + std::to_string(::getpid()) + ".html")).string();
+  expectHttpWritesAudited(
+      {"run", kGearbox + "/cell.yaml", "--hmi", "127.0.0.1:0", "--quiet", "--audit-writes", "each", "--report", report}, 3);  // 3: interrupted
+  expectWritesListed(report);
+  fs::remove(report);
 }
 
 TEST(Hmi, BindingBeyondLoopbackNeedsAnAllowList) {

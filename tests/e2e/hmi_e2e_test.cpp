@@ -148,6 +148,29 @@ TEST(Hmi, EveryResetStartsANewRecordedRun) {
   fs::remove(db);
 }
 
+// A write before a reset belongs to the run that ended: the new run's report counts and lists
+// only its own (as its history does), while the command's audit summary counts every write it
+// audited. Before, the report of the new run counted the old run's writes too.
+TEST(Hmi, TheRunAfterAResetReportsOnlyItsOwnWrites) {
+  const std::string json = (fs::temp_directory_path() / ("virtcom-hmi-reset-writes-" + std::to_string(::getpid()) + ".json")).string();
+  ServerProcess cell(kExe, {"serve", kGearbox + "/cell.yaml", "--http", "127.0.0.1:0", "--quiet", "--json", json}, kGearbox, kAnnounce);
+  ASSERT_GT(cell.port(), 0) << cell.errorOutput();
+  const std::string api = "http://127.0.0.1:" + std::to_string(cell.port()) + "/api/";
+  const std::string writeThenReset =
+      "node -e \"const post = (p, b) => fetch('" + api + "' + p, {method: 'POST', body: JSON.stringify(b)}).then((r) => r.status);"
+      " (async () => { const w = await post('write', {name: 'MAIN.jobCount', value: '7'});"
+      " const r = await post('control', {action: 'reset'}); process.exit(w === 200 && r === 200 ? 0 : 1); })()\"";
+  std::string out;
+  ASSERT_EQ(shell(writeThenReset, out), 0) << out;
+  ASSERT_TRUE(cell.waitFor("hmi: reset: the run starts again")) << cell.errorOutput();
+  EXPECT_EQ(cell.stop(), 0) << cell.errorOutput();
+  EXPECT_NE(cell.errorOutput().find("audit: 1 external writes (ads 0, modbus 0, opcua 0, http 1)"), std::string::npos)
+      << cell.errorOutput();
+  const std::string report = virtcom::test::readFile(json);
+  EXPECT_NE(report.find("\"external_writes\": {\n      \"total\": 0,"), std::string::npos) << report;
+  fs::remove(json);
+}
+
 // The Stations panel (each station's state, operation and elapsed time, tests/e2e/hmi/
 // check_stations.js) agrees with the Gantt chart on a paced run and on a monitor of a served cell.
 TEST(Hmi, TheStationsPanelShowsEachStationsOperationAndElapsedTimeInARun) {

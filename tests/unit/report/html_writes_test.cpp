@@ -3,29 +3,14 @@
 // the writes were not audited, and the panel in the run report.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-
 #include "report/html_report.hpp"
 #include "report/html_writes.hpp"
 #include "report/kpis.hpp"
 #include "example_trace.hpp"
+#include "golden_file.hpp"
 
 namespace virtcom::report {
 namespace {
-
-namespace fs = std::filesystem;
-
-const fs::path kGolden = fs::path(VIRTCOM_SOURCE_DIR) / "tests" / "unit" / "report" / "golden" / "external_writes.html";
-
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 constexpr int64_t kWall = 1'796'313'601'123'000'000;  // 2026-12-03T16:00:01.123Z
 
@@ -50,9 +35,7 @@ Trace auditedTrace() {
 }
 
 TEST(ExternalWritesHtml, PanelMatchesGolden) {
-  std::string html = externalWritesHtml(auditedTrace());
-  if (std::getenv("VIRTCOM_UPDATE_GOLDEN")) std::ofstream(kGolden, std::ios::binary) << html;
-  EXPECT_EQ(html, readFile(kGolden)) << "differs from " << kGolden << " (VIRTCOM_UPDATE_GOLDEN=1 rewrites it)";
+  testing::expectGolden("external_writes.html", externalWritesHtml(auditedTrace()));
 }
 
 TEST(ExternalWritesHtml, ValuesAreEscaped) {

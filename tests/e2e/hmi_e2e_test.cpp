@@ -127,33 +127,16 @@ TEST(Hmi, AResetAfterTheEndOfARunStartsItAgain) {
 }
 
 // With --history, each reset ends the recorded run and starts a new one (no browser needed: the
-// reset is POSTed by node).
+// write and the reset are POSTed by node). A write before the reset belongs to the run that
+// ended: the new run's report counts only its own (as its history does), while the command's
+// audit summary counts every write it audited (the new run's report counted the old run's writes
+// too before they went into the run's trace).
 TEST(Hmi, EveryResetStartsANewRecordedRun) {
-  const std::string db = (fs::temp_directory_path() / ("virtcom-hmi-reset-" + std::to_string(::getpid()) + ".sqlite")).string();
+  const std::string tmp = (fs::temp_directory_path() / ("virtcom-hmi-reset-" + std::to_string(::getpid()))).string();
+  const std::string db = tmp + ".sqlite", json = tmp + ".json";
   fs::remove(db);
-  ServerProcess cell(kExe, {"serve", kGearbox + "/cell.yaml", "--http", "127.0.0.1:0", "--quiet", "--history", db}, kGearbox, kAnnounce);
-  ASSERT_GT(cell.port(), 0) << cell.errorOutput();
-  const std::string reset = "node -e \"fetch('http://127.0.0.1:" + std::to_string(cell.port()) +
-                            "/api/control', {method: 'POST', body: JSON.stringify({action: 'reset'})})"
-                            ".then((r) => process.exit(r.status === 200 ? 0 : 1))\"";
-  std::string out;
-  ASSERT_EQ(shell(reset, out), 0) << out;
-  ASSERT_TRUE(cell.waitFor("hmi: reset: the run starts again")) << cell.errorOutput();
-  EXPECT_EQ(cell.stop(), 0) << cell.errorOutput();
-  EXPECT_NE(cell.errorOutput().find("history: run 1 recorded"), std::string::npos) << cell.errorOutput();
-  EXPECT_NE(cell.errorOutput().find("history: run 2 recorded"), std::string::npos) << cell.errorOutput();
-  out.clear();
-  ASSERT_EQ(shell(kExe + " history '" + db + "'", out), 0) << out;
-  EXPECT_NE(out.find("\n2 "), std::string::npos) << "two runs listed: " << out;
-  fs::remove(db);
-}
-
-// A write before a reset belongs to the run that ended: the new run's report counts and lists
-// only its own (as its history does), while the command's audit summary counts every write it
-// audited. Before, the report of the new run counted the old run's writes too.
-TEST(Hmi, TheRunAfterAResetReportsOnlyItsOwnWrites) {
-  const std::string json = (fs::temp_directory_path() / ("virtcom-hmi-reset-writes-" + std::to_string(::getpid()) + ".json")).string();
-  ServerProcess cell(kExe, {"serve", kGearbox + "/cell.yaml", "--http", "127.0.0.1:0", "--quiet", "--json", json}, kGearbox, kAnnounce);
+  ServerProcess cell(kExe, {"serve", kGearbox + "/cell.yaml", "--http", "127.0.0.1:0", "--quiet", "--history", db, "--json", json},
+                     kGearbox, kAnnounce);
   ASSERT_GT(cell.port(), 0) << cell.errorOutput();
   const std::string api = "http://127.0.0.1:" + std::to_string(cell.port()) + "/api/";
   const std::string writeThenReset =
@@ -164,10 +147,19 @@ TEST(Hmi, TheRunAfterAResetReportsOnlyItsOwnWrites) {
   ASSERT_EQ(shell(writeThenReset, out), 0) << out;
   ASSERT_TRUE(cell.waitFor("hmi: reset: the run starts again")) << cell.errorOutput();
   EXPECT_EQ(cell.stop(), 0) << cell.errorOutput();
-  EXPECT_NE(cell.errorOutput().find("audit: 1 external writes (ads 0, modbus 0, opcua 0, http 1)"), std::string::npos)
-      << cell.errorOutput();
+  const std::string log = cell.errorOutput();
+  EXPECT_NE(log.find("history: run 1 recorded"), std::string::npos) << log;
+  EXPECT_NE(log.find("history: run 2 recorded"), std::string::npos) << log;
+  EXPECT_NE(log.find("audit: 1 external writes (ads 0, modbus 0, opcua 0, http 1)"), std::string::npos) << log;
   const std::string report = virtcom::test::readFile(json);
   EXPECT_NE(report.find("\"external_writes\": {\n      \"total\": 0,"), std::string::npos) << report;
+  out.clear();
+  ASSERT_EQ(shell(kExe + " history '" + db + "'", out), 0) << out;
+  EXPECT_NE(out.find("\n2 "), std::string::npos) << "two runs listed: " << out;
+  out.clear();
+  ASSERT_EQ(shell(kExe + " history '" + db + "' --run 1 --writes", out), 0) << out;
+  EXPECT_NE(out.find(" MAIN.jobCount: "), std::string::npos) << "the write in run 1: " << out;
+  fs::remove(db);
   fs::remove(json);
 }
 

@@ -26,9 +26,11 @@ std::unique_ptr<plc::WriteAudit> makeWriteAudit(AuditLevel level, const bc::Modu
   return std::make_unique<plc::WriteAudit>(module, std::move(sink));
 }
 
-void keepWriteCounts(const plc::WriteAudit& audit, Trace& trace) {
-  trace.writesAudited = true;
-  for (size_t p = 0; p < kWriteProtocolCount; ++p) trace.externalWrites[p] = audit.count(static_cast<WriteProtocol>(p));
+plc::WriteAudit::Sink intoTrace(const std::unique_ptr<cell::Cell>& cell, plc::WriteAudit::Sink next) {
+  return [&cell, next = std::move(next)](const WriteRecord& r) {
+    cell->trace.keepExternalWrite(r);
+    if (next) next(r);
+  };
 }
 
 std::string auditSummary(const plc::WriteAudit& audit) {

@@ -8,7 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "core/trace.hpp"
+#include "cell/cell.hpp"
 #include "plc/write_audit.hpp"
 
 namespace virtcom::cli {
@@ -23,8 +23,10 @@ void addAuditOption(CLI::App* cmd, AuditLevel& level);
 std::unique_ptr<plc::WriteAudit> makeWriteAudit(AuditLevel level, const bc::Module& module, std::ostream& log,
                                                 plc::WriteAudit::Sink record = {});
 
-// After the run: the audit's counts into `trace` (Trace::externalWrites), for its reports.
-void keepWriteCounts(const plc::WriteAudit& audit, Trace& trace);
+// Each record into the trace of the cell in use (Trace::keepExternalWrite: the reports' counts and
+// table of writes; a reset from the HMI replaces the cell, and its new run counts from 0), then
+// to `next` (if set: the historian). Called on the scan thread, which owns the trace.
+plc::WriteAudit::Sink intoTrace(const std::unique_ptr<cell::Cell>& cell, plc::WriteAudit::Sink next);
 
 // "audit: 3 external writes (ads 1, modbus 2, opcua 0, http 0)" (also with none: the run saw none).
 std::string auditSummary(const plc::WriteAudit& audit);

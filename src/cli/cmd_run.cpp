@@ -303,7 +303,7 @@ ExitCode runCell(const RunOptions& o) {
     hmi.emplace(*cell, &gStopRequested, o.hmi.paused, options);  // paced: speed 1 unless --speed
     hmi->keepHistory(o.history.path);
     if (const char* why = resetRefusal(*cell, !files.empty())) hmi->refuseReset(why);
-    if (cell->module) audit = makeWriteAudit(o.auditWrites, *cell->module, std::cerr, intoRecorder(*recorder));
+    if (cell->module) audit = makeWriteAudit(o.auditWrites, *cell->module, std::cerr, intoTrace(cell, intoRecorder(*recorder)));
     hmi->auditWrites(audit.get());
   }
   stopOnSignals();
@@ -329,7 +329,7 @@ ExitCode runCell(const RunOptions& o) {
     if (!reset) {
       if (audit) {
         std::cerr << auditSummary(*audit) << "\n";
-        keepWriteCounts(*audit, cell->trace);
+        cell->trace.writesAudited = true;
       }
       ok = writeRunOutputs(o, *cell, timeline, ruleTables, files);
       if (hmi) reset = lingerForViewers(*hmi);

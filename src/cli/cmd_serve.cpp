@@ -174,9 +174,10 @@ ExitCode serveCell(const ServeOptions& o) {
   }
   // A reset (which would replace the module) is refused while these serve.
   // The writes into the soft PLC from outside: its servers' clients and the HMI's page; each
-  // record also into the historian when one records (the recorder in use: a reset replaces it).
+  // record kept in the run's trace for its reports, and into the historian when one records (the
+  // recorder in use: a reset replaces it).
   auto audit = cell->module && (ads || opcua || hmiBinding)
-                   ? makeWriteAudit(o.auditWrites, *cell->module, std::cerr, intoRecorder(*recorder))
+                   ? makeWriteAudit(o.auditWrites, *cell->module, std::cerr, intoTrace(cell, intoRecorder(*recorder)))
                    : nullptr;
   if (ads || opcua) {
     // The first snapshot right after the cold start, then the announcement: a client that
@@ -242,7 +243,7 @@ ExitCode serveCell(const ServeOptions& o) {
   if (hmi) hmi->stop();
   if (audit) {
     std::cerr << auditSummary(*audit) << "\n";
-    keepWriteCounts(*audit, cell->trace);
+    cell->trace.writesAudited = true;
   }
   const Trace& trace = cell->trace;
   const report::Kpis kpis = report::computeKpis(trace);

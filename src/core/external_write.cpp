@@ -1,5 +1,8 @@
 #include "core/external_write.hpp"
 
+#include <cstdio>
+#include <ctime>
+
 #include "core/endpoint.hpp"
 
 namespace virtcom {
@@ -25,5 +28,26 @@ std::string externalWritesText(std::span<const uint64_t, kWriteProtocolCount> co
 }
 
 std::string writerAddress(const ExternalWriter& w) { return formatIpv4(w.ipv4) + ":" + std::to_string(w.port); }
+
+std::string writerPeer(const ExternalWriter& w) {
+  std::string out = writerAddress(w);
+  if (w.hasNetId) out += " (AmsNetId " + formatNetId(w.netId) + ")";
+  return out;
+}
+
+std::string writtenVariableText(const WriteRecord& r) {
+  if (r.location.empty() || r.location == r.variable) return r.variable;
+  return r.variable + " (" + r.location + ")";
+}
+
+std::string utcTimeText(int64_t ns) {
+  const std::time_t seconds = static_cast<std::time_t>(ns / 1'000'000'000);
+  std::tm tm{};
+  gmtime_r(&seconds, &tm);
+  char text[64];  // room for any year the int fields can hold (-Wformat-truncation)
+  std::snprintf(text, sizeof text, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday, tm.tm_hour,
+                tm.tm_min, tm.tm_sec, static_cast<int>(ns / 1'000'000 % 1000));
+  return text;
+}
 
 }  // namespace virtcom

@@ -33,6 +33,10 @@ struct ExternalWriter {
 
 // "127.0.0.1:50123": the writer's address and port.
 std::string writerAddress(const ExternalWriter& w);
+// writerAddress, and for ADS the AmsNetId: "127.0.0.1:50123 (AmsNetId 127.0.0.1.1.1)".
+std::string writerPeer(const ExternalWriter& w);
+// "2026-12-02T15:40:01.123Z": a wall time (UTC, ns since 1970) as the audit and the reports print it.
+std::string utcTimeText(int64_t ns);
 
 // One audited write (plc/write_audit.hpp makes them): what the terminal log prints and the
 // historian keeps (docs/history.md, table `writes`).
@@ -44,6 +48,9 @@ struct WriteRecord {
   std::string location;  // the IEC address of a located variable ("%QX0.3", "%MW4"), else empty
   std::string oldValue, newValue;  // IEC literal text
 };
+
+// The variable a record names, with its IEC address when that says more: "MAIN.setpoint (%MW0)".
+std::string writtenVariableText(const WriteRecord& r);
 
 class WriteObserver {
  public:

@@ -47,4 +47,9 @@ void Trace::endActivity(uint32_t activity, int64_t nowNs, double energyJ, int32_
   a.errorCode = errorCode;
 }
 
+void Trace::keepExternalWrite(const WriteRecord& record) {
+  ++externalWrites[static_cast<size_t>(record.writer.protocol)];
+  if (writeRecords.size() < kKeptWriteRecords) writeRecords.push_back(record);
+}
+
 }  // namespace virtcom

@@ -111,10 +111,14 @@ struct Trace {
   RunEnd end = RunEnd::Completed;
   std::string endMessage;
   TimeSteps time;
-  // The writes from outside (protocol clients, the HMI) into the soft PLC, per protocol, when
-  // they were audited (docs/security.md; `serve` fills it at the end).
+  // The writes from outside (protocol clients, the HMI) into the soft PLC, when they were audited
+  // (docs/security.md; `serve`, `run --hmi` and a recorded run's export fill it): the count per
+  // protocol, and the first kKeptWriteRecords of them in order for the HTML report's table (a
+  // client writing every scan of a run that serves for days must not grow the trace).
   bool writesAudited = false;
   std::array<uint64_t, kWriteProtocolCount> externalWrites{};
+  std::vector<WriteRecord> writeRecords;
+  static constexpr size_t kKeptWriteRecords = 1000;
 
   // Before the run: keep every activity and every cycle while there are at most `limit` of each,
   // beyond that the first and the last limit/2 (kDefaultTraceWindow unless set).
@@ -125,6 +129,9 @@ struct Trace {
   // Per tick: start/finish an activity; returns the activity index.
   uint32_t beginActivity(uint32_t device, uint32_t label, int64_t nowNs);
   void endActivity(uint32_t activity, int64_t nowNs, double energyJ, int32_t errorCode = 0);
+  // An audited write: counted, and kept while fewer than kKeptWriteRecords are. Allocates (the
+  // record's copy) only while it keeps.
+  void keepExternalWrite(const WriteRecord& record);
 };
 
 }  // namespace virtcom

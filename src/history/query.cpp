@@ -368,9 +368,13 @@ Trace HistoryReader::trace(int64_t runId, TimeRange range, size_t* skipped) {
   Statement faults(db_, "SELECT t_ns, source, message FROM faults WHERE run = ?1 AND t_ns BETWEEN ?2 AND ?3 ORDER BY id");
   faults.bind(1, runId).bind(2, from).bind(3, to);
   while (faults.step()) trace.faults.push_back({faults.columnInt(0) - from, faults.columnText(1), faults.columnText(2)});
-  // The audited writes of the range, counted by protocol for the reports; a run that recorded
-  // none (no client wrote, or the audit was off) says nothing about them.
-  for (const WriteRecord& w : writes(runId, {from, to})) ++trace.externalWrites[static_cast<size_t>(w.writer.protocol)];
+  // The audited writes of the range for the reports (counted, and the first listed), at times
+  // from the range's start as everything else; a run that recorded none (no client wrote, or the
+  // audit was off) says nothing about them.
+  for (WriteRecord& w : writes(runId, {from, to})) {
+    w.virtualNs -= from;
+    trace.keepExternalWrite(w);
+  }
   trace.writesAudited = summary->writes > 0;
   trace.endNs = to - from;
   trace.end = summary->ended ? runEndByName(summary->endReason) : RunEnd::Interrupted;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <bit>
 #include <cstdio>
-#include <ctime>
 #include <numeric>
 
 #include "core/clock.hpp"
@@ -71,34 +70,16 @@ std::string hexBytes(std::span<const uint8_t> bytes) {
   return out;
 }
 
-std::string peerText(const ExternalWriter& w) {
-  std::string out = writerAddress(w);
-  if (w.hasNetId) out += " (AmsNetId " + formatNetId(w.netId) + ")";
-  return out;
-}
-
-std::string utcText(int64_t ns) {
-  const std::time_t seconds = static_cast<std::time_t>(ns / 1'000'000'000);
-  std::tm tm{};
-  gmtime_r(&seconds, &tm);
-  char text[40];
-  std::snprintf(text, sizeof text, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday, tm.tm_hour,
-                tm.tm_min, tm.tm_sec, static_cast<int>(ns / 1'000'000 % 1000));
-  return text;
-}
-
 }  // namespace
 
 std::string formatWriteRecord(const WriteRecord& r) {
-  std::string out = std::string(writeProtocolName(r.writer.protocol)) + " " + peerText(r.writer) + " " + r.variable;
-  if (!r.location.empty() && r.location != r.variable) out += " (" + r.location + ")";
-  return out + ": " + r.oldValue + " -> " + r.newValue + (r.writer.force ? " (forced)" : "");
+  return std::string(writeProtocolName(r.writer.protocol)) + " " + writerPeer(r.writer) + " " + writtenVariableText(r) + ": " + r.oldValue + " -> " + r.newValue + (r.writer.force ? " (forced)" : "");
 }
 
 std::string formatWriteRecordWithTimes(const WriteRecord& r) {
   char virtualTime[32];
   std::snprintf(virtualTime, sizeof virtualTime, "%.3fs", static_cast<double>(r.virtualNs) * 1e-9);
-  return std::string(virtualTime) + " " + utcText(r.wallNs) + " " + formatWriteRecord(r);
+  return std::string(virtualTime) + " " + utcTimeText(r.wallNs) + " " + formatWriteRecord(r);
 }
 
 WriteAudit::WriteAudit(const bc::Module& module, Sink sink) : m_(module), sink_(std::move(sink)), shadow_(module.staticSize) {

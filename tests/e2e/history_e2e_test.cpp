@@ -289,10 +289,14 @@ TEST_F(History, ServedWritesAreRecordedAndCountedInTheReport) {
   EXPECT_THAT(output, testing::MatchesRegex("[0-9]+\\.[0-9]{3}s 20[0-9-]+T[0-9:.]+Z http 127\\.0\\.0\\.1:[0-9]+ MAIN\\.jobCount: [0-9]+ -> 9\n"));
   ASSERT_EQ(virtcom("history " + db + " --writes --from 1000s", output), 0) << output;
   EXPECT_EQ(output, "") << "no write after 1000 s";
-  // Its reports exported from the history count them as the served run's did.
+  // Its reports exported from the history count them as the served run's did, and the HTML
+  // report lists the write.
   ASSERT_EQ(virtcom("history " + db + " --json " + out("history.json") + " --report " + out("history.html"), output), 0) << output;
   EXPECT_THAT(readFile(out("history.json")), HasSubstr("\"external_writes\": {\n      \"total\": 1,"));
-  EXPECT_THAT(readFile(out("history.html")), HasSubstr("1 external writes (ads 0, modbus 0, opcua 0, http 1)"));
+  const std::string html = readFile(out("history.html"));
+  EXPECT_THAT(html, HasSubstr("<h2>1 external writes (ads 0, modbus 0, opcua 0, http 1)<span"));
+  EXPECT_THAT(html, testing::ContainsRegex("<td class=\"l\">http</td><td class=\"l\">127\\.0\\.0\\.1:[0-9]+</td>"
+                                           "<td class=\"l\">MAIN\\.jobCount</td><td class=\"l wrap\">[0-9]+ \u2192 9</td></tr>"));
 }
 
 }  // namespace

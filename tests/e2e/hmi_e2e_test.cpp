@@ -22,6 +22,7 @@
 
 #include "server_process.hpp"
 #include "shell_command.hpp"
+#include "support/read_file.hpp"
 
 namespace {
 
@@ -126,25 +127,40 @@ TEST(Hmi, AResetAfterTheEndOfARunStartsItAgain) {
 }
 
 // With --history, each reset ends the recorded run and starts a new one (no browser needed: the
-// reset is POSTed by node).
+// write and the reset are POSTed by node). A write before the reset belongs to the run that
+// ended: the new run's report counts only its own (as its history does), while the command's
+// audit summary counts every write it audited (the new run's report counted the old run's writes
+// too before they went into the run's trace).
 TEST(Hmi, EveryResetStartsANewRecordedRun) {
-  const std::string db = (fs::temp_directory_path() / ("virtcom-hmi-reset-" + std::to_string(::getpid()) + ".sqlite")).string();
+  const std::string tmp = (fs::temp_directory_path() / ("virtcom-hmi-reset-" + std::to_string(::getpid()))).string();
+  const std::string db = tmp + ".sqlite", json = tmp + ".json";
   fs::remove(db);
-  ServerProcess cell(kExe, {"serve", kGearbox + "/cell.yaml", "--http", "127.0.0.1:0", "--quiet", "--history", db}, kGearbox, kAnnounce);
+  ServerProcess cell(kExe, {"serve", kGearbox + "/cell.yaml", "--http", "127.0.0.1:0", "--quiet", "--history", db, "--json", json},
+                     kGearbox, kAnnounce);
   ASSERT_GT(cell.port(), 0) << cell.errorOutput();
-  const std::string reset = "node -e \"fetch('http://127.0.0.1:" + std::to_string(cell.port()) +
-                            "/api/control', {method: 'POST', body: JSON.stringify({action: 'reset'})})"
-                            ".then((r) => process.exit(r.status === 200 ? 0 : 1))\"";
+  const std::string api = "http://127.0.0.1:" + std::to_string(cell.port()) + "/api/";
+  const std::string writeThenReset =
+      "node -e \"const post = (p, b) => fetch('" + api + "' + p, {method: 'POST', body: JSON.stringify(b)}).then((r) => r.status);"
+      " (async () => { const w = await post('write', {name: 'MAIN.jobCount', value: '7'});"
+      " const r = await post('control', {action: 'reset'}); process.exit(w === 200 && r === 200 ? 0 : 1); })()\"";
   std::string out;
-  ASSERT_EQ(shell(reset, out), 0) << out;
+  ASSERT_EQ(shell(writeThenReset, out), 0) << out;
   ASSERT_TRUE(cell.waitFor("hmi: reset: the run starts again")) << cell.errorOutput();
   EXPECT_EQ(cell.stop(), 0) << cell.errorOutput();
-  EXPECT_NE(cell.errorOutput().find("history: run 1 recorded"), std::string::npos) << cell.errorOutput();
-  EXPECT_NE(cell.errorOutput().find("history: run 2 recorded"), std::string::npos) << cell.errorOutput();
+  const std::string log = cell.errorOutput();
+  EXPECT_NE(log.find("history: run 1 recorded"), std::string::npos) << log;
+  EXPECT_NE(log.find("history: run 2 recorded"), std::string::npos) << log;
+  EXPECT_NE(log.find("audit: 1 external writes (ads 0, modbus 0, opcua 0, http 1)"), std::string::npos) << log;
+  const std::string report = virtcom::test::readFile(json);
+  EXPECT_NE(report.find("\"external_writes\": {\n      \"total\": 0,"), std::string::npos) << report;
   out.clear();
   ASSERT_EQ(shell(kExe + " history '" + db + "'", out), 0) << out;
   EXPECT_NE(out.find("\n2 "), std::string::npos) << "two runs listed: " << out;
+  out.clear();
+  ASSERT_EQ(shell(kExe + " history '" + db + "' --run 1 --writes", out), 0) << out;
+  EXPECT_NE(out.find(" MAIN.jobCount: "), std::string::npos) << "the write in run 1: " << out;
   fs::remove(db);
+  fs::remove(json);
 }
 
 // The Stations panel (each station's state, operation and elapsed time, tests/e2e/hmi/
@@ -261,13 +277,26 @@ void expectHttpWritesAudited(const std::vector<std::string>& args, int exitStatu
   EXPECT_NE(log.find("audit: 2 external writes (ads 0, modbus 0, opcua 0, http 2)"), std::string::npos) << log;
 }
 
+// The run's HTML report lists them: heading with the counts, a row per write.
+void expectWritesListed(const std::string& reportFile) {
+  const std::string html = virtcom::test::readFile(reportFile);
+  EXPECT_NE(html.find("<h2>2 external writes (ads 0, modbus 0, opcua 0, http 2)<span"), std::string::npos) << html;
+  for (const char* cells : {"</td><td class=\"l\">http</td><td class=\"l\">127.0.0.1:", "</td><td class=\"l\">MAIN.jobCount</td>",
+                            " \u2192 7</td></tr>", "<td class=\"l\">MAIN.failed</td><td class=\"l wrap\">FALSE \u2192 TRUE (forced)</td></tr>"})
+    EXPECT_NE(html.find(cells), std::string::npos) << cells << "\n" << html;
+}
+
 TEST(Hmi, WritesAndForcesThroughTheHttpApiAreAudited) {
   expectHttpWritesAudited({"serve", kGearbox + "/cell.yaml", "--http", "127.0.0.1:0", "--quiet", "--audit-writes", "each"}, 0);
 }
 
-// `run --hmi` audits the page's writes as `serve --http` does.
+// `run --hmi` audits the page's writes as `serve --http` does, and its HTML report lists them.
 TEST(Hmi, RunWithTheHmiAuditsItsWritesToo) {
-  expectHttpWritesAudited({"run", kGearbox + "/cell.yaml", "--hmi", "127.0.0.1:0", "--quiet", "--audit-writes", "each"}, 3);  // 3: interrupted
+  const std::string report = (fs::temp_directory_path() / ("virtcom-hmi-writes-" + std::to_string(::getpid()) + ".html")).string();
+  expectHttpWritesAudited(
+      {"run", kGearbox + "/cell.yaml", "--hmi", "127.0.0.1:0", "--quiet", "--audit-writes", "each", "--report", report}, 3);  // 3: interrupted
+  expectWritesListed(report);
+  fs::remove(report);
 }
 
 TEST(Hmi, BindingBeyondLoopbackNeedsAnAllowList) {

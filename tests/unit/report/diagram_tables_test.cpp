@@ -5,30 +5,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-
 #include "report/diagram_tables.hpp"
 #include "report/html_report.hpp"
 #include "report/json_report.hpp"
 #include "report/kpis.hpp"
 #include "example_trace.hpp"
+#include "golden_file.hpp"
 
 namespace virtcom::report {
 namespace {
-
-namespace fs = std::filesystem;
-
-const fs::path kGolden = fs::path(VIRTCOM_SOURCE_DIR) / "tests" / "unit" / "report" / "golden" / "diagram_tables.html";
-
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 // Two rules of a diagram, as lang/ad's tables give them, the first fired in 51 scans.
 DiagramTablesSection countSection(bool withFirings) {
@@ -43,9 +28,7 @@ DiagramTablesSection countSection(bool withFirings) {
 }
 
 TEST(DiagramTablesHtml, SectionWithFiringsMatchesGolden) {
-  std::string html = diagramTablesHtml({countSection(true)});
-  if (std::getenv("VIRTCOM_UPDATE_GOLDEN")) std::ofstream(kGolden, std::ios::binary) << html;
-  EXPECT_EQ(html, readFile(kGolden)) << "differs from " << kGolden << " (VIRTCOM_UPDATE_GOLDEN=1 rewrites it)";
+  testing::expectGolden("diagram_tables.html", diagramTablesHtml({countSection(true)}));
 }
 
 TEST(DiagramTablesHtml, WithoutARunThereAreNoFiringColumns) {

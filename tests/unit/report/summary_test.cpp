@@ -1,39 +1,17 @@
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "report/kpis.hpp"
 #include "report/summary.hpp"
 #include "example_trace.hpp"
+#include "golden_file.hpp"
 
 namespace virtcom::report {
 namespace {
 
-namespace fs = std::filesystem;
+using testing::expectGolden;
 using testing::kS;
-
-const fs::path kGoldenDir = fs::path(VIRTCOM_SOURCE_DIR) / "tests" / "unit" / "report" / "golden";
-
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// Compares with golden/<name>; VIRTCOM_UPDATE_GOLDEN=1 rewrites the file for review in the diff.
-void expectGolden(const std::string& name, const std::string& actual) {
-  fs::path file = kGoldenDir / name;
-  if (std::getenv("VIRTCOM_UPDATE_GOLDEN")) {
-    std::ofstream(file, std::ios::binary) << actual;
-    return;
-  }
-  ASSERT_TRUE(fs::exists(file)) << "missing " << file << "; run with VIRTCOM_UPDATE_GOLDEN=1 and review it";
-  EXPECT_EQ(readFile(file), actual) << "differs from " << file << " (VIRTCOM_UPDATE_GOLDEN=1 rewrites it)";
-}
 
 TEST(SummaryTable, MatchesGolden) {
   Trace t = testing::exampleCellTrace();

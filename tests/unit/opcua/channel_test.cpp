@@ -287,7 +287,9 @@ TEST_F(ChannelTest, LongResponsesAreCutIntoChunksOfThePeersBuffer) {
     ASSERT_LE(size, 8192u);
     EXPECT_EQ(get32(stream, at + 20), 4u);
     last = static_cast<char>(stream[at + 3]);
-    if (at + size < stream.size()) EXPECT_EQ(last, 'C');
+    if (at + size < stream.size()) {
+      EXPECT_EQ(last, 'C');
+    }
     at += size;
     ++chunks;
   }

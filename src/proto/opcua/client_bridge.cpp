@@ -1,6 +1,7 @@
 #include "proto/opcua/client_bridge.hpp"
 
 #include "core/value_codec.hpp"
+#include "proto/opcua/raw_values.hpp"
 #include "proto/opcua/services.hpp"
 
 namespace virtcom::proto::opcua {
@@ -11,62 +12,7 @@ constexpr uint32_t kReadRequestId = 631, kReadResponseId = 634, kWriteRequestId 
 constexpr uint32_t kTimestampsNeither = 3;
 constexpr uint8_t kCurrentWrite = 0x02;  // AccessLevel bit (OPC 10000-3 §8.57)
 
-// A ReadValueId or WriteValue's start: the node (encoded once), the attribute, no IndexRange.
-void writeNodeAttribute(Writer& w, const std::vector<uint8_t>& node, uint32_t attribute) {
-  w.raw(node);
-  w.u32(attribute);
-  w.nullString();  // IndexRange
-}
-
-// One DataValue of a Read response: its status (Good when absent), its type and, for a Boolean
-// or numeric scalar, the bytes of its value. Nothing is allocated: the value is not decoded into
-// a Variant but read as the bytes its built-in type takes.
-struct RawValue {
-  uint32_t status = 0;
-  BuiltinType type = BuiltinType::Null;
-  bool isArray = false;
-  std::span<const uint8_t> bytes;
-};
-bool readRawValue(Reader& r, RawValue& out) {
-  out = RawValue{};
-  uint8_t mask = 0, variant = 0;
-  if (!r.u8(mask)) return false;
-  if (mask & kDataValueValue) {
-    if (!r.u8(variant)) return false;
-    out.type = static_cast<BuiltinType>(variant & kVariantTypeMask);
-    out.isArray = (variant & kVariantArray) != 0;
-    auto elem = elemTypeOfBuiltin(out.type);
-    if (out.isArray || (!elem && out.type != BuiltinType::Null)) return true;  // not a value to wire: the caller reports it and reads no further
-    if (elem && !r.bytes(elemTypeInfo(*elem).sizeBytes, out.bytes)) return false;
-  }
-  if ((mask & kDataValueStatus) && !r.u32(out.status)) return false;
-  uint64_t time = 0;
-  uint16_t pico = 0;
-  if ((mask & kDataValueSourceTime) && !r.u64(time)) return false;
-  if ((mask & kDataValueSourcePico) && !r.u16(pico)) return false;
-  if ((mask & kDataValueServerTime) && !r.u64(time)) return false;
-  if ((mask & kDataValueServerPico) && !r.u16(pico)) return false;
-  return true;
-}
-
 }  // namespace
-
-std::optional<ElemType> elemTypeOfBuiltin(BuiltinType t) {
-  switch (t) {
-    case BuiltinType::Boolean: return ElemType::Bool;
-    case BuiltinType::SByte: return ElemType::Sint;
-    case BuiltinType::Byte: return ElemType::Usint;
-    case BuiltinType::Int16: return ElemType::Int;
-    case BuiltinType::UInt16: return ElemType::Uint;
-    case BuiltinType::Int32: return ElemType::Dint;
-    case BuiltinType::UInt32: return ElemType::Udint;
-    case BuiltinType::Int64: return ElemType::Lint;
-    case BuiltinType::UInt64: return ElemType::Ulint;
-    case BuiltinType::Float: return ElemType::Real;
-    case BuiltinType::Double: return ElemType::Lreal;
-    default: return std::nullopt;
-  }
-}
 
 ClientBridge::ClientBridge(BridgeConfig config)
     : config_(std::move(config)),
@@ -113,10 +59,7 @@ bool ClientBridge::resolve(TagBus& bus, bool addTags, std::vector<Problem>& prob
   w.u32(kTimestampsNeither);
   w.i32(static_cast<int32_t>(2 * slots_.size()));
   for (const auto& node : nodeIds_) {
-    for (uint32_t attribute : {kValueAttr, kUserAccessLevelAttr}) {
-      writeNodeAttribute(w, node, attribute);
-      encode(w, QualifiedName{});  // DataEncoding: the default
-    }
+    for (uint32_t attribute : {kValueAttr, kUserAccessLevelAttr}) encodeReadValueId(w, node, attribute);
   }
   auto reply = client_.call(kReadResponseId);
   if (!reply) {
@@ -233,10 +176,7 @@ bool ClientBridge::pull(TagBus& bus, int64_t nowNs) {
   encode(w, 0.0);
   w.u32(kTimestampsNeither);
   w.i32(static_cast<int32_t>(reads_.size()));
-  for (size_t i : reads_) {
-    writeNodeAttribute(w, nodeIds_[i], kValueAttr);
-    encode(w, QualifiedName{});
-  }
+  for (size_t i : reads_) encodeReadValueId(w, nodeIds_[i], kValueAttr);
   auto reply = client_.call(kReadResponseId);
   if (!reply) {
     if (reply.error().linkLost) lose("reading the PLC's outputs: " + reply.error().text);
@@ -277,10 +217,7 @@ void ClientBridge::push(const TagBus& bus, int64_t) {
   w.i32(static_cast<int32_t>(changed_.size()));
   for (size_t i : changed_) {
     const Slot& slot = slots_[i];
-    writeNodeAttribute(w, nodeIds_[i], kValueAttr);
-    w.u8(kDataValueValue);
-    w.u8(static_cast<uint8_t>(slot.wire));  // a scalar Variant of the node's type
-    w.raw({image_.data() + slot.offset, slot.size});
+    encodeWriteValue(w, nodeIds_[i], slot.wire, {image_.data() + slot.offset, slot.size});
   }
   auto reply = client_.call(kWriteResponseId);
   if (!reply) {

@@ -101,8 +101,4 @@ class ClientBridge final : public BusBridge {
   int64_t nextPollNs_ = 0;
 };
 
-// The elementary type a scalar of built-in type `t` holds as the same bytes (Boolean: BOOL,
-// Int16: INT, Double: LREAL, ...); nullopt for strings and the structured built-ins.
-std::optional<ElemType> elemTypeOfBuiltin(BuiltinType t);
-
 }  // namespace virtcom::proto::opcua

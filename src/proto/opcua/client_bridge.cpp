@@ -82,9 +82,15 @@ bool ClientBridge::resolve(TagBus& bus, bool addTags, std::vector<Problem>& prob
       problems.push_back({kNoSignal, "opcua: " + peerText() + " sent a malformed Read response", Problem::Kind::Link});
       return false;
     }
-    const bool unreadable = value.bytes.empty() && value.type != BuiltinType::Null;  // an array or a non-elementary type
+    const bool unreadable = !value.wholly();  // an array or a non-elementary type: reported below
     if (!unreadable && !readRawValue(*reply, access)) {
       problems.push_back({kNoSignal, "opcua: " + peerText() + " sent a malformed Read response", Problem::Kind::Link});
+      return false;
+    }
+    if (!unreadable && !access.wholly()) {
+      problems.push_back({kNoSignal, "opcua: " + peerText() + " sent the UserAccessLevel of '" + s.node + "' as " +
+                                         (access.isArray ? "an array of " : "") + builtinTypeName(access.type) + ", not a Byte",
+                          Problem::Kind::Link});
       return false;
     }
     const std::string wiredTo = s.port.empty() ? "" : " to wire to " + s.port;

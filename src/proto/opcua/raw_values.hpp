@@ -31,6 +31,8 @@ struct RawValue {
   BuiltinType type = BuiltinType::Null;
   bool isArray = false;
   std::span<const uint8_t> bytes;
+  // Read to its end (no value, or a Boolean or numeric scalar): the reader is at the next one.
+  bool wholly() const { return !isArray && (type == BuiltinType::Null || !bytes.empty()); }
 };
 // Reads one DataValue into `out`; false if it is malformed. An array or a value of another type
 // (a String, a structure) is returned with empty bytes and the reader left inside it: the rest

@@ -3,7 +3,8 @@
 // OpenSecureChannel response, CreateSession, ActivateSession, Read and Write responses,
 // ServiceFaults, ERR, chunks, answers to other requests), served on loopback to a client bridge
 // wired like a Clamp (docs/devices.md, timed) of examples/ads-cell: it starts (the Read of every
-// node's Value and UserAccessLevel), then polls (Read) and writes (Write) until the stream ends.
+// node's Value and UserAccessLevel), then polls (Read) and writes (Write) until the stream ends;
+// then again with a subscription (CreateSubscription, CreateMonitoredItems, Publish responses).
 // Finds out-of-bounds reads, unbounded allocation and aborts in the decoding.
 // The seeds (corpus/opcua_client) are the streams that an npm node-opcua server
 // (tests/e2e/opcua/bridge_plc_server.js) and `virtcom exec --opcua` of examples/ads-cell (with
@@ -25,10 +26,9 @@ namespace {
 
 std::string node(const char* path) { return std::string("ns=4;s=|var|virtcom.Application.MAIN.") + path; }
 
-}  // namespace
-
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  virtcom::test::CannedServer server({data, size});
+// One bridge against the stream: reading the PLC's outputs each poll, or subscribed to them.
+void runBridge(std::span<const uint8_t> stream, bool subscribe) {
+  virtcom::test::CannedServer server(stream);
   TagBus bus;
   const auto program = bus.add("Clamp.programNumber", ElemType::Int), execute = bus.add("Clamp.execute", ElemType::Bool),
              done = bus.add("Clamp.done", ElemType::Bool), error = bus.add("Clamp.error", ElemType::Int),
@@ -37,6 +37,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   config.client.server = {0x7f000001, server.port()};
   config.client.endpointUrl = "opc.tcp://127.0.0.1:" + std::to_string(server.port());
   config.pollNs = 0;
+  config.subscribe = subscribe;
   config.signals = {{node("Clamp.programNumber"), "MAIN.Clamp.programNumber", "Clamp.programNumber", program, false, false},
                     {node("Clamp.execute"), "MAIN.Clamp.execute", "Clamp.execute", execute, false, false},
                     {node("Clamp.done"), "MAIN.Clamp.done", "Clamp.done", done, true, false},
@@ -51,5 +52,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     bus.setBool(done, poll % 2 == 0);
     bridge->push(bus, poll);
   }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  for (bool subscribe : {false, true}) runBridge({data, size}, subscribe);
   return 0;
 }

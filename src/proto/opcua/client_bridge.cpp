@@ -1,5 +1,7 @@
 #include "proto/opcua/client_bridge.hpp"
 
+#include <sstream>
+
 #include "core/value_codec.hpp"
 #include "proto/opcua/raw_values.hpp"
 #include "proto/opcua/services.hpp"
@@ -9,7 +11,6 @@ namespace virtcom::proto::opcua {
 namespace {
 
 constexpr uint32_t kReadRequestId = 631, kReadResponseId = 634, kWriteRequestId = 673, kWriteResponseId = 676;
-constexpr uint32_t kTimestampsNeither = 3;
 constexpr uint8_t kCurrentWrite = 0x02;  // AccessLevel bit (OPC 10000-3 §8.57)
 
 }  // namespace
@@ -25,6 +26,13 @@ ClientBridge::ClientBridge(BridgeConfig config)
 ClientBridge::~ClientBridge() = default;
 
 std::string ClientBridge::peerText() const { return "the OPC UA server at " + config_.client.endpointUrl; }
+
+std::string ClientBridge::updatesText() const {
+  std::ostringstream text;
+  if (subscribed()) text << "subscribed, published every " << subscription_.intervalMs << " ms";
+  else text << "a Read every " << static_cast<double>(config_.pollNs) / 1e6 << " ms";
+  return text.str();
+}
 
 std::unique_ptr<ClientBridge> ClientBridge::start(BridgeConfig config, TagBus& bus, StartReport& report) {
   std::unique_ptr<ClientBridge> b(new ClientBridge(std::move(config)));
@@ -46,6 +54,10 @@ std::unique_ptr<ClientBridge> ClientBridge::start(BridgeConfig config, TagBus& b
   bool ok = b->resolve(bus, true, report.problems);
   for (const Slot& slot : b->slots_) report.found.push_back(slot.exists);
   if (!ok) return nullptr;
+  if (auto subscribed = b->subscribe(); !subscribed) {
+    report.problems.push_back({kNoSignal, "opcua: " + b->peerText() + " " + subscribed.error(), Problem::Kind::Link});
+    return nullptr;
+  }
   return b;
 }
 
@@ -167,6 +179,10 @@ bool ClientBridge::reconnect(TagBus& bus) {
     else link_.refused("no longer matches the cell after reconnecting: " + problems.front().text);
     return false;
   }
+  if (auto subscribed = subscribe(); !subscribed) {
+    lose(subscribed.error());
+    return false;
+  }
   link_.reconnected();
   return true;
 }
@@ -178,6 +194,10 @@ bool ClientBridge::pull(TagBus& bus, int64_t nowNs) {
   nextPollNs_ = nowNs + config_.pollNs;
   if (!client_.connected() && !reconnect(bus)) return !link_.failed();
   if (reads_.empty()) return true;
+  return subscribed() ? takePublished(bus) : readOutputs(bus);
+}
+
+bool ClientBridge::readOutputs(TagBus& bus) {
   Writer& w = client_.beginRequest(kReadRequestId);
   encode(w, 0.0);
   w.u32(kTimestampsNeither);
@@ -195,19 +215,24 @@ bool ClientBridge::pull(TagBus& bus, int64_t nowNs) {
     return !link_.failed();
   }
   for (size_t i : reads_) {
-    const Slot& slot = slots_[i];
     RawValue value;
     if (!readRawValue(*reply, value)) {
       lose("a malformed Read response");
       return !link_.failed();
     }
-    if (isBad(value.status) || value.type != slot.wire || value.isArray) {
-      link_.refused("refused reading '" + config_.signals[i].name + "': " +
-           (isBad(value.status) ? statusName(value.status) : std::string("its type changed to ") + builtinTypeName(value.type)));
-      return false;
-    }
-    loadVariable(value.bytes.data(), -1, slot.type, bus, slot.tag);
+    if (!takeValue(bus, i, value)) return false;
   }
+  return true;
+}
+
+bool ClientBridge::takeValue(TagBus& bus, size_t i, const RawValue& value) {
+  const Slot& slot = slots_[i];
+  if (isBad(value.status) || value.type != slot.wire || value.isArray) {
+    link_.refused("refused reading '" + config_.signals[i].name + "': " +
+                  (isBad(value.status) ? statusName(value.status) : std::string("its type changed to ") + builtinTypeName(value.type)));
+    return false;
+  }
+  loadVariable(value.bytes.data(), -1, slot.type, bus, slot.tag);
   return true;
 }
 

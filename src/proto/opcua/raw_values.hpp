@@ -11,6 +11,8 @@
 
 namespace virtcom::proto::opcua {
 
+inline constexpr uint32_t kTimestampsNeither = 3;  // TimestampsToReturn (OPC 10000-4 §7.40)
+
 // The elementary type a scalar of built-in type `t` holds as the same bytes (Boolean: BOOL,
 // Int16: INT, Double: LREAL, ...); nullopt for strings and the structured built-ins.
 std::optional<ElemType> elemTypeOfBuiltin(BuiltinType t);

@@ -64,6 +64,11 @@ class OpcuaBridgeE2e : public ::testing::Test {
     std::ofstream(dir_ / "opcua-bridge.yaml") << text;
     return (dir_ / "opcua-bridge.yaml").string();
   }
+  // `virtcom run` of the cell against the PLC at `port` for 1000 cycles (longer than any test), started.
+  std::unique_ptr<ServerProcess> startLongRun(int port) {
+    return std::make_unique<ServerProcess>(kExe, std::vector<std::string>{"run", bridgeCell(port, "cycles: 2", "cycles: 1000"), "--quiet"},
+                                           dir_.string(), "opcua: the OPC UA server at opc.tcp://");
+  }
   int testScenario(const std::string& cell, const std::string& body, std::string& out) {
     std::ofstream(dir_ / "loss.yaml") << "name: loss\ncell: " << cell << "\n" << body;
     return shell(kExe + " test " + (dir_ / "loss.yaml").string() + " --jobs 1", out);
@@ -112,14 +117,13 @@ TEST_F(OpcuaBridgeE2e, TheCellCompletesItsCyclesAgainstANodeOpcuaServer) {
 TEST_F(OpcuaBridgeE2e, ANodeOpcuaServerKilledMidRunEndsTheRunAsAFault) {
   auto plc = startNodeOpcuaPlc();
   ASSERT_GT(plc->port(), 0) << plc->errorOutput();
-  ServerProcess run(kExe, {"run", bridgeCell(plc->port(), "cycles: 2", "cycles: 1000"), "--quiet"}, dir_.string(),
-                    "opcua: the OPC UA server at opc.tcp://");
-  ASSERT_EQ(run.port(), plc->port()) << run.errorOutput();
+  auto run = startLongRun(plc->port());
+  ASSERT_EQ(run->port(), plc->port()) << run->errorOutput();
   EXPECT_EQ(plc->signal(SIGKILL), 128 + SIGKILL);
-  EXPECT_EQ(run.waitExit(), 2) << run.errorOutput();
-  EXPECT_NE(run.errorOutput().find("opcua: link to the OPC UA server at opc.tcp://127.0.0.1:" + std::to_string(plc->port())),
+  EXPECT_EQ(run->waitExit(), 2) << run->errorOutput();
+  EXPECT_NE(run->errorOutput().find("opcua: link to the OPC UA server at opc.tcp://127.0.0.1:" + std::to_string(plc->port())),
             std::string::npos)
-      << run.errorOutput();
+      << run->errorOutput();
 }
 
 TEST_F(OpcuaBridgeE2e, ProblemsAreReportedAtStartWithTheirPosition) {
@@ -165,13 +169,12 @@ TEST_F(OpcuaBridgeE2e, ProblemsAreReportedAtStartWithTheirPosition) {
 TEST_F(OpcuaBridgeE2e, APlcLostMidRunEndsTheRunAsAFault) {
   auto plc = startPlc();
   ASSERT_GT(plc->port(), 0) << plc->errorOutput();
-  ServerProcess run(kExe, {"run", bridgeCell(plc->port(), "cycles: 2", "cycles: 1000"), "--quiet"}, dir_.string(),
-                    "opcua: the OPC UA server at opc.tcp://");
-  ASSERT_EQ(run.port(), plc->port()) << run.errorOutput();
+  auto run = startLongRun(plc->port());
+  ASSERT_EQ(run->port(), plc->port()) << run->errorOutput();
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   EXPECT_EQ(plc->stop(), 0);
-  EXPECT_EQ(run.waitExit(), 2) << run.errorOutput();
-  EXPECT_NE(run.errorOutput().find("opcua: link to the OPC UA server at opc.tcp://127.0.0.1:"), std::string::npos) << run.errorOutput();
+  EXPECT_EQ(run->waitExit(), 2) << run->errorOutput();
+  EXPECT_NE(run->errorOutput().find("opcua: link to the OPC UA server at opc.tcp://127.0.0.1:"), std::string::npos) << run->errorOutput();
 }
 
 TEST_F(OpcuaBridgeE2e, AScenariosCommLossEndsTheRunAsAPlcFault) {

@@ -280,7 +280,19 @@ TEST_F(OpcuaBridgeTest, ALostLinkIsHeldAndReconnectedWithHold) {
   EXPECT_NE(reports_[1].find("opcua: reconnected to the OPC UA server at"), std::string::npos) << reports_[1];
 }
 
-using OpcuaBridgeSubscriptionTest = OpcuaBridgeTest;
+class OpcuaBridgeSubscriptionTest : public OpcuaBridgeTest {
+ protected:
+  // A bridge of wired() that subscribes, polling every `pollNs`; null (and a failure) if it did not start.
+  std::unique_ptr<ClientBridge> startSubscribing(int64_t pollNs) {
+    auto c = config(wired());
+    c.subscribe = true;
+    c.pollNs = pollNs;
+    ClientBridge::StartReport report;
+    auto bridge = ClientBridge::start(c, bus_, report);
+    EXPECT_NE(bridge, nullptr) << (report.problems.empty() ? "" : report.problems[0].text);
+    return bridge;
+  }
+};
 
 // Polls (as the simulation would) until `condition` holds or the deadline passes; false then,
 // or if a poll failed.
@@ -298,12 +310,8 @@ bool pollUntil(ClientBridge& bridge, TagBus& bus, Condition condition) {
 }
 
 TEST_F(OpcuaBridgeSubscriptionTest, ThePlcsOutputsArriveWithPublishResponses) {
-  auto c = config(wired());
-  c.subscribe = true;
-  c.pollNs = 10'000'000;
-  ClientBridge::StartReport report;
-  auto bridge = ClientBridge::start(c, bus_, report);
-  ASSERT_NE(bridge, nullptr) << (report.problems.empty() ? "" : report.problems[0].text);
+  auto bridge = startSubscribing(10'000'000);
+  ASSERT_NE(bridge, nullptr);
   EXPECT_TRUE(bridge->subscribed());
   EXPECT_EQ(bridge->updatesText(), "subscribed, published every 10 ms");
   // The first notification brings the value the item had when it was created.
@@ -326,12 +334,8 @@ TEST_F(OpcuaBridgeSubscriptionTest, AServerThatRefusesSubscriptionsIsRead) {
   sc.anonymous = UserAccess::Write;
   sc.maxSubscriptions = 0;
   startServer(sc);
-  auto c = config(wired());
-  c.subscribe = true;
-  c.pollNs = 10'000'000;
-  ClientBridge::StartReport report;
-  auto bridge = ClientBridge::start(c, bus_, report);
-  ASSERT_NE(bridge, nullptr) << (report.problems.empty() ? "" : report.problems[0].text);
+  auto bridge = startSubscribing(10'000'000);
+  ASSERT_NE(bridge, nullptr);
   EXPECT_FALSE(bridge->subscribed());
   EXPECT_EQ(bridge->updatesText(), "a Read every 10 ms");
   ASSERT_EQ(reports_.size(), 1u);
@@ -342,10 +346,7 @@ TEST_F(OpcuaBridgeSubscriptionTest, AServerThatRefusesSubscriptionsIsRead) {
 }
 
 TEST_F(OpcuaBridgeSubscriptionTest, AServerGoneIsALostLink) {
-  auto c = config(wired());
-  c.subscribe = true;
-  ClientBridge::StartReport report;
-  auto bridge = ClientBridge::start(c, bus_, report);
+  auto bridge = startSubscribing(0);
   ASSERT_NE(bridge, nullptr);
   ASSERT_TRUE(bridge->subscribed());
   server_->stop();

@@ -118,6 +118,7 @@ struct OpcuaClientSettings {
   std::string nodePrefix = "ns=4;s=|var|virtcom.Application.";  // CODESYS' form, virtcom's device name
   std::vector<OpcuaNodeName> nodes;
   int64_t pollNs = 10'000'000;         // read commands / write changed status this often
+  bool subscribe = true;               // commands by subscription (else, or if refused: a Read every poll)
   int64_t timeoutNs = 500'000'000;     // connect and each request
   bool faultOnLoss = true;             // on_loss: fault (end the run) or hold (keep, reconnect)
   bool disconnectWhenStopped = true;   // close the session and the channel when the run ends

@@ -58,6 +58,7 @@ void readOpcuaClient(OpcuaClientSettings& s, const ConfigNode& node, Diagnostics
     }
   }
   s.pollNs = readLinkDurationNs(r, node, "poll", 0.01);
+  s.subscribe = r.optBool("subscribe", true);
   s.timeoutNs = readLinkDurationNs(r, node, "timeout", 0.5);
   s.faultOnLoss = readFaultOnLoss(r, node);
   s.disconnectWhenStopped = r.optBool("disconnect_when_simulation_stops", true);

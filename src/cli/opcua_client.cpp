@@ -24,6 +24,7 @@ std::unique_ptr<proto::opcua::ClientBridge> startOpcuaBridge(cell::Cell& cell, c
   config.client.password = s.password;
   config.client.timeoutNs = s.timeoutNs;
   config.pollNs = s.pollNs;
+  config.subscribe = s.subscribe;
   config.faultOnLoss = s.faultOnLoss;
   config.disconnectWhenStopped = s.disconnectWhenStopped;
   config.report = [](const std::string& line) { std::cerr << line << "\n"; };
@@ -54,8 +55,7 @@ std::unique_ptr<proto::opcua::ClientBridge> startOpcuaBridge(cell::Cell& cell, c
   }
   size_t wired = 0;
   for (size_t i = 0; i < s.wires.size(); ++i) wired += report.found[i] && !s.wires[i].port.empty();  // found: one per wire after a start
-  std::cerr << "opcua: " << bridge->peerText() << " " << role << " (" << wired << " signals, a Read every "
-            << static_cast<double>(s.pollNs) / 1e6 << " ms)\n";
+  std::cerr << "opcua: " << bridge->peerText() << " " << role << " (" << wired << " signals, " << bridge->updatesText() << ")\n";
   return bridge;
 }
 

@@ -17,7 +17,8 @@ std::string opcuaNodeOf(const cell::OpcuaClientSettings& s, const std::string& v
 
 // Connects to the PLC of cell.plcOpcua and checks its wires. Problems are rendered on stderr
 // at the cell file's entries, as the loader's are; null then. On success prints
-// "opcua: <the server> <role> (N signals, a Read every POLL)".
+// "opcua: <the server> <role> (N signals, subscribed, published every POLL)", or "a Read every
+// POLL" where the server refuses subscriptions.
 std::unique_ptr<proto::opcua::ClientBridge> startOpcuaBridge(cell::Cell& cell, const SourceManager& sources, const std::string& role);
 
 }  // namespace virtcom::cli

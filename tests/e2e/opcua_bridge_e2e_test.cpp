@@ -3,7 +3,8 @@
 // the cell completes the same cycles as with the soft PLC in process; problems (a server not
 // there, the default anonymous session that may not write, unknown nodes) are reported at start
 // with their position; a PLC lost mid-run ends the run as a fault, and a scenario's comm_loss
-// cuts the link.
+// cuts the link. The same cell against a PLC nobody here wrote: an npm node-opcua server
+// (tests/e2e/opcua/bridge_plc_server.js) playing the example's MAIN.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -25,6 +26,7 @@ using virtcom::test::readFile;
 
 const std::string kExe = VIRTCOM_EXE;
 const std::string kExample = std::string(VIRTCOM_SOURCE_DIR) + "/examples/ads-cell";
+const std::string kNodeDir = VIRTCOM_OPCUA_CLIENT_DIR;
 
 // "Cycle time    1.530 s (measured ..." of a summary table, in seconds; -1 if absent.
 double cycleTime(const std::string& summary) {
@@ -46,6 +48,13 @@ class OpcuaBridgeE2e : public ::testing::Test {
     args.insert(args.end(), extra.begin(), extra.end());
     return std::make_unique<ServerProcess>(kExe, args, kExample, "opcua: serving opc.tcp://");
   }
+  // bridge_plc_server.js: the example's MAIN in an npm node-opcua server, at ns=4 as on CODESYS.
+  std::unique_ptr<ServerProcess> startNodeOpcuaPlc() {
+    EXPECT_TRUE(std::filesystem::exists(kNodeDir + "/node_modules/node-opcua-server"))
+        << "the npm node-opcua-server is missing: run `npm ci --prefix tests/e2e/opcua` (make test does)";
+    return std::make_unique<ServerProcess>("/usr/bin/env", std::vector<std::string>{"node", "bridge_plc_server.js"}, kNodeDir,
+                                           "node-opcua: serving opc.tcp://");
+  }
   // opcua-bridge.yaml with the PLC's port, and `from` replaced by `to` (if given); its path.
   std::string bridgeCell(int port, const std::string& from = "", const std::string& to = "") {
     std::string text = readFile(kExample + "/opcua-bridge.yaml");
@@ -54,6 +63,11 @@ class OpcuaBridgeE2e : public ::testing::Test {
     if (!from.empty()) text.replace(text.find(from), from.size(), to);
     std::ofstream(dir_ / "opcua-bridge.yaml") << text;
     return (dir_ / "opcua-bridge.yaml").string();
+  }
+  // `virtcom run` of the cell against the PLC at `port` for 1000 cycles (longer than any test), started.
+  std::unique_ptr<ServerProcess> startLongRun(int port) {
+    return std::make_unique<ServerProcess>(kExe, std::vector<std::string>{"run", bridgeCell(port, "cycles: 2", "cycles: 1000"), "--quiet"},
+                                           dir_.string(), "opcua: the OPC UA server at opc.tcp://");
   }
   int testScenario(const std::string& cell, const std::string& body, std::string& out) {
     std::ofstream(dir_ / "loss.yaml") << "name: loss\ncell: " << cell << "\n" << body;
@@ -71,7 +85,7 @@ TEST_F(OpcuaBridgeE2e, TheCellCompletesTheSameCyclesAsWithTheSoftPlcInProcess) {
   std::string bridged;
   EXPECT_EQ(shell(kExe + " run " + bridgeCell(plc->port()), bridged), 0) << bridged;
   EXPECT_NE(bridged.find("opcua: the OPC UA server at opc.tcp://127.0.0.1:" + std::to_string(plc->port()) +
-                         " is the controller (12 signals, a Read every 10 ms)"),
+                         " is the controller (12 signals, subscribed, published every 10 ms)"),
             std::string::npos)
       << bridged;
   for (const std::string* out : {&inProcess, &bridged})
@@ -81,6 +95,35 @@ TEST_F(OpcuaBridgeE2e, TheCellCompletesTheSameCyclesAsWithTheSoftPlcInProcess) {
   EXPECT_GT(softCycle, 1.0) << inProcess;
   EXPECT_NEAR(bridgedCycle, softCycle, 0.25 * softCycle) << bridged;
   EXPECT_EQ(plc->stop(), 0) << plc->errorOutput();
+}
+
+// Regression: node-opcua refused the UserAccessLevel the bridge read at start (its DataEncoding
+// was an empty name, not a null one), so no device output was writable.
+TEST_F(OpcuaBridgeE2e, TheCellCompletesItsCyclesAgainstANodeOpcuaServer) {
+  auto plc = startNodeOpcuaPlc();
+  ASSERT_GT(plc->port(), 0) << plc->errorOutput();
+  std::string out;
+  EXPECT_EQ(shell(kExe + " run " + bridgeCell(plc->port()), out), 0) << out;
+  // node-opcua publishes at most every 50 ms (its minimum publishing interval).
+  EXPECT_NE(out.find("is the controller (12 signals, subscribed, published every 50 ms)"), std::string::npos) << out;
+  EXPECT_NE(out.find("Run ended     completed: 2 cycle(s) completed"), std::string::npos) << out;
+  // Both ways: the PLC's commands moved the devices, and their answers reached the PLC.
+  EXPECT_EQ(plc->stop(), 0) << plc->errorOutput();
+  EXPECT_NE(plc->errorOutput().find("node-opcua: 2 cycle(s)"), std::string::npos) << plc->errorOutput();
+  for (const char* written : {"\"Clamp.done\":", "\"Press.done\":", "\"Press.actualForce\":"})
+    EXPECT_NE(plc->errorOutput().find(written), std::string::npos) << written << plc->errorOutput();
+}
+
+TEST_F(OpcuaBridgeE2e, ANodeOpcuaServerKilledMidRunEndsTheRunAsAFault) {
+  auto plc = startNodeOpcuaPlc();
+  ASSERT_GT(plc->port(), 0) << plc->errorOutput();
+  auto run = startLongRun(plc->port());
+  ASSERT_EQ(run->port(), plc->port()) << run->errorOutput();
+  EXPECT_EQ(plc->signal(SIGKILL), 128 + SIGKILL);
+  EXPECT_EQ(run->waitExit(), 2) << run->errorOutput();
+  EXPECT_NE(run->errorOutput().find("opcua: link to the OPC UA server at opc.tcp://127.0.0.1:" + std::to_string(plc->port())),
+            std::string::npos)
+      << run->errorOutput();
 }
 
 TEST_F(OpcuaBridgeE2e, ProblemsAreReportedAtStartWithTheirPosition) {
@@ -126,13 +169,12 @@ TEST_F(OpcuaBridgeE2e, ProblemsAreReportedAtStartWithTheirPosition) {
 TEST_F(OpcuaBridgeE2e, APlcLostMidRunEndsTheRunAsAFault) {
   auto plc = startPlc();
   ASSERT_GT(plc->port(), 0) << plc->errorOutput();
-  ServerProcess run(kExe, {"run", bridgeCell(plc->port(), "cycles: 2", "cycles: 1000"), "--quiet"}, dir_.string(),
-                    "opcua: the OPC UA server at opc.tcp://");
-  ASSERT_EQ(run.port(), plc->port()) << run.errorOutput();
+  auto run = startLongRun(plc->port());
+  ASSERT_EQ(run->port(), plc->port()) << run->errorOutput();
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   EXPECT_EQ(plc->stop(), 0);
-  EXPECT_EQ(run.waitExit(), 2) << run.errorOutput();
-  EXPECT_NE(run.errorOutput().find("opcua: link to the OPC UA server at opc.tcp://127.0.0.1:"), std::string::npos) << run.errorOutput();
+  EXPECT_EQ(run->waitExit(), 2) << run->errorOutput();
+  EXPECT_NE(run->errorOutput().find("opcua: link to the OPC UA server at opc.tcp://127.0.0.1:"), std::string::npos) << run->errorOutput();
 }
 
 TEST_F(OpcuaBridgeE2e, AScenariosCommLossEndsTheRunAsAPlcFault) {

@@ -1,5 +1,6 @@
 #include "proto/opcua/client.hpp"
 
+#include <poll.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -74,6 +75,8 @@ ClientError Client::lost(std::string what) {
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
   rxUsed_ = frameSize_ = 0;
+  postedId_ = 0;
+  parkedDone_ = false;
   return ClientError{true, 0, std::move(what)};
 }
 
@@ -175,6 +178,8 @@ std::expected<void, ClientError> Client::openChannel(uint32_t requestType) {
   w.raw(body_);
   w.put32(4, static_cast<uint32_t>(tx_.size()));
   const int64_t now = monotonicNowNs();
+  ++requests_;
+  if (auto sent = net::sendAll(fd_, tx_, now + config_.timeoutNs); !sent) return std::unexpected(lost(sent.error()));
   if (auto done = transact(requestId_, now + config_.timeoutNs); !done) return done;
   Reader r(std::span<const uint8_t>(body_).subspan(bodyStart_));
   NodeId type;
@@ -280,6 +285,14 @@ std::expected<Reader, ClientError> Client::call(uint32_t responseTypeId) {
     body_.swap(request);
     if (!renewed) return std::unexpected(renewed.error());
   }
+  auto requestId = sendRequest(now + config_.timeoutNs);
+  if (!requestId) return std::unexpected(requestId.error());
+  if (auto done = transact(*requestId, now + config_.timeoutNs); !done) return std::unexpected(done.error());
+  return openResponse(std::span<const uint8_t>(body_).subspan(bodyStart_), responseTypeId);
+}
+
+std::expected<uint32_t, ClientError> Client::sendRequest(int64_t deadlineNs) {
+  ++requests_;
   // The request as MSG chunks of at most the server's receive buffer.
   const size_t room = peerReceiveBuffer_ - kSymmetricHeaderSize;
   const uint32_t requestId = ++requestId_;
@@ -297,8 +310,12 @@ std::expected<Reader, ClientError> Client::call(uint32_t responseTypeId) {
     w.raw(part);
     finishMessage(w, start);
   } while (!rest.empty());
-  if (auto done = transact(requestId, now + config_.timeoutNs); !done) return std::unexpected(done.error());
-  Reader r(std::span<const uint8_t>(body_).subspan(bodyStart_));
+  if (auto sent = net::sendAll(fd_, tx_, deadlineNs); !sent) return std::unexpected(lost(sent.error()));
+  return requestId;
+}
+
+std::expected<Reader, ClientError> Client::openResponse(std::span<const uint8_t> body, uint32_t responseTypeId) {
+  Reader r(body);
   NodeId type;
   if (!decode(r, type)) return std::unexpected(lost("a malformed response"));
   auto result = decodeResponseHeader(r);
@@ -307,6 +324,38 @@ std::expected<Reader, ClientError> Client::call(uint32_t responseTypeId) {
   if (type != NodeId::num(0, responseTypeId))
     return std::unexpected(lost("the response is " + formatNodeId(type) + ", expected i=" + std::to_string(responseTypeId)));
   return r;
+}
+
+std::expected<void, ClientError> Client::post() {
+  if (fd_ < 0) return std::unexpected(ClientError{true, 0, "not connected"});
+  auto requestId = sendRequest(monotonicNowNs() + config_.timeoutNs);
+  if (!requestId) return std::unexpected(requestId.error());
+  postedId_ = *requestId;
+  parkedDone_ = false;
+  parked_.clear();
+  return {};
+}
+
+bool Client::messageWaiting() const {
+  if (scanFrame({rx_.data() + frameSize_, rxUsed_ - frameSize_}, config_.maxResponseBytes).status != FrameStatus::NeedMore) return true;
+  pollfd p{fd_, POLLIN, 0};
+  return ::poll(&p, 1, 0) > 0;
+}
+
+std::expected<std::optional<Reader>, ClientError> Client::collect(uint32_t responseTypeId) {
+  if (fd_ < 0) return std::unexpected(ClientError{true, 0, "not connected"});
+  // What has come is taken; a message that has begun to arrive is waited for (it is on its way).
+  while (!parkedDone_ && messageWaiting()) {
+    std::span<const uint8_t> frame;
+    if (auto got = receiveMessage(monotonicNowNs() + config_.timeoutNs, frame); !got) return std::unexpected(got.error());
+    if (auto taken = takeChunk(frame, 0); !taken) return std::unexpected(taken.error());  // 0: no request is awaited
+  }
+  if (!parkedDone_) return std::nullopt;
+  postedId_ = 0;
+  parkedDone_ = false;
+  auto r = openResponse(parked_, responseTypeId);
+  if (!r) return std::unexpected(r.error());
+  return *r;
 }
 
 std::expected<void, ClientError> Client::receiveMessage(int64_t deadlineNs, std::span<const uint8_t>& frame) {
@@ -338,34 +387,42 @@ std::expected<void, ClientError> Client::receiveMessage(int64_t deadlineNs, std:
 }
 
 std::expected<void, ClientError> Client::transact(uint32_t requestId, int64_t deadlineNs) {
-  ++requests_;
-  if (auto sent = net::sendAll(fd_, tx_, deadlineNs); !sent) return std::unexpected(lost(sent.error()));
   body_.clear();
   bodyStart_ = 0;
   while (true) {
     std::span<const uint8_t> frame;
     if (auto got = receiveMessage(deadlineNs, frame); !got) return got;
-    const MessageType type = messageTypeOf(frame);
-    const char chunk = static_cast<char>(frame[3]);
-    Reader r(frame.subspan(kMessageHeaderSize));
-    uint32_t channel = 0, token = 0, sequence = 0, id = 0;
-    if (type == MessageType::Open) {
-      std::string policy;
-      ByteString certificate, thumbprint;
-      if (!r.u32(channel) || !decode(r, policy) || !decode(r, certificate) || !decode(r, thumbprint) || !r.u32(sequence) || !r.u32(id))
-        return std::unexpected(lost("a malformed OPN header"));
-    } else if (type == MessageType::Message) {
-      if (!r.u32(channel) || !r.u32(token) || !r.u32(sequence) || !r.u32(id)) return std::unexpected(lost("a malformed MSG header"));
-    } else {
-      return std::unexpected(lost("an unexpected message from the server"));
-    }
-    if (id != requestId) continue;  // a late answer to an earlier request
-    if (chunk == 'A') return std::unexpected(lost("the server aborted its response"));
-    auto payload = r.rest();
-    if (body_.size() + payload.size() > config_.maxResponseBytes) return std::unexpected(lost("a response over the size limit"));
-    body_.insert(body_.end(), payload.begin(), payload.end());
-    if (chunk == 'F') return {};
+    auto taken = takeChunk(frame, requestId);
+    if (!taken) return std::unexpected(taken.error());
+    if (*taken) return {};
   }
+}
+
+std::expected<bool, ClientError> Client::takeChunk(std::span<const uint8_t> frame, uint32_t requestId) {
+  const MessageType type = messageTypeOf(frame);
+  const char chunk = static_cast<char>(frame[3]);
+  Reader r(frame.subspan(kMessageHeaderSize));
+  uint32_t channel = 0, token = 0, sequence = 0, id = 0;
+  if (type == MessageType::Open) {
+    std::string policy;
+    ByteString certificate, thumbprint;
+    if (!r.u32(channel) || !decode(r, policy) || !decode(r, certificate) || !decode(r, thumbprint) || !r.u32(sequence) || !r.u32(id))
+      return std::unexpected(lost("a malformed OPN header"));
+  } else if (type == MessageType::Message) {
+    if (!r.u32(channel) || !r.u32(token) || !r.u32(sequence) || !r.u32(id)) return std::unexpected(lost("a malformed MSG header"));
+  } else {
+    return std::unexpected(lost("an unexpected message from the server"));
+  }
+  const bool parked = id == postedId_ && id != requestId;
+  if (id != requestId && !parked) return false;  // a late answer to an earlier request
+  if (chunk == 'A') return std::unexpected(lost("the server aborted its response"));
+  std::vector<uint8_t>& into = parked ? parked_ : body_;
+  auto payload = r.rest();
+  if (into.size() + payload.size() > config_.maxResponseBytes) return std::unexpected(lost("a response over the size limit"));
+  into.insert(into.end(), payload.begin(), payload.end());
+  if (chunk != 'F') return false;
+  if (parked) parkedDone_ = true;
+  return !parked;
 }
 
 }  // namespace virtcom::proto::opcua

@@ -10,6 +10,7 @@
 // token is renewed (about every 45 minutes) and when a failure's text is made.
 #include <cstdint>
 #include <expected>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -55,6 +56,15 @@ class Client {
   // Sends it and waits for its response; a Reader at the body after the ResponseHeader, valid
   // until the next request. A ServiceFault or a Bad ServiceResult is an error with linkLost false.
   std::expected<Reader, ClientError> call(uint32_t responseTypeId);
+  // Sends the request begun without waiting for its response, which collect() takes (also when it
+  // came while call() waited for another): a Publish, answered when the server has something
+  // to say. One such request at a time.
+  std::expected<void, ClientError> post();
+  bool posted() const { return postedId_ != 0; }
+  // The posted request's response if it has come, without waiting: a Reader at its body (valid
+  // until the next request), or nullopt. Its errors are those of call(); either way the request
+  // is no longer posted.
+  std::expected<std::optional<Reader>, ClientError> collect(uint32_t responseTypeId);
 
   // Requests sent so far (session and channel requests included).
   uint64_t requests() const { return requests_; }
@@ -68,6 +78,16 @@ class Client {
   // chunks of a MSG joined; of OPN its body after the asymmetric header).
   std::expected<void, ClientError> transact(uint32_t requestId, int64_t deadlineNs);
   std::expected<void, ClientError> receiveMessage(int64_t deadlineNs, std::span<const uint8_t>& frame);
+  // Sends body_ (a request) as MSG chunks; its request id.
+  std::expected<uint32_t, ClientError> sendRequest(int64_t deadlineNs);
+  // Appends the body of one received OPN or MSG chunk to body_ if it answers `requestId`, or to
+  // parked_ if it answers the posted request (else drops it: a late answer). True when `requestId`'s
+  // final chunk has come.
+  std::expected<bool, ClientError> takeChunk(std::span<const uint8_t> frame, uint32_t requestId);
+  // The NodeId and ResponseHeader of a response body: a Reader at its fields, or the error.
+  std::expected<Reader, ClientError> openResponse(std::span<const uint8_t> body, uint32_t responseTypeId);
+  // A complete message is buffered or the socket has something (data, its end, an error).
+  bool messageWaiting() const;
   void beginMessage(const char* type);
   ClientError lost(std::string what);
 
@@ -79,6 +99,9 @@ class Client {
   NodeId authenticationToken_;
   std::string anonymousPolicy_ = "anonymous", userNamePolicy_ = "username";  // from the server's endpoints
   std::vector<uint8_t> tx_, rx_, body_;  // body_: the request being built, then the response's body
+  uint32_t postedId_ = 0;                 // the posted request: its response goes to parked_
+  bool parkedDone_ = false;               // parked_ holds the whole response
+  std::vector<uint8_t> parked_;
   Writer request_{body_};                 // what beginRequest() hands out: appends to body_
   size_t rxUsed_ = 0, frameSize_ = 0, bodyStart_ = 0;
   uint64_t requests_ = 0;

@@ -1,6 +1,9 @@
 #include "proto/opcua/client_bridge.hpp"
 
+#include <sstream>
+
 #include "core/value_codec.hpp"
+#include "proto/opcua/raw_values.hpp"
 #include "proto/opcua/services.hpp"
 
 namespace virtcom::proto::opcua {
@@ -8,65 +11,9 @@ namespace virtcom::proto::opcua {
 namespace {
 
 constexpr uint32_t kReadRequestId = 631, kReadResponseId = 634, kWriteRequestId = 673, kWriteResponseId = 676;
-constexpr uint32_t kTimestampsNeither = 3;
 constexpr uint8_t kCurrentWrite = 0x02;  // AccessLevel bit (OPC 10000-3 §8.57)
 
-// A ReadValueId or WriteValue's start: the node (encoded once), the attribute, no IndexRange.
-void writeNodeAttribute(Writer& w, const std::vector<uint8_t>& node, uint32_t attribute) {
-  w.raw(node);
-  w.u32(attribute);
-  w.nullString();  // IndexRange
-}
-
-// One DataValue of a Read response: its status (Good when absent), its type and, for a Boolean
-// or numeric scalar, the bytes of its value. Nothing is allocated: the value is not decoded into
-// a Variant but read as the bytes its built-in type takes.
-struct RawValue {
-  uint32_t status = 0;
-  BuiltinType type = BuiltinType::Null;
-  bool isArray = false;
-  std::span<const uint8_t> bytes;
-};
-bool readRawValue(Reader& r, RawValue& out) {
-  out = RawValue{};
-  uint8_t mask = 0, variant = 0;
-  if (!r.u8(mask)) return false;
-  if (mask & kDataValueValue) {
-    if (!r.u8(variant)) return false;
-    out.type = static_cast<BuiltinType>(variant & kVariantTypeMask);
-    out.isArray = (variant & kVariantArray) != 0;
-    auto elem = elemTypeOfBuiltin(out.type);
-    if (out.isArray || (!elem && out.type != BuiltinType::Null)) return true;  // not a value to wire: the caller reports it and reads no further
-    if (elem && !r.bytes(elemTypeInfo(*elem).sizeBytes, out.bytes)) return false;
-  }
-  if ((mask & kDataValueStatus) && !r.u32(out.status)) return false;
-  uint64_t time = 0;
-  uint16_t pico = 0;
-  if ((mask & kDataValueSourceTime) && !r.u64(time)) return false;
-  if ((mask & kDataValueSourcePico) && !r.u16(pico)) return false;
-  if ((mask & kDataValueServerTime) && !r.u64(time)) return false;
-  if ((mask & kDataValueServerPico) && !r.u16(pico)) return false;
-  return true;
-}
-
 }  // namespace
-
-std::optional<ElemType> elemTypeOfBuiltin(BuiltinType t) {
-  switch (t) {
-    case BuiltinType::Boolean: return ElemType::Bool;
-    case BuiltinType::SByte: return ElemType::Sint;
-    case BuiltinType::Byte: return ElemType::Usint;
-    case BuiltinType::Int16: return ElemType::Int;
-    case BuiltinType::UInt16: return ElemType::Uint;
-    case BuiltinType::Int32: return ElemType::Dint;
-    case BuiltinType::UInt32: return ElemType::Udint;
-    case BuiltinType::Int64: return ElemType::Lint;
-    case BuiltinType::UInt64: return ElemType::Ulint;
-    case BuiltinType::Float: return ElemType::Real;
-    case BuiltinType::Double: return ElemType::Lreal;
-    default: return std::nullopt;
-  }
-}
 
 ClientBridge::ClientBridge(BridgeConfig config)
     : config_(std::move(config)),
@@ -79,6 +26,13 @@ ClientBridge::ClientBridge(BridgeConfig config)
 ClientBridge::~ClientBridge() = default;
 
 std::string ClientBridge::peerText() const { return "the OPC UA server at " + config_.client.endpointUrl; }
+
+std::string ClientBridge::updatesText() const {
+  std::ostringstream text;
+  if (subscribed()) text << "subscribed, published every " << subscription_.intervalMs << " ms";
+  else text << "a Read every " << static_cast<double>(config_.pollNs) / 1e6 << " ms";
+  return text.str();
+}
 
 std::unique_ptr<ClientBridge> ClientBridge::start(BridgeConfig config, TagBus& bus, StartReport& report) {
   std::unique_ptr<ClientBridge> b(new ClientBridge(std::move(config)));
@@ -100,6 +54,10 @@ std::unique_ptr<ClientBridge> ClientBridge::start(BridgeConfig config, TagBus& b
   bool ok = b->resolve(bus, true, report.problems);
   for (const Slot& slot : b->slots_) report.found.push_back(slot.exists);
   if (!ok) return nullptr;
+  if (auto subscribed = b->subscribe(); !subscribed) {
+    report.problems.push_back({kNoSignal, "opcua: " + b->peerText() + " " + subscribed.error(), Problem::Kind::Link});
+    return nullptr;
+  }
   return b;
 }
 
@@ -113,10 +71,7 @@ bool ClientBridge::resolve(TagBus& bus, bool addTags, std::vector<Problem>& prob
   w.u32(kTimestampsNeither);
   w.i32(static_cast<int32_t>(2 * slots_.size()));
   for (const auto& node : nodeIds_) {
-    for (uint32_t attribute : {kValueAttr, kUserAccessLevelAttr}) {
-      writeNodeAttribute(w, node, attribute);
-      encode(w, QualifiedName{});  // DataEncoding: the default
-    }
+    for (uint32_t attribute : {kValueAttr, kUserAccessLevelAttr}) encodeReadValueId(w, node, attribute);
   }
   auto reply = client_.call(kReadResponseId);
   if (!reply) {
@@ -139,9 +94,15 @@ bool ClientBridge::resolve(TagBus& bus, bool addTags, std::vector<Problem>& prob
       problems.push_back({kNoSignal, "opcua: " + peerText() + " sent a malformed Read response", Problem::Kind::Link});
       return false;
     }
-    const bool unreadable = value.bytes.empty() && value.type != BuiltinType::Null;  // an array or a non-elementary type
+    const bool unreadable = !value.wholly();  // an array or a non-elementary type: reported below
     if (!unreadable && !readRawValue(*reply, access)) {
       problems.push_back({kNoSignal, "opcua: " + peerText() + " sent a malformed Read response", Problem::Kind::Link});
+      return false;
+    }
+    if (!unreadable && !access.wholly()) {
+      problems.push_back({kNoSignal, "opcua: " + peerText() + " sent the UserAccessLevel of '" + s.node + "' as " +
+                                         (access.isArray ? "an array of " : "") + builtinTypeName(access.type) + ", not a Byte",
+                          Problem::Kind::Link});
       return false;
     }
     const std::string wiredTo = s.port.empty() ? "" : " to wire to " + s.port;
@@ -218,6 +179,10 @@ bool ClientBridge::reconnect(TagBus& bus) {
     else link_.refused("no longer matches the cell after reconnecting: " + problems.front().text);
     return false;
   }
+  if (auto subscribed = subscribe(); !subscribed) {
+    lose(subscribed.error());
+    return false;
+  }
   link_.reconnected();
   return true;
 }
@@ -229,14 +194,15 @@ bool ClientBridge::pull(TagBus& bus, int64_t nowNs) {
   nextPollNs_ = nowNs + config_.pollNs;
   if (!client_.connected() && !reconnect(bus)) return !link_.failed();
   if (reads_.empty()) return true;
+  return subscribed() ? takePublished(bus) : readOutputs(bus);
+}
+
+bool ClientBridge::readOutputs(TagBus& bus) {
   Writer& w = client_.beginRequest(kReadRequestId);
   encode(w, 0.0);
   w.u32(kTimestampsNeither);
   w.i32(static_cast<int32_t>(reads_.size()));
-  for (size_t i : reads_) {
-    writeNodeAttribute(w, nodeIds_[i], kValueAttr);
-    encode(w, QualifiedName{});
-  }
+  for (size_t i : reads_) encodeReadValueId(w, nodeIds_[i], kValueAttr);
   auto reply = client_.call(kReadResponseId);
   if (!reply) {
     if (reply.error().linkLost) lose("reading the PLC's outputs: " + reply.error().text);
@@ -249,19 +215,24 @@ bool ClientBridge::pull(TagBus& bus, int64_t nowNs) {
     return !link_.failed();
   }
   for (size_t i : reads_) {
-    const Slot& slot = slots_[i];
     RawValue value;
     if (!readRawValue(*reply, value)) {
       lose("a malformed Read response");
       return !link_.failed();
     }
-    if (isBad(value.status) || value.type != slot.wire || value.isArray) {
-      link_.refused("refused reading '" + config_.signals[i].name + "': " +
-           (isBad(value.status) ? statusName(value.status) : std::string("its type changed to ") + builtinTypeName(value.type)));
-      return false;
-    }
-    loadVariable(value.bytes.data(), -1, slot.type, bus, slot.tag);
+    if (!takeValue(bus, i, value)) return false;
   }
+  return true;
+}
+
+bool ClientBridge::takeValue(TagBus& bus, size_t i, const RawValue& value) {
+  const Slot& slot = slots_[i];
+  if (isBad(value.status) || value.type != slot.wire || value.isArray) {
+    link_.refused("refused reading '" + config_.signals[i].name + "': " +
+                  (isBad(value.status) ? statusName(value.status) : std::string("its type changed to ") + builtinTypeName(value.type)));
+    return false;
+  }
+  loadVariable(value.bytes.data(), -1, slot.type, bus, slot.tag);
   return true;
 }
 
@@ -277,10 +248,7 @@ void ClientBridge::push(const TagBus& bus, int64_t) {
   w.i32(static_cast<int32_t>(changed_.size()));
   for (size_t i : changed_) {
     const Slot& slot = slots_[i];
-    writeNodeAttribute(w, nodeIds_[i], kValueAttr);
-    w.u8(kDataValueValue);
-    w.u8(static_cast<uint8_t>(slot.wire));  // a scalar Variant of the node's type
-    w.raw({image_.data() + slot.offset, slot.size});
+    encodeWriteValue(w, nodeIds_[i], slot.wire, {image_.data() + slot.offset, slot.size});
   }
   auto reply = client_.call(kWriteResponseId);
   if (!reply) {

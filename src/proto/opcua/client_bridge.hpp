@@ -4,9 +4,12 @@
 //  - at start one Read asks for the Value and UserAccessLevel of every node: its built-in type
 //    (checked against the device port) and, for device outputs, that this session may write it;
 //    every problem is collected, none is left for the run;
-//  - every `poll` of simulated time pull() reads the PLC's outputs (the device commands) with one
-//    Read and push() writes the device outputs whose value changed since they were last written
-//    with one Write;
+//  - the PLC's outputs (the device commands) are watched by a subscription: one monitored item
+//    each, sampled and published every `poll`, pull() taking what the last Publish brought; a
+//    server that refuses subscriptions is polled instead, pull() reading them with one Read every
+//    `poll` of simulated time;
+//  - every `poll` push() writes the device outputs whose value changed since they were last
+//    written with one Write;
 //  - when the simulation stops, with disconnectWhenStopped the session and channel are closed.
 // A lost link (refused, reset, timeout, ERR) fails the next pull() with faultOnLoss; otherwise it
 // is reported once, the devices keep the last commands, and each poll tries to reconnect (which
@@ -16,6 +19,7 @@
 // plc_values.cpp serves them); nothing is allocated per poll after start.
 #include <cstddef>
 #include <cstdint>
+#include <expected>
 #include <functional>
 #include <memory>
 #include <string>
@@ -25,6 +29,7 @@
 #include "core/iec_value.hpp"
 #include "proto/net/link_loss.hpp"
 #include "proto/opcua/client.hpp"
+#include "proto/opcua/raw_values.hpp"
 
 namespace virtcom::proto::opcua {
 
@@ -40,6 +45,7 @@ struct BridgeSignal {
 struct BridgeConfig {
   ClientConfig client;
   int64_t pollNs = 10'000'000;
+  bool subscribe = true;  // false: read the PLC's outputs every poll even if the server could publish them
   bool faultOnLoss = true;
   bool disconnectWhenStopped = true;
   std::vector<BridgeSignal> signals;
@@ -67,6 +73,9 @@ class ClientBridge final : public BusBridge {
   // "the OPC UA server at opc.tcp://127.0.0.1:4840".
   std::string peerText() const;
   uint64_t requests() const { return client_.requests(); }
+  // How the PLC's outputs come: "a Read every 10 ms" or "subscribed, published every 10 ms".
+  std::string updatesText() const;
+  bool subscribed() const { return subscription_.id != 0; }
 
  private:
   // A checked signal: its built-in type, the elementary type its bytes hold, where they are.
@@ -88,6 +97,27 @@ class ClientBridge final : public BusBridge {
   bool resolve(TagBus& bus, bool addTags, std::vector<Problem>& problems);
   bool reconnect(TagBus& bus);
   void lose(const std::string& what);
+  // Polls the PLC's outputs with one Read (pull() without a subscription).
+  bool readOutputs(TagBus& bus);
+  // One value of the PLC's output i onto the bus; false (refused) if Bad or not of its type.
+  bool takeValue(TagBus& bus, size_t i, const RawValue& value);
+
+  // The subscription (client_bridge_subscription.cpp): one with a monitored item per PLC output,
+  // one Publish always posted, its notifications taken by pull(). A server that refuses it (or
+  // an item) is polled with Read instead. An error is a lost link (its text).
+  std::expected<void, std::string> subscribe();
+  void pollInstead(const std::string& why);
+  bool takePublished(TagBus& bus);
+  bool postPublish();
+  bool takeNotifications(TagBus& bus, Reader& r);
+  struct SubscriptionState {
+    uint32_t id = 0;           // 0: none, the outputs are read
+    double intervalMs = 0;     // the publishing interval, as revised
+    int64_t silenceNs = 0;     // no Publish answered for that long: a lost link
+    int64_t answerByNs = 0;    // the posted Publish's
+    bool ack = false;          // acknowledge ackSequence with the next Publish
+    uint32_t ackSequence = 0;
+  };
 
   BridgeConfig config_;
   Client client_;
@@ -97,12 +127,9 @@ class ClientBridge final : public BusBridge {
   std::vector<size_t> reads_, writes_;         // signals read each poll / written on change
   std::vector<uint8_t> image_;                 // one value per found signal
   std::vector<size_t> changed_;                // signals written this poll (capacity reserved)
+  SubscriptionState subscription_;
   bool pollNow_ = false;
   int64_t nextPollNs_ = 0;
 };
-
-// The elementary type a scalar of built-in type `t` holds as the same bytes (Boolean: BOOL,
-// Int16: INT, Double: LREAL, ...); nullopt for strings and the structured built-ins.
-std::optional<ElemType> elemTypeOfBuiltin(BuiltinType t);
 
 }  // namespace virtcom::proto::opcua

@@ -28,7 +28,7 @@ using OpcuaSection = CellFiles;
 TEST_F(OpcuaSection, TheSettingsAndTheWiringByNameAreKeptForTheBridge) {
   auto cell = loads(std::string("plc:\n  opcua:\n    endpoint: opc.tcp://10.1.2.3:4841/PLC\n    security: none\n"
                                 "    user: operator\n    password: op-pass\n    node_prefix: 'ns=3;s=\"'\n"
-                                "    nodes: { MAIN.pressGo: 'ns=2;s=go' }\n    poll: 20 ms\n    timeout: 250 ms\n    on_loss: hold\n"
+                                "    nodes: { MAIN.pressGo: 'ns=2;s=go' }\n    poll: 20 ms\n    subscribe: false\n    timeout: 250 ms\n    on_loss: hold\n"
                                 "    disconnect_when_simulation_stops: false\n"
                                 "run:\n  cycle_done: MAIN.cycleDone\n  cycles: 3\n  record: [MAIN.count]\n") +
                     kDevices);
@@ -48,6 +48,7 @@ TEST_F(OpcuaSection, TheSettingsAndTheWiringByNameAreKeptForTheBridge) {
   EXPECT_EQ(s.nodes[0].variable, "MAIN.pressGo");
   EXPECT_EQ(s.nodes[0].node, "ns=2;s=go");
   EXPECT_EQ(s.pollNs, 20'000'000);
+  EXPECT_FALSE(s.subscribe);
   EXPECT_EQ(s.timeoutNs, 250'000'000);
   EXPECT_FALSE(s.faultOnLoss);
   EXPECT_FALSE(s.disconnectWhenStopped);
@@ -72,6 +73,7 @@ TEST_F(OpcuaSection, TheDefaultsAreVirtcomsOwnServerAnonymously) {
   EXPECT_TRUE(s.user.empty());
   EXPECT_EQ(s.nodePrefix, "ns=4;s=|var|virtcom.Application.");
   EXPECT_EQ(s.pollNs, 10'000'000);
+  EXPECT_TRUE(s.subscribe);
   EXPECT_EQ(s.timeoutNs, 500'000'000);
   EXPECT_TRUE(s.faultOnLoss);
   EXPECT_TRUE(s.disconnectWhenStopped);

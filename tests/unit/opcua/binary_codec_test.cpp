@@ -4,28 +4,15 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <string>
+
+#include "hex_bytes.hpp"
 
 namespace virtcom::proto::opcua {
 namespace {
 
-std::string hex(const std::vector<uint8_t>& b) {
-  std::string out;
-  char h[4];
-  for (uint8_t c : b) {
-    std::snprintf(h, sizeof h, "%02X ", c);
-    out += h;
-  }
-  if (!out.empty()) out.pop_back();
-  return out;
-}
-
-std::vector<uint8_t> unhex(std::string_view text) {
-  std::vector<uint8_t> out;
-  for (size_t i = 0; i + 1 < text.size() + 1; i += 3) out.push_back(static_cast<uint8_t>(std::stoul(std::string(text.substr(i, 2)), nullptr, 16)));
-  return out;
-}
+using testing::hex;
+using testing::unhex;
 
 // The value encodes to `golden`, and `golden` decodes (wholly) back to the value.
 template <class T>

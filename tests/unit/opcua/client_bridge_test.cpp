@@ -2,7 +2,8 @@
 // tests/unit/ads/ads_test_support.hpp): every problem is found at start (refused connection,
 // malformed node ids, unknown nodes, wrong types, nodes this session may not write), values
 // cross with one Read per poll and one Write of what changed, users log on with a password, and
-// a lost link fails or is held and reconnected.
+// a lost link fails or is held and reconnected. With a subscription, the PLC's outputs come with
+// the server's Publish responses, and a server that refuses subscriptions is read instead.
 #include "proto/opcua/client_bridge.hpp"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include <cstring>
 
 #include "../ads/ads_test_support.hpp"
+#include "support/eventually.hpp"
 #include "proto/opcua/server.hpp"
 
 namespace virtcom::proto::opcua {
@@ -57,6 +59,7 @@ class OpcuaBridgeTest : public ::testing::Test {
     c.client.server = server_->endpoint();
     c.client.endpointUrl = server_->endpointUrl();
     c.pollNs = 0;  // every step
+    c.subscribe = false;  // the outputs read at each poll (OpcuaBridgeSubscriptionTest: published)
     c.signals = std::move(signals);
     c.report = [this](const std::string& line) { reports_.push_back(line); };
     return c;
@@ -275,6 +278,80 @@ TEST_F(OpcuaBridgeTest, ALostLinkIsHeldAndReconnectedWithHold) {
   EXPECT_EQ(int16At(40), 5);
   ASSERT_EQ(reports_.size(), 2u);
   EXPECT_NE(reports_[1].find("opcua: reconnected to the OPC UA server at"), std::string::npos) << reports_[1];
+}
+
+class OpcuaBridgeSubscriptionTest : public OpcuaBridgeTest {
+ protected:
+  // A bridge of wired() that subscribes, polling every `pollNs`; null (and a failure) if it did not start.
+  std::unique_ptr<ClientBridge> startSubscribing(int64_t pollNs) {
+    auto c = config(wired());
+    c.subscribe = true;
+    c.pollNs = pollNs;
+    ClientBridge::StartReport report;
+    auto bridge = ClientBridge::start(c, bus_, report);
+    EXPECT_NE(bridge, nullptr) << (report.problems.empty() ? "" : report.problems[0].text);
+    return bridge;
+  }
+};
+
+// Polls (as the simulation would) until `condition` holds or the deadline passes; false then,
+// or if a poll failed.
+template <class Condition>
+bool pollUntil(ClientBridge& bridge, TagBus& bus, Condition condition) {
+  int64_t now = 0;
+  bool ok = true;
+  return test::eventually([&] {
+           ok = ok && bridge.pull(bus, now);
+           bridge.push(bus, now);
+           now += 1'000'000;
+           return !ok || condition();
+         }) &&
+         ok;
+}
+
+TEST_F(OpcuaBridgeSubscriptionTest, ThePlcsOutputsArriveWithPublishResponses) {
+  auto bridge = startSubscribing(10'000'000);
+  ASSERT_NE(bridge, nullptr);
+  EXPECT_TRUE(bridge->subscribed());
+  EXPECT_EQ(bridge->updatesText(), "subscribed, published every 10 ms");
+  // The first notification brings the value the item had when it was created.
+  EXPECT_TRUE(pollUntil(*bridge, bus_, [&] { return bus_.getInt(program_) == 1234; })) << bridge->failure();
+  setInt16(32, -7);
+  publish();
+  EXPECT_TRUE(pollUntil(*bridge, bus_, [&] { return bus_.getInt(program_) == -7; })) << bridge->failure();
+  // Writes still cross, with the Publish posted meanwhile.
+  bus_.setReal(position_, 12.0);
+  EXPECT_TRUE(pollUntil(*bridge, bus_, [&] {
+    scan();
+    return int16At(40) == 12;
+  })) << bridge->failure();
+  EXPECT_EQ(int16At(40), 12);
+  EXPECT_TRUE(reports_.empty());
+}
+
+TEST_F(OpcuaBridgeSubscriptionTest, AServerThatRefusesSubscriptionsIsRead) {
+  ServerConfig sc;
+  sc.anonymous = UserAccess::Write;
+  sc.maxSubscriptions = 0;
+  startServer(sc);
+  auto bridge = startSubscribing(10'000'000);
+  ASSERT_NE(bridge, nullptr);
+  EXPECT_FALSE(bridge->subscribed());
+  EXPECT_EQ(bridge->updatesText(), "a Read every 10 ms");
+  ASSERT_EQ(reports_.size(), 1u);
+  EXPECT_EQ(reports_[0], "opcua: " + bridge->peerText() +
+                             " refused a subscription (BadTooManySubscriptions): its outputs are read every poll instead");
+  ASSERT_TRUE(bridge->pull(bus_, 0)) << bridge->failure();
+  EXPECT_EQ(bus_.getInt(program_), 1234);
+}
+
+TEST_F(OpcuaBridgeSubscriptionTest, AServerGoneIsALostLink) {
+  auto bridge = startSubscribing(0);
+  ASSERT_NE(bridge, nullptr);
+  ASSERT_TRUE(bridge->subscribed());
+  server_->stop();
+  EXPECT_TRUE(test::eventually([&] { return !bridge->pull(bus_, 0); }));
+  EXPECT_NE(bridge->failure().find(" lost: publishing: "), std::string::npos) << bridge->failure();
 }
 
 }  // namespace

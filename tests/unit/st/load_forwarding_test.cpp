@@ -133,6 +133,20 @@ TEST(LoadForwarding, AStoredRegisterServesTheLoadThatReadsItBackExactly) {
   EXPECT_EQ(result(Op::LT_F, Op::ST_8, Op::LD_U8), 6u);        // a comparison is 0 or 1
 }
 
+TEST(LoadForwarding, AStoreOfARegisterWhoseWriterWentServesNothing) {
+  // 0: r2 := 7   1: r3 := 7 (served from r2: its store reads r2)   2: ST_64 r3 at 0
+  // 3: r3 := the LINT at 0   4: ST_64 r3 at 8. Taking store 2 to mean that r3 holds the LINT
+  // at 0 removed load 3 as well, and store 4 read r3, which is no longer written
+  // (golden statements/stale_store_constant.st). Both stores must read r2.
+  const bc::Module m = optimised({Instr::asbx(Op::LDI, 2, 7), Instr::asbx(Op::LDI, 3, 7), Instr::abc(Op::ST_64, 3, 1, 0),
+                                  Instr::abc(Op::LD_64, 3, 1, 0), Instr::abc(Op::ST_64, 3, 1, 8), kRet});
+  ASSERT_EQ(m.code.size(), 4u);
+  EXPECT_EQ(m.code[1].op, Op::ST_64);
+  EXPECT_EQ(m.code[1].a, 2);
+  EXPECT_EQ(m.code[2].op, Op::ST_64);
+  EXPECT_EQ(m.code[2].a, 2);
+}
+
 // The listing of MAIN of a program whose body is `body` over `vars` (DINT x, y, u by default).
 std::string mainListing(const std::string& body, const std::string& vars = "x, y, u : DINT;") {
   SourceManager sources;

@@ -147,11 +147,16 @@ std::vector<Op> loadsOfStoreWidth(Op store) {
   }
 }
 
-// The shape of register `reg` by what the facts say it holds.
-Shape shapeOfRegister(const Facts& facts, uint16_t reg) {
+// The shape of register `reg` by what the facts say it holds; nullopt when no fact names it.
+// A register without facts may be one whose writer is being removed (Forwarder::run follows the
+// code as it was): in the rewritten code it still holds its older value, its readers read the
+// register that served the removed instruction. Only a register with a fact was written by an
+// instruction that stays (a removed one was served, and a served instruction adds no fact).
+std::optional<Shape> shapeOfRegister(const Facts& facts, uint16_t reg) {
+  std::optional<Shape> shape;
   for (const Fact& f : facts)
-    if (f.reg == reg && shapeOf(f.key) != Shape::Unknown) return shapeOf(f.key);
-  return Shape::Unknown;
+    if (f.reg == reg && (!shape || *shape == Shape::Unknown)) shape = shapeOf(f.key);
+  return shape;
 }
 
 // The facts a store of register A (of `shape`) adds: A holds what each load of the stored
@@ -284,14 +289,15 @@ void transfer(const Instr& ins, Facts& facts, const std::vector<bc::IndexDesc>& 
     // Regions and the stored register's shape are resolved with all facts still there, then
     // the clobbered loads go.
     const Access to = region(*store, facts, indexes);
-    const Shape stored = shapeOfRegister(facts, ins.a);
+    const std::optional<Shape> stored = shapeOfRegister(facts, ins.a);
     Facts kept;
     for (const Fact& f : facts) {
       const std::optional<Access> at = loadOf(f.key);
       if (!at || !to.mayClobber(region(*at, facts, indexes))) kept.push_back(f);
     }
     facts = std::move(kept);
-    addStoredFacts(ins, stored, facts);
+    // A store of a register nothing is known about adds nothing: it may be stale (above).
+    if (stored) addStoredFacts(ins, *stored, facts);
   }
   if (const std::optional<Written> w = written(ins)) {
     const auto hit = [&](uint16_t reg) { return reg == w->reg || (w->andAbove && reg > w->reg); };

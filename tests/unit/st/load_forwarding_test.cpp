@@ -1,7 +1,7 @@
 // The load forwarding pass (src/lang/st/codegen/load_forwarding.cpp, run by optimizePou): which
 // repeated loads are served from the register that already holds the location, and which writes,
 // calls and joins make the next load read memory again. What the code computes is checked by the
-// golden suite on both backends (tests/golden/st/statements/for_reloads.st).
+// golden suite on both backends (tests/golden/st/statements/for_reloads.st, reused_values.st, store_reloads.st).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -101,11 +101,57 @@ TEST(LoadForwarding, AJoinKnowsOnlyWhatEveryPathKnows) {
   EXPECT_EQ(after(Instr::abc(Op::STK_32, 1, 1, 4)), 5u);  // neither does
 }
 
-// The listing of MAIN of a program whose body is `body` over DINT x, y, u.
-std::string mainListing(const std::string& body) {
+TEST(LoadForwarding, ACallKeepsOnlyTheCalleesFpAndThisAlive) {
+  // 0: r6 := x   1: r7 := x   2: ST r7   3: JMP 4 (ends the block)   4: CALL with its window at r2
+  // 5: RET. The call reads r2 and r3 (the callee's fp and this), not r7: the load goes.
+  const bc::Module m = optimised({ld(6, 0), ld(7, 0), Instr::abc(Op::ST_32, 7, 1, 8), Instr::asbx(Op::JMP, 0, 0),
+                                  Instr::abx(Op::CALL, 2, 0), kRet});
+  ASSERT_EQ(m.code.size(), 5u);
+  EXPECT_EQ(m.code[1].op, Op::ST_32);
+  EXPECT_EQ(m.code[1].a, 6);
+}
+
+TEST(LoadForwarding, AStoredRegisterServesTheLoadThatReadsItBackExactly) {
+  // r2 := the WORD at 0, stored at 4, then the location at 4 loaded again as `again`.
+  const auto word = [](Op again) {
+    return optimised({Instr::abc(Op::LD_U16, 2, 1, 0), Instr::abc(Op::ST_16, 2, 1, 4), Instr::abc(again, 3, 1, 4),
+                      Instr::abc(Op::ST_32, 3, 1, 8), kRet})
+        .code.size();
+  };
+  EXPECT_EQ(word(Op::LD_U16), 4u);  // zero-extended 16 bits, as stored: served from r2
+  EXPECT_EQ(word(Op::LD_I16), 5u);  // 65535 stored reads back as INT -1: memory again
+  // r4 := r2 op r3 (r2, r3 loaded), stored with `store`, loaded again with `again`.
+  const auto result = [](Op op, Op store, Op again) {
+    return optimised({Instr::abc(Op::LD_F32, 2, 1, 0), Instr::abc(Op::LD_F32, 3, 1, 4), Instr::abc(op, 4, 2, 3),
+                      Instr::abc(store, 4, 1, 8), Instr::abc(again, 5, 1, 8), Instr::abc(Op::ST_64, 5, 1, 16), kRet})
+        .code.size();
+  };
+  EXPECT_EQ(result(Op::MUL_F32, Op::ST_F32, Op::LD_F32), 6u);  // a REAL result is exactly a float
+  EXPECT_EQ(result(Op::MUL_F, Op::ST_F32, Op::LD_F32), 7u);    // an LREAL product is rounded by the store
+  EXPECT_EQ(result(Op::ADD, Op::ST_32, Op::LD_I32), 7u);       // a sum may have wrapped past 32 bits
+  EXPECT_EQ(result(Op::ADD, Op::ST_64, Op::LD_64), 6u);        // all 64 bits stored
+  EXPECT_EQ(result(Op::LT_F, Op::ST_8, Op::LD_U8), 6u);        // a comparison is 0 or 1
+}
+
+TEST(LoadForwarding, AStoreOfARegisterWhoseWriterWentServesNothing) {
+  // 0: r2 := 7   1: r3 := 7 (served from r2: its store reads r2)   2: ST_64 r3 at 0
+  // 3: r3 := the LINT at 0   4: ST_64 r3 at 8. Taking store 2 to mean that r3 holds the LINT
+  // at 0 removed load 3 as well, and store 4 read r3, which is no longer written
+  // (golden statements/stale_store_constant.st). Both stores must read r2.
+  const bc::Module m = optimised({Instr::asbx(Op::LDI, 2, 7), Instr::asbx(Op::LDI, 3, 7), Instr::abc(Op::ST_64, 3, 1, 0),
+                                  Instr::abc(Op::LD_64, 3, 1, 0), Instr::abc(Op::ST_64, 3, 1, 8), kRet});
+  ASSERT_EQ(m.code.size(), 4u);
+  EXPECT_EQ(m.code[1].op, Op::ST_64);
+  EXPECT_EQ(m.code[1].a, 2);
+  EXPECT_EQ(m.code[2].op, Op::ST_64);
+  EXPECT_EQ(m.code[2].a, 2);
+}
+
+// The listing of MAIN of a program whose body is `body` over `vars` (DINT x, y, u by default).
+std::string mainListing(const std::string& body, const std::string& vars = "x, y, u : DINT;") {
   SourceManager sources;
   Diagnostics diags;
-  const std::string text = "PROGRAM MAIN\nVAR x, y, u : DINT; END_VAR\n" + body + "\nEND_PROGRAM\n";
+  const std::string text = "PROGRAM MAIN\nVAR " + vars + " END_VAR\n" + body + "\nEND_PROGRAM\n";
   auto m = compileProgram({{"main.st", text}}, sources, diags);
   if (!m) return "compile error: " + diags.render(sources);
   for (uint32_t p = 0; p < m->pous.size(); ++p)
@@ -127,6 +173,27 @@ TEST(LoadForwarding, AForLoopReadsItsControlVariableFromARegister) {
   // The test follows the step: one backward compare-and-branch, no JMP.
   EXPECT_EQ(count(l, "  JLE_I "), 1u) << l;
   EXPECT_EQ(count(l, "  JMP "), 0u) << l;
+}
+
+TEST(LoadForwarding, AWrappedResultKeepsItsRegisterForTheNextStatement) {
+  // j - 1 is sign-extended into a register of its own for the index, so the register holding
+  // j - 1 still holds it when the next statement computes it again for the store.
+  const std::string l = mainListing("k := a[j - 1];\nj := j - 1;", "a : ARRAY[0..9] OF INT; j, k : INT;");
+  EXPECT_EQ(count(l, "  ADDI "), 1u) << l;
+  EXPECT_EQ(count(l, "  SEXT "), 1u) << l;
+  EXPECT_EQ(count(l, "  LD_I16 "), 2u) << l;  // j and a[j - 1]
+}
+
+TEST(LoadForwarding, RenamedReadersServeTheNextBlocksOnTheNextPass) {
+  // Block 0..3: r2 := x; r3 := x (served from r2); r4 := INDEX(r3) (then INDEX(r2)).
+  // Block 4..: r5 := x (served from r2); r6 := INDEX(r5): its entry facts, from the code as it
+  // was, know INDEX(r3) only; the second pass over the renamed code serves it from r4.
+  const bc::Module m = optimised({ld(2, 0), ld(3, 0), Instr::abc(Op::INDEX, 4, 3, 0), Instr::asbx(Op::JZ, 2, 0),
+                                  ld(5, 0), Instr::abc(Op::INDEX, 6, 5, 0), Instr::abc(Op::ST_32, 6, 1, 8), kRet},
+                                 {{0, 4, 2}});
+  ASSERT_EQ(m.code.size(), 5u);
+  EXPECT_EQ(m.code[3].op, Op::ST_32);
+  EXPECT_EQ(m.code[3].a, 4);
 }
 
 }  // namespace

@@ -104,7 +104,9 @@ class PouCompiler {
   // Converts a value to `to` (IEC conversion rules; constants fold); reports E202 if impossible.
   Value convert(Value v, TypeId to, SourceLocation loc);
   Value coerce(Value v, TypeId to, SourceLocation loc);  // implicit, with diagnostics
-  uint16_t normalize(uint16_t reg, TypeId type);
+  uint16_t normalize(uint16_t reg, TypeId type);       // in place; returns reg
+  uint16_t normalizedCopy(uint16_t reg, TypeId type);  // into a new register if it needs it
+  uint16_t normalizeInto(uint16_t to, uint16_t reg, TypeId type);  // `to`, or reg if nothing to do
   Value regValue(TypeId type, uint16_t reg);
   // An integer (or BOOL, enum) constant that fits a signed 16-bit immediate; nullopt otherwise.
   static std::optional<int16_t> smallConst(const Value& v);

@@ -308,13 +308,20 @@ int64_t floorMod(int64_t x, int64_t d) { return ((x % d) + d) % d; }
 
 }  // namespace
 
-uint16_t PouCompiler::normalize(uint16_t reg, TypeId type) {
+uint16_t PouCompiler::normalize(uint16_t reg, TypeId type) { return normalizeInto(reg, reg, type); }
+
+uint16_t PouCompiler::normalizedCopy(uint16_t reg, TypeId type) {
+  if (!hasExtension(types(), type)) return reg;
+  return normalizeInto(allocReg(), reg, type);
+}
+
+uint16_t PouCompiler::normalizeInto(uint16_t to, uint16_t reg, TypeId type) {
   if (!hasExtension(types(), type)) return reg;
   ElemType e = types().storageElem(type);
   uint32_t bits = bitWidth(e);
   bool isSigned = isSignedInt(e) || e == ElemType::Time;
-  emit(isSigned ? Op::SEXT : Op::ZEXT, reg, reg, static_cast<uint16_t>(bits));
-  return reg;
+  emit(isSigned ? Op::SEXT : Op::ZEXT, to, reg, static_cast<uint16_t>(bits));
+  return to;
 }
 
 uint16_t PouCompiler::rawReg(const Value& v) { return v.kind == Value::Kind::Reg ? v.reg : toReg(v); }
@@ -327,7 +334,9 @@ Value PouCompiler::wrappedValue(TypeId type, uint16_t reg) {
 
 uint16_t PouCompiler::toReg(Value v) {
   switch (v.kind) {
-    case Value::Kind::Reg: return v.wrapped ? normalize(v.reg, v.type) : v.reg;
+    // Into a new register: the wrapped register keeps what its instruction computed, so load
+    // forwarding can serve a repeated `a[j - 1]` from both (an in-place SEXT hides it).
+    case Value::Kind::Reg: return v.wrapped ? normalizedCopy(v.reg, v.type) : v.reg;
     case Value::Kind::Const:
       if (v.type != kNoType && types().isReal(v.type)) return loadConstReal(constAsReal(v.c));
       if (v.c.kind == ConstValue::Kind::Real) return loadConstReal(v.c.f);

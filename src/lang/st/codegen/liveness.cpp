@@ -32,8 +32,10 @@ bool Liveness::update(uint32_t k) {
     if (ins.a < regs_) s[ins.a / 64u] &= ~(uint64_t{1} << (ins.a % 64u));
   }
   else if (roles.a == bc::Operand::Reg) add(s, ins.a);
-  if (ins.op == Op::CALL)
-    for (uint32_t r = ins.a; r < regs_; ++r) add(s, r);
+  if (ins.op == Op::CALL) {
+    add(s, ins.a);
+    add(s, ins.a + 1u);
+  }
   if (ins.op == Op::CALLN)
     for (uint32_t r = ins.a; r < ins.a + bc::nativeArity(static_cast<bc::Native>(ins.bx())); ++r) add(s, r);
   if (bc::opFormat(ins.op) == bc::Format::ABC) {

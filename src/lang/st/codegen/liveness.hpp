@@ -8,9 +8,10 @@
 namespace virtcom::st {
 
 // Registers live before each instruction of code[begin, end): backward dataflow to a fixed
-// point. At CALL every register from A up is live (the callee's window). After RET only r0 and
-// r1: the code generator passes parameters and results through memory, so a caller reads nothing
-// of the callee's window after the call but the frame pointer it set up itself.
+// point. At CALL the callee's r0 and r1 (A and A + 1) are live, nothing else of its window: the
+// code generator passes parameters and results through memory, and a callee writes each of its
+// registers before reading it. After RET only r0 and r1, and a caller reads nothing of the
+// callee's window after the call but the frame pointer it set up itself.
 class Liveness {
  public:
   Liveness(const std::vector<bc::Instr>& code, uint32_t begin, uint32_t end, uint16_t numRegs);

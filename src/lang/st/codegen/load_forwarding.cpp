@@ -87,6 +87,90 @@ std::optional<Access> storeOf(const Instr& ins) {
   }
 }
 
+// What a register's value is, as far as reading its low bits back from memory goes.
+enum class Shape { Unknown, Bool, Zext8, Sext8, Zext16, Sext16, Zext32, Sext32, Float };
+
+// The shape of what instruction `key` computes.
+Shape shapeOf(const Instr& key) {
+  switch (key.op) {
+    case Op::EQ: case Op::NE: case Op::LT_I: case Op::LE_I: case Op::LT_U: case Op::LE_U:
+    case Op::EQ_F: case Op::NE_F: case Op::LT_F: case Op::LE_F:
+    case Op::EQK: case Op::NEK: case Op::LTK: case Op::LEK: case Op::GTK: case Op::GEK:
+    case Op::LNOT: case Op::LD_BIT: return Shape::Bool;
+    case Op::LD_U8: case Op::LDA_U8: return Shape::Zext8;
+    case Op::LD_I8: case Op::LDA_I8: return Shape::Sext8;
+    case Op::LD_U16: case Op::LDA_U16: return Shape::Zext16;
+    case Op::LD_I16: case Op::LDA_I16: return Shape::Sext16;
+    case Op::LD_U32: case Op::LDA_U32: return Shape::Zext32;
+    case Op::LD_I32: case Op::LDA_I32: return Shape::Sext32;
+    case Op::ZEXT: return key.c == 8 ? Shape::Zext8 : key.c == 16 ? Shape::Zext16 : key.c == 32 ? Shape::Zext32 : Shape::Unknown;
+    case Op::SEXT: return key.c == 8 ? Shape::Sext8 : key.c == 16 ? Shape::Sext16 : key.c == 32 ? Shape::Sext32 : Shape::Unknown;
+    // REAL results are exactly a float: ST_F32 then LD_F32 gives them back bit for bit.
+    case Op::LD_F32: case Op::LDA_F32: case Op::ADD_F32: case Op::SUB_F32: case Op::MUL_F32: case Op::DIV_F32:
+    case Op::RND_F32: return Shape::Float;
+    default: return Shape::Unknown;
+  }
+}
+
+// Whether `load` gives back exactly a register of shape `s` after a store of the same width
+// (the store keeps the low bits, the load extends them again).
+bool readsBack(Op load, Shape s) {
+  using enum Shape;
+  switch (load) {
+    case Op::LD_U8: case Op::LDA_U8: return s == Bool || s == Zext8;
+    case Op::LD_I8: case Op::LDA_I8: return s == Bool || s == Sext8;
+    case Op::LD_U16: case Op::LDA_U16: return s == Bool || s == Zext8 || s == Zext16;
+    case Op::LD_I16: case Op::LDA_I16: return s == Bool || s == Zext8 || s == Sext8 || s == Sext16;
+    case Op::LD_U32: case Op::LDA_U32: return s == Bool || s == Zext8 || s == Zext16 || s == Zext32;
+    case Op::LD_I32: case Op::LDA_I32:
+      return s == Bool || s == Zext8 || s == Sext8 || s == Zext16 || s == Sext16 || s == Sext32;
+    case Op::LD_F32: case Op::LDA_F32: return s == Float;
+    case Op::LD_64: case Op::LDA_64: return true;  // all 64 bits
+    default: return false;
+  }
+}
+
+// The loads of the width a register store writes (ST_x, STA_x); empty for other instructions.
+std::vector<Op> loadsOfStoreWidth(Op store) {
+  switch (store) {
+    case Op::ST_8: return {Op::LD_U8, Op::LD_I8};
+    case Op::ST_16: return {Op::LD_U16, Op::LD_I16};
+    case Op::ST_32: return {Op::LD_U32, Op::LD_I32};
+    case Op::ST_64: return {Op::LD_64};
+    case Op::ST_F32: return {Op::LD_F32};
+    case Op::STA_8: return {Op::LDA_U8, Op::LDA_I8};
+    case Op::STA_16: return {Op::LDA_U16, Op::LDA_I16};
+    case Op::STA_32: return {Op::LDA_U32, Op::LDA_I32};
+    case Op::STA_64: return {Op::LDA_64};
+    case Op::STA_F32: return {Op::LDA_F32};
+    default: return {};
+  }
+}
+
+// The shape of register `reg` by what the facts say it holds; nullopt when no fact names it.
+// A register without facts may be one whose writer is being removed (Forwarder::run follows the
+// code as it was): in the rewritten code it still holds its older value, its readers read the
+// register that served the removed instruction. Only a register with a fact was written by an
+// instruction that stays (a removed one was served, and a served instruction adds no fact).
+std::optional<Shape> shapeOfRegister(const Facts& facts, uint16_t reg) {
+  std::optional<Shape> shape;
+  for (const Fact& f : facts)
+    if (f.reg == reg && (!shape || *shape == Shape::Unknown)) shape = shapeOf(f.key);
+  return shape;
+}
+
+// The facts a store of register A (of `shape`) adds: A holds what each load of the stored
+// location that reads it back exactly would give (a REAL reloaded after its store, a BOOL
+// after `x := a < b`, a WORD loaded and stored).
+void addStoredFacts(const Instr& store, Shape shape, Facts& facts) {
+  for (const Op load : loadsOfStoreWidth(store.op)) {
+    if (!readsBack(load, shape)) continue;
+    Instr key = store;  // the location: B and C (register + offset), or Bx (absolute)
+    key.op = load;
+    facts.push_back({key, store.a});
+  }
+}
+
 // Instructions whose result depends on their operands alone (registers, immediates, constants):
 // computed again on the same operands, they give the same value, or the same fault, which the
 // first one would already have raised. SYSTIME is not one: it counts its reads.
@@ -141,7 +225,7 @@ bool writes(const Instr& ins, uint16_t reg) {
 }
 
 // The registers `ins` reads, as pointers into it (to rename them); `window` is set when it also
-// reads a register range (CALL from A up, CALLN A .. A + arity - 1) that cannot be renamed.
+// reads a register range (CALL A and A + 1, CALLN A .. A + arity - 1) that cannot be renamed.
 struct Reads {
   uint16_t* regs[3] = {};
   int count = 0;
@@ -150,9 +234,9 @@ struct Reads {
 Reads readsOf(Instr& ins, uint16_t numRegs) {
   Reads r;
   const bc::OperandRoles roles = bc::operandRoles(ins.op);
-  if (ins.op == Op::CALL) {
+  if (ins.op == Op::CALL) {  // the callee's r0 and r1 (liveness.hpp)
     r.windowFrom = ins.a;
-    r.windowTo = numRegs;
+    r.windowTo = std::min<uint32_t>(ins.a + 2u, numRegs);
     return r;
   }
   if (ins.op == Op::CALLN) {
@@ -202,14 +286,18 @@ void transfer(const Instr& ins, Facts& facts, const std::vector<bc::IndexDesc>& 
   if (held && held->reg == ins.a) return;  // it writes the value its register already has
   if (clobbersMemory(ins.op)) facts.clear();
   if (const std::optional<Access> store = storeOf(ins)) {
-    // Regions are resolved with all facts still there, then the clobbered loads go.
+    // Regions and the stored register's shape are resolved with all facts still there, then
+    // the clobbered loads go.
     const Access to = region(*store, facts, indexes);
+    const std::optional<Shape> stored = shapeOfRegister(facts, ins.a);
     Facts kept;
     for (const Fact& f : facts) {
       const std::optional<Access> at = loadOf(f.key);
       if (!at || !to.mayClobber(region(*at, facts, indexes))) kept.push_back(f);
     }
     facts = std::move(kept);
+    // A store of a register nothing is known about adds nothing: it may be stale (above).
+    if (stored) addStoredFacts(ins, *stored, facts);
   }
   if (const std::optional<Written> w = written(ins)) {
     const auto hit = [&](uint16_t reg) { return reg == w->reg || (w->andAbove && reg > w->reg); };
@@ -241,15 +329,18 @@ class Forwarder {
   std::vector<bool> run() {
     findBlocks();
     const std::vector<std::optional<Facts>> in = blockEntryFacts();
+    // The facts are followed on the code as it was, exactly as blockEntryFacts did: the entry
+    // facts of the next blocks say which register holds what in that code. Were a removed load
+    // to keep the facts of the register it wrote, a later load into another register could be
+    // served from the older one and removed, while the next block still counts on that other
+    // register (issue 17: `done` in a job-list program read from a register never written).
+    const std::vector<Instr> original(code_.begin() + begin_, code_.begin() + begin_ + n_);
     for (uint32_t k = 0; k < n_; ++k) {
       if (!leader_[k] || !in[k]) continue;
       Facts facts = *in[k];
       for (uint32_t j = k; j < n_ && (j == k || !leader_[j]); ++j) {
-        const Instr& ins = code_[begin_ + j];
-        // A removed instruction changes nothing, so the facts about its register stay (the
-        // entry facts of the next blocks, computed on the code as it was, are fewer: still true).
-        if (const Fact* held = holder(facts, ins)) removed_[j] = rename(j, held->reg);
-        if (!removed_[j]) transfer(ins, facts, indexes_);
+        if (const Fact* held = holder(facts, original[j])) removed_[j] = rename(j, held->reg);
+        transfer(original[j], facts, indexes_);
       }
     }
     return removed_;

@@ -122,11 +122,18 @@ void fuseBranches(bc::Module& m, uint32_t codeStart, size_t firstLine, uint16_t 
 }  // namespace
 
 void optimizePou(bc::Module& m, uint32_t codeStart, size_t firstLine, uint16_t numRegs) {
-  const uint32_t end = static_cast<uint32_t>(m.code.size());
-  if (end <= codeStart + 1) return;
-  const std::optional<std::vector<int64_t>> targets = branchTargets(m.code, codeStart, end);
-  if (!targets) return;
-  compact(m, codeStart, firstLine, forwardLoads(m.code, codeStart, end, numRegs, m.indexes), *targets);
+  // Forwarding renames the readers of a removed load, after which a later block may repeat a
+  // computation on the renamed register (`INDEX r12, r5` where it knew `INDEX r6, r5` only by its
+  // old operand): run it again on its own result until it removes nothing.
+  for (;;) {
+    const uint32_t end = static_cast<uint32_t>(m.code.size());
+    if (end <= codeStart + 1) return;
+    const std::optional<std::vector<int64_t>> targets = branchTargets(m.code, codeStart, end);
+    if (!targets) return;
+    const std::vector<bool> removed = forwardLoads(m.code, codeStart, end, numRegs, m.indexes);
+    if (std::none_of(removed.begin(), removed.end(), [](bool r) { return r; })) break;
+    compact(m, codeStart, firstLine, removed, *targets);
+  }
   fuseBranches(m, codeStart, firstLine, numRegs);
 }
 

@@ -64,6 +64,17 @@ TagId watchSoftPlcVariables(cell::Cell& cell, std::vector<cell::ExternalWire>& w
   return cycleTag;
 }
 
+// Makes the read-only link `watch` (ADS or OPC UA settings) the cell's controller in `slot`:
+// every wire only read, a lost link the end of the watch, the soft PLC detached.
+template <typename Settings>
+void becomeTheController(cell::Cell& cell, std::optional<Settings>& slot, Settings watch, TagId cycleTag) {
+  for (cell::ExternalWire& w : watch.wires) w.dir = plant::PortDir::In;  // the monitor never writes to the PLC
+  watch.faultOnLoss = true;
+  cell::detachSoftPlc(cell);
+  slot = std::move(watch);
+  cell.run.cycleDoneTag = cycleTag;
+}
+
 // The cell's wiring as variables to read from the real PLC: the soft PLC's wires by their
 // variable names (or a `plc: ads:` cell's own), and the steps of the program's charts
 // (`mirror`). Replaces the cell's controller by that read-only link.
@@ -83,11 +94,7 @@ std::expected<void, std::string> watchOverAds(cell::Cell& cell, const MonitorOpt
     cycleTag = watchSoftPlcVariables(cell, watch.wires);
     mirror.addWires(watch.wires);
   }
-  for (cell::ExternalWire& w : watch.wires) w.dir = plant::PortDir::In;  // the monitor never writes to the PLC
-  watch.faultOnLoss = true;
-  cell::detachSoftPlc(cell);
-  cell.plcAds = std::move(watch);
-  cell.run.cycleDoneTag = cycleTag;
+  becomeTheController(cell, cell.plcAds, std::move(watch), cycleTag);
   return {};
 }
 
@@ -101,13 +108,13 @@ std::expected<void, std::string> watchOverOpcua(cell::Cell& cell, const MonitorO
   watch.url = o.opcua;
   watch.server = *server;
   watch.pollNs = pollNs;
+  // One Read a poll, never a subscription: the operations are recognised from one image of the
+  // PLC per poll, as over ADS; a subscription's notifications come item by item and keep only
+  // the last value of each, so a short handshake could be merged away or seen out of order.
+  watch.subscribe = false;
   TagId cycleTag = cell.run.cycleDoneTag;  // `plc: opcua:`: the loader's
   if (!cell.plcOpcua) cycleTag = watchSoftPlcVariables(cell, watch.wires);
-  for (cell::ExternalWire& w : watch.wires) w.dir = plant::PortDir::In;  // the monitor never writes to the PLC
-  watch.faultOnLoss = true;
-  cell::detachSoftPlc(cell);
-  cell.plcOpcua = std::move(watch);
-  cell.run.cycleDoneTag = cycleTag;
+  becomeTheController(cell, cell.plcOpcua, std::move(watch), cycleTag);
   return {};
 }
 

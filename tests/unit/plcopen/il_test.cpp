@@ -32,20 +32,33 @@ TEST(Fbd, FeedbackThroughAnInOutVariableReadsItsValueBeforeTheAssignment) {
   EXPECT_EQ(plc.get("main.CntFBD"), "19");
 }
 
+// One scan with random inputs a, b, c and raw (-100..199) given to main.forms, which main passes
+// on to every twin; returns raw.
+class RandomInputs {
+ public:
+  explicit RandomInputs(uint32_t seed) : seed_(seed) {}
+  int scan(Plc& plc) {
+    for (const char* input : {"main.forms.a", "main.forms.b", "main.forms.c"}) plc.set(input, next() & 0x10000 ? "TRUE" : "FALSE");
+    const int raw = static_cast<int>(next() >> 16) % 300 - 100;
+    plc.set("main.forms.raw", std::to_string(raw));
+    plc.scan();
+    return raw;
+  }
+
+ private:
+  uint32_t next() { return seed_ = seed_ * 1103515245u + 12345u; }
+  uint32_t seed_;
+};
+
 // ILForms (IL) and ILFormsST (the same in ST) get the same inputs every scan.
 TEST(Il, EveryInstructionFormMatchesItsStTwinScanByScan) {
   auto c = compileGolden("beremiz_il_fbd.xml");
   ASSERT_NE(c->module, nullptr) << c->rendered();
   Plc plc(*c->module);
-  uint32_t seed = 12345;
-  auto next = [&] { return seed = seed * 1103515245u + 12345u; };
+  RandomInputs inputs(12345);
   int pulses = 0;
   for (int scan = 0; scan < 200; ++scan) {
-    plc.set("main.forms.a", next() & 0x10000 ? "TRUE" : "FALSE");
-    plc.set("main.forms.b", next() & 0x10000 ? "TRUE" : "FALSE");
-    plc.set("main.forms.c", next() & 0x10000 ? "TRUE" : "FALSE");
-    plc.set("main.forms.raw", std::to_string(static_cast<int>(next() >> 16) % 300 - 100));
-    plc.scan();
+    inputs.scan(plc);
     for (const char* out : {"both", "latched", "clamped", "doubled", "loops", "pulses", "counted", "flipped", "limited", "summed"})
       ASSERT_EQ(plc.get(std::string("main.forms.") + out), plc.get(std::string("main.twin.") + out))
           << out << " at scan " << scan;
@@ -62,16 +75,10 @@ TEST(Il, TheConditionalAndNegatedFormsMatchTheirStTwinScanByScan) {
   auto c = compileGolden("beremiz_il_fbd.xml");
   ASSERT_NE(c->module, nullptr) << c->rendered();
   Plc plc(*c->module);
-  uint32_t seed = 777;
-  auto next = [&] { return seed = seed * 1103515245u + 12345u; };
+  RandomInputs inputs(777);
   int returnedEarly = 0;
   for (int scan = 0; scan < 300; ++scan) {
-    plc.set("main.forms.a", next() & 0x10000 ? "TRUE" : "FALSE");
-    plc.set("main.forms.b", next() & 0x10000 ? "TRUE" : "FALSE");
-    plc.set("main.forms.c", next() & 0x10000 ? "TRUE" : "FALSE");
-    const int raw = static_cast<int>(next() >> 16) % 300 - 100;
-    plc.set("main.forms.raw", std::to_string(raw));
-    plc.scan();
+    const int raw = inputs.scan(plc);
     returnedEarly += raw > 90;
     for (const char* out : {"andNot", "xorNot", "notA", "arith", "inRange", "fromA", "fromNotB", "hits", "kept"})
       ASSERT_EQ(plc.get(std::string("main.more.") + out), plc.get(std::string("main.moreTwin.") + out))

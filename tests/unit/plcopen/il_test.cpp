@@ -50,6 +50,11 @@ class RandomInputs {
   uint32_t seed_;
 };
 
+// Every output of the IL instance equals its ST twin's after `scan`.
+void expectTwinsAgree(Plc& plc, const std::string& il, const std::string& st, std::initializer_list<const char*> outputs, int scan) {
+  for (const char* out : outputs) ASSERT_EQ(plc.get(il + out), plc.get(st + out)) << out << " at scan " << scan;
+}
+
 // ILForms (IL) and ILFormsST (the same in ST) get the same inputs every scan.
 TEST(Il, EveryInstructionFormMatchesItsStTwinScanByScan) {
   auto c = compileGolden("beremiz_il_fbd.xml");
@@ -59,9 +64,9 @@ TEST(Il, EveryInstructionFormMatchesItsStTwinScanByScan) {
   int pulses = 0;
   for (int scan = 0; scan < 200; ++scan) {
     inputs.scan(plc);
-    for (const char* out : {"both", "latched", "clamped", "doubled", "loops", "pulses", "counted", "flipped", "limited", "summed"})
-      ASSERT_EQ(plc.get(std::string("main.forms.") + out), plc.get(std::string("main.twin.") + out))
-          << out << " at scan " << scan;
+    ASSERT_NO_FATAL_FAILURE(expectTwinsAgree(plc, "main.forms.", "main.twin.",
+                                             {"both", "latched", "clamped", "doubled", "loops", "pulses", "counted", "flipped", "limited", "summed"},
+                                             scan));
     pulses = std::stoi(plc.get("main.forms.pulses"));
   }
   EXPECT_EQ(plc.get("main.forms.loops"), "2");
@@ -80,9 +85,8 @@ TEST(Il, TheConditionalAndNegatedFormsMatchTheirStTwinScanByScan) {
   for (int scan = 0; scan < 300; ++scan) {
     const int raw = inputs.scan(plc);
     returnedEarly += raw > 90;
-    for (const char* out : {"andNot", "xorNot", "notA", "arith", "inRange", "fromA", "fromNotB", "hits", "kept"})
-      ASSERT_EQ(plc.get(std::string("main.more.") + out), plc.get(std::string("main.moreTwin.") + out))
-          << out << " at scan " << scan << " (raw " << raw << ")";
+    ASSERT_NO_FATAL_FAILURE(expectTwinsAgree(plc, "main.more.", "main.moreTwin.",
+                                             {"andNot", "xorNot", "notA", "arith", "inRange", "fromA", "fromNotB", "hits", "kept"}, scan));
   }
   EXPECT_EQ(std::stoi(plc.get("main.more.kept")), 300 - returnedEarly) << "RETC left the body when raw > 90";
   EXPECT_GT(returnedEarly, 0);

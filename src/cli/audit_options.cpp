@@ -13,29 +13,31 @@ void addAuditOption(CLI::App* cmd, AuditLevel& level) {
       ->transform(CLI::CheckedTransformer(levels, CLI::ignore_case));
 }
 
-std::unique_ptr<plc::WriteAudit> makeWriteAudit(AuditLevel level, const bc::Module& module, std::ostream& log,
-                                                plc::WriteAudit::Sink record) {
+std::unique_ptr<WriteAudit> makeWriteAudit(AuditLevel level, std::unique_ptr<AuditedNames> names, std::ostream& log,
+                                                WriteAudit::Sink record) {
   if (level == AuditLevel::Off) return nullptr;
   const bool each = level == AuditLevel::Each;
-  plc::WriteAudit::Sink sink;
+  WriteAudit::Sink sink;
   if (each || record)
     sink = [&log, each, record = std::move(record)](const WriteRecord& r) {
-      if (each) log << "audit: " << plc::formatWriteRecordWithTimes(r) << "\n";
+      if (each) log << "audit: " << formatWriteRecordWithTimes(r) << "\n";
       if (record) record(r);
     };
-  return std::make_unique<plc::WriteAudit>(module, std::move(sink));
+  return std::make_unique<WriteAudit>(std::move(names), std::move(sink));
 }
 
-plc::WriteAudit::Sink intoTrace(const std::unique_ptr<cell::Cell>& cell, plc::WriteAudit::Sink next) {
+WriteAudit::Sink intoTrace(const std::unique_ptr<cell::Cell>& cell, WriteAudit::Sink next) {
   return [&cell, next = std::move(next)](const WriteRecord& r) {
     cell->trace.keepExternalWrite(r);
     if (next) next(r);
   };
 }
 
-std::string auditSummary(const plc::WriteAudit& audit) {
+std::string auditSummary(std::initializer_list<const WriteAudit*> audits) {
   std::array<uint64_t, kWriteProtocolCount> counts{};
-  for (size_t p = 0; p < kWriteProtocolCount; ++p) counts[p] = audit.count(static_cast<WriteProtocol>(p));
+  for (const WriteAudit* audit : audits)
+    if (audit)
+      for (size_t p = 0; p < kWriteProtocolCount; ++p) counts[p] += audit->count(static_cast<WriteProtocol>(p));
   return "audit: " + externalWritesText(counts);
 }
 

@@ -15,6 +15,7 @@
 #include "cli/rule_trace.hpp"
 #include "bytecode/coverage.hpp"
 #include "lang/sfc/step_monitor.hpp"
+#include "plc/audited_variables.hpp"
 #include "plc/retain_file.hpp"
 #include "plc/runtime.hpp"
 #include "proto/modbus/server.hpp"
@@ -230,7 +231,7 @@ ExitCode runExec(const ExecOptions& o) {
     announceOpcuaServer(*opcua);
   }
   const bool serving = modbus || ads || opcua;
-  auto audit = serving ? makeWriteAudit(o.auditWrites, *module, std::cerr) : nullptr;
+  auto audit = serving ? makeWriteAudit(o.auditWrites, plc::auditedVariables(*module), std::cerr) : nullptr;
   int64_t cycles = o.cycles < 0 ? (forever ? INT64_MAX : 1) : o.cycles;
   if (paced) paced->resume();  // paced from the first scan: the set-up above is no scan's work
   ExitCode exitCode = ExitCode::Ok;
@@ -267,7 +268,7 @@ ExitCode runExec(const ExecOptions& o) {
   }
   backend.logRun(runtime.tierStats());
   if (paced) std::cerr << "timing: " << report::lateTicksText(paced->lateTicks(), runtime.ticks(), paced->maxLateNs()) << "\n";
-  if (audit) std::cerr << auditSummary(*audit) << "\n";
+  if (audit) std::cerr << auditSummary({audit.get()}) << "\n";
   if (!o.retainFile.empty() && exitCode == ExitCode::Ok) {
     std::string problem = plc::saveRetainFile(o.retainFile, *module, runtime.machine().memory());
     if (!problem.empty()) {

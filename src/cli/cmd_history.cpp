@@ -12,7 +12,7 @@
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "cli/hmi_options.hpp"
-#include "plc/write_audit.hpp"
+#include "core/write_audit.hpp"
 #include "history/query.hpp"
 #include "report/html_report.hpp"
 #include "report/json_report.hpp"
@@ -196,7 +196,7 @@ ExitCode showHistory(const HistoryOptions& o) {
   }
   if (o.writes) {
     // As `--audit-writes each` logged them while the run went on (docs/security.md).
-    for (const WriteRecord& w : reader->writes(id, *range)) std::cout << plc::formatWriteRecordWithTimes(w) << "\n";
+    for (const WriteRecord& w : reader->writes(id, *range)) std::cout << formatWriteRecordWithTimes(w) << "\n";
     if (!o.exports()) return ExitCode::Ok;
   }
   if (!o.exports()) {

@@ -21,6 +21,7 @@
 #include "cli/modbus_options.hpp"
 #include "cli/rule_trace.hpp"
 #include "core/cell_diagnostic_codes.hpp"
+#include "plc/audited_variables.hpp"
 #include "proto/ads/client_bridge.hpp"
 #include "proto/modbus/client_bridge.hpp"
 #include "report/html_report.hpp"
@@ -298,12 +299,12 @@ ExitCode runCell(const RunOptions& o) {
   if (o.step) options.traceSinks.push_back(&printer);
   std::optional<LiveHmi> hmi;
   // The page's writes and forces into the soft PLC, audited as serve audits them.
-  std::unique_ptr<plc::WriteAudit> audit;
+  std::unique_ptr<WriteAudit> audit;
   if (hmiBinding) {
     hmi.emplace(*cell, &gStopRequested, o.hmi.paused, options);  // paced: speed 1 unless --speed
     hmi->keepHistory(o.history.path);
     if (const char* why = resetRefusal(*cell, !files.empty())) hmi->refuseReset(why);
-    if (cell->module) audit = makeWriteAudit(o.auditWrites, *cell->module, std::cerr, intoTrace(cell, intoRecorder(*recorder)));
+    if (cell->module) audit = makeWriteAudit(o.auditWrites, plc::auditedVariables(*cell->module), std::cerr, intoTrace(cell, intoRecorder(*recorder)));
     hmi->auditWrites(audit.get());
   }
   stopOnSignals();
@@ -328,7 +329,7 @@ ExitCode runCell(const RunOptions& o) {
     bool reset = hmi && hmi->resetRequested();
     if (!reset) {
       if (audit) {
-        std::cerr << auditSummary(*audit) << "\n";
+        std::cerr << auditSummary({audit.get()}) << "\n";
         cell->trace.writesAudited = true;
       }
       ok = writeRunOutputs(o, *cell, timeline, ruleTables, files);

@@ -26,6 +26,8 @@
 #include "cli/hmi_options.hpp"
 #include "cli/history_options.hpp"
 #include "cli/modbus_options.hpp"
+#include "plc/audited_variables.hpp"
+#include "proto/modbus/audited_signals.hpp"
 #include "proto/modbus/signal_server.hpp"
 #include "report/json_report.hpp"
 #include "report/kpis.hpp"
@@ -56,7 +58,7 @@ struct ServeOptions {
 
 using Bridges = std::vector<std::unique_ptr<BusBridge>>;
 
-std::expected<std::unique_ptr<BusBridge>, std::string> startModbus(const ServeOptions& o, const cell::Cell& cell) {
+std::expected<std::unique_ptr<BusBridge>, std::string> startModbus(const ServeOptions& o, const cell::Cell& cell, WriteAudit* audit) {
   namespace mb = proto::modbus;
   auto settings = modbusServerConfig(o.modbus, o.modbusAllow, o.peers);
   if (!settings) return std::unexpected(settings.error());
@@ -64,15 +66,16 @@ std::expected<std::unique_ptr<BusBridge>, std::string> startModbus(const ServeOp
   config.readOnly = o.modbusReadOnly;
   auto server = mb::SignalServer::start(config, cell.modbus);
   if (!server) return std::unexpected("--modbus: " + server.error());
+  (*server)->auditWrites(audit);
   std::cerr << "modbus: serving on " << mb::formatEndpoint((*server)->endpoint()) << " (" << cell.modbus.entries.size()
             << " signals of " << cell.name << (cell.modbus.automatic ? ", automatic map: see virtcom modbus-map" : "") << ")\n";
   return std::unique_ptr<BusBridge>(std::move(*server));
 }
 
-std::expected<Bridges, std::string> startServers(const ServeOptions& o, const cell::Cell& cell) {
+std::expected<Bridges, std::string> startServers(const ServeOptions& o, const cell::Cell& cell, WriteAudit* modbusAudit) {
   Bridges bridges;
   if (!o.modbus.empty()) {
-    auto b = startModbus(o, cell);
+    auto b = startModbus(o, cell, modbusAudit);
     if (!b) return std::unexpected(b.error());
     bridges.push_back(std::move(*b));
   }
@@ -136,7 +139,12 @@ ExitCode serveCell(const ServeOptions& o) {
   }
   // Handlers first: a client may send SIGTERM as soon as a server announces itself.
   stopOnSignals();
-  auto bridges = startServers(o, *cell);
+  // The writes of the external PLC (or any Modbus client) into the cell's signals: the same audit
+  // as the soft PLC's writes, naming the signals.
+  auto modbusAudit = o.modbus.empty() ? nullptr
+                                      : makeWriteAudit(o.auditWrites, proto::modbus::auditedSignals(cell->modbus), std::cerr,
+                                                       intoTrace(cell, intoRecorder(*recorder)));
+  auto bridges = startServers(o, *cell, modbusAudit.get());
   if (!bridges) {
     std::cerr << "error: " << bridges.error() << "\n";
     return ExitCode::Usage;
@@ -177,7 +185,7 @@ ExitCode serveCell(const ServeOptions& o) {
   // record kept in the run's trace for its reports, and into the historian when one records (the
   // recorder in use: a reset replaces it).
   auto audit = cell->module && (ads || opcua || hmiBinding)
-                   ? makeWriteAudit(o.auditWrites, *cell->module, std::cerr, intoTrace(cell, intoRecorder(*recorder)))
+                   ? makeWriteAudit(o.auditWrites, plc::auditedVariables(*cell->module), std::cerr, intoTrace(cell, intoRecorder(*recorder)))
                    : nullptr;
   if (ads || opcua) {
     // The first snapshot right after the cold start, then the announcement: a client that
@@ -241,8 +249,8 @@ ExitCode serveCell(const ServeOptions& o) {
   if (ads) ads->stop();
   if (opcua) opcua->stop();
   if (hmi) hmi->stop();
-  if (audit) {
-    std::cerr << auditSummary(*audit) << "\n";
+  if (audit || modbusAudit) {
+    std::cerr << auditSummary({audit.get(), modbusAudit.get()}) << "\n";
     cell->trace.writesAudited = true;
   }
   const Trace& trace = cell->trace;

@@ -67,7 +67,7 @@ bool recordNextRun(const HistoryRecordOptions& o, std::unique_ptr<history::Recor
   return ok;
 }
 
-plc::WriteAudit::Sink intoRecorder(std::unique_ptr<history::Recorder>& recorder) {
+WriteAudit::Sink intoRecorder(std::unique_ptr<history::Recorder>& recorder) {
   return [&recorder](const WriteRecord& r) {
     if (recorder) recorder->externalWrite(r);
   };

@@ -11,7 +11,7 @@
 
 #include "cell/cell.hpp"
 #include "history/recorder.hpp"
-#include "plc/write_audit.hpp"
+#include "core/write_audit.hpp"
 
 namespace virtcom::cli {
 
@@ -46,6 +46,6 @@ bool recordNextRun(const HistoryRecordOptions& o, std::unique_ptr<history::Recor
 
 // Where the write audit puts each record besides the log: into the recorder in use (a reset
 // replaces it), or nowhere while none records.
-plc::WriteAudit::Sink intoRecorder(std::unique_ptr<history::Recorder>& recorder);
+WriteAudit::Sink intoRecorder(std::unique_ptr<history::Recorder>& recorder);
 
 }  // namespace virtcom::cli

@@ -66,7 +66,7 @@ class LiveHmi {
   // at `path` (the command's --history; empty: none), over a second, read-only connection.
   void keepHistory(std::string path) { historyPath_ = std::move(path); }
   // Before the run: the page's writes and forces are audited by `audit` (LiveState::auditWrites).
-  void auditWrites(plc::WriteAudit* audit) { live_.auditWrites(audit); }
+  void auditWrites(WriteAudit* audit) { live_.auditWrites(audit); }
   // virtcom monitor with a plan: the KPI panel shows the current shift's parts against the plan.
   void watchShifts(std::function<void(hmi::ShiftProgress&)> fill) { live_.watchShifts(std::move(fill)); }
   // virtcom monitor over ADS: the SFC panel shows the real PLC's steps, read by `mirror`

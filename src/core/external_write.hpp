@@ -2,7 +2,7 @@
 // Who wrote into the PLC from outside (a client of a protocol server or of the HMI), and the hook
 // through which the servers' write queues (and the HMI's commands) report each edit as they apply
 // it at a scan boundary. The write audit
-// (plc/write_audit.*) implements the hook, the queues (proto/*) call it: neither knows the other,
+// (core/write_audit.*) implements the hook, the queues (proto/*) call it: neither knows the other,
 // and every protocol is audited by the same code.
 #include <cstddef>
 #include <cstdint>
@@ -38,7 +38,7 @@ std::string writerPeer(const ExternalWriter& w);
 // "2026-12-02T15:40:01.123Z": a wall time (UTC, ns since 1970) as the audit and the reports print it.
 std::string utcTimeText(int64_t ns);
 
-// One audited write (plc/write_audit.hpp makes them): what the terminal log prints and the
+// One audited write (core/write_audit.hpp makes them): what the terminal log prints and the
 // historian keeps (docs/history.md, table `writes`).
 struct WriteRecord {
   int64_t virtualNs = 0;  // the scan boundary the write crossed

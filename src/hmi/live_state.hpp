@@ -23,7 +23,7 @@
 #include "plant/conveyor.hpp"
 #include "plc/rule_counter.hpp"
 #include "plc/runtime.hpp"
-#include "plc/write_audit.hpp"
+#include "core/write_audit.hpp"
 #include "sim/run_control.hpp"
 
 namespace virtcom::hmi {
@@ -110,7 +110,7 @@ class LiveState final : public TraceSink, public sim::RunControl {
   // Before the run: every write and force from the page is reported to `audit` (which must
   // outlive this) as it lands, with the client's address (docs/security.md, Audit of external
   // writes). The forced value written again around each scan is not a new write.
-  void auditWrites(plc::WriteAudit* audit) { audit_ = audit; }
+  void auditWrites(WriteAudit* audit) { audit_ = audit; }
 
   // ---- the simulation's thread, between runs ----
   // After a run that ended on a reset (resetting()): the fresh `cell` (the same cell file, the
@@ -198,7 +198,7 @@ class LiveState final : public TraceSink, public sim::RunControl {
   plc::RuleCounter rules_;
   std::vector<const plant::Conveyor*> conveyors_;  // parallel to snapshot_.belts
   std::function<void(ShiftProgress&)> shiftProgress_;
-  plc::WriteAudit* audit_ = nullptr;
+  WriteAudit* audit_ = nullptr;
 
   // HTTP threads -> simulation thread
   std::mutex commandMutex_;

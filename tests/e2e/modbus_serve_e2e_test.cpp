@@ -43,9 +43,9 @@ constexpr int kPressDoneHolding = 10, kPressForceHolding = 11;
 
 class ServeE2e : public ::testing::Test {
  protected:
+  virtual std::vector<std::string> serveArgs() const { return {"serve", kExample + "/cell.yaml", "--modbus", "127.0.0.1:0", "--quiet"}; }
   void SetUp() override {
-    cell_ = std::make_unique<ServerProcess>(
-        kExe, std::vector<std::string>{"serve", kExample + "/cell.yaml", "--modbus", "127.0.0.1:0", "--quiet"}, kExample, kAnnounce);
+    cell_ = std::make_unique<ServerProcess>(kExe, serveArgs(), kExample, kAnnounce);
     port_ = cell_->port();
     ASSERT_GT(port_, 0) << "no 'modbus: serving on' line; stderr so far:\n" << cell_->errorOutput();
   }
@@ -173,6 +173,31 @@ TEST_F(ServeE2e, ManyClientsAndAbruptDisconnectsDoNotStopTheCell) {
   ASSERT_EQ(modbus_write_register(late, kClampProgramHolding, 1), 1);
   ASSERT_EQ(modbus_write_bit(late, kClampExecuteCoil, 1), 1);
   EXPECT_TRUE(eventually([&] { return discrete(late, kClampDoneInput); }));
+}
+
+// serve --modbus --audit-writes each: the external PLC's writes into the cell's signals are
+// audited like writes into the soft PLC, naming the signal, its table and address, and its value.
+class ServeAuditE2e : public ServeE2e {
+ protected:
+  std::vector<std::string> serveArgs() const override {
+    auto args = ServeE2e::serveArgs();
+    args.insert(args.end(), {"--audit-writes", "each"});
+    return args;
+  }
+};
+
+TEST_F(ServeAuditE2e, ThePlcsWritesAreLoggedAsTheSignalsTheyChange) {
+  modbus_t* plc = connect();
+  ASSERT_NE(plc, nullptr) << modbus_strerror(errno);
+  ASSERT_EQ(modbus_write_register(plc, kPressProgramHolding, 3), 1) << modbus_strerror(errno);
+  EXPECT_TRUE(cell_->waitFor(" Press.programNumber (holding 1): 0 -> 3\n")) << cell_->errorOutput();
+  ASSERT_EQ(modbus_write_bit(plc, kClampExecuteCoil, 1), 1) << modbus_strerror(errno);
+  EXPECT_TRUE(cell_->waitFor(" Clamp.execute (coil 0): FALSE -> TRUE\n")) << cell_->errorOutput();
+  EXPECT_NE(cell_->errorOutput().find("modbus 127.0.0.1:"), std::string::npos) << cell_->errorOutput();
+  EXPECT_EQ(cell_->stop(), 0) << cell_->errorOutput();
+  port_ = 0;
+  EXPECT_NE(cell_->errorOutput().find("audit: 2 external writes (ads 0, modbus 2, opcua 0, http 0)"), std::string::npos)
+      << cell_->errorOutput();
 }
 
 TEST(ServeCli, NothingToServeIsAUsageError) {

@@ -9,10 +9,10 @@ namespace virtcom::proto::modbus {
 
 namespace {
 
-// The entry's registers as one 16- or 32-bit word, most significant word first.
-uint32_t loadWord(const MapEntry& e, std::span<const uint8_t> bytes) {
-  if (registerCount(e.type) == 1) return getRegister(bytes, e.address);
-  uint32_t first = getRegister(bytes, e.address), second = getRegister(bytes, e.address + 1u);
+// The entry's registers (from `registers[0]`) as one 16- or 32-bit word, most significant word first.
+uint32_t loadWord(const MapEntry& e, std::span<const uint8_t> registers) {
+  if (registerCount(e.type) == 1) return getRegister(registers, 0);
+  uint32_t first = getRegister(registers, 0), second = getRegister(registers, 1);
   return e.order == WordOrder::HighFirst ? (first << 16 | second) : (second << 16 | first);
 }
 
@@ -56,15 +56,7 @@ double decode(ValueType t, uint32_t w) {
 
 }  // namespace
 
-std::span<uint8_t> tableBytes(const ImageView& v, Table t) {
-  switch (t) {
-    case Table::Coil: return v.outputs;
-    case Table::DiscreteInput: return v.inputs;
-    case Table::HoldingRegister: return v.memory;
-    case Table::InputRegister: return v.registers;
-  }
-  return {};
-}
+std::span<uint8_t> tableBytes(const ImageView& v, Table t) { return v.bytes(areaOf(t)); }
 
 uint16_t getRegister(std::span<const uint8_t> bytes, uint32_t reg) {
   return static_cast<uint16_t>(bytes[2 * reg] | (bytes[2 * reg + 1] << 8));
@@ -89,11 +81,15 @@ void storeSignal(const MapEntry& e, const TagBus& bus, const ImageView& tables) 
   storeWord(e, bytes, encode(e.type, e.type == ValueType::Bool ? bus.getNumber(e.tag) : bus.getNumber(e.tag) / e.scale));
 }
 
+double registerSignalValue(const MapEntry& e, std::span<const uint8_t> registers) {
+  double raw = decode(e.type, loadWord(e, registers));
+  return e.type == ValueType::Bool ? raw : raw * e.scale;
+}
+
 void loadSignal(const MapEntry& e, const ImageView& tables, TagBus& bus) {
   std::span<const uint8_t> bytes = tableBytes(tables, e.table);
   if (isBitTable(e.table)) return bus.setNumber(e.tag, getBit(bytes, e.address) ? 1 : 0);
-  double raw = decode(e.type, loadWord(e, bytes));
-  bus.setNumber(e.tag, e.type == ValueType::Bool ? raw : raw * e.scale);
+  bus.setNumber(e.tag, registerSignalValue(e, bytes.subspan(2u * e.address, 2u * e.width())));
 }
 
 ImageShape tablesFor(const SignalMap& map) {
@@ -122,6 +118,21 @@ ImageShape tablesFor(const SignalMap& map) {
 
 TableImage::TableImage(const ImageShape& shape)
     : discrete_(shape.inputs, 0), coils_(shape.outputs, 0), holding_(shape.memory, 0), input_(shape.registers, 0),
-      view_{discrete_, coils_, holding_, input_, Layout::Tables} {}
+      view_{discrete_, coils_, holding_, input_, Layout::Tables} {
+  for (Table t : {Table::Coil, Table::DiscreteInput, Table::HoldingRegister, Table::InputRegister})
+    view_.plcAddresses[static_cast<size_t>(areaOf(t))] = tableBaseAddress(t);
+}
+
+Area areaOf(Table t) {
+  switch (t) {
+    case Table::Coil: return Area::Outputs;
+    case Table::DiscreteInput: return Area::Inputs;
+    case Table::HoldingRegister: return Area::Memory;
+    case Table::InputRegister: return Area::Registers;
+  }
+  return Area::Outputs;
+}
+
+uint32_t tableBaseAddress(Table t) { return (static_cast<uint32_t>(t) + 1u) * kTableAddressSpan; }
 
 }  // namespace virtcom::proto::modbus

@@ -13,9 +13,10 @@ SignalServer::SignalServer(const SignalMap& map, std::unique_ptr<Server> server)
   for (const MapEntry& e : map.entries) (e.dir == SignalDir::Command ? commands_ : status_).push_back(e);
 }
 
-bool SignalServer::pull(TagBus& bus, int64_t) {
+bool SignalServer::pull(TagBus& bus, int64_t nowNs) {
+  if (audit_) audit_->setVirtualTime(nowNs);
   // Only client writes change command tables, so they are decoded only after one.
-  if (server_->applyPendingWrites(tables_.view()) > 0 || !loaded_) {
+  if (server_->applyPendingWrites(tables_.view(), audit_) > 0 || !loaded_) {
     for (const MapEntry& e : commands_) loadSignal(e, tables_.view(), bus);
     loaded_ = true;
   }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/bus_bridge.hpp"
+#include "core/write_audit.hpp"
 #include "proto/modbus/server.hpp"
 #include "proto/modbus/signal_codec.hpp"
 #include "proto/modbus/signal_map.hpp"
@@ -19,6 +20,9 @@ class SignalServer final : public BusBridge {
  public:
   // Starts the server (binds, spawns its I/O thread). Error text if it cannot.
   static std::expected<std::unique_ptr<SignalServer>, std::string> start(const ServerConfig& config, const SignalMap& map);
+
+  // Clients' writes are reported to `audit` (names: auditedSignals of the map) as they land.
+  void auditWrites(WriteAudit* audit) { audit_ = audit; }
 
   bool pull(TagBus& bus, int64_t nowNs) override;
   void push(const TagBus& bus, int64_t nowNs) override;
@@ -31,6 +35,7 @@ class SignalServer final : public BusBridge {
   TableImage tables_;
   std::unique_ptr<Server> server_;
   bool loaded_ = false;
+  WriteAudit* audit_ = nullptr;
 };
 
 }  // namespace virtcom::proto::modbus

@@ -2,6 +2,7 @@
 // ticks (pause, single step, force, fault), the stations, and the API's answers over it.
 #include <gtest/gtest.h>
 
+#include "plc/audited_variables.hpp"
 #include "requests.hpp"
 
 #include <cstring>
@@ -147,7 +148,7 @@ TEST_F(GearboxHmi, AForcedVariableHoldsAgainstTheProgramUntilReleased) {
 // around every scan without a new record.
 TEST_F(GearboxHmi, WritesAndForcesFromThePageAreAuditedWithTheClient) {
   std::vector<WriteRecord> records;
-  plc::WriteAudit audit(*cell->module, [&](const WriteRecord& r) { records.push_back(r); });
+  WriteAudit audit(plc::auditedVariables(*cell->module), [&](const WriteRecord& r) { records.push_back(r); });
   live->auditWrites(&audit);
   steps(1);
   const ExternalWriter client{WriteProtocol::Http, 0x0a000009, 51000};
@@ -157,12 +158,12 @@ TEST_F(GearboxHmi, WritesAndForcesFromThePageAreAuditedWithTheClient) {
   ASSERT_EQ(post(R"({"name": "MAIN.jobsFinished", "value": "7"})"), 200);
   steps(1);
   ASSERT_EQ(records.size(), 1u);
-  EXPECT_EQ(plc::formatWriteRecord(records[0]), "http 10.0.0.9:51000 MAIN.jobsFinished: 0 -> 7");
+  EXPECT_EQ(formatWriteRecord(records[0]), "http 10.0.0.9:51000 MAIN.jobsFinished: 0 -> 7");
   EXPECT_EQ(records[0].virtualNs, 10'000'000) << "the scan boundary it crossed: the second tick's";
   ASSERT_EQ(post(R"({"name": "MAIN.failed", "value": "TRUE", "force": true})"), 200);
   steps(5);
   ASSERT_EQ(records.size(), 2u) << "the force is written around every scan, audited once";
-  EXPECT_EQ(plc::formatWriteRecord(records[1]), "http 10.0.0.9:51000 MAIN.failed: FALSE -> TRUE (forced)");
+  EXPECT_EQ(formatWriteRecord(records[1]), "http 10.0.0.9:51000 MAIN.failed: FALSE -> TRUE (forced)");
   EXPECT_EQ(audit.count(WriteProtocol::Http), 2u);
   EXPECT_EQ(audit.total(), 2u);
   EXPECT_EQ(post(R"({"name": "MAIN.nothing", "value": "1"})"), 404);

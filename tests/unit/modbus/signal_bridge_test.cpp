@@ -3,11 +3,14 @@
 // (reads, change-only writes, connection loss with both policies).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <string>
 #include <vector>
 
+#include "core/write_audit.hpp"
+#include "proto/modbus/audited_signals.hpp"
 #include "proto/modbus/client_bridge.hpp"
 #include "proto/modbus/server.hpp"
 #include "proto/modbus/signal_codec.hpp"
@@ -245,6 +248,53 @@ TEST(SignalServerTest, PullLoadsWrittenCommandsAndPushPublishesStatus) {
   (*server)->push(bus, 0);
   ASSERT_TRUE(client.pull(plc, 10'000'000));
   EXPECT_TRUE(plc.getBool(plcDone));
+}
+
+// `serve --modbus`: what the external PLC (or any client) writes into the cell's signals is
+// audited as the soft PLC's writes are, each record naming the signal, its table and address,
+// and its value as the signal (scaled), at the virtual time of the tick it landed in.
+TEST(SignalServerTest, ItsClientsWritesAreAuditedAsTheSignalsTheyChange) {
+  TagBus bus;
+  TagId execute = bus.add("Clamp.execute", ElemType::Bool);
+  TagId target = bus.add("Axis.target", ElemType::Lreal);
+  TagId speed = bus.add("Axis.speed", ElemType::Lreal);
+  SignalMap map{{entry(execute, SignalDir::Command, Table::Coil, 3, ValueType::Bool),
+                 entry(target, SignalDir::Command, Table::HoldingRegister, 4, ValueType::Real),
+                 entry(speed, SignalDir::Command, Table::HoldingRegister, 6, ValueType::Int, WordOrder::HighFirst, 0.1)}};
+  for (MapEntry& e : map.entries) e.signal = bus.name(e.tag);
+  ServerConfig config;
+  config.listen = {0x7f000001, 0};
+  auto server = SignalServer::start(config, map);
+  ASSERT_TRUE(server) << server.error();
+  std::vector<WriteRecord> records;
+  WriteAudit audit(auditedSignals(map), [&](const WriteRecord& r) { records.push_back(r); });
+  (*server)->auditWrites(&audit);
+  ClientConfig c;
+  c.peer = (*server)->endpoint();
+  TagBus plc;
+  c.map.entries = {entry(plc.add("execute", ElemType::Bool), SignalDir::Status, Table::Coil, 3, ValueType::Bool),
+                   entry(plc.add("target", ElemType::Lreal), SignalDir::Status, Table::HoldingRegister, 4, ValueType::Real),
+                   entry(plc.add("speed", ElemType::Lreal), SignalDir::Status, Table::HoldingRegister, 6, ValueType::Int,
+                         WordOrder::HighFirst, 0.1)};
+  ClientBridge client(c);
+  plc.setBool(c.map.entries[0].tag, true);
+  plc.setReal(c.map.entries[1].tag, 2.5);
+  plc.setReal(c.map.entries[2].tag, 12.5);
+  ASSERT_TRUE(client.pull(plc, 0));
+  client.push(plc, 0);
+  ASSERT_TRUE((*server)->pull(bus, 5'000'000));
+  EXPECT_DOUBLE_EQ(bus.getReal(speed), 12.5);
+  ASSERT_EQ(records.size(), 3u);
+  std::vector<std::string> lines;
+  for (const WriteRecord& r : records) {
+    EXPECT_EQ(r.virtualNs, 5'000'000);
+    EXPECT_EQ(r.writer.protocol, WriteProtocol::Modbus);
+    lines.push_back(writtenVariableText(r) + ": " + r.oldValue + " -> " + r.newValue);
+  }
+  std::sort(lines.begin(), lines.end());
+  EXPECT_EQ(lines, (std::vector<std::string>{"Axis.speed (holding 6): 0 -> 12.5", "Axis.target (holding 4): 0 -> 2.5",
+                                             "Clamp.execute (coil 3): FALSE -> TRUE"}));
+  EXPECT_EQ(audit.count(WriteProtocol::Modbus), 3u);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// plc::WriteAudit, the one audit of writes from outside: what a record says (times, protocol,
+// WriteAudit, the one audit of writes from outside: what a record says (times, protocol,
 // peer, variable, old and new value as IEC text) for the edits the protocol servers' queues
 // report as they apply them at a scan boundary.
 #include <gtest/gtest.h>
@@ -13,9 +13,10 @@
 #include "core/clock.hpp"
 #include "core/diagnostics.hpp"
 #include "core/source.hpp"
+#include "core/write_audit.hpp"
 #include "lang/st/compiler.hpp"
+#include "plc/audited_variables.hpp"
 #include "plc/runtime.hpp"
-#include "plc/write_audit.hpp"
 
 namespace virtcom::plc {
 namespace {
@@ -44,7 +45,7 @@ struct Audited : ::testing::Test {
     ASSERT_NE(module, nullptr) << diags.render(sources);
     runtime = std::make_unique<Runtime>(*module, clock);
     ASSERT_TRUE(runtime->coldStart());
-    audit = std::make_unique<WriteAudit>(*module, [this](const WriteRecord& r) { records.push_back(r); });
+    audit = std::make_unique<WriteAudit>(auditedVariables(*module), [this](const WriteRecord& r) { records.push_back(r); });
   }
   std::span<uint8_t> memory() { return {runtime->machine().memory(), module->staticSize}; }
   uint32_t addressOf(const char* name) {

@@ -13,7 +13,7 @@ namespace virtcom::proto::ads {
 
 // Before a scan: applies a client's RUN/STOP and every queued write (located inputs also go to
 // the external input image, so the scan's input copy keeps them). No allocation.
-// Each write is reported to `audit` (if given; plc/write_audit.hpp).
+// Each write is reported to `audit` (if given; core/write_audit.hpp).
 void beforeScan(Server& server, plc::Runtime& runtime, WriteObserver* audit = nullptr);
 // After a scan: publishes the memory image and the PLC state to the server. No allocation.
 void afterScan(Server& server, plc::Runtime& runtime);

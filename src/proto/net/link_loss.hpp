@@ -46,11 +46,17 @@ class LinkLoss {
   void refused(const std::string& what);
   // The link is back (reported only if its loss was).
   void reconnected();
+  // After reconnecting, the bridge checked the cell's signals on the new connection and found
+  // `problems`. None: true. The connection's own problem is a loss (`close` closes the
+  // connection first; its text is the whole message, as the bridge's start reports it); a
+  // signal's is a refusal, the PLC no longer matching the cell.
+  bool recheckPassed(const std::vector<SignalProblem>& problems, const std::function<void()>& close);
 
   bool failed() const { return !failure_.empty(); }
   const std::string& failure() const { return failure_; }
 
  private:
+  void lostAs(std::string text);  // lost(), the whole message given
   void failWith(std::string text);
 
   LinkLossPolicy policy_;

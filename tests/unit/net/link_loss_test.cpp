@@ -50,5 +50,28 @@ TEST(LinkLoss, ARefusalFailsEvenWhenHolding) {
   EXPECT_EQ(link.failure(), "ads: the PLC at 10.0.0.2:48898 refused writing 'MAIN.x': 0x710");
 }
 
+// What every bridge does after reconnecting: the cell's signals checked again on the new
+// connection; a connection problem is one more loss (the connection closed first), a signal's
+// problem means the program changed, which fails the run even when holding. (Regression: the
+// connection problem's text, a whole message, was prefixed again: "ads: link to X lost: ads: link
+// to X lost: ...".)
+TEST(LinkLoss, TheRecheckAfterReconnectingTellsALossFromAChangedProgram) {
+  Reported r;
+  LinkLoss link = r.link(false);
+  int closed = 0;
+  auto close = [&] { ++closed; };
+  EXPECT_TRUE(link.recheckPassed({}, close));
+  EXPECT_FALSE(link.recheckPassed(
+      {{kNoSignal, "ads: link to the PLC at 10.0.0.2:48898 lost: reading the symbols: timeout", SignalProblem::Kind::Link}}, close));
+  EXPECT_EQ(closed, 1);
+  EXPECT_FALSE(link.failed());
+  ASSERT_EQ(r.lines.size(), 1u);
+  EXPECT_EQ(r.lines[0], "ads: link to the PLC at 10.0.0.2:48898 lost: reading the symbols: timeout (holding the last commands, "
+                        "retrying every step)");
+  EXPECT_FALSE(link.recheckPassed({{2, "the PLC has no variable 'MAIN.x'", SignalProblem::Kind::Unknown}}, close));
+  EXPECT_EQ(closed, 1);
+  EXPECT_EQ(link.failure(), "ads: the PLC at 10.0.0.2:48898 no longer matches the cell after reconnecting: the PLC has no variable 'MAIN.x'");
+}
+
 }  // namespace
 }  // namespace virtcom::proto::net

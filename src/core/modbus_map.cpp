@@ -24,7 +24,6 @@ constexpr ValueTypeInfo kValueTypes[] = {
 #undef MODBUS_VALUE_TYPE
 };
 
-constexpr std::array<Table, 4> kTables = {Table::Coil, Table::DiscreteInput, Table::HoldingRegister, Table::InputRegister};
 
 std::optional<Table> tableFromText(const std::string& text) {
   for (Table t : kTables)

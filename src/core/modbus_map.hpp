@@ -4,6 +4,7 @@
 // client bridge to an external PLC), or the automatic mapping. docs/modbus.md has the format.
 // A description only, no sockets: the cell loader reads and checks it, proto/modbus serves and
 // polls it, so it sits below both.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -16,6 +17,7 @@
 namespace virtcom::modbus_map {
 
 enum class Table : uint8_t { Coil, DiscreteInput, HoldingRegister, InputRegister };
+inline constexpr std::array<Table, 4> kTables = {Table::Coil, Table::DiscreteInput, Table::HoldingRegister, Table::InputRegister};
 const char* tableName(Table t);  // "coil", "discrete", "holding", "input" (the cell file's words)
 inline bool isBitTable(Table t) { return t == Table::Coil || t == Table::DiscreteInput; }
 

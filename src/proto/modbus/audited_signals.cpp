@@ -10,8 +10,6 @@ namespace virtcom::proto::modbus {
 
 namespace {
 
-constexpr std::array<Table, 4> kTables = {Table::Coil, Table::DiscreteInput, Table::HoldingRegister, Table::InputRegister};
-
 class AuditedSignals final : public AuditedNames {
  public:
   explicit AuditedSignals(const SignalMap& map) : entries_(map.entries) {
@@ -27,8 +25,8 @@ class AuditedSignals final : public AuditedNames {
   const std::vector<Place>& places() const override { return places_; }
 
   std::optional<std::string> valueText(const Place& p, std::span<const uint8_t> bytes) override {
+    if (p.bit >= 0) return std::nullopt;  // a coil or discrete input: the audit's TRUE / FALSE
     const MapEntry& e = entries_[p.what];
-    if (p.bit >= 0) return (bytes[0] >> p.bit) & 1 ? "TRUE" : "FALSE";
     const double v = registerSignalValue(e, bytes);
     if (e.type == ValueType::Bool) return v != 0 ? "TRUE" : "FALSE";
     if (v == std::trunc(v) && std::abs(v) < 1e15) return std::to_string(static_cast<int64_t>(v));

@@ -119,7 +119,7 @@ ImageShape tablesFor(const SignalMap& map) {
 TableImage::TableImage(const ImageShape& shape)
     : discrete_(shape.inputs, 0), coils_(shape.outputs, 0), holding_(shape.memory, 0), input_(shape.registers, 0),
       view_{discrete_, coils_, holding_, input_, Layout::Tables} {
-  for (Table t : {Table::Coil, Table::DiscreteInput, Table::HoldingRegister, Table::InputRegister})
+  for (Table t : kTables)
     view_.plcAddresses[static_cast<size_t>(areaOf(t))] = tableBaseAddress(t);
 }
 

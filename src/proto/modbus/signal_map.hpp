@@ -9,6 +9,7 @@ using modbus_map::BusSignal;
 using modbus_map::formatMapCsv;
 using modbus_map::formatMapMarkdown;
 using modbus_map::isBitTable;
+using modbus_map::kTables;
 using modbus_map::MapEntry;
 using modbus_map::MapRole;
 using modbus_map::parseSignalMap;

@@ -174,11 +174,8 @@ bool ClientBridge::reconnect(TagBus& bus) {
     return false;
   }
   std::vector<Problem> problems;
-  if (!resolve(bus, false, problems)) {
-    if (problems.front().signal == kNoSignal) lose(problems.front().text);
-    else link_.refused("no longer matches the cell after reconnecting: " + problems.front().text);
-    return false;
-  }
+  resolve(bus, false, problems);
+  if (!link_.recheckPassed(problems, [this] { client_.close(); })) return false;
   if (auto subscribed = subscribe(); !subscribed) {
     lose(subscribed.error());
     return false;

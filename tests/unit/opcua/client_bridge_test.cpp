@@ -23,12 +23,18 @@ std::string node(const std::string& path) { return "ns=4;s=|var|virtcom.Applicat
 
 class OpcuaBridgeTest : public ::testing::Test {
  protected:
-  void startServer(ServerConfig config) {
-    config.listen = {0x7f000001, 0};
+  // On `port` (0: any free one); a port given: a restarted PLC, the old server stopped.
+  void startServer(ServerConfig config, uint16_t port = 0) {
+    config.listen = {0x7f000001, port};
     auto server = Server::start(config, table_);
     ASSERT_TRUE(server) << server.error();
     server_ = std::move(*server);
     publish();
+  }
+  void restartServer(uint16_t port, UserAccess anonymous) {
+    ServerConfig again;
+    again.anonymous = anonymous;
+    startServer(again, port);
   }
   void SetUp() override {
     image_.assign(64, 0);
@@ -264,13 +270,7 @@ TEST_F(OpcuaBridgeTest, ALostLinkIsHeldAndReconnectedWithHold) {
   // The server is back on the same port: the bridge reconnects and rewrites every output.
   image_.assign(64, 0);
   setInt16(32, 77);
-  ServerConfig again;
-  again.anonymous = UserAccess::Write;
-  again.listen = {0x7f000001, port};
-  auto server = Server::start(again, table_);
-  ASSERT_TRUE(server) << server.error();
-  server_ = std::move(*server);
-  publish();
+  restartServer(port, UserAccess::Write);
   ASSERT_TRUE(bridge->pull(bus_, 3'000'000)) << bridge->failure();
   EXPECT_EQ(bus_.getInt(program_), 77);
   bridge->push(bus_, 3'000'000);
@@ -278,6 +278,25 @@ TEST_F(OpcuaBridgeTest, ALostLinkIsHeldAndReconnectedWithHold) {
   EXPECT_EQ(int16At(40), 5);
   ASSERT_EQ(reports_.size(), 2u);
   EXPECT_NE(reports_[1].find("opcua: reconnected to the OPC UA server at"), std::string::npos) << reports_[1];
+}
+
+TEST_F(OpcuaBridgeTest, AServerBackWithoutTheWiringAsAtStartFailsTheRun) {
+  auto c = config(wired());
+  c.faultOnLoss = false;
+  ClientBridge::StartReport report;
+  auto bridge = ClientBridge::start(c, bus_, report);
+  ASSERT_NE(bridge, nullptr);
+  const uint16_t port = server_->endpoint().port;
+  server_->stop();
+  server_.reset();
+  EXPECT_TRUE(bridge->pull(bus_, 1'000'000)) << "hold: the run goes on";
+  // Back, but anonymous sessions may no longer write: Clamp.position cannot reach the PLC.
+  restartServer(port, UserAccess::Read);
+  EXPECT_FALSE(bridge->pull(bus_, 2'000'000));
+  EXPECT_NE(bridge->failure().find("opcua: the OPC UA server at opc.tcp://127.0.0.1:"), std::string::npos) << bridge->failure();
+  EXPECT_NE(bridge->failure().find(" no longer matches the cell after reconnecting: opcua: 'MAIN.p.x' "), std::string::npos)
+      << bridge->failure();
+  EXPECT_NE(bridge->failure().find("is not writable for this session"), std::string::npos) << bridge->failure();
 }
 
 class OpcuaBridgeSubscriptionTest : public OpcuaBridgeTest {

@@ -39,11 +39,17 @@ std::unique_ptr<ClientBridge> ClientBridge::start(BridgeConfig config, TagBus& b
   report.found.clear();  // filled once the server has been asked
   for (size_t i = 0; i < b->config_.signals.size(); ++i) {
     const BridgeSignal& s = b->config_.signals[i];
-    auto id = parseNodeId(s.node);
     std::vector<uint8_t> bytes;
     Writer w(bytes);
-    if (!id) report.problems.push_back({i, "opcua: '" + s.node + "' is not a node id (expected e.g. ns=4;s=NAME or ns=2;i=17)"});
-    else encode(w, *id);
+    if (isBrowsePath(s.node)) {
+      auto path = parseBrowsePath(s.node);
+      if (!path) report.problems.push_back({i, "opcua: the browse path " + path.error()});
+      else b->paths_.push_back({i, std::move(*path)});
+    } else if (auto id = parseNodeId(s.node)) {
+      encode(w, *id);
+    } else {
+      report.problems.push_back({i, "opcua: '" + s.node + "' is not a node id or a browse path (expected e.g. ns=4;s=NAME, ns=2;i=17 or /4:MAIN/4:x)"});
+    }
     b->nodeIds_.push_back(std::move(bytes));
   }
   if (!report.problems.empty()) return nullptr;
@@ -66,6 +72,7 @@ bool ClientBridge::resolve(TagBus& bus, bool addTags, std::vector<Problem>& prob
   reads_.clear();
   writes_.clear();
   if (slots_.empty()) return true;
+  if (!translatePaths(problems)) return false;
   Writer& w = client_.beginRequest(kReadRequestId);
   encode(w, 0.0);  // MaxAge: the current value
   w.u32(kTimestampsNeither);
@@ -105,6 +112,7 @@ bool ClientBridge::resolve(TagBus& bus, bool addTags, std::vector<Problem>& prob
                           Problem::Kind::Link});
       return false;
     }
+    if (slot.unresolved) continue;
     const std::string wiredTo = s.port.empty() ? "" : " to wire to " + s.port;
     const std::string named = s.name == s.node ? "'" + s.node + "'" : "'" + s.name + "' (" + s.node + ")";
     if (value.status == static_cast<uint32_t>(StatusCodeValue::BadNodeIdUnknown)) {

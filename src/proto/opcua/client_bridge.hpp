@@ -1,6 +1,10 @@
 #pragma once
 // The OPC UA client bridge: an external PLC with an OPC UA server (CODESYS, TwinCAT TF6100, a
-// Siemens PLC, or `virtcom exec --opcua`) is the cell's controller. Every signal names a node:
+// Siemens PLC, or `virtcom exec --opcua`) is the cell's controller. Every signal names a node, by
+// node id or by browse path (browse_path.hpp):
+//  - at start (and after each reconnect: a restarted PLC may number its nodes anew) one
+//    TranslateBrowsePathsToNodeIds resolves every browse path; each that leads nowhere is a
+//    problem of its signal;
 //  - at start one Read asks for the Value and UserAccessLevel of every node: its built-in type
 //    (checked against the device port) and, for device outputs, that this session may write it;
 //    every problem is collected, none is left for the run;
@@ -28,13 +32,14 @@
 #include "core/bus_bridge.hpp"
 #include "core/iec_value.hpp"
 #include "proto/net/link_loss.hpp"
+#include "proto/opcua/browse_path.hpp"
 #include "proto/opcua/client.hpp"
 #include "proto/opcua/raw_values.hpp"
 
 namespace virtcom::proto::opcua {
 
 struct BridgeSignal {
-  std::string node;       // the node id, e.g. "ns=4;s=|var|virtcom.Application.MAIN.Robot1.execute"
+  std::string node;       // the node id, e.g. "ns=4;s=|var|virtcom.Application.MAIN.Robot1.execute", or a browse path, "/4:MAIN/4:x"
   std::string name;       // what the cell file names (a variable or the node id), for messages
   std::string port;       // what it is wired to, for messages, e.g. "Robot1.execute"
   TagId tag = kNoTag;     // kNoTag: a value only observed (recorded); start() adds its tag
@@ -88,6 +93,11 @@ class ClientBridge final : public BusBridge {
     uint32_t size = 0;
     uint32_t offset = 0;  // in image_ (the values as last read / written)
     bool dirty = true;    // must be written even if unchanged (after connecting)
+    bool unresolved = false;  // its browse path led nowhere: not read (a problem already)
+  };
+  struct PathSignal {
+    size_t signal = 0;
+    std::vector<BrowsePathElement> path;
   };
 
   explicit ClientBridge(BridgeConfig config);
@@ -95,6 +105,10 @@ class ClientBridge final : public BusBridge {
   // (`problems` says what). With addTags, observed-only signals get their tags (start); else
   // the types must not have changed since (reconnecting).
   bool resolve(TagBus& bus, bool addTags, std::vector<Problem>& problems);
+  // Resolves every browse path into nodeIds_ with one TranslateBrowsePathsToNodeIds
+  // (client_bridge_paths.cpp); a path that leads nowhere is its signal's problem (or skipped if
+  // optional) and its slot unresolved. False only if the connection failed (`problems` says how).
+  bool translatePaths(std::vector<Problem>& problems);
   bool reconnect(TagBus& bus);
   void lose(const std::string& what);
   // Polls the PLC's outputs with one Read (pull() without a subscription).
@@ -123,7 +137,8 @@ class ClientBridge final : public BusBridge {
   Client client_;
   net::LinkLoss link_;  // after config_: built from it
   std::vector<Slot> slots_;
-  std::vector<std::vector<uint8_t>> nodeIds_;  // each signal's NodeId, encoded once
+  std::vector<std::vector<uint8_t>> nodeIds_;  // each signal's NodeId, encoded once (a path's: when resolved)
+  std::vector<PathSignal> paths_;              // the signals named by browse path
   std::vector<size_t> reads_, writes_;         // signals read each poll / written on change
   std::vector<uint8_t> image_;                 // one value per found signal
   std::vector<size_t> changed_;                // signals written this poll (capacity reserved)

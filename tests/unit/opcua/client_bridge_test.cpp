@@ -31,9 +31,11 @@ class OpcuaBridgeTest : public ::testing::Test {
     server_ = std::move(*server);
     publish();
   }
-  void restartServer(uint16_t port, UserAccess anonymous) {
+  // A restarted PLC on `port`; another application name gives its variables other node ids.
+  void restartServer(uint16_t port, UserAccess anonymous, const std::string& applicationName = "virtcom") {
     ServerConfig again;
     again.anonymous = anonymous;
+    again.names.applicationName = applicationName;
     startServer(again, port);
   }
   void SetUp() override {
@@ -70,6 +72,7 @@ class OpcuaBridgeTest : public ::testing::Test {
     c.report = [this](const std::string& line) { reports_.push_back(line); };
     return c;
   }
+  std::vector<BridgeSignal> wiredByPath();  // wired(), by browse path
   std::vector<BridgeSignal> wired() {
     return {{node("MAIN.count"), "MAIN.count", "Clamp.programNumber", program_, false, false},
             {node("MAIN.p.x"), "MAIN.p.x", "Clamp.position", position_, true, false}};
@@ -165,7 +168,7 @@ TEST_F(OpcuaBridgeTest, EveryBadNodeIsReportedAtStartInOnePass) {
   ClientBridge::StartReport report;
   EXPECT_EQ(ClientBridge::start(config(signals), bus_, report), nullptr);
   ASSERT_EQ(report.problems.size(), 1u);
-  EXPECT_EQ(report.problems[0].text, "opcua: 'ns=4;x=1' is not a node id (expected e.g. ns=4;s=NAME or ns=2;i=17)");
+  EXPECT_EQ(report.problems[0].text, "opcua: 'ns=4;x=1' is not a node id or a browse path (expected e.g. ns=4;s=NAME, ns=2;i=17 or /4:MAIN/4:x)");
 
   signals = {
       {node("MAIN.nothing"), "MAIN.nothing", "Clamp.programNumber", program_, false, false},
@@ -297,6 +300,75 @@ TEST_F(OpcuaBridgeTest, AServerBackWithoutTheWiringAsAtStartFailsTheRun) {
   EXPECT_NE(bridge->failure().find(" no longer matches the cell after reconnecting: opcua: 'MAIN.p.x' "), std::string::npos)
       << bridge->failure();
   EXPECT_NE(bridge->failure().find("is not writable for this session"), std::string::npos) << bridge->failure();
+}
+
+// MAIN.count is a variable of the folder MAIN; MAIN.p.x a component of the struct MAIN.p.
+std::vector<BridgeSignal> OpcuaBridgeTest::wiredByPath() {
+  return {{"/4:MAIN/4:count", "MAIN.count", "Clamp.programNumber", program_, false, false},
+          {"/4:MAIN/4:p.4:x", "MAIN.p.x", "Clamp.position", position_, true, false}};
+}
+
+TEST_F(OpcuaBridgeTest, SignalsNamedByBrowsePathCrossAsByNodeId) {
+  ClientBridge::StartReport report;
+  auto bridge = ClientBridge::start(config(wiredByPath()), bus_, report);
+  ASSERT_NE(bridge, nullptr) << report.problems[0].text;
+  ASSERT_TRUE(bridge->pull(bus_, 0)) << bridge->failure();
+  EXPECT_EQ(bus_.getInt(program_), 1234);
+  bus_.setReal(position_, 7);
+  bridge->push(bus_, 0);
+  EXPECT_EQ(scan(), 1u);
+  EXPECT_EQ(int16At(40), 7);
+}
+
+TEST_F(OpcuaBridgeTest, EveryBrowsePathLeadingNowhereIsReportedAtStartInOnePass) {
+  std::vector<BridgeSignal> signals = {
+      {"/4:MAIN/4:", "MAIN.x", "Clamp.programNumber", program_, false, false},
+  };
+  ClientBridge::StartReport report;
+  EXPECT_EQ(ClientBridge::start(config(signals), bus_, report), nullptr);
+  ASSERT_EQ(report.problems.size(), 1u);
+  EXPECT_EQ(report.problems[0].text, "opcua: the browse path '/4:MAIN/4:' at character 11: a browse name is missing "
+                                     "(expected /NS:NAME elements from the Objects folder, e.g. /4:MAIN/4:x)");
+
+  signals = {
+      {"/4:MAIN/4:nothing", "MAIN.nothing", "Clamp.programNumber", program_, false, false},
+      {"/4:MAIN/4:count", "MAIN.count", "Clamp.other", program_, false, false},
+      {"/MAIN/count", "MAIN.count", "Clamp.position", position_, true, false},   // namespace 0: no match
+      {"/4:MAIN/4:maybe", "MAIN.maybe", "Clamp.other", program_, false, true},  // optional: skipped
+  };
+  report = {};
+  EXPECT_EQ(ClientBridge::start(config(signals), bus_, report), nullptr);
+  ASSERT_EQ(report.problems.size(), 2u);
+  EXPECT_EQ(report.problems[0].signal, 0u);
+  EXPECT_EQ(report.problems[0].kind, Problem::Kind::Unknown);
+  EXPECT_EQ(report.problems[0].text,
+            "opcua: the browse path '/4:MAIN/4:nothing' of 'MAIN.nothing' leads to no node on the server: BadNoMatch (to wire to Clamp.programNumber)");
+  EXPECT_EQ(report.problems[1].signal, 2u);
+  EXPECT_EQ(report.problems[1].text,
+            "opcua: the browse path '/MAIN/count' of 'MAIN.count' leads to no node on the server: BadNoMatch (to wire to Clamp.position)");
+  EXPECT_EQ(report.found, (std::vector<bool>{false, true, false, false}));
+}
+
+TEST_F(OpcuaBridgeTest, BrowsePathsAreResolvedAgainAfterReconnecting) {
+  auto c = config(wiredByPath());
+  c.faultOnLoss = false;
+  ClientBridge::StartReport report;
+  auto bridge = ClientBridge::start(c, bus_, report);
+  ASSERT_NE(bridge, nullptr) << report.problems[0].text;
+  const uint16_t port = server_->endpoint().port;
+  server_->stop();
+  server_.reset();
+  EXPECT_TRUE(bridge->pull(bus_, 1'000'000)) << "hold: the run goes on";
+  // The restarted PLC names its variables ns=4;s=|var|plc2.Application...: the node ids found
+  // at start are gone, the browse paths lead to the new ones.
+  setInt16(32, 55);
+  restartServer(port, UserAccess::Write, "plc2");
+  ASSERT_TRUE(bridge->pull(bus_, 2'000'000)) << bridge->failure();
+  EXPECT_EQ(bus_.getInt(program_), 55);
+  bus_.setReal(position_, 9);
+  bridge->push(bus_, 2'000'000);
+  EXPECT_EQ(scan(), 1u);
+  EXPECT_EQ(int16At(40), 9);
 }
 
 class OpcuaBridgeSubscriptionTest : public OpcuaBridgeTest {

@@ -103,13 +103,14 @@ struct AdsClientSettings {
 // A node named for a PLC variable in `plc: opcua: nodes:` (`MAIN.start: "ns=2;i=17"`).
 struct OpcuaNodeName {
   std::string variable;  // "MAIN.start"
-  std::string node;      // "ns=2;i=17", checked when the bridge starts
+  std::string node;      // "ns=2;i=17" or a browse path "/4:MAIN/4:start", checked when the bridge starts
+  SourceLocation loc;    // where the node is written: its problems are reported there
 };
 
 // `plc: opcua:` — the cell's controller is an external PLC reached over OPC UA (CODESYS, TwinCAT
 // TF6100, a Siemens PLC, or `virtcom exec --opcua`). The wiring names PLC variables as with
-// `plc: ads:`; each becomes the node `nodes:` gives it, else node_prefix + the variable (a
-// variable written as a node id, `ns=2;i=17`, is taken as it is).
+// `plc: ads:`; each becomes the node `nodes:` gives it (a node id or a browse path), else
+// node_prefix + the variable (a variable written as a node id, `ns=2;i=17`, is taken as it is).
 struct OpcuaClientSettings {
   std::string url;                     // "opc.tcp://127.0.0.1:4840" as written
   Endpoint server;                     // its host and port (port never 0)

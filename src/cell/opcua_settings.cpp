@@ -49,11 +49,12 @@ void readOpcuaClient(OpcuaClientSettings& s, const ConfigNode& node, Diagnostics
   s.nodePrefix = r.optString("node_prefix", s.nodePrefix);
   if (const ConfigNode* nodes = r.child("nodes")) {
     if (nodes->kind() != ConfigNode::Kind::Map) {
-      r.error(nodes->loc(), "'nodes' must be a map PLC variable: node id (MAIN.start: \"ns=2;i=17\")");
+      r.error(nodes->loc(), "'nodes' must be a map PLC variable: node id or browse path (MAIN.start: \"ns=2;i=17\" or \"/4:MAIN/4:start\")");
     } else {
       for (const auto& [variable, id] : nodes->entries()) {
-        if (id.kind() != ConfigNode::Kind::Scalar || id.scalar().empty()) r.error(id.loc(), "'nodes': '" + variable + "' must name a node id");
-        else s.nodes.push_back({variable, id.scalar()});
+        if (id.kind() != ConfigNode::Kind::Scalar || id.scalar().empty())
+          r.error(id.loc(), "'nodes': '" + variable + "' must name a node id or a browse path");
+        else s.nodes.push_back({variable, id.scalar(), id.loc()});
       }
     }
   }

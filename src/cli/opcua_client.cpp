@@ -7,9 +7,18 @@
 
 namespace virtcom::cli {
 
-std::string opcuaNodeOf(const cell::OpcuaClientSettings& s, const std::string& variable) {
+namespace {
+
+const cell::OpcuaNodeName* namedNode(const cell::OpcuaClientSettings& s, const std::string& variable) {
   for (const cell::OpcuaNodeName& n : s.nodes)
-    if (n.variable == variable) return n.node;
+    if (n.variable == variable) return &n;
+  return nullptr;
+}
+
+}  // namespace
+
+std::string opcuaNodeOf(const cell::OpcuaClientSettings& s, const std::string& variable) {
+  if (const cell::OpcuaNodeName* named = namedNode(s, variable)) return named->node;
   if (variable.starts_with("ns=") || variable.starts_with("i=") || variable.starts_with("s=")) return variable;
   return s.nodePrefix + variable;
 }
@@ -28,8 +37,10 @@ std::unique_ptr<proto::opcua::ClientBridge> startOpcuaBridge(cell::Cell& cell, c
   config.faultOnLoss = s.faultOnLoss;
   config.disconnectWhenStopped = s.disconnectWhenStopped;
   config.report = [](const std::string& line) { std::cerr << line << "\n"; };
+  // A node `nodes:` names is wanted even where the wiring by prefix makes its port optional.
   for (const cell::ExternalWire& w : s.wires)
-    config.signals.push_back({opcuaNodeOf(s, w.variable), w.variable, w.port, w.tag, w.dir == plant::PortDir::Out, w.optional});
+    config.signals.push_back({opcuaNodeOf(s, w.variable), w.variable, w.port, w.tag, w.dir == plant::PortDir::Out,
+                              w.optional && !namedNode(s, w.variable)});
   ua::ClientBridge::StartReport report;
   auto bridge = ua::ClientBridge::start(config, cell.bus, report);
   Diagnostics diags;
@@ -41,7 +52,8 @@ std::unique_ptr<proto::opcua::ClientBridge> startOpcuaBridge(cell::Cell& cell, c
       continue;
     }
     const bool unknown = p.kind == ua::ClientBridge::Problem::Kind::Unknown;
-    diags.error(unknown ? celldiag::C032 : celldiag::C033, s.wires[p.signal].loc, p.text);
+    const cell::OpcuaNodeName* named = namedNode(s, s.wires[p.signal].variable);
+    diags.error(unknown ? celldiag::C032 : celldiag::C033, named ? named->loc : s.wires[p.signal].loc, p.text);
   }
   if (linked)
     reportUnmatchedPrefixes(s.wires, report.found, diags, [&s](const cell::ExternalWire& w, const std::string& device, const std::string& prefix) {

@@ -11,12 +11,13 @@
 
 namespace virtcom::cli {
 
-// The node id of a wired variable (docs/opcua.md "The client bridge"): as `nodes:` names it,
-// the variable itself when written as a node id ("ns=2;i=17"), else node_prefix + variable.
+// The node of a wired variable (docs/opcua.md "The client bridge"): as `nodes:` names it (a node
+// id or a browse path), the variable itself when written as a node id ("ns=2;i=17"), else
+// node_prefix + variable.
 std::string opcuaNodeOf(const cell::OpcuaClientSettings& s, const std::string& variable);
 
 // Connects to the PLC of cell.plcOpcua and checks its wires. Problems are rendered on stderr
-// at the cell file's entries, as the loader's are; null then. On success prints
+// at the cell file's entries, as the loader's are (a node `nodes:` names: at that entry); null then. On success prints
 // "opcua: <the server> <role> (N signals, subscribed, published every POLL)", or "a Read every
 // POLL" where the server refuses subscriptions.
 std::unique_ptr<proto::opcua::ClientBridge> startOpcuaBridge(cell::Cell& cell, const SourceManager& sources, const std::string& role);

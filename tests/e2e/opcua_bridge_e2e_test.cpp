@@ -1,8 +1,9 @@
 // End-to-end: the OPC UA client bridge. `virtcom exec plc/*.st --opcua ... --opcua-anonymous
 // write` of examples/ads-cell in a second process is the PLC of opcua-bridge.yaml (`plc: opcua:`):
 // the cell completes the same cycles as with the soft PLC in process; problems (a server not
-// there, the default anonymous session that may not write, unknown nodes) are reported at start
-// with their position; a PLC lost mid-run ends the run as a fault, and a scenario's comm_loss
+// there, the default anonymous session that may not write, unknown nodes, browse paths leading
+// nowhere) are reported at start with their position; nodes by browse path are resolved by both
+// servers; a PLC lost mid-run ends the run as a fault, and a scenario's comm_loss
 // cuts the link. The same cell against a PLC nobody here wrote: an npm node-opcua server
 // (tests/e2e/opcua/bridge_plc_server.js) playing the example's MAIN.
 #include <gtest/gtest.h>
@@ -164,6 +165,34 @@ TEST_F(OpcuaBridgeE2e, ProblemsAreReportedAtStartWithTheirPosition) {
             std::string::npos)
       << out;
   EXPECT_EQ(plc->stop(), 0) << plc->errorOutput();
+}
+
+// Nodes by browse path, resolved by the server (TranslateBrowsePathsToNodeIds): MAIN and the
+// FB instances are folders (node-opcua) or objects (virtcom) under Objects, their members
+// components; a path leading nowhere is reported where it is written.
+TEST_F(OpcuaBridgeE2e, NodesNamedByBrowsePathAreResolvedByBothServers) {
+  const std::string prefix = "    node_prefix: \"ns=4;s=|var|virtcom.Application.\"\n";
+  const std::string byPath = prefix + "    nodes:\n      MAIN.cycleDone: /4:MAIN/4:cycleDone\n      MAIN.Clamp.execute: /4:MAIN/4:Clamp/4:execute\n"
+                                      "      MAIN.Clamp.done: /4:MAIN/4:Clamp.4:done\n";
+  auto plc = startPlc();
+  ASSERT_GT(plc->port(), 0) << plc->errorOutput();
+  auto nodeOpcua = startNodeOpcuaPlc();
+  ASSERT_GT(nodeOpcua->port(), 0) << nodeOpcua->errorOutput();
+  for (int port : {plc->port(), nodeOpcua->port()}) {
+    std::string out;
+    EXPECT_EQ(shell(kExe + " run " + bridgeCell(port, prefix, byPath), out), 0) << out;
+    EXPECT_NE(out.find("is the controller (12 signals, subscribed"), std::string::npos) << out;
+    EXPECT_NE(out.find("Run ended     completed: 2 cycle(s) completed"), std::string::npos) << out;
+
+    out.clear();
+    EXPECT_EQ(shell(kExe + " run " + bridgeCell(port, prefix, byPath + "      MAIN.Press.done: /4:MAIN/4:Press/4:finished\n"), out), 1) << out;
+    EXPECT_NE(out.find("opcua-bridge.yaml:19:24: error[C032]: opcua: the browse path '/4:MAIN/4:Press/4:finished' of 'MAIN.Press.done' "
+                       "leads to no node on the server: BadNoMatch (to wire to Press.done)"),
+              std::string::npos)
+        << out;
+  }
+  EXPECT_EQ(plc->stop(), 0) << plc->errorOutput();
+  EXPECT_EQ(nodeOpcua->stop(), 0) << nodeOpcua->errorOutput();
 }
 
 TEST_F(OpcuaBridgeE2e, APlcLostMidRunEndsTheRunAsAFault) {

@@ -4,7 +4,8 @@
 // ServiceFaults, ERR, chunks, answers to other requests), served on loopback to a client bridge
 // wired like a Clamp (docs/devices.md, timed) of examples/ads-cell: it starts (the Read of every
 // node's Value and UserAccessLevel), then polls (Read) and writes (Write) until the stream ends;
-// then again with a subscription (CreateSubscription, CreateMonitoredItems, Publish responses).
+// then again with a subscription (CreateSubscription, CreateMonitoredItems, Publish responses),
+// and with a node named by browse path (a TranslateBrowsePathsToNodeIds response first).
 // Finds out-of-bounds reads, unbounded allocation and aborts in the decoding.
 // The seeds (corpus/opcua_client) are the streams that an npm node-opcua server
 // (tests/e2e/opcua/bridge_plc_server.js) and `virtcom exec --opcua` of examples/ads-cell (with
@@ -26,8 +27,9 @@ namespace {
 
 std::string node(const char* path) { return std::string("ns=4;s=|var|virtcom.Application.MAIN.") + path; }
 
-// One bridge against the stream: reading the PLC's outputs each poll, or subscribed to them.
-void runBridge(std::span<const uint8_t> stream, bool subscribe) {
+// One bridge against the stream: reading the PLC's outputs each poll, or subscribed to them;
+// byPath: programNumber named by browse path.
+void runBridge(std::span<const uint8_t> stream, bool subscribe, bool byPath) {
   virtcom::test::CannedServer server(stream);
   TagBus bus;
   const auto program = bus.add("Clamp.programNumber", ElemType::Int), execute = bus.add("Clamp.execute", ElemType::Bool),
@@ -38,7 +40,7 @@ void runBridge(std::span<const uint8_t> stream, bool subscribe) {
   config.client.endpointUrl = "opc.tcp://127.0.0.1:" + std::to_string(server.port());
   config.pollNs = 0;
   config.subscribe = subscribe;
-  config.signals = {{node("Clamp.programNumber"), "MAIN.Clamp.programNumber", "Clamp.programNumber", program, false, false},
+  config.signals = {{byPath ? "/4:MAIN/4:Clamp.4:programNumber" : node("Clamp.programNumber"), "MAIN.Clamp.programNumber", "Clamp.programNumber", program, false, false},
                     {node("Clamp.execute"), "MAIN.Clamp.execute", "Clamp.execute", execute, false, false},
                     {node("Clamp.done"), "MAIN.Clamp.done", "Clamp.done", done, true, false},
                     {node("Clamp.error"), "MAIN.Clamp.error", "Clamp.error", error, true, false},
@@ -57,6 +59,7 @@ void runBridge(std::span<const uint8_t> stream, bool subscribe) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  for (bool subscribe : {false, true}) runBridge({data, size}, subscribe);
+  for (bool subscribe : {false, true}) runBridge({data, size}, subscribe, false);
+  runBridge({data, size}, false, true);
   return 0;
 }

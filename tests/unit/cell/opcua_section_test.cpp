@@ -28,7 +28,7 @@ using OpcuaSection = CellFiles;
 TEST_F(OpcuaSection, TheSettingsAndTheWiringByNameAreKeptForTheBridge) {
   auto cell = loads(std::string("plc:\n  opcua:\n    endpoint: opc.tcp://10.1.2.3:4841/PLC\n    security: none\n"
                                 "    user: operator\n    password: op-pass\n    node_prefix: 'ns=3;s=\"'\n"
-                                "    nodes: { MAIN.pressGo: 'ns=2;s=go' }\n    poll: 20 ms\n    subscribe: false\n    timeout: 250 ms\n    on_loss: hold\n"
+                                "    nodes: { MAIN.pressGo: 'ns=2;s=go', MAIN.count: /4:MAIN/4:count }\n    poll: 20 ms\n    subscribe: false\n    timeout: 250 ms\n    on_loss: hold\n"
                                 "    disconnect_when_simulation_stops: false\n"
                                 "run:\n  cycle_done: MAIN.cycleDone\n  cycles: 3\n  record: [MAIN.count]\n") +
                     kDevices);
@@ -44,9 +44,11 @@ TEST_F(OpcuaSection, TheSettingsAndTheWiringByNameAreKeptForTheBridge) {
   EXPECT_EQ(s.user, "operator");
   EXPECT_EQ(s.password, "op-pass");
   EXPECT_EQ(s.nodePrefix, "ns=3;s=\"");
-  ASSERT_EQ(s.nodes.size(), 1u);
+  ASSERT_EQ(s.nodes.size(), 2u);
   EXPECT_EQ(s.nodes[0].variable, "MAIN.pressGo");
   EXPECT_EQ(s.nodes[0].node, "ns=2;s=go");
+  EXPECT_EQ(s.nodes[1].node, "/4:MAIN/4:count") << "a browse path, checked when the bridge starts";
+  EXPECT_EQ(s.nodes[1].loc.line, 8u) << "its problems are reported where it is written";
   EXPECT_EQ(s.pollNs, 20'000'000);
   EXPECT_FALSE(s.subscribe);
   EXPECT_EQ(s.timeoutNs, 250'000'000);
@@ -90,7 +92,7 @@ TEST_F(OpcuaSection, MistakesAreReportedAtTheirPosition) {
                           "'basic256sha256'",
                           "cell.yaml:5:11: error[C010]: 'user' and 'password' go together (a UserName identity); leave both out for an "
                           "anonymous session",
-                          "cell.yaml:6:12: error[C010]: 'nodes' must be a map PLC variable: node id (MAIN.start: \"ns=2;i=17\")",
+                          "cell.yaml:6:12: error[C010]: 'nodes' must be a map PLC variable: node id or browse path (MAIN.start: \"ns=2;i=17\" or \"/4:MAIN/4:start\")",
                           "cell.yaml:7:14: error[C010]: 'on_loss' must be fault or hold, not 'retry'",
                           "cell.yaml:8:11: error[C010]: 'poll' must be at least 1 ms",
                           ::testing::HasSubstr("cell.yaml:9:5: error[C011]: "),

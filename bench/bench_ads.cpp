@@ -15,6 +15,8 @@
 //                        the ADS server's loop) returning a frame of the size of a read's request
 // One iteration is one round trip; real time is what counts (the server runs on its own thread).
 // The round trips' median and 99th percentile are the counters p50_us and p99_us.
+// The same binary measures OPC UA's counterparts of read_by_handle and notification on the same
+// table (bench_opcua.cpp), so that one run gives the ratios of docs/performance.md.
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
@@ -34,6 +36,7 @@
 #include <thread>
 #include <vector>
 
+#include "protocol_bench.hpp"
 #include "proto/ads/byte_io.hpp"
 #include "proto/ads/client_bridge.hpp"
 #include "proto/ads/server.hpp"
@@ -43,63 +46,11 @@ namespace ads = virtcom::proto::ads;
 namespace {
 
 using Bytes = std::vector<uint8_t>;
-constexpr uint32_t kVariables = 100;
-constexpr uint32_t kFirstOffset = 64;
-
-// MAIN.v0..MAIN.v99: DINTs at 64, 68, ... in a 1 KB data area.
-const ads::SymbolTable& table() {
-  static const ads::SymbolTable t = [] {
-    std::vector<ads::Symbol> symbols;
-    for (uint32_t i = 0; i < kVariables; ++i)
-      symbols.push_back({"MAIN.v" + std::to_string(i), "DINT", 0x4040, kFirstOffset + 4 * i, 4, ads::adst::kInt32, 0});
-    auto resolver = [symbols](std::string_view path) -> std::optional<ads::Symbol> {
-      for (const auto& s : symbols)
-        if (ads::lowerCase(s.name) == ads::lowerCase(path)) return s;
-      return std::nullopt;
-    };
-    return ads::SymbolTable(symbols, {{"DINT", "", 4, ads::adst::kInt32, ads::kTypeFlagDataType, {}, {}, {}}},
-                            {1024, {0, 16}, {16, 16}, {32, 16}, {}}, resolver);
-  }();
-  return t;
-}
-
-// The round trips of one benchmark run, for the median and the 99th percentile (the mean that
-// Google Benchmark reports hides the tail the issue asks about). Bench code only: it reads the clock.
-class RoundTrips {
- public:
-  using Clock = std::chrono::steady_clock;
-  Clock::time_point start() const { return Clock::now(); }
-  void stop(Clock::time_point started) {
-    ns_.push_back(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - started).count());
-  }
-  void report(benchmark::State& state) {
-    if (ns_.empty()) return;
-    std::sort(ns_.begin(), ns_.end());
-    state.counters["p50_us"] = static_cast<double>(ns_[ns_.size() / 2]) / 1000.0;
-    state.counters["p99_us"] = static_cast<double>(ns_[ns_.size() * 99 / 100]) / 1000.0;
-  }
-
- private:
-  std::vector<int64_t> ns_;
-};
-
-// CPU time of the whole process (client and server threads) over a benchmark run, per item:
-// the counter cpu_us_per_item, which the machine's load does not inflate as it does real time.
-class ProcessCpu {
- public:
-  ProcessCpu() : startNs_(nowNs()) {}
-  void report(benchmark::State& state, double items) const {
-    if (items > 0) state.counters["cpu_us_per_item"] = static_cast<double>(nowNs() - startNs_) / 1000.0 / items;
-  }
-
- private:
-  static int64_t nowNs() {
-    timespec t{};
-    ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return static_cast<int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
-  }
-  int64_t startNs_;
-};
+using virtcom::bench::kFirstOffset;
+using virtcom::bench::kVariables;
+using virtcom::bench::ProcessCpu;
+using virtcom::bench::RoundTrips;
+using virtcom::bench::table;
 
 class Connection {
  public:
@@ -349,12 +300,16 @@ void notificationLatency(benchmark::State& state) {
   s.client->roundTrip(request(6, fields({0x4040, kFirstOffset, 4, 4, 0, 0, 0, 0, 0, 0})));
   s.client->roundTrip({});  // the initial sample
   uint32_t value = 0;
+  RoundTrips trips;
   for (auto _ : state) {
     ++value;
     for (int i = 0; i < 4; ++i) s.image[kFirstOffset + i] = static_cast<uint8_t>(value >> (8 * i));
+    auto started = trips.start();
     s.server->publishSnapshot(s.image, ads::kAdsStateRun);
     if (!s.client->roundTrip({})) state.SkipWithError("no notification");
+    trips.stop(started);
   }
+  trips.report(state);
 }
 
 void bridgeStep(benchmark::State& state) {

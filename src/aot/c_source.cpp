@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <set>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "aot/opcode_snippets.hpp"
@@ -41,6 +42,27 @@ constexpr std::string_view kNativeFbAccessors =
     ;
 #undef M
 #undef FB
+// The pure natives' C code (vm/natives_pure_c.def), and which natives it covers: a CALLN of
+// one of those calls pureNative_NAME, which the C compiler inlines, instead of the interpreter's
+// function pointer.
+#define NATIVES_PURE_C(...) constexpr std::string_view kPureNativeCode = #__VA_ARGS__;
+#define PURE_NATIVE(name)
+#include "vm/natives_pure_c.def"
+#undef PURE_NATIVE
+#undef NATIVES_PURE_C
+constexpr std::pair<bc::Native, std::string_view> kPureNatives[] = {
+#define NATIVES_PURE_C(...)
+#define PURE_NATIVE(name) {bc::Native::name, #name},
+#include "vm/natives_pure_c.def"
+#undef PURE_NATIVE
+#undef NATIVES_PURE_C
+};
+// The name of native `n` if vm/natives_pure_c.def has it, else empty.
+std::string_view pureNativeName(uint32_t n) {
+  for (const auto& [native, name] : kPureNatives)
+    if (static_cast<uint32_t>(native) == n) return name;
+  return {};
+}
 constexpr std::string_view kNativeFbNames[] = {
 #define FB(name) #name,
 #define M(fb, member, offset, ctype)
@@ -59,16 +81,23 @@ constexpr std::string_view kPrelude = R"(
 typedef uint8_t (*vc_native)(uint64_t*, const void*);
 #define LDM(T, a) ({ T v_; __builtin_memcpy(&v_, mem + (a), sizeof v_); v_; })
 #define STM(T, a, x) do { T v_ = (T)(x); __builtin_memcpy(mem + (a), &v_, sizeof v_); } while (0)
+/* Register-relative: the address is (mem + base) + offset, so the C compiler sees accesses at
+   different constant offsets from one base as disjoint and keeps values in registers across
+   stores to other members of the same instance or frame. */
+#define LDR(T, b, o) ({ T v_; __builtin_memcpy(&v_, mem + (b) + (o), sizeof v_); v_; })
+#define STR(T, b, o, x) do { T v_ = (T)(x); __builtin_memcpy(mem + (b) + (o), &v_, sizeof v_); } while (0)
 #define FAIL(k) do { result = (k); goto fail; } while (0)
 #define FAULT(pc, k) do { c->faultPc = (pc); FAIL(k); } while (0)
 #define BUDGET(pc) do { if (remaining == 0) FAULT(pc, FK_WATCHDOG); --remaining; } while (0)
 static inline double F(uint64_t v) { double d; __builtin_memcpy(&d, &v, 8); return d; }
 static inline uint64_t U(double d) { uint64_t v; __builtin_memcpy(&v, &d, 8); return v; }
-static inline int chk(uint64_t base, uint64_t off, uint64_t width, uint64_t* ad) {
-  const uint64_t a = base + off;
-  *ad = a;
-  if (a < base || a < GUARD || MSZ < width) return 0;
-  return a <= MSZ - width;
+/* checkedAddress as one range test on the base: base + off lies in [GUARD, MSZ - width] without
+   overflow exactly when base lies in [lo, hi] below. off and width are constants but in COPY,
+   so lo and hi fold and the test is one subtraction and one unsigned compare. */
+static inline int chk(uint64_t base, uint64_t off, uint64_t width) {
+  if (MSZ < width || MSZ - width < off) return 0;
+  const uint64_t lo = off < GUARD ? GUARD - off : 0, hi = MSZ - width - off;
+  return lo <= hi && base - lo <= hi - lo;
 }
 static inline uint64_t sext(uint64_t v, unsigned bits) {
   return bits == 0 ? 0 : bits >= 64 ? v : (uint64_t)((int64_t)(v << (64 - bits)) >> (64 - bits));
@@ -193,7 +222,7 @@ class PouWriter {
     out_ += kParams;
     out_ += " {\n";
     out_ += "  uint8_t* const mem = c->mem;\n  uint64_t* const w = c->regs + base;\n";
-    out_ += "  uint64_t remaining = c->remaining, ad;\n  int result;\n  (void)depth; (void)ad;\n";
+    out_ += "  uint64_t remaining = c->remaining;\n  int result;\n  (void)depth;\n";
     for (unsigned r = 0; r < pou_.numRegs; ++r)
       out_ += "  uint64_t " + reg(r) + (from > begin || regs_.loadOnEntry[r] ? " = w[" + std::to_string(r) + "];\n" : " = 0;\n");
     for (uint32_t pc = from; pc < to; ++pc) {
@@ -252,6 +281,7 @@ class PouWriter {
   }
 
   void expand(uint32_t pc, const Instr& ins) {
+    if (ins.op == Op::CALLN && !pureNativeName(ins.bx()).empty()) return pureNativeCall(ins);
     const std::string_view text = opcodeSnippet(ins.op);
     for (size_t i = 0; i < text.size(); ++i) {
       if (text[i] != '%' || i + 1 == text.size()) {
@@ -260,6 +290,14 @@ class PouWriter {
       }
       placeholder(text[++i], pc, ins);
     }
+  }
+
+  // A CALLN of a pure native: its arguments through a local array, which the C compiler
+  // scalarises once it has inlined the function; only r[A] changes, as in the interpreter.
+  void pureNativeCall(const Instr& ins) {
+    out_ += "{ uint64_t a_[" + std::to_string(nativeArity(ins)) + "]; ";
+    nativeArgs(ins, false);
+    out_ += reg(ins.a) + " = pureNative_" + std::string(pureNativeName(ins.bx())) + "(a_); }";
   }
 
   void placeholder(char p, uint32_t pc, const Instr& ins) {
@@ -316,7 +354,7 @@ void writeFaultKinds(std::string& out) {
 
 
 // The definitions every unit starts with: the ABI, the module's memory constants, the helpers
-// and the native FBs (static inline: a unit compiles only those it uses).
+// the native FBs and the pure natives (static inline: a unit compiles only those it uses).
 std::string prelude(const bc::Module& m) {
   std::string out = "/* generated by virtcom from bytecode; do not edit */\n#include <stdbool.h>\n#include <stdint.h>\n";
   out += kAbiText;
@@ -326,6 +364,8 @@ std::string prelude(const bc::Module& m) {
   out += kPrelude;
   out += kNativeFbAccessors;
   out += kNativeFbCode;
+  out += "\n";
+  out += kPureNativeCode;
   out += "\n";
   return out;
 }

@@ -1,24 +1,29 @@
-// virtcom_interp_scan FILE.st SCANS: compiles FILE.st, cold starts it on the interpreter (every
-// scan executed, 10 ms virtual task), runs SCANS scans and prints the VM instructions per scan and
-// an FNV-1a hash of the memory image after the last scan. bench/interp_counts.sh runs it under
-// callgrind (x86 instructions per Runtime::tick, exactly SCANS calls); equal hashes before and
-// after an interpreter change show the same results. Links only the compiler and the runtime,
-// so it builds in a fraction of virtcom_bench's time.
+// virtcom_interp_scan FILE.st SCANS [aot]: compiles FILE.st, cold starts it on the interpreter
+// (or, with `aot`, on the AOT backend's machine code; every scan executed, 10 ms virtual task),
+// runs SCANS scans and prints the VM instructions per scan (0 on AOT code) and an FNV-1a hash of
+// the memory image after the last scan. bench/interp_counts.sh and bench/aot_counts.sh run it
+// under callgrind (x86 instructions per Runtime::tick or per call of the compiled MAIN, exactly
+// SCANS calls); equal hashes before and after a change, and between the backends, show the same
+// results. Links only the compiler, the runtime and the AOT backend, so it builds in a fraction
+// of virtcom_bench's time.
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 #include "core/clock.hpp"
 #include "core/diagnostics.hpp"
 #include "core/source.hpp"
+#include "aot/compile.hpp"
 #include "lang/st/compiler.hpp"
 #include "plc/runtime.hpp"
 
 int main(int argc, char** argv) {
   using namespace virtcom;
-  if (argc != 3) {
-    std::fprintf(stderr, "usage: virtcom_interp_scan FILE.st SCANS\n");
+  const bool aotBackend = argc == 4 && std::string_view(argv[3]) == "aot";
+  if (argc != 3 && !aotBackend) {
+    std::fprintf(stderr, "usage: virtcom_interp_scan FILE.st SCANS [aot]\n");
     return 2;
   }
   std::ifstream in(argv[1], std::ios::binary);
@@ -35,6 +40,14 @@ int main(int argc, char** argv) {
   plc::RuntimeOptions options;
   options.skipRepeatedScans = false;
   plc::Runtime runtime(*module, clock, options);
+  if (aotBackend) {
+    aot::CompileResult compiled = aot::compileModule(*module);
+    if (!compiled.code) {
+      std::fprintf(stderr, "AOT backend: %s\n", compiled.error.c_str());
+      return 1;
+    }
+    runtime.machine().useCompiled(compiled.code);
+  }
   const long scans = std::strtol(argv[2], nullptr, 10);
   bool ok = runtime.coldStart();
   const uint64_t before = runtime.machine().instructionsExecuted();

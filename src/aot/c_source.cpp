@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <set>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "aot/opcode_snippets.hpp"
@@ -41,6 +42,27 @@ constexpr std::string_view kNativeFbAccessors =
     ;
 #undef M
 #undef FB
+// The pure natives' C code (vm/natives_pure_c.def), and which natives it covers: a CALLN of
+// one of those calls pureNative_NAME, which the C compiler inlines, instead of the interpreter's
+// function pointer.
+#define NATIVES_PURE_C(...) constexpr std::string_view kPureNativeCode = #__VA_ARGS__;
+#define PURE_NATIVE(name)
+#include "vm/natives_pure_c.def"
+#undef PURE_NATIVE
+#undef NATIVES_PURE_C
+constexpr std::pair<bc::Native, std::string_view> kPureNatives[] = {
+#define NATIVES_PURE_C(...)
+#define PURE_NATIVE(name) {bc::Native::name, #name},
+#include "vm/natives_pure_c.def"
+#undef PURE_NATIVE
+#undef NATIVES_PURE_C
+};
+// The name of native `n` if vm/natives_pure_c.def has it, else empty.
+std::string_view pureNativeName(uint32_t n) {
+  for (const auto& [native, name] : kPureNatives)
+    if (static_cast<uint32_t>(native) == n) return name;
+  return {};
+}
 constexpr std::string_view kNativeFbNames[] = {
 #define FB(name) #name,
 #define M(fb, member, offset, ctype)
@@ -59,16 +81,23 @@ constexpr std::string_view kPrelude = R"(
 typedef uint8_t (*vc_native)(uint64_t*, const void*);
 #define LDM(T, a) ({ T v_; __builtin_memcpy(&v_, mem + (a), sizeof v_); v_; })
 #define STM(T, a, x) do { T v_ = (T)(x); __builtin_memcpy(mem + (a), &v_, sizeof v_); } while (0)
+/* Register-relative: the address is (mem + base) + offset, so the C compiler sees accesses at
+   different constant offsets from one base as disjoint and keeps values in registers across
+   stores to other members of the same instance or frame. */
+#define LDR(T, b, o) ({ T v_; __builtin_memcpy(&v_, mem + (b) + (o), sizeof v_); v_; })
+#define STR(T, b, o, x) do { T v_ = (T)(x); __builtin_memcpy(mem + (b) + (o), &v_, sizeof v_); } while (0)
 #define FAIL(k) do { result = (k); goto fail; } while (0)
 #define FAULT(pc, k) do { c->faultPc = (pc); FAIL(k); } while (0)
 #define BUDGET(pc) do { if (remaining == 0) FAULT(pc, FK_WATCHDOG); --remaining; } while (0)
 static inline double F(uint64_t v) { double d; __builtin_memcpy(&d, &v, 8); return d; }
 static inline uint64_t U(double d) { uint64_t v; __builtin_memcpy(&v, &d, 8); return v; }
-static inline int chk(uint64_t base, uint64_t off, uint64_t width, uint64_t* ad) {
-  const uint64_t a = base + off;
-  *ad = a;
-  if (a < base || a < GUARD || MSZ < width) return 0;
-  return a <= MSZ - width;
+/* checkedAddress as one range test on the base: base + off lies in [GUARD, MSZ - width] without
+   overflow exactly when base lies in [lo, hi] below. off and width are constants but in COPY,
+   so lo and hi fold and the test is one subtraction and one unsigned compare. */
+static inline int chk(uint64_t base, uint64_t off, uint64_t width) {
+  if (MSZ < width || MSZ - width < off) return 0;
+  const uint64_t lo = off < GUARD ? GUARD - off : 0, hi = MSZ - width - off;
+  return lo <= hi && base - lo <= hi - lo;
 }
 static inline uint64_t sext(uint64_t v, unsigned bits) {
   return bits == 0 ? 0 : bits >= 64 ? v : (uint64_t)((int64_t)(v << (64 - bits)) >> (64 - bits));
@@ -128,6 +157,15 @@ bool isSmallLeaf(const bc::Module& m, const bc::PouInfo& p) {
   return std::none_of(begin, begin + p.codeSize, [](const Instr& ins) { return ins.op == Op::CALL; });
 }
 
+// Per POU: whether some CALL calls it. A POU only the entry table calls (a PROGRAM) gains
+// nothing from an inline copy and keeps the plain function, whose code GCC allocates better.
+std::vector<bool> calledPous(const bc::Module& m) {
+  std::vector<bool> called(m.pous.size(), false);
+  for (const Instr& ins : m.code)
+    if (ins.op == Op::CALL) called[ins.bx()] = true;
+  return called;
+}
+
 // What every unit knows about every POU. C names come from the POU's name, not its index
 // (which a POU added in front shifts), so an edit elsewhere leaves a unit's text alone. Every
 // character but letters and digits is written as _XX (hex), so distinct names stay distinct.
@@ -140,6 +178,7 @@ struct PouTable {
 
   explicit PouTable(const bc::Module& m) : plan(planRegisters(m)) {
     std::set<std::string> seen;
+    const std::vector<bool> called = calledPous(m);
     for (uint32_t p = 0; p < m.pous.size(); ++p) {
       std::string name;
       for (unsigned char ch : m.pous[p].name) {
@@ -153,8 +192,17 @@ struct PouTable {
       }
       if (!seen.insert(name).second) name += "__" + std::to_string(p);  // hand-built modules may repeat names
       names.push_back(std::move(name));
-      smallLeaf.push_back(isSmallLeaf(m, m.pous[p]));
+      smallLeaf.push_back(called[p] && isSmallLeaf(m, m.pous[p]));
     }
+  }
+  // The registers a small leaf reads before writing them: its inline copy takes them as
+  // arguments after `mem`, in this order, instead of loading them from the register stack.
+  std::vector<unsigned> leafInputs(uint32_t pou) const {
+    std::vector<unsigned> in;
+    const RegisterSet& load = plan.pous[pou].loadOnEntry;
+    for (unsigned r = 0; r < load.size(); ++r)
+      if (load[r]) in.push_back(r);
+    return in;
   }
   // What a CALL of `pou` calls in a unit that holds the POUs `own`: the inline copy of a
   // small leaf, the static body of a POU of the unit (which the C compiler may inline, as in a
@@ -182,6 +230,7 @@ class PouWriter {
   // register stack and one that ends early stores them all there and returns 0 (the driver
   // calls the next piece), or -1 after a RET (the POU has returned).
   void write(const std::string& head, uint32_t from = 0, uint32_t to = UINT32_MAX) {
+    const bool leaf = table_.smallLeaf[index_];
     const uint32_t begin = pou_.codeStart, end = pou_.codeStart + pou_.codeSize;
     from = std::max(from, begin);
     to = std::min(to, end);
@@ -190,12 +239,21 @@ class PouWriter {
       if (isJump(m_.code[pc].op)) targets[jumpTarget(pc, m_.code[pc]) - begin] = true;
 
     out_ += head;
-    out_ += kParams;
-    out_ += " {\n";
-    out_ += "  uint8_t* const mem = c->mem;\n  uint64_t* const w = c->regs + base;\n";
-    out_ += "  uint64_t remaining = c->remaining, ad;\n  int result;\n  (void)depth; (void)ad;\n";
+    if (leaf) {
+      out_ += "(struct AotContext* restrict c, uint32_t base, uint32_t depth, uint8_t* const mem";
+      for (unsigned r : table_.leafInputs(index_)) out_ += ", uint64_t in" + std::to_string(r);
+      out_ += ") {\n";
+    } else {
+      out_ += kParams;
+      out_ += " {\n  uint8_t* const mem = c->mem;\n";
+    }
+    out_ += "  uint64_t* const w = c->regs + base;\n";
+    out_ += "  uint64_t remaining = c->remaining;\n  int result;\n  (void)depth;\n";
     for (unsigned r = 0; r < pou_.numRegs; ++r)
-      out_ += "  uint64_t " + reg(r) + (from > begin || regs_.loadOnEntry[r] ? " = w[" + std::to_string(r) + "];\n" : " = 0;\n");
+      out_ += "  uint64_t " + reg(r) +
+              (leaf && regs_.loadOnEntry[r]           ? " = in" + std::to_string(r) + ";\n"
+               : from > begin || regs_.loadOnEntry[r] ? " = w[" + std::to_string(r) + "];\n"
+                                                      : " = 0;\n");
     for (uint32_t pc = from; pc < to; ++pc) {
       if (targets[pc - begin]) out_ += label(pc - begin) + ":;\n";
       out_ += "  ";
@@ -222,12 +280,22 @@ class PouWriter {
   void callRegs(uint32_t pc, const Instr& ins, bool load) {
     const RegisterSet& liveAfter = regs_.liveAfterCall[pc - pou_.codeStart];
     const RegisterSet& inputs = plan_.inputs[ins.bx()];
+    const bool byValue = table_.smallLeaf[ins.bx()];
     for (uint32_t r = ins.a; r < pou_.numRegs; ++r) {
-      const bool calleeReads = r - ins.a < inputs.size() && inputs[r - ins.a];
+      const bool calleeReads = !byValue && r - ins.a < inputs.size() && inputs[r - ins.a];
       if (!liveAfter[r] && (load || !calleeReads)) continue;
       const std::string slot = "w[" + std::to_string(r) + "]";
       out_ += load ? reg(r) + " = " + slot + "; " : slot + " = " + reg(r) + "; ";
     }
+  }
+  // The arguments after (c, base, depth) of a CALL of `pou` at window A: none, or for a small
+  // leaf `mem` and its inputs, the caller's registers (those beyond the caller's window from the
+  // register stack, where the caller's caller stored them).
+  void leafArgs(uint32_t pou, uint32_t a) {
+    if (!table_.smallLeaf[pou]) return;
+    out_ += ", mem";
+    for (unsigned r : table_.leafInputs(pou))
+      out_ += ", " + (a + r < pou_.numRegs ? reg(a + r) : "w[" + std::to_string(a + r) + "]");
   }
   // A native's arguments go through a_[] and come back from it.
   void nativeArgs(const Instr& ins, bool load) {
@@ -252,6 +320,7 @@ class PouWriter {
   }
 
   void expand(uint32_t pc, const Instr& ins) {
+    if (ins.op == Op::CALLN && !pureNativeName(ins.bx()).empty()) return pureNativeCall(ins);
     const std::string_view text = opcodeSnippet(ins.op);
     for (size_t i = 0; i < text.size(); ++i) {
       if (text[i] != '%' || i + 1 == text.size()) {
@@ -260,6 +329,14 @@ class PouWriter {
       }
       placeholder(text[++i], pc, ins);
     }
+  }
+
+  // A CALLN of a pure native: its arguments through a local array, which the C compiler
+  // scalarises once it has inlined the function; only r[A] changes, as in the interpreter.
+  void pureNativeCall(const Instr& ins) {
+    out_ += "{ uint64_t a_[" + std::to_string(nativeArity(ins)) + "]; ";
+    nativeArgs(ins, false);
+    out_ += reg(ins.a) + " = pureNative_" + std::string(pureNativeName(ins.bx())) + "(a_); }";
   }
 
   void placeholder(char p, uint32_t pc, const Instr& ins) {
@@ -284,6 +361,7 @@ class PouWriter {
       case 'G': out_ += u64Literal(m_.pous[ins.bx()].frameTemplate); break;
       case 'R': out_ += u64Literal(m_.pous[ins.bx()].numRegs); break;
       case 'P': out_ += table_.callee(ins.bx(), unit_); break;
+      case 'I': leafArgs(ins.bx(), ins.a); break;
       case 'W': out_ += u64Literal(vm::kNativeFbSizes[ins.bx()]); break;
       case 'f': out_ += "fbStep_" + std::string(kNativeFbNames[ins.bx()]); break;
       case 'n': out_ += std::to_string(nativeArity(ins)); break;
@@ -316,7 +394,7 @@ void writeFaultKinds(std::string& out) {
 
 
 // The definitions every unit starts with: the ABI, the module's memory constants, the helpers
-// and the native FBs (static inline: a unit compiles only those it uses).
+// the native FBs and the pure natives (static inline: a unit compiles only those it uses).
 std::string prelude(const bc::Module& m) {
   std::string out = "/* generated by virtcom from bytecode; do not edit */\n#include <stdbool.h>\n#include <stdint.h>\n";
   out += kAbiText;
@@ -326,6 +404,8 @@ std::string prelude(const bc::Module& m) {
   out += kPrelude;
   out += kNativeFbAccessors;
   out += kNativeFbCode;
+  out += "\n";
+  out += kPureNativeCode;
   out += "\n";
   return out;
 }
@@ -469,9 +549,16 @@ CUnit writeUnit(const bc::Module& m, const PouTable& t, const std::vector<Piece>
       out += "  if ((r_ = " + chunkName(t, piece.pou, k) + "(c, base, depth))) return r_ < 0 ? 0 : r_;\n";
     out += "  return " + chunkName(t, piece.pou, piece.chunks - 1) + "(c, base, depth);\n}\n";
   }
-  for (uint32_t p : own)
-    out += std::string(kHidden) + "int p_" + t.names[p] + std::string(kParams) + " { return " +
-           (t.smallLeaf[p] ? "i_" : "s_") + t.names[p] + "(c, base, depth); }\n";
+  for (uint32_t p : own) {
+    out += std::string(kHidden) + "int p_" + t.names[p] + std::string(kParams) + " { return ";
+    if (!t.smallLeaf[p]) {
+      out += "s_" + t.names[p] + "(c, base, depth); }\n";
+      continue;
+    }
+    out += "i_" + t.names[p] + "(c, base, depth, c->mem";
+    for (unsigned r : t.leafInputs(p)) out += ", c->regs[base + " + std::to_string(r) + "u]";
+    out += "); }\n";
+  }
   return unit;
 }
 

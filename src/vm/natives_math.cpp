@@ -1,4 +1,5 @@
-// Math and bit-rotation natives: pure functions of their register arguments.
+// Math and bit-rotation natives: pure functions of their register arguments (the rotations
+// from vm/natives_pure_c.def, shared with the AOT backend).
 #include <cmath>
 
 #include "vm/natives.hpp"
@@ -29,16 +30,11 @@ double atanD(double x) { return std::atan(x); }
 double fabsD(double x) { return std::fabs(x); }
 double truncD(double x) { return std::trunc(x); }
 
-// Rotates the low `width` bits of v (width 1..64; anything else means 64) by n positions.
-uint64_t rotate(uint64_t v, uint64_t n, uint64_t width, bool left) {
-  if (width == 0 || width > 64) width = 64;
-  const uint64_t mask = width == 64 ? ~uint64_t{0} : (uint64_t{1} << width) - 1;
-  v &= mask;
-  n %= width;
-  if (n == 0) return v;
-  if (!left) n = width - n;
-  return ((v << n) | (v >> (width - n))) & mask;
-}
+#define NATIVES_PURE_C(...) __VA_ARGS__
+#define PURE_NATIVE(name)
+#include "vm/natives_pure_c.def"
+#undef PURE_NATIVE
+#undef NATIVES_PURE_C
 
 }  // namespace
 
@@ -65,14 +61,15 @@ FaultKind native_EXPT(uint64_t* a, const NativeContext&) {
   return FaultKind::None;
 }
 
-FaultKind native_ROL(uint64_t* a, const NativeContext&) {
-  a[0] = rotate(a[0], a[1], a[2], true);
-  return FaultKind::None;
-}
-
-FaultKind native_ROR(uint64_t* a, const NativeContext&) {
-  a[0] = rotate(a[0], a[1], a[2], false);
-  return FaultKind::None;
-}
+// The pure natives: the shared code of vm/natives_pure_c.def behind the NativeFn signature.
+#define NATIVES_PURE_C(...)
+#define PURE_NATIVE(name)                                     \
+  FaultKind native_##name(uint64_t* a, const NativeContext&) { \
+    a[0] = pureNative_##name(a);                              \
+    return FaultKind::None;                                   \
+  }
+#include "vm/natives_pure_c.def"
+#undef PURE_NATIVE
+#undef NATIVES_PURE_C
 
 }  // namespace virtcom::vm

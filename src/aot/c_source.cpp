@@ -210,6 +210,13 @@ struct PouTable {
   std::string callee(uint32_t pou, const std::set<uint32_t>& own) const {
     return (smallLeaf[pou] ? "i_" : own.count(pou) ? "s_" : "p_") + names[pou];
   }
+  // The register count of `pou` as a CALL in a unit that holds the POUs `own` checks it: a
+  // constant of the callee's own unit when it lives in another, so that an edit of the callee
+  // that changes its register count recompiles its unit alone.
+  std::string registerCount(const bc::Module& m, uint32_t pou, const std::set<uint32_t>& own) const {
+    if (smallLeaf[pou] || own.count(pou)) return u64Literal(m.pous[pou].numRegs);
+    return "nr_" + names[pou];
+  }
 };
 
 // The parameters of every POU function. `restrict`: the context is reached only through `c`
@@ -359,7 +366,7 @@ class PouWriter {
       case 'Z': out_ += u64Literal(m_.indexes[ins.c].stride); break;
       case 'F': out_ += u64Literal(m_.pous[ins.bx()].frameSize); break;
       case 'G': out_ += u64Literal(m_.pous[ins.bx()].frameTemplate); break;
-      case 'R': out_ += u64Literal(m_.pous[ins.bx()].numRegs); break;
+      case 'R': out_ += table_.registerCount(m_, ins.bx(), unit_); break;
       case 'P': out_ += table_.callee(ins.bx(), unit_); break;
       case 'I': leafArgs(ins.bx(), ins.a); break;
       case 'W': out_ += u64Literal(vm::kNativeFbSizes[ins.bx()]); break;
@@ -436,6 +443,10 @@ std::vector<std::vector<uint32_t>> groupPous(const bc::Module& m, uint32_t limit
 
 void declarePou(const PouTable& t, uint32_t p, std::string& out) {
   out += std::string(kHidden) + "int p_" + t.names[p] + std::string(kParams) + ";\n";
+}
+
+void declareRegisterCount(const PouTable& t, uint32_t p, std::string& out) {
+  out += "extern " + std::string(kHidden) + "const uint32_t nr_" + t.names[p] + ";\n";
 }
 
 void declarePc0(const PouTable& t, uint32_t p, std::string& out) {
@@ -525,7 +536,10 @@ CUnit writeUnit(const bc::Module& m, const PouTable& t, const std::vector<Piece>
   bodies.insert(leaves.begin(), leaves.end());
   std::string& out = unit.source;
   out = prelude(m);
-  for (uint32_t p : external) declarePou(t, p, out);
+  for (uint32_t p : external) {
+    declarePou(t, p, out);
+    declareRegisterCount(t, p, out);
+  }
   for (uint32_t p : own)
     if (!t.smallLeaf[p]) out += "static int s_" + t.names[p] + std::string(kParams) + ";\n";
   for (const Piece& piece : pieces)
@@ -550,6 +564,7 @@ CUnit writeUnit(const bc::Module& m, const PouTable& t, const std::vector<Piece>
     out += "  return " + chunkName(t, piece.pou, piece.chunks - 1) + "(c, base, depth);\n}\n";
   }
   for (uint32_t p : own) {
+    out += std::string(kHidden) + "const uint32_t nr_" + t.names[p] + " = " + std::to_string(m.pous[p].numRegs) + "u;\n";
     out += std::string(kHidden) + "int p_" + t.names[p] + std::string(kParams) + " { return ";
     if (!t.smallLeaf[p]) {
       out += "s_" + t.names[p] + "(c, base, depth); }\n";

@@ -32,7 +32,7 @@ struct CUnit {
 // table. A POU's text does not depend on where other POUs sit in the code or on their index,
 // and units end at boundaries chosen by the POUs' names, so an edit of one POU changes its own
 // unit (and the table) and leaves the others' text alone, unless it changes what other POUs
-// see of it (frame size, registers read) or the memory size.
+// see of it (frame size, registers read; its register count is a constant of its own unit) or the memory size.
 // What it reads from the module is what aot::moduleKey (module_key.hpp) hashes: a new input of
 // the generator must go into that key too, or `--backend auto` could load another module's code.
 std::vector<CUnit> generateCUnits(const bc::Module& m, uint32_t unitInstructions = kUnitInstructions);

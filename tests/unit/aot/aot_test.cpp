@@ -12,6 +12,7 @@
 
 #include "../vm/random_instr.hpp"
 #include "../vm/test_module_builder.hpp"
+#include "aot/c_source.hpp"
 #include "aot/compile.hpp"
 #include "aot/module_key.hpp"
 #include "aot/register_plan.hpp"
@@ -339,6 +340,40 @@ TEST(Aot, AnEditRecompilesOnlyItsUnit) {
     EXPECT_EQ(runMainOnBoth(b, 3), 0);
   }
   fs::remove_all(options.cacheDir);
+}
+
+// A callee's register count grows with its statements (statement registers rotate,
+// codegen_stmt.cpp); a CALL's register-stack check reads it as a constant of the callee's unit,
+// so the caller's unit keeps its text when only the callee is edited.
+TEST(Aot, ACalleesRegisterCountIsInItsUnitOnly) {
+  struct Generated {
+    uint16_t fb3Registers = 0;
+    std::vector<aot::CUnit> units;
+    std::string unitOf(const std::string& cName) const {  // '_' is written _5f (c_source.cpp)
+      for (const aot::CUnit& u : units)
+        if (u.source.find("static int s_" + cName + "(") != std::string::npos) return u.source;
+      return "";
+    }
+  };
+  const auto generate = [](const std::string& source) {
+    SourceManager sources;
+    Diagnostics diags;
+    const std::unique_ptr<bc::Module> m = st::compileProgram({{"main.st", source}}, sources, diags);
+    Generated g;
+    if (!m) return g;
+    for (const bc::PouInfo& p : m->pous)
+      if (p.name == "FB_3") g.fb3Registers = p.numRegs;
+    g.units = aot::generateCUnits(*m, 1);
+    return g;
+  };
+  const Generated before = generate(manyFbs());
+  const Generated after = generate(manyFbs("q := (Twice(x) + 3) MOD 1000;\nq := q * 7 MOD 1000;\nq := q + x;\n"));
+  ASSERT_FALSE(before.unitOf("FB_5fChain").empty());
+  EXPECT_GT(after.fb3Registers, before.fb3Registers);
+  EXPECT_EQ(after.unitOf("FB_5fChain"), before.unitOf("FB_5fChain"));
+  EXPECT_NE(after.unitOf("FB_5f3"), before.unitOf("FB_5f3"));
+  EXPECT_NE(before.unitOf("FB_5fChain").find("nr_FB_5f3"), std::string::npos);
+  EXPECT_NE(after.unitOf("FB_5f3").find("nr_FB_5f3 = " + std::to_string(after.fb3Registers) + "u;"), std::string::npos);
 }
 
 // MAIN of some 5,000 instructions, cut into chunks (functions) spread over units: an early

@@ -261,6 +261,7 @@ class PouCompiler {
   uint32_t codeStart_ = 0;
   uint16_t nextReg_ = 2;
   uint16_t maxReg_ = 2;
+  uint16_t regTop_ = 2;  // one past the highest register allocated by the statement being compiled
   uint32_t tempTop_ = 0;
   uint32_t tempMax_ = 0;
   std::vector<Loop> loops_;

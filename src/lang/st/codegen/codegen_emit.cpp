@@ -64,6 +64,7 @@ PouCompiler::PouCompiler(CompileContext& ctx, PouSym& pou) : ctx_(ctx), pou_(pou
 
 uint16_t PouCompiler::allocReg() {
   uint16_t r = nextReg_++;
+  regTop_ = std::max(regTop_, nextReg_);
   if (nextReg_ > maxReg_) maxReg_ = nextReg_;
   if (nextReg_ >= 0xfff0) {
     diags().error(diag::E108, pou_.ast->loc, "expression too complex (out of registers)");

@@ -70,9 +70,25 @@ void PouCompiler::edgeInputs() {
   }
 }
 
+// Each statement of a list starts its registers where the previous one's ended, wrapping back
+// to the list's first register after kRotatingRegisters, instead of reusing the same ones: what
+// the previous statements loaded or computed then stays in registers, and load forwarding
+// (load_forwarding.hpp) serves the next statements' loads from them. Registers below the
+// list's first (held by the enclosing statements) are never reused.
 void PouCompiler::statements(const StmtList& list) {
+  constexpr uint16_t kRotatingRegisters = 32;
   const bool labelled = openLabelScope(list);
-  for (const auto& s : list) statement(*s);
+  const uint16_t first = regMark();
+  const uint16_t enclosingTop = regTop_;
+  uint16_t top = first;
+  for (const auto& s : list) {
+    regTop_ = regMark();
+    statement(*s);
+    top = std::max(top, regTop_);
+    freeRegs(regTop_ - first >= kRotatingRegisters ? first : regTop_);
+  }
+  freeRegs(first);
+  regTop_ = std::max(enclosingTop, top);
   if (labelled) closeLabelScope();
 }
 

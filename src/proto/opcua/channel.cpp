@@ -1,7 +1,10 @@
 #include "proto/opcua/channel.hpp"
 
 #include <algorithm>
+#include <ctime>
 
+#include "proto/opcua/crypto.hpp"
+#include "proto/opcua/pki.hpp"
 #include "proto/opcua/transport.hpp"
 
 namespace virtcom::proto::opcua {
@@ -39,8 +42,8 @@ bool Channel::handleFrame(std::span<const uint8_t> frame, std::vector<uint8_t>& 
   if (chunk != 'F' && !(type == MessageType::Message && (chunk == 'C' || chunk == 'A')))
     return fail(tx, StatusCodeValue::BadTcpMessageTypeInvalid, "chunk type must be F (C and A only for MSG)");
   switch (type) {
-    case MessageType::Open: return onOpen(body, tx);
-    case MessageType::Message: return onMessage(chunk, body, tx, nowNs);
+    case MessageType::Open: return onOpen(frame, tx);
+    case MessageType::Message: return onMessage(chunk, frame, tx, nowNs);
     case MessageType::Close: return false;
     default: return fail(tx, StatusCodeValue::BadTcpMessageTypeInvalid, "unexpected message type");
   }
@@ -67,29 +70,44 @@ bool Channel::onHello(std::span<const uint8_t> body, std::vector<uint8_t>& tx) {
   return true;
 }
 
-bool Channel::onOpen(std::span<const uint8_t> body, std::vector<uint8_t>& tx) {
-  Reader r(body);
+bool Channel::onOpen(std::span<const uint8_t> frame, std::vector<uint8_t>& tx) {
+  Reader r(frame.subspan(kMessageHeaderSize));
   uint32_t channelId = 0, sequence = 0, requestId = 0;
   std::string policy;
   ByteString certificate, thumbprint;
-  if (!r.u32(channelId) || !decode(r, policy) || !decode(r, certificate) || !decode(r, thumbprint) || !r.u32(sequence) ||
-      !r.u32(requestId))
+  if (!r.u32(channelId) || !decode(r, policy) || !decode(r, certificate) || !decode(r, thumbprint))
     return fail(tx, StatusCodeValue::BadDecodingError, "malformed OPN header");
-  if (policy != kSecurityPolicyNone)
-    return fail(tx, StatusCodeValue::BadSecurityPolicyRejected, "only security policy None is served");
+  const bool secured = policy == kSecurityPolicyBasic256Sha256;
+  if (!secured && policy != kSecurityPolicyNone)
+    return fail(tx, StatusCodeValue::BadSecurityPolicyRejected, "security policy not served (None and Basic256Sha256 are)");
+  if (channelId_ != 0 && secured != (mode_ != SecurityMode::None))
+    return fail(tx, StatusCodeValue::BadSecurityPolicyRejected, "a renewal must keep the channel's security policy");
+  std::span<const uint8_t> plain = r.rest();
+  if (secured && !openSecured(frame, frame.size() - r.rest().size(), certificate, thumbprint, plain, tx)) return false;
+  Reader body(plain);
+  if (!body.u32(sequence) || !body.u32(requestId)) return fail(tx, StatusCodeValue::BadDecodingError, "malformed OPN header");
+  if (secured && channelId_ != 0 && !sequenceFollows(sequence))
+    return fail(tx, StatusCodeValue::BadSequenceNumberInvalid, "sequence number out of order");
+  lastSequence_ = sequence;
   NodeId typeId;
   RequestHeader header;
   uint32_t clientVersion = 0, requestType = 0, mode = 0, lifetime = 0;
   ByteString nonce;
-  if (!decode(r, typeId) || typeId != NodeId::num(0, kOpenSecureChannelRequestId) || !decode(r, header) || !r.u32(clientVersion) ||
-      !r.u32(requestType) || !r.u32(mode) || !decode(r, nonce) || !r.u32(lifetime))
+  if (!decode(body, typeId) || typeId != NodeId::num(0, kOpenSecureChannelRequestId) || !decode(body, header) ||
+      !body.u32(clientVersion) || !body.u32(requestType) || !body.u32(mode) || !decode(body, nonce) || !body.u32(lifetime))
     return fail(tx, StatusCodeValue::BadDecodingError, "malformed OpenSecureChannel request");
-  if (mode != kSecurityModeNone) return fail(tx, StatusCodeValue::BadSecurityModeRejected, "only security mode None is served");
+  const auto asked = static_cast<SecurityMode>(mode);
+  if (secured == (asked == SecurityMode::None) || !core_.offers(asked) || (channelId_ != 0 && asked != mode_))
+    return fail(tx, StatusCodeValue::BadSecurityModeRejected, "security mode not offered by an endpoint (--opcua-security)");
   if (requestType == kSecureChannelIssue && channelId_ == 0) {
     channelId_ = core_.newChannelId();
   } else if (requestType != kSecureChannelRenew || channelId != channelId_ || channelId_ == 0) {
     return fail(tx, StatusCodeValue::BadRequestTypeInvalid, "OpenSecureChannel: issue once, then renew that channel");
   }
+  mode_ = asked;
+  std::array<uint8_t, kSecureNonceBytes> serverNonce{};
+  if (secured && !renewKeys(nonce, serverNonce))
+    return fail(tx, StatusCodeValue::BadNonceInvalid, "the client nonce must be 32 bytes (Basic256Sha256)");
   previousTokenId_ = tokenId_;
   tokenId_ = core_.newTokenId();
   body_.clear();
@@ -101,32 +119,98 @@ bool Channel::onOpen(std::span<const uint8_t> body, std::vector<uint8_t>& tx) {
   w.u32(tokenId_);
   encode(w, dateTimeNow());
   w.u32(std::clamp(lifetime ? lifetime : kMaxLifetimeMs, kMinLifetimeMs, kMaxLifetimeMs));
-  w.i32(0);  // ServerNonce: none with policy None
+  if (secured) encode(w, ByteString{std::string(serverNonce.begin(), serverNonce.end())});
+  else w.i32(0);  // ServerNonce: none with policy None
   Writer out(tx);
   const size_t start = beginMessage(out, "OPN");
   out.u32(channelId_);
-  out.string(kSecurityPolicyNone);
-  out.nullString();  // SenderCertificate
-  out.nullString();  // ReceiverCertificateThumbprint
+  if (!secured) {
+    out.string(kSecurityPolicyNone);
+    out.nullString();  // SenderCertificate
+    out.nullString();  // ReceiverCertificateThumbprint
+  } else {
+    out.string(kSecurityPolicyBasic256Sha256);
+    encode(out, ByteString{std::string(asymmetric_.ownCertificate.begin(), asymmetric_.ownCertificate.end())});
+    std::array<uint8_t, 20> peerThumbprint{};
+    crypto().sha1(asymmetric_.peerCertificate.data(), asymmetric_.peerCertificate.size(), peerThumbprint.data());
+    encode(out, ByteString{std::string(peerThumbprint.begin(), peerThumbprint.end())});
+  }
+  const size_t headerEnd = tx.size();
   out.u32(++sequence_);
   out.u32(requestId);
   out.raw(body_);
   finishMessage(out, start);
+  if (secured && !sealAsymmetric(tx, start, headerEnd, asymmetric_)) {
+    tx.resize(start);
+    return fail(tx, StatusCodeValue::BadSecurityChecksFailed, "could not sign or encrypt the OpenSecureChannel response");
+  }
   return true;
 }
 
-bool Channel::onMessage(char chunk, std::span<const uint8_t> body, std::vector<uint8_t>& tx, int64_t nowNs) {
-  Reader r(body);
+bool Channel::openSecured(std::span<const uint8_t> frame, size_t headerEnd, const ByteString& certificate, const ByteString& thumbprint,
+                          std::span<const uint8_t>& plain, std::vector<uint8_t>& tx) {
+  const Pki* pki = core_.config().pki.get();
+  if (!pki) return fail(tx, StatusCodeValue::BadSecurityPolicyRejected, "security policy not served (--opcua-security none)");
+  const auto bytes = [](const ByteString& b) { return std::span(reinterpret_cast<const uint8_t*>(b.bytes.data()), b.bytes.size()); };
+  if (!std::ranges::equal(bytes(thumbprint), pki->thumbprint))
+    return fail(tx, StatusCodeValue::BadSecurityChecksFailed, "the receiver thumbprint is not this server's certificate");
+  if (channelId_ != 0) {
+    if (!std::ranges::equal(bytes(certificate), asymmetric_.peerCertificate))
+      return fail(tx, StatusCodeValue::BadSecurityChecksFailed, "a renewal must come with the channel's client certificate");
+  } else {
+    const PeerCheck check = checkPeerCertificate(*pki, bytes(certificate), ::time(nullptr));
+    if (check.trust != PeerTrust::Trusted) {
+      rejection_ = check.message;
+      // BadSecurityChecksFailed, not the reason: OPC 10000-4 §5.5.2 asks not to tell the peer why.
+      return fail(tx, StatusCodeValue::BadSecurityChecksFailed, "client certificate refused");
+    }
+    asymmetric_.ownCertificate = pki->certificate;
+    asymmetric_.ownKeyPem = pki->keyPem;
+    asymmetric_.peerCertificate.assign(bytes(certificate).begin(), bytes(certificate).end());
+  }
+  if (!openAsymmetric(frame, headerEnd, asymmetric_, scratch_, plain))
+    return fail(tx, StatusCodeValue::BadSecurityChecksFailed, "the OpenSecureChannel request is not signed by its certificate or not "
+                                                              "encrypted for this server's");
+  return true;
+}
+
+bool Channel::renewKeys(const ByteString& clientNonce, std::array<uint8_t, kSecureNonceBytes>& serverNonce) {
+  if (clientNonce.bytes.size() != kSecureNonceBytes || !crypto().randomBytes(serverNonce.data(), serverNonce.size())) return false;
+  const auto client = std::span(reinterpret_cast<const uint8_t*>(clientNonce.bytes.data()), clientNonce.bytes.size());
+  previousClientKeys_ = clientKeys_;
+  // OPC 10000-6 §6.7.5: the client's keys from P_SHA256(ServerNonce, ClientNonce), the server's
+  // from P_SHA256(ClientNonce, ServerNonce).
+  return deriveKeys(serverNonce, client, clientKeys_) && deriveKeys(client, serverNonce, serverKeys_);
+}
+
+bool Channel::sequenceFollows(uint32_t sequence) {
+  // It may wrap to below 1024 once it passed UInt32 max - 1024.
+  constexpr uint32_t kWrapFrom = 0xFFFFFFFFu - 1024, kWrapBelow = 1024;
+  return sequence == lastSequence_ + 1 || (lastSequence_ > kWrapFrom && sequence < kWrapBelow);
+}
+
+bool Channel::onMessage(char chunk, std::span<const uint8_t> frame, std::vector<uint8_t>& tx, int64_t nowNs) {
+  Reader r(frame.subspan(kMessageHeaderSize));
   uint32_t channelId = 0, tokenId = 0, sequence = 0, requestId = 0;
-  if (!r.u32(channelId) || !r.u32(tokenId) || !r.u32(sequence) || !r.u32(requestId))
-    return fail(tx, StatusCodeValue::BadDecodingError, "malformed MSG header");
+  if (!r.u32(channelId) || !r.u32(tokenId)) return fail(tx, StatusCodeValue::BadDecodingError, "malformed MSG header");
   if (channelId_ == 0 || channelId != channelId_) return fail(tx, StatusCodeValue::BadTcpSecureChannelUnknown, "no such secure channel");
   if (tokenId != tokenId_ && tokenId != previousTokenId_) return fail(tx, StatusCodeValue::BadSecureChannelIdInvalid, "unknown token id");
+  std::span<const uint8_t> sequenced = r.rest();
+  if (mode_ != SecurityMode::None) {
+    rx_.assign(frame.begin(), frame.end());
+    if (!openSymmetric(rx_, mode_, tokenId == tokenId_ ? clientKeys_ : previousClientKeys_, sequenced))
+      return fail(tx, StatusCodeValue::BadSecurityChecksFailed, "MSG chunk not signed (or encrypted) with the channel's keys");
+  }
+  Reader s(sequenced);
+  if (!s.u32(sequence) || !s.u32(requestId)) return fail(tx, StatusCodeValue::BadDecodingError, "malformed MSG header");
+  if (mode_ != SecurityMode::None && !sequenceFollows(sequence))
+    return fail(tx, StatusCodeValue::BadSequenceNumberInvalid, "sequence number out of order");
+  lastSequence_ = sequence;
   if (chunk == 'A') {
     partial_.clear();
     return true;
   }
-  auto payload = r.rest();
+  auto payload = s.rest();
   if (partial_.size() + payload.size() > core_.config().maxMessageBytes)
     return fail(tx, StatusCodeValue::BadRequestTooLarge, "request larger than the server's MaxMessageSize");
   partial_.insert(partial_.end(), payload.begin(), payload.end());
@@ -167,7 +251,7 @@ Channel::Reply Channel::serve(std::span<const uint8_t> request, uint32_t request
   if (typeId == NodeId::num(0, kCloseSecureChannelRequestId)) return Reply::Close;
   const bool headerOk = decode(r, header);
   const ServiceEntry* service = typeId.ns == 0 && typeId.kind == NodeId::Kind::Numeric ? findService(typeId.numeric) : nullptr;
-  ServiceContext ctx{core_, channelId_, nullptr, nowNs, requestId, header.requestHandle};
+  ServiceContext ctx{core_, channelId_, nullptr, nowNs, requestId, header.requestHandle, mode_, asymmetric_.peerCertificate};
   uint32_t status = !headerOk ? static_cast<uint32_t>(StatusCodeValue::BadDecodingError)
                     : !service ? static_cast<uint32_t>(StatusCodeValue::BadServiceUnsupported)
                                : 0;
@@ -199,7 +283,14 @@ Channel::Reply Channel::serve(std::span<const uint8_t> request, uint32_t request
 }
 
 void Channel::sendChunks(const char* type, uint32_t requestId, std::vector<uint8_t>& tx) {
-  const size_t room = std::max<size_t>(peerReceiveBuffer_, kMinBufferSize) - kSymmetricHeaderSize;
+  const size_t buffer = std::max<size_t>(peerReceiveBuffer_, kMinBufferSize);
+  // Secured, a chunk also carries the signature and, encrypted, whole AES blocks with at least
+  // one padding byte.
+  const size_t room = mode_ == SecurityMode::None ? buffer - kSymmetricHeaderSize
+                      : mode_ == SecurityMode::Sign
+                          ? buffer - kSymmetricHeaderSize - kSymmetricSignatureBytes
+                          : (buffer - kSymmetricClearBytes) / kAesBlockBytes * kAesBlockBytes - kSymmetricSignatureBytes - 1 -
+                                (kSymmetricHeaderSize - kSymmetricClearBytes);
   std::span<const uint8_t> rest(body_);
   Writer out(tx);
   do {
@@ -212,6 +303,11 @@ void Channel::sendChunks(const char* type, uint32_t requestId, std::vector<uint8
     out.u32(requestId);
     out.raw(part);
     finishMessage(out, start);
+    // Sealing fails only if libcrypto does: nothing is sent then, rather than a chunk in clear.
+    if (mode_ != SecurityMode::None && !sealSymmetric(tx, start, mode_, serverKeys_)) {
+      tx.resize(start);
+      return;
+    }
   } while (!rest.empty());
 }
 

@@ -14,6 +14,10 @@ constexpr int64_t kUnixEpochTicks = 116'444'736'000'000'000;
 
 }  // namespace
 
+bool ServerCore::offers(SecurityMode mode) const {
+  return std::ranges::find(config_.securityModes, mode) != config_.securityModes.end();
+}
+
 DateTime dateTimeNow() { return DateTime{kUnixEpochTicks + utcNowNs() / 100}; }
 
 ServerCore::ServerCore(const ads::SymbolTable& table, ServerConfig config)

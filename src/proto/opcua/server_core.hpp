@@ -2,7 +2,9 @@
 // The server as every connection sees it (the OPC UA counterpart of ads::Device): the address
 // space, the last published memory image, the writes waiting for the next scan, the sessions.
 // Not thread-safe: the server holds one mutex around every call (see server.hpp).
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -12,6 +14,8 @@
 #include "proto/ads/write_queue.hpp"
 #include "proto/net/peer_policy.hpp"
 #include "proto/opcua/address_space.hpp"
+#include "proto/opcua/pki.hpp"
+#include "proto/opcua/security_policy.hpp"
 #include "proto/opcua/subscription.hpp"
 #include "proto/opcua/types.hpp"
 #include "proto/opcua/user_accounts.hpp"
@@ -38,6 +42,10 @@ struct ServerConfig {
   size_t writeQueueBytes = 64 * 1024;      // written data between two scans
   AddressSpaceConfig names;
   std::string endpointUrl;                 // what GetEndpoints announces; empty: opc.tcp://listen
+  // --opcua-security: the endpoints, one per mode (None with policy None, the others with
+  // Basic256Sha256); `pki` (--opcua-pki) is set when one is not None.
+  std::vector<SecurityMode> securityModes{SecurityMode::None};
+  std::shared_ptr<const Pki> pki;
 };
 
 // A Browse that stopped at RequestedMaxReferencesPerNode, to be resumed by BrowseNext.
@@ -54,6 +62,9 @@ struct Session {
   uint32_t channelId = 0;      // the channel it was last used on
   bool activated = false;
   UserAccess access = UserAccess::None;  // of the identity it was activated with
+  SecurityMode securityMode = SecurityMode::None;  // of the channel it was created on: never activated on a lower one
+  std::vector<uint8_t> clientCertificate;          // of that channel (DER; empty with mode None)
+  std::array<uint8_t, kSecureNonceBytes> nonce{};  // the last server nonce sent, which the client signs
   double timeoutMs = 0;
   int64_t lastUsedNs = 0;
   std::string name;
@@ -91,6 +102,8 @@ class ServerCore {
   std::vector<Session>& sessions() { return sessions_; }
   uint32_t newSubscriptionId() { return nextSubscriptionId_++; }
 
+  // Whether GetEndpoints announces an endpoint of `mode`.
+  bool offers(SecurityMode mode) const;
   uint32_t newChannelId() { return nextChannelId_++; }
   uint32_t newTokenId() { return nextTokenId_++; }
   DateTime startTime() const { return startTime_; }

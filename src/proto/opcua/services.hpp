@@ -48,6 +48,8 @@ struct ServiceContext {
   Session* session = nullptr;  // set for Session and Active services
   int64_t nowNs = 0;
   uint32_t requestId = 0, requestHandle = 0;
+  SecurityMode securityMode = SecurityMode::None;  // of the channel
+  std::span<const uint8_t> clientCertificate;      // the channel's client certificate (DER), with a mode other than None
 };
 
 // What a handler returns when it answers later (Publish): no response now.
@@ -72,7 +74,9 @@ std::span<const ServiceEntry> allServices();
 
 // Shared by the handlers: the ApplicationDescription and EndpointDescription of this server.
 void encodeApplicationDescription(Writer& w, const ServerCore& core);
-void encodeEndpointDescription(Writer& w, const ServerCore& core);
+void encodeEndpointDescription(Writer& w, const ServerCore& core, SecurityMode mode);
+// The EndpointDescriptions array: one per mode of --opcua-security.
+void encodeEndpointDescriptions(Writer& w, const ServerCore& core);
 // The Value attribute of a variable as a Variant (0), or a Bad status (nothing appended).
 uint32_t encodeValueAttribute(Writer& w, const ServerCore& core, const Node& n);
 

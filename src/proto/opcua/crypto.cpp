@@ -26,4 +26,14 @@ const CryptoCalls& crypto() {
   return **calls;
 }
 
+std::string lowerHex(std::span<const uint8_t> bytes) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string s;
+  for (uint8_t b : bytes) {
+    s += kDigits[b >> 4];
+    s += kDigits[b & 15];
+  }
+  return s;
+}
+
 }  // namespace virtcom::proto::opcua

@@ -25,16 +25,6 @@ constexpr const char* kKeyFile = "own/private/virtcom.pem";
 constexpr uint32_t kCertificateDays = 3650;
 constexpr size_t kMinRsaBytes = 256, kMaxRsaBytes = 512;  // the policy's 2048 to 4096 bits
 
-std::string hex(std::span<const uint8_t> bytes) {
-  static constexpr char kDigits[] = "0123456789abcdef";
-  std::string s;
-  for (uint8_t b : bytes) {
-    s += kDigits[b >> 4];
-    s += kDigits[b & 15];
-  }
-  return s;
-}
-
 std::expected<std::string, std::string> readFile(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return std::unexpected(path.string() + ": cannot read: " + std::strerror(errno));
@@ -149,7 +139,7 @@ PeerCheck checkPeerCertificate(const Pki& pki, std::span<const uint8_t> certific
   if (pki.trustAny || inTrustList(pki.dir, certificate)) return {PeerTrust::Trusted, {}};
   uint8_t thumbprint[20];
   const fs::path rejected = fs::path(pki.dir) / "rejected/certs" /
-                            ((crypto().sha1(certificate.data(), certificate.size(), thumbprint) ? hex(thumbprint) : "client") + ".der");
+                            ((crypto().sha1(certificate.data(), certificate.size(), thumbprint) ? lowerHex(thumbprint) : "client") + ".der");
   auto written = writeNewFile(rejected, certificate, 0644);
   return {PeerTrust::Untrusted, "the client certificate is not trusted; " +
                                     (written ? "to trust it, move " + rejected.string() + " to " +

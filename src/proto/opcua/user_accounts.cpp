@@ -21,16 +21,6 @@ std::vector<uint8_t> pbkdf2(std::string_view password, std::span<const uint8_t> 
   return out;
 }
 
-std::string hex(std::span<const uint8_t> bytes) {
-  static constexpr char kDigits[] = "0123456789abcdef";
-  std::string s;
-  for (uint8_t b : bytes) {
-    s += kDigits[b >> 4];
-    s += kDigits[b & 15];
-  }
-  return s;
-}
-
 bool unhex(std::string_view text, std::vector<uint8_t>& out) {
   if (text.empty() || text.size() % 2) return false;
   out.clear();
@@ -144,7 +134,7 @@ UserAccount makeUserAccount(std::string name, UserAccess access, std::string_vie
 
 std::string formatUserAccount(const UserAccount& a) {
   return a.name + ":" + userAccessName(a.access) + ":" + std::string(kScheme) + ":" + std::to_string(a.iterations) + ":" +
-         hex(a.salt) + ":" + hex(a.hash);
+         lowerHex(a.salt) + ":" + lowerHex(a.hash);
 }
 
 bool passwordMatches(const UserAccount& a, std::string_view password) {

@@ -1,5 +1,6 @@
 #include "cli/opcua_options.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <filesystem>
@@ -17,7 +18,7 @@ namespace virtcom::cli {
 
 void addOpcuaServeOptions(CLI::App* cmd, OpcuaServeOptions& o) {
   cmd->add_option("--opcua", o.listen,
-                  "serve the PLC's variables over OPC UA (opc.tcp, security None) on HOST:PORT, e.g. 127.0.0.1:4840 "
+                  "serve the PLC's variables over OPC UA (opc.tcp) on HOST:PORT, e.g. 127.0.0.1:4840 "
                   "(see docs/opcua.md); implies --speed 1");
   cmd->add_option("--opcua-allow", o.allow,
                   "comma-separated IPv4 addresses or networks (10.0.0.0/8) allowed to use --opcua (default: any; required beyond "
@@ -32,7 +33,51 @@ void addOpcuaServeOptions(CLI::App* cmd, OpcuaServeOptions& o) {
                   "what an anonymous OPC UA session may do: none (refused), read (browse, read, subscribe) or write (default: read, "
                   "or none with --opcua-users)")
       ->check(CLI::IsMember({"none", "read", "write"}));
+  cmd->add_option("--opcua-security", o.security,
+                  "the OPC UA endpoints, a comma list of none, sign and sign-encrypt (Basic256Sha256 for the last two; default: "
+                  "none; docs/opcua.md, Security)");
+  cmd->add_option("--opcua-pki", o.pkiDir,
+                  "the OPC UA PKI folder: the server certificate (generated at first start), trusted/certs, rejected/certs "
+                  "(default: $XDG_DATA_HOME/virtcom/opcua-pki or ~/.local/share/virtcom/opcua-pki)");
+  cmd->add_flag("--opcua-trust-any-client", o.trustAnyClient,
+                "accept any valid client certificate on the secured endpoints, without the trust list (tests and labs only)");
 }
+
+namespace {
+
+// The modes of --opcua-security, in the order given, each once.
+std::expected<std::vector<proto::opcua::SecurityMode>, std::string> parseSecurityModes(const std::string& list) {
+  using proto::opcua::SecurityMode;
+  static const std::map<std::string, SecurityMode> kModes{
+      {"none", SecurityMode::None}, {"sign", SecurityMode::Sign}, {"sign-encrypt", SecurityMode::SignAndEncrypt}};
+  std::vector<SecurityMode> modes;
+  std::stringstream words(list);
+  for (std::string word; std::getline(words, word, ',');) {
+    auto it = kModes.find(word);
+    if (it == kModes.end())
+      return std::unexpected("--opcua-security: unknown mode '" + word + "'; expected a comma list of none, sign, sign-encrypt");
+    if (std::ranges::find(modes, it->second) == modes.end()) modes.push_back(it->second);
+  }
+  if (modes.empty()) return std::unexpected("--opcua-security: empty; expected a comma list of none, sign, sign-encrypt");
+  return modes;
+}
+
+// The modes and, when one is secured, the PKI folder (its certificate generated at first start).
+std::expected<void, std::string> configureSecurity(const OpcuaServeOptions& o, proto::opcua::ServerConfig& config) {
+  namespace ua = proto::opcua;
+  auto modes = parseSecurityModes(o.security);
+  if (!modes) return std::unexpected(modes.error());
+  config.securityModes = std::move(*modes);
+  if (std::ranges::all_of(config.securityModes, [](ua::SecurityMode m) { return m == ua::SecurityMode::None; })) return {};
+  if (auto crypto = ua::loadCrypto(); !crypto) return std::unexpected("--opcua-security: the security policy needs " + crypto.error());
+  auto pki = ua::openPki(o.pkiDir.empty() ? ua::defaultPkiDir() : o.pkiDir, config.names.applicationUri);
+  if (!pki) return std::unexpected("--opcua-pki: " + pki.error());
+  pki->trustAny = o.trustAnyClient;
+  config.pki = std::make_shared<const ua::Pki>(std::move(*pki));
+  return {};
+}
+
+}  // namespace
 
 std::expected<std::vector<proto::opcua::UserAccount>, std::string> readOpcuaUsers(const std::string& path, bool missingIsEmpty) {
   std::error_code ec;
@@ -94,6 +139,7 @@ std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(con
   config.peers = std::move(*policy);
   std::unique_ptr<OpcuaPlcServer> s(new OpcuaPlcServer(proto::ads::buildSymbolTable(module)));
   if (cell) config.names = s->deviceNodes(*cell);
+  if (auto secured = configureSecurity(o, config); !secured) return std::unexpected(secured.error());
   auto server = ua::Server::start(config, s->table_);
   if (!server) return std::unexpected("--opcua: " + server.error());
   s->server_ = std::move(*server);
@@ -123,7 +169,11 @@ void announceOpcuaServer(OpcuaPlcServer& server) {
   if (!c.users.empty())
     identities += (identities.empty() ? "" : ", ") + std::to_string(c.users.size()) + (c.users.size() == 1 ? " user" : " users");
   // One write: tests and scripts wait for the whole line.
-  std::cerr << "opcua: serving " + server.server().endpointUrl() + " (security None, " + identities + ")\n";
+  static constexpr const char* kModeNames[] = {"", "None", "Basic256Sha256 Sign", "Basic256Sha256 SignAndEncrypt"};
+  std::string security;
+  for (proto::opcua::SecurityMode m : c.securityModes) security += std::string(kModeNames[static_cast<size_t>(m)]) + ", ";
+  std::string pki = c.pki ? "PKI " + c.pki->dir + (c.pki->trustAny ? " (any client trusted)" : "") + ", " : "";
+  std::cerr << "opcua: serving " + server.server().endpointUrl() + " (security " + security + pki + identities + ")\n";
 }
 
 }  // namespace virtcom::cli

@@ -27,6 +27,9 @@ struct OpcuaServeOptions {
   size_t maxSessions = 32;
   std::string usersFile;  // --opcua-users FILE: accounts for UserName identities; empty: none
   std::string anonymous;  // --opcua-anonymous none|read|write; empty: read, or none with --opcua-users
+  std::string security = "none";  // --opcua-security: comma list of none, sign, sign-encrypt
+  std::string pkiDir;             // --opcua-pki DIR; empty: proto::opcua::defaultPkiDir()
+  bool trustAnyClient = false;    // --opcua-trust-any-client: no trust list (tests, labs)
   bool enabled() const { return !listen.empty(); }
 };
 

@@ -240,6 +240,61 @@ TEST(OpcuaE2e, AnonymousReadsButMayNotWriteByDefault) {
   EXPECT_EQ(server->stop(), 0) << server->errorOutput();
 }
 
+TEST(OpcuaE2e, SecuredEndpointsAndTheTrustListWithNodeOpcua) {
+  // Issue 20: Basic256Sha256 Sign and SignAndEncrypt with a generated self-signed certificate and
+  // a trust list, driven by node-opcua-client with its own certificate (check_opcua_security.js).
+  ASSERT_TRUE(std::filesystem::exists(kClientDir + "/node_modules/node-opcua-client"))
+      << "the npm node-opcua-client is missing: run `npm ci --prefix tests/e2e/opcua` (make test does)";
+  const std::string users = makeUsersFile();
+  const auto dir = std::filesystem::path(users).parent_path();
+  const std::string pki = (dir / "server-pki").string(), clientPki = (dir / "client-pki").string();
+  auto server = startServer({"--opcua-users", users, "--opcua-security", "none,sign,sign-encrypt", "--opcua-pki", pki});
+  ASSERT_GT(server->port(), 0) << server->errorOutput();
+  EXPECT_TRUE(server->waitFor("(security None, Basic256Sha256 Sign, Basic256Sha256 SignAndEncrypt, PKI " + pki + ", 2 users)"))
+      << server->errorOutput();
+  EXPECT_TRUE(std::filesystem::exists(pki + "/own/certs/virtcom.der")) << "generated at first start";
+  EXPECT_EQ(std::filesystem::status(pki + "/own/private").permissions() & std::filesystem::perms::group_all,
+            std::filesystem::perms::none);
+  const std::string client = "cd '" + kClientDir + "' && node check_opcua_security.js " + std::to_string(server->port()) + " '" +
+                             clientPki + "' ";
+  std::string out;
+  EXPECT_EQ(virtcom::e2e::shell(client + "untrusted", out), 0) << out;
+  EXPECT_NE(out.find("ok: untrusted refused"), std::string::npos) << out;
+  // The operator is told which file to move; doing so trusts the client (no restart).
+  EXPECT_TRUE(server->waitFor("the client certificate is not trusted; to trust it, move " + pki + "/rejected/certs/"))
+      << server->errorOutput();
+  std::vector<std::filesystem::path> rejected;
+  for (const auto& entry : std::filesystem::directory_iterator(pki + "/rejected/certs")) rejected.push_back(entry.path());
+  ASSERT_EQ(rejected.size(), 1u);
+  std::filesystem::rename(rejected[0], pki + "/trusted/certs/" + rejected[0].filename().string());
+  out.clear();
+  EXPECT_EQ(virtcom::e2e::shell(client + "trusted", out), 0) << out;
+  EXPECT_NE(out.find("ok: secured"), std::string::npos) << out;
+  EXPECT_EQ(server->stop(), 0) << server->errorOutput();
+  // A second start keeps the certificate the clients know.
+  const auto certificateTime = std::filesystem::last_write_time(pki + "/own/certs/virtcom.der");
+  server = startServer({"--opcua-security", "sign-encrypt", "--opcua-pki", pki});
+  ASSERT_GT(server->port(), 0) << server->errorOutput();
+  EXPECT_TRUE(server->waitFor("(security Basic256Sha256 SignAndEncrypt, PKI ")) << server->errorOutput();
+  EXPECT_EQ(std::filesystem::last_write_time(pki + "/own/certs/virtcom.der"), certificateTime);
+  EXPECT_EQ(server->stop(), 0) << server->errorOutput();
+  std::filesystem::remove_all(dir);
+}
+
+TEST(OpcuaE2e, SecurityOptionErrors) {
+  std::string out;
+  const std::string exec = "cd '" + kDataDir + "' && '" + kExe + "' exec opcua/GVL.st opcua/MAIN.st --cycles 1 --opcua 127.0.0.1:0 ";
+  EXPECT_EQ(virtcom::e2e::shell(exec + "--opcua-security none,encrypt", out), 64) << out;
+  EXPECT_NE(out.find("--opcua-security: unknown mode 'encrypt'; expected a comma list of none, sign, sign-encrypt"), std::string::npos)
+      << out;
+  out.clear();
+  const std::string file = (std::filesystem::temp_directory_path() / ("virtcom-pki-file-" + std::to_string(::getpid()))).string();
+  EXPECT_EQ(virtcom::e2e::shell("touch '" + file + "' && " + exec + "--opcua-security sign --opcua-pki '" + file + "'", out), 64) << out;
+  EXPECT_NE(out.find("--opcua-pki: "), std::string::npos) << out;
+  EXPECT_NE(out.find(file), std::string::npos) << out;
+  std::filesystem::remove(file);
+}
+
 TEST(OpcuaE2e, IdentityOptionErrors) {
   std::string out;
   const std::string exec = "cd '" + kDataDir + "' && '" + kExe + "' exec opcua/GVL.st opcua/MAIN.st --cycles 1 --opcua 127.0.0.1:0 ";
@@ -263,7 +318,8 @@ TEST(OpcuaE2e, HelpNamesTheOptions) {
     out.clear();
     EXPECT_EQ(virtcom::e2e::shell("'" + kExe + "' " + command + " --help", out), 0) << out;
     for (const char* option :
-         {"--opcua ", "--opcua-allow", "--opcua-readonly", "--opcua-max-sessions", "--opcua-users", "--opcua-anonymous"})
+         {"--opcua ", "--opcua-allow", "--opcua-readonly", "--opcua-max-sessions", "--opcua-users", "--opcua-anonymous",
+          "--opcua-security", "--opcua-pki", "--opcua-trust-any-client"})
       EXPECT_NE(out.find(option), std::string::npos) << command << " " << option;
   }
   out.clear();

@@ -9,6 +9,7 @@
 #include <array>
 #include <climits>
 #include <cerrno>
+#include <iostream>
 
 #include "core/clock.hpp"
 #include "proto/opcua/channel.hpp"
@@ -100,6 +101,9 @@ void Server::run() {
         break;
       }
       c.closing = !c.channel.handleFrame(rest.first(scan.size), c.tx, monotonicNowNs());
+      // The operator learns why a client was refused and how to trust it; the client does not.
+      if (c.closing && !c.channel.rejection().empty())
+        std::cerr << "opcua: " + net::formatIpv4(c.peer) + ": " + c.channel.rejection() + "\n";
       used += scan.size;
     }
     c.rx.erase(c.rx.begin(), c.rx.begin() + static_cast<ptrdiff_t>(used));

@@ -53,6 +53,21 @@ TEST(LoadForwarding, AStoreThatMayOverlapMakesTheLoadReadMemory) {
   EXPECT_EQ(between(Instr::abc(Op::ST_32, 5, 1, 4)), 5u);  // next to it: the load goes
 }
 
+// A SEXT/ZEXT of a value already in that form, and a MOV, become a renaming of their source; an
+// extension that changes the value stays (statements/widenings.st checks the results).
+TEST(LoadForwarding, ARedundantExtensionOrACopyReadsItsSource) {
+  const auto kept = [](Instr copy) {
+    return optimised({Instr::abc(Op::LD_I16, 2, 1, 0), copy, Instr::abc(Op::ST_32, 3, 1, 8), kRet}).code;
+  };
+  const std::vector<Instr> widened = kept(Instr::abc(Op::SEXT, 3, 2, 32));
+  ASSERT_EQ(widened.size(), 3u);
+  EXPECT_EQ(widened[1].a, 2);
+  EXPECT_EQ(kept(Instr::abc(Op::SEXT, 3, 2, 16)).size(), 3u);  // an INT is its 16-bit sign-extension
+  EXPECT_EQ(kept(Instr::abc(Op::MOV, 3, 2, 0)).size(), 3u);
+  EXPECT_EQ(kept(Instr::abc(Op::SEXT, 3, 2, 8)).size(), 4u);   // INT_TO_SINT changes it
+  EXPECT_EQ(kept(Instr::abc(Op::ZEXT, 3, 2, 32)).size(), 4u);  // a negative INT as a UDINT
+}
+
 TEST(LoadForwarding, ARepeatedComputationReadsTheFirstResult) {
   const bc::Module m = optimised({Instr::asbx(Op::LDI, 2, 7), Instr::asbx(Op::LDI, 3, 7), Instr::abc(Op::ADD, 4, 2, 3),
                                   Instr::abc(Op::ST_32, 4, 1, 0), kRet});

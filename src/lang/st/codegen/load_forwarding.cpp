@@ -252,6 +252,36 @@ Reads readsOf(Instr& ins, uint16_t numRegs) {
   return r;
 }
 
+// Whether `shape` is already what extending its low `bits` bits gives (signed: SEXT; else ZEXT).
+bool extendedAlready(Shape shape, uint16_t bits, bool isSigned) {
+  using enum Shape;
+  const auto narrowest = [](Shape s) -> uint16_t {
+    switch (s) {
+      case Bool: return 1;
+      case Zext8: case Sext8: return 8;
+      case Zext16: case Sext16: return 16;
+      case Zext32: case Sext32: return 32;
+      default: return 64;
+    }
+  };
+  const bool zext = shape == Bool || shape == Zext8 || shape == Zext16 || shape == Zext32;
+  const bool sext = shape == Sext8 || shape == Sext16 || shape == Sext32;
+  // A zero-extended value narrower than `bits` is its own sign-extension too.
+  if (isSigned) return (sext && narrowest(shape) <= bits) || (zext && narrowest(shape) < bits);
+  return zext && narrowest(shape) <= bits;
+}
+
+// The register whose value `ins` copies unchanged: B of a MOV, and of a SEXT/ZEXT of a register
+// whose value is already in that form (a loaded INT sign-extended to 16 bits again); nullopt
+// for other instructions.
+std::optional<uint16_t> copiedRegister(const Instr& ins, const Facts& facts) {
+  if (ins.op == Op::MOV) return ins.b;
+  if (ins.op != Op::SEXT && ins.op != Op::ZEXT) return std::nullopt;
+  const std::optional<Shape> shape = shapeOfRegister(facts, ins.b);
+  if (shape && extendedAlready(*shape, ins.c, ins.op == Op::SEXT)) return ins.b;
+  return std::nullopt;
+}
+
 // The fact that a register already holds what `ins` computes; null if none.
 const Fact* holder(const Facts& facts, const Instr& ins) {
   if (!pure(ins.op) && !loadOf(ins)) return nullptr;
@@ -284,6 +314,11 @@ Access region(const Access& at, const Facts& facts, const std::vector<bc::IndexD
 void transfer(const Instr& ins, Facts& facts, const std::vector<bc::IndexDesc>& indexes) {
   const Fact* held = holder(facts, ins);
   if (held && held->reg == ins.a) return;  // it writes the value its register already has
+  // Forwarder::run judges a copy on its renamed operand; here, on the code as generated, an
+  // operand without facts may be a removed load's register that run renamed and found to be a
+  // copy: such an extension adds no fact either.
+  const bool extension = ins.op == Op::SEXT || ins.op == Op::ZEXT;
+  const bool copied = ins.op == Op::MOV || (extension && (!shapeOfRegister(facts, ins.b) || copiedRegister(ins, facts)));
   if (clobbersMemory(ins.op)) facts.clear();
   if (const std::optional<Access> store = storeOf(ins)) {
     // Regions and the stored register's shape are resolved with all facts still there, then
@@ -308,8 +343,10 @@ void transfer(const Instr& ins, Facts& facts, const std::vector<bc::IndexDesc>& 
       return (roles.b == bc::Operand::Reg && hit(f.key.b)) || (roles.c == bc::Operand::Reg && hit(f.key.c));
     });
   }
-  // A result that overwrote one of its own operands is no longer what the operands compute.
-  if (!held && (pure(ins.op) || loadOf(ins)) && !readsBC(ins, ins.a)) facts.push_back({ins, ins.a});
+  // A result that overwrote one of its own operands is no longer what the operands compute. A
+  // copy (removed, or kept where renaming failed) adds nothing either: once removed, its register
+  // is not written, and a later equal copy must not be served from it.
+  if (!held && !copied && (pure(ins.op) || loadOf(ins)) && !readsBC(ins, ins.a)) facts.push_back({ins, ins.a});
 }
 
 Facts meet(const Facts& a, const Facts& b) {
@@ -340,6 +377,8 @@ class Forwarder {
       Facts facts = *in[k];
       for (uint32_t j = k; j < n_ && (j == k || !leader_[j]); ++j) {
         if (const Fact* held = holder(facts, original[j])) removed_[j] = rename(j, held->reg);
+        // A copy is judged on its renamed operand: its original one may be a removed load's.
+        else if (const std::optional<uint16_t> copied = copiedRegister(code_[begin_ + j], facts)) removed_[j] = rename(j, *copied);
         transfer(original[j], facts, indexes_);
       }
     }

@@ -11,7 +11,8 @@ namespace virtcom::st {
 // Finds the loads in code[begin, end) whose value a register already holds on every path that
 // reaches them (the same load from the same base register and offset, with no store that may
 // overlap, no call and no write of either register in between), and likewise the pure
-// computations (INDEX, arithmetic, LDI/LDK) on unchanged operands; renames their destination to
+// computations (INDEX, arithmetic, LDI/LDK) on unchanged operands, and the copies (MOV, and a
+// SEXT/ZEXT of a register already in that form) of a register; renames their destination to
 // that register in the instructions that read it before it is written again, and returns which
 // instructions (by index from begin) are now dead and to be removed. A load is kept when its
 // register is still read after its basic block, or the holding register is written before the

@@ -221,7 +221,7 @@ ExitCode runExec(const ExecOptions& o) {
   }
   std::unique_ptr<OpcuaPlcServer> opcua;
   if (o.opcua.enabled()) {
-    auto server = startOpcuaServer(o.opcua, o.peers, *module);
+    auto server = startOpcuaServer(o.opcua, o.peers, module.get());
     if (!server) {
       std::cerr << "error: " << server.error() << "\n";
       return ExitCode::Usage;

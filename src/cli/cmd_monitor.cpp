@@ -22,6 +22,7 @@
 #include "cell/opcua_settings.hpp"
 #include "cli/modbus_options.hpp"
 #include "cli/opcua_client.hpp"
+#include "cli/opcua_options.hpp"
 #include "cli/sfc_mirror.hpp"
 #include "report/json_report.hpp"
 #include "report/kpis.hpp"
@@ -45,6 +46,7 @@ struct MonitorOptions {
   bool quiet = false;
   size_t traceWindow = kDefaultTraceWindow;
   HmiServeOptions hmi;
+  OpcuaServeOptions served;  // --serve-opcua: the watched devices' signals over OPC UA, read only
   PeerFlags peers;  // --allow-any-peer
   HistoryRecordOptions history;
 };
@@ -213,6 +215,25 @@ class AlertPrinter final : public TraceSink {
   uint32_t cycles_ = 0;
 };
 
+// Serves the devices' signals over OPC UA as the last poll left them (`--serve-opcua`), announced
+// once the first poll is published.
+class OpcuaPublisher final : public TraceSink {
+ public:
+  explicit OpcuaPublisher(OpcuaPlcServer& server) : server_(server) {}
+  void begin(const Trace&) override {}
+  void change(const SignalChange&) override {}
+  void tick(const Trace&, int64_t) override {
+    server_.publish({});
+    if (!announced_) announceOpcuaServer(server_);
+    announced_ = true;
+  }
+  void end(const Trace&) override {}
+
+ private:
+  OpcuaPlcServer& server_;
+  bool announced_ = false;
+};
+
 // Local wall time (ns since 1970-01-01 00:00 local), what the plan's shifts are written in: the
 // UTC clock plus the UTC offset at start-up (a change to or from summer time applies from the
 // next start).
@@ -373,6 +394,19 @@ ExitCode monitorCell(const MonitorOptions& o) {
   }
   if (hmi && !mirror.empty()) hmi->mirrorSteps(mirror);
   if (hmi && !cell->plan.shifts.empty()) hmi->watchShifts([&production](hmi::ShiftProgress& p) { production.progress(p); });
+  std::unique_ptr<OpcuaPlcServer> opcuaServer;
+  std::optional<OpcuaPublisher> opcuaPublisher;
+  if (o.served.enabled()) {
+    OpcuaServeOptions watchOnly = o.served;
+    watchOnly.readOnly = true;  // the plant's PLC owns its signals
+    auto server = startOpcuaServer(watchOnly, o.peers, nullptr, cell.get());
+    if (!server) {
+      std::cerr << "error: " << server.error() << "\n";
+      return ExitCode::Usage;
+    }
+    opcuaServer = std::move(*server);
+    options.traceSinks.push_back(&opcuaPublisher.emplace(*opcuaServer));
+  }
   if (model) options.watch.model = &model->trace;
   sim::Simulation simulation(*cell, options);
   if (hmi) {
@@ -383,6 +417,7 @@ ExitCode monitorCell(const MonitorOptions& o) {
   }
   RunEnd end = simulation.run();
   if (hmi) hmi->stop();
+  if (opcuaServer) opcuaServer->stop();
   const Trace& trace = cell->trace;
   report::Kpis kpis = report::computeKpis(trace);
   const report::ProductionReport produced = production.report(trace);
@@ -427,6 +462,9 @@ void addMonitorCommand(CLI::App& app, std::function<void(ExitCode)> setExit) {
   cmd->add_flag("--quiet", o->quiet, "do not print the summary and the model comparison when stopped");
   addTraceWindowOption(*cmd, o->traceWindow);
   addHmiOptions(cmd, o->hmi, "--http");  // always read-only here (--hmi-readonly is implied)
+  addOpcuaServeOptions(cmd, o->served, "--serve-opcua",
+                       "serve the watched devices' signals over OPC UA (opc.tcp, read only) on HOST:PORT, e.g. 127.0.0.1:4841, as "
+                       "`serve --opcua` serves a simulated cell's (docs/monitor.md)");
   addPeerFlags(cmd, o->peers, false);
   addHistoryOptions(cmd, o->history);
   cmd->callback([o, setExit] { setExit(monitorCell(*o)); });

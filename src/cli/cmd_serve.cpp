@@ -160,7 +160,7 @@ ExitCode serveCell(const ServeOptions& o) {
   }
   std::unique_ptr<OpcuaPlcServer> opcua;
   if (o.opcua.enabled()) {
-    auto server = startOpcuaServer(o.opcua, o.peers, *cell->module, cell.get());
+    auto server = startOpcuaServer(o.opcua, o.peers, cell->module.get(), cell.get());
     if (!server) {
       std::cerr << "error: " << server.error() << "\n";
       return ExitCode::Usage;

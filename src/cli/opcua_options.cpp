@@ -16,62 +16,61 @@
 
 namespace virtcom::cli {
 
-void addOpcuaServeOptions(CLI::App* cmd, OpcuaServeOptions& o) {
-  cmd->add_option("--opcua", o.listen,
-                  "serve the PLC's variables over OPC UA (opc.tcp) on HOST:PORT, e.g. 127.0.0.1:4840 "
-                  "(see docs/opcua.md); implies --speed 1");
-  cmd->add_option("--opcua-allow", o.allow,
-                  "comma-separated IPv4 addresses or networks (10.0.0.0/8) allowed to use --opcua (default: any; required beyond "
+void addOpcuaServeOptions(CLI::App* cmd, OpcuaServeOptions& o, const std::string& flag, const std::string& listenHelp) {
+  o.flag = flag;
+  cmd->add_option(flag, o.listen, listenHelp);
+  cmd->add_option(flag + "-allow", o.allow,
+                  "comma-separated IPv4 addresses or networks (10.0.0.0/8) allowed to use " + flag + " (default: any; required beyond "
                   "loopback unless --allow-any-peer; docs/security.md)");
-  cmd->add_flag("--opcua-readonly", o.readOnly, "refuse every OPC UA write (BadUserAccessDenied)");
-  cmd->add_option("--opcua-max-sessions", o.maxSessions, "sessions open at once on --opcua (default 32)")->check(CLI::Range(1, 10000));
-  cmd->add_option("--opcua-users", o.usersFile,
+  cmd->add_flag(flag + "-readonly", o.readOnly, "refuse every OPC UA write (BadUserAccessDenied)");
+  cmd->add_option(flag + "-max-sessions", o.maxSessions, "sessions open at once on " + flag + " (default 32)")->check(CLI::Range(1, 10000));
+  cmd->add_option(flag + "-users", o.usersFile,
                   "users file: user names, roles (read-only, read-write) and password hashes for OPC UA UserName identities; "
                   "create entries with `virtcom opcua-user add` (docs/opcua.md, Users and roles)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--opcua-anonymous", o.anonymous,
+  cmd->add_option(flag + "-anonymous", o.anonymous,
                   "what an anonymous OPC UA session may do: none (refused), read (browse, read, subscribe) or write (default: read, "
-                  "or none with --opcua-users)")
+                  "or none with " + flag + "-users)")
       ->check(CLI::IsMember({"none", "read", "write"}));
-  cmd->add_option("--opcua-security", o.security,
+  cmd->add_option(flag + "-security", o.security,
                   "the OPC UA endpoints, a comma list of none, sign and sign-encrypt (Basic256Sha256 for the last two; default: "
                   "none; docs/opcua.md, Security)");
-  cmd->add_option("--opcua-pki", o.pkiDir,
+  cmd->add_option(flag + "-pki", o.pkiDir,
                   "the OPC UA PKI folder: the server certificate (generated at first start), trusted/certs, rejected/certs "
                   "(default: $XDG_DATA_HOME/virtcom/opcua-pki or ~/.local/share/virtcom/opcua-pki)");
-  cmd->add_flag("--opcua-trust-any-client", o.trustAnyClient,
+  cmd->add_flag(flag + "-trust-any-client", o.trustAnyClient,
                 "accept any valid client certificate on the secured endpoints, without the trust list (tests and labs only)");
 }
 
 namespace {
 
 // The modes of --opcua-security, in the order given, each once.
-std::expected<std::vector<proto::opcua::SecurityMode>, std::string> parseSecurityModes(const std::string& list) {
+std::expected<std::vector<proto::opcua::SecurityMode>, std::string> parseSecurityModes(const OpcuaServeOptions& o) {
   using proto::opcua::SecurityMode;
   static const std::map<std::string, SecurityMode> kModes{
       {"none", SecurityMode::None}, {"sign", SecurityMode::Sign}, {"sign-encrypt", SecurityMode::SignAndEncrypt}};
   std::vector<SecurityMode> modes;
-  std::stringstream words(list);
+  std::stringstream words(o.security);
   for (std::string word; std::getline(words, word, ',');) {
     auto it = kModes.find(word);
     if (it == kModes.end())
-      return std::unexpected("--opcua-security: unknown mode '" + word + "'; expected a comma list of none, sign, sign-encrypt");
+      return std::unexpected(o.flag + "-security: unknown mode '" + word + "'; expected a comma list of none, sign, sign-encrypt");
     if (std::ranges::find(modes, it->second) == modes.end()) modes.push_back(it->second);
   }
-  if (modes.empty()) return std::unexpected("--opcua-security: empty; expected a comma list of none, sign, sign-encrypt");
+  if (modes.empty()) return std::unexpected(o.flag + "-security: empty; expected a comma list of none, sign, sign-encrypt");
   return modes;
 }
 
 // The modes and, when one is secured, the PKI folder (its certificate generated at first start).
 std::expected<void, std::string> configureSecurity(const OpcuaServeOptions& o, proto::opcua::ServerConfig& config) {
   namespace ua = proto::opcua;
-  auto modes = parseSecurityModes(o.security);
+  auto modes = parseSecurityModes(o);
   if (!modes) return std::unexpected(modes.error());
   config.securityModes = std::move(*modes);
   if (std::ranges::all_of(config.securityModes, [](ua::SecurityMode m) { return m == ua::SecurityMode::None; })) return {};
-  if (auto crypto = ua::loadCrypto(); !crypto) return std::unexpected("--opcua-security: the security policy needs " + crypto.error());
+  if (auto crypto = ua::loadCrypto(); !crypto) return std::unexpected(o.flag + "-security: the security policy needs " + crypto.error());
   auto pki = ua::openPki(o.pkiDir.empty() ? ua::defaultPkiDir() : o.pkiDir, config.names.applicationUri);
-  if (!pki) return std::unexpected("--opcua-pki: " + pki.error());
+  if (!pki) return std::unexpected(o.flag + "-pki: " + pki.error());
   pki->trustAny = o.trustAnyClient;
   config.pki = std::make_shared<const ua::Pki>(std::move(*pki));
   return {};
@@ -113,19 +112,19 @@ proto::opcua::AddressSpaceConfig OpcuaPlcServer::deviceNodes(const cell::Cell& c
 }
 
 std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions& o, const PeerFlags& peers,
-                                                                              const bc::Module& module, const cell::Cell* cell) {
+                                                                              const bc::Module* module, const cell::Cell* cell) {
   namespace ua = proto::opcua;
   auto endpoint = proto::net::parseEndpoint(o.listen);
-  if (!endpoint) return std::unexpected("--opcua: " + endpoint.error());
+  if (!endpoint) return std::unexpected(o.flag + ": " + endpoint.error());
   ua::ServerConfig config;
   config.listen = *endpoint;
   config.readOnly = o.readOnly;
   config.maxSessions = o.maxSessions;
   if (!o.usersFile.empty()) {
     auto users = readOpcuaUsers(o.usersFile);
-    if (!users) return std::unexpected("--opcua-users: " + users.error());
-    if (users->empty()) return std::unexpected("--opcua-users: " + o.usersFile + " lists no user (add one with `virtcom opcua-user add`)");
-    if (auto crypto = ua::loadCrypto(); !crypto) return std::unexpected("--opcua-users: the password checks need " + crypto.error());
+    if (!users) return std::unexpected(o.flag + "-users: " + users.error());
+    if (users->empty()) return std::unexpected(o.flag + "-users: " + o.usersFile + " lists no user (add one with `virtcom opcua-user add`)");
+    if (auto crypto = ua::loadCrypto(); !crypto) return std::unexpected(o.flag + "-users: the password checks need " + crypto.error());
     config.users = std::move(*users);
     config.anonymous = ua::UserAccess::None;
   }
@@ -133,15 +132,15 @@ std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(con
       {"none", ua::UserAccess::None}, {"read", ua::UserAccess::Read}, {"write", ua::UserAccess::Write}};
   if (!o.anonymous.empty()) config.anonymous = kAnonymous.at(o.anonymous);
   if (config.anonymous == ua::UserAccess::None && config.users.empty())
-    return std::unexpected("--opcua-anonymous none: nobody could log on; give --opcua-users FILE too");
-  auto policy = peerPolicy(*endpoint, peers, "opcua", "--opcua", "--opcua-allow", o.allow);
+    return std::unexpected(o.flag + "-anonymous none: nobody could log on; give " + o.flag + "-users FILE too");
+  auto policy = peerPolicy(*endpoint, peers, "opcua", o.flag, o.flag + "-allow", o.allow);
   if (!policy) return std::unexpected(policy.error());
   config.peers = std::move(*policy);
-  std::unique_ptr<OpcuaPlcServer> s(new OpcuaPlcServer(proto::ads::buildSymbolTable(module)));
+  std::unique_ptr<OpcuaPlcServer> s(new OpcuaPlcServer(module ? proto::ads::buildSymbolTable(*module) : proto::ads::SymbolTable({}, {}, {}, nullptr)));
   if (cell) config.names = s->deviceNodes(*cell);
   if (auto secured = configureSecurity(o, config); !secured) return std::unexpected(secured.error());
   auto server = ua::Server::start(config, s->table_);
-  if (!server) return std::unexpected("--opcua: " + server.error());
+  if (!server) return std::unexpected(o.flag + ": " + server.error());
   s->server_ = std::move(*server);
   return s;
 }
@@ -152,13 +151,15 @@ void OpcuaPlcServer::beforeScan(plc::Runtime& runtime, WriteObserver* audit) {
   if (server_->applyPendingWrites(live, audit) > 0) runtime.inputsTouched();
 }
 
-void OpcuaPlcServer::afterScan(plc::Runtime& runtime) {
+void OpcuaPlcServer::afterScan(plc::Runtime& runtime) { publish({runtime.machine().memory(), runtime.module().staticSize}); }
+
+void OpcuaPlcServer::publish(std::span<const uint8_t> plcMemory) {
   for (size_t k = 0; k < signals_.size(); ++k) {
     uint64_t raw = bus_->raw(signals_[k].tag);  // little endian: a narrower type is its low bytes
     if (signals_[k].asFloat) raw = std::bit_cast<uint32_t>(static_cast<float>(std::bit_cast<double>(raw)));
     std::memcpy(deviceImage_.data() + k * 8, &raw, 8);
   }
-  server_->publishSnapshot({runtime.machine().memory(), runtime.module().staticSize}, deviceImage_);
+  server_->publishSnapshot(plcMemory, deviceImage_);
 }
 
 void announceOpcuaServer(OpcuaPlcServer& server) {

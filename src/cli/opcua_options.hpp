@@ -21,6 +21,7 @@ struct Cell;
 namespace virtcom::cli {
 
 struct OpcuaServeOptions {
+  std::string flag = "--opcua";  // the option's name, the others' prefix (`monitor`: --serve-opcua)
   std::string listen;  // --opcua HOST:PORT; empty: no server
   std::string allow;   // --opcua-allow: IPv4 peers or networks; empty: any (loopback only)
   bool readOnly = false;
@@ -33,7 +34,10 @@ struct OpcuaServeOptions {
   bool enabled() const { return !listen.empty(); }
 };
 
-void addOpcuaServeOptions(CLI::App* cmd, OpcuaServeOptions& o);
+// The options named `flag`, `flag`-allow, `flag`-users, ...
+void addOpcuaServeOptions(CLI::App* cmd, OpcuaServeOptions& o, const std::string& flag = "--opcua",
+                          const std::string& listenHelp = "serve the PLC's variables over OPC UA (opc.tcp) on HOST:PORT, e.g. "
+                                                          "127.0.0.1:4840 (see docs/opcua.md); implies --speed 1");
 
 // The accounts of a users file (`--opcua-users`, `opcua-user add`); the error names the file
 // (and line and column when its text is wrong: "users.txt:2:7: unknown role ..."). A missing file is empty when `missingIsEmpty`.
@@ -42,17 +46,20 @@ std::expected<std::vector<proto::opcua::UserAccount>, std::string> readOpcuaUser
 // A compiled program served over OPC UA: its ADS symbol table (the address space is generated
 // from it), serving a cell also its devices' signals, and the server; the scan loop calls
 // afterScan() once after the cold start, then beforeScan()/afterScan() around every scan.
-// Neither allocates.
+// Without a program (`monitor --serve-opcua`: the plant's PLC is elsewhere) only the devices'
+// signals are served, published by publish() after every poll. None of them allocates.
 class OpcuaPlcServer {
  public:
   void beforeScan(plc::Runtime& runtime, WriteObserver* audit = nullptr);
   void afterScan(plc::Runtime& runtime);
+  // The devices' signals as the bus has them now, with `plcMemory` (empty without a program).
+  void publish(std::span<const uint8_t> plcMemory);
   proto::opcua::Server& server() { return *server_; }
   void stop() { server_->stop(); }
 
  private:
   friend std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions&, const PeerFlags&,
-                                                                                      const bc::Module&, const cell::Cell*);
+                                                                                      const bc::Module*, const cell::Cell*);
   // A device signal in the image's extra part: 8 bytes per signal, in serving order.
   struct DeviceSignal {
     TagId tag;
@@ -67,11 +74,12 @@ class OpcuaPlcServer {
   std::unique_ptr<proto::opcua::Server> server_;
 };
 
-// Checks the options and starts the server over `module` (which must outlive it) and, when
-// `cell` is given (`serve`), its devices' signals read only in Objects/Devices (which must
-// outlive it too). The error text names the option at fault ("--opcua: ...").
+// Checks the options and starts the server over `module` (which must outlive it; null: no
+// program) and, when `cell` is given (`serve`, `monitor`), its devices' signals read only in
+// Objects/Devices (which must outlive it too). The error text names the option at fault
+// ("--opcua: ...").
 std::expected<std::unique_ptr<OpcuaPlcServer>, std::string> startOpcuaServer(const OpcuaServeOptions& o, const PeerFlags& peers,
-                                                                              const bc::Module& module, const cell::Cell* cell = nullptr);
+                                                                              const bc::Module* module, const cell::Cell* cell = nullptr);
 
 // "opcua: serving opc.tcp://127.0.0.1:4840 (security None, anonymous read-only)" on stderr (the
 // identities accepted: "anonymous read-only", "2 users", ...), once the

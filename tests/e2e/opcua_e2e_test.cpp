@@ -182,6 +182,29 @@ TEST(OpcuaE2e, ServeCellsDevicesAsObjectsOfTheirSignals) {
   EXPECT_EQ(server.stop(), 0) << server.errorOutput();
 }
 
+// `monitor --serve-opcua` serves the watched cell's devices as `serve --opcua` does, their values
+// those the monitor read from the plant's PLC (here `serve --ads` plays the plant), read only.
+TEST(OpcuaE2e, MonitorServesTheWatchedDevicesOverOpcua) {
+  const std::string example = VIRTCOM_SOURCE_DIR "/examples/ads-cell";
+  ServerProcess plant(kExe, {"serve", "cell.yaml", "--ads", "127.0.0.1:0", "--quiet"}, example, "ads: serving on ");
+  ASSERT_GT(plant.port(), 0) << plant.errorOutput();
+  ServerProcess monitor(kExe,
+                        {"monitor", "cell.yaml", "--ads", "127.0.0.1:" + std::to_string(plant.port()), "--serve-opcua", "127.0.0.1:0",
+                         "--serve-opcua-anonymous", "write", "--quiet"},
+                        example, "opcua: serving opc.tcp://");
+  ASSERT_GT(monitor.port(), 0) << monitor.errorOutput();
+  std::string output;
+  EXPECT_EQ(virtcom::e2e::shell("cd '" + kClientDir + "' && node check_opcua_devices.js " + std::to_string(monitor.port()) + " watched",
+                                output),
+            0)
+      << output;
+  EXPECT_NE(output.find("device Clamp: programNumber:Int16 execute:Boolean done:Boolean error:Int16 busy:Boolean"), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("devices ok"), std::string::npos) << output;
+  EXPECT_EQ(monitor.stop(), 0) << monitor.errorOutput();
+  EXPECT_EQ(plant.stop(), 0) << plant.errorOutput();
+}
+
 // A users file made by `virtcom opcua-user add` (the passwords on stdin), in a fresh folder.
 std::string makeUsersFile() {
   const auto dir = std::filesystem::temp_directory_path() / ("virtcom-opcua-users-" + std::to_string(::getpid()));
@@ -322,6 +345,11 @@ TEST(OpcuaE2e, HelpNamesTheOptions) {
           "--opcua-security", "--opcua-pki", "--opcua-trust-any-client"})
       EXPECT_NE(out.find(option), std::string::npos) << command << " " << option;
   }
+  out.clear();
+  out.clear();
+  EXPECT_EQ(virtcom::e2e::shell("'" + kExe + "' monitor --help", out), 0) << out;
+  for (const char* option : {"--serve-opcua ", "--serve-opcua-allow", "--serve-opcua-users", "--serve-opcua-security", "--serve-opcua-pki"})
+    EXPECT_NE(out.find(option), std::string::npos) << "monitor " << option;
   out.clear();
   EXPECT_EQ(virtcom::e2e::shell("'" + kExe + "' opcua-user add --help", out), 0) << out;
   EXPECT_NE(out.find("--role"), std::string::npos) << out;

@@ -37,7 +37,7 @@ void PouCompiler::compile() {
   for (uint32_t r : returns_) patchJump(r, end);
   if (hasBody) statements(buildFrameExitCalls(model(), types(), pou_));
   emit(Op::RET, 0, 0, 0);
-  if (!diags().hasErrors()) optimizePou(ctx_.module, codeStart_, firstLine, maxReg_);
+  if (!diags().hasErrors()) maxReg_ = optimizePou(ctx_.module, codeStart_, firstLine, maxReg_);
   bc::PouInfo& info = ctx_.module.pous[pou_.bcIndex];
   info.codeStart = codeStart_;
   info.codeSize = here() - codeStart_;

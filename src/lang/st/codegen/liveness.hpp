@@ -1,11 +1,31 @@
 #pragma once
 // Register liveness over the bytecode of one POU, for the peephole passes (peephole.hpp).
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "bytecode/instruction.hpp"
 
 namespace virtcom::st {
+
+// The lowest register an instruction writes and whether it writes every register from there up
+// (a CALL's window; a CALLN writes A only); nullopt if it writes none.
+struct RegisterWrite {
+  uint16_t reg;
+  bool andAbove;
+};
+std::optional<RegisterWrite> registerWrite(const bc::Instr& ins);
+bool writesRegister(const bc::Instr& ins, uint16_t reg);
+
+// The registers an instruction reads, as pointers into it (to rename them); a call also reads a
+// register range that cannot be renamed: CALL A and A + 1 (the callee's fp and this, clipped to
+// numRegs), CALLN A .. A + arity - 1.
+struct RegisterReads {
+  uint16_t* regs[3] = {};
+  int count = 0;
+  uint32_t windowFrom = 0, windowTo = 0;  // [from, to)
+};
+RegisterReads registerReads(bc::Instr& ins, uint16_t numRegs);
 
 // Registers live before each instruction of code[begin, end): backward dataflow to a fixed
 // point. At CALL the callee's r0 and r1 (A and A + 1) are live, nothing else of its window: the

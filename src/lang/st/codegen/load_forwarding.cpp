@@ -208,50 +208,6 @@ bool clobbersMemory(Op op) {
   }
 }
 
-// The lowest register `ins` writes and whether it writes every register from there up (a call's
-// window); nullopt if it writes none.
-struct Written {
-  uint16_t reg;
-  bool andAbove;
-};
-std::optional<Written> written(const Instr& ins) {
-  if (ins.op == Op::CALL || ins.op == Op::CALLN) return Written{ins.a, true};
-  if (bc::writesOnlyA(ins.op)) return Written{ins.a, false};
-  return std::nullopt;
-}
-bool writes(const Instr& ins, uint16_t reg) {
-  const std::optional<Written> w = written(ins);
-  return w && (reg == w->reg || (w->andAbove && reg > w->reg));
-}
-
-// The registers `ins` reads, as pointers into it (to rename them); `window` is set when it also
-// reads a register range (CALL A and A + 1, CALLN A .. A + arity - 1) that cannot be renamed.
-struct Reads {
-  uint16_t* regs[3] = {};
-  int count = 0;
-  uint32_t windowFrom = 0, windowTo = 0;  // [from, to)
-};
-Reads readsOf(Instr& ins, uint16_t numRegs) {
-  Reads r;
-  const bc::OperandRoles roles = bc::operandRoles(ins.op);
-  if (ins.op == Op::CALL) {  // the callee's r0 and r1 (liveness.hpp)
-    r.windowFrom = ins.a;
-    r.windowTo = std::min<uint32_t>(ins.a + 2u, numRegs);
-    return r;
-  }
-  if (ins.op == Op::CALLN) {
-    r.windowFrom = ins.a;
-    r.windowTo = ins.a + bc::nativeArity(static_cast<bc::Native>(ins.bx()));
-    return r;
-  }
-  if (roles.a == bc::Operand::Reg && !bc::writesOnlyA(ins.op)) r.regs[r.count++] = &ins.a;
-  if (bc::opFormat(ins.op) == bc::Format::ABC) {
-    if (roles.b == bc::Operand::Reg) r.regs[r.count++] = &ins.b;
-    if (roles.c == bc::Operand::Reg) r.regs[r.count++] = &ins.c;
-  }
-  return r;
-}
-
 // Whether `shape` is already what extending its low `bits` bits gives (signed: SEXT; else ZEXT).
 bool extendedAlready(Shape shape, uint16_t bits, bool isSigned) {
   using enum Shape;
@@ -334,7 +290,7 @@ void transfer(const Instr& ins, Facts& facts, const std::vector<bc::IndexDesc>& 
     // A store of a register nothing is known about adds nothing: it may be stale (above).
     if (stored) addStoredFacts(ins, *stored, facts);
   }
-  if (const std::optional<Written> w = written(ins)) {
+  if (const std::optional<RegisterWrite> w = registerWrite(ins)) {
     const auto hit = [&](uint16_t reg) { return reg == w->reg || (w->andAbove && reg > w->reg); };
     std::erase_if(facts, [&](const Fact& f) {
       if (hit(f.reg)) return true;
@@ -450,15 +406,15 @@ class Forwarder {
         break;
       }
       Instr& ins = code_[begin_ + j];
-      const Reads reads = readsOf(ins, numRegs_);
+      const RegisterReads reads = registerReads(ins, numRegs_);
       if (y >= reads.windowFrom && y < reads.windowTo) return false;
       for (int i = 0; i < reads.count; ++i)
         if (*reads.regs[i] == y) {
           if (clobbered) return false;
           uses.push_back(reads.regs[i]);
         }
-      if (writes(ins, y)) break;
-      clobbered |= writes(ins, holding);
+      if (writesRegister(ins, y)) break;
+      clobbered |= writesRegister(ins, holding);
       if (endsBlock(j)) {
         if (bc::isBranch(ins.op) && live_.liveBefore(begin_ + targetOf(j), y)) return false;
         if (fallsThrough(j) && live_.liveBefore(begin_ + j + 1, y)) return false;

@@ -11,6 +11,7 @@
 #include "bytecode/verifier.hpp"
 #include "lang/st/codegen/liveness.hpp"
 #include "lang/st/codegen/load_forwarding.hpp"
+#include "lang/st/codegen/loop_constants.hpp"
 
 namespace virtcom::st {
 
@@ -59,33 +60,44 @@ std::optional<std::vector<int64_t>> branchTargets(const std::vector<Instr>& code
   return target;
 }
 
-// Drops the instructions marked `removed` from the end of m.code (from codeStart on), sets the
-// branches' offsets from `target` and renumbers the line entries from firstLine on.
+// Rewrites m.code[codeStart, codeStart + n) as the instructions `order` lists (by index from
+// codeStart, each at most once; those not listed are dropped), sets the branches' offsets from
+// `target` and renumbers the line entries from firstLine on. A branch or line entry that pointed
+// at an instruction that does not stay in place (dropped, or moved by `order`) points at the next
+// one that does. False, with nothing changed, if a branch offset no longer fits.
+bool relayout(bc::Module& m, uint32_t codeStart, size_t firstLine, const std::vector<uint32_t>& order, const std::vector<bool>& inPlace,
+              const std::vector<int64_t>& target) {
+  std::vector<Instr>& code = m.code;
+  const uint32_t n = static_cast<uint32_t>(inPlace.size());
+  std::vector<uint32_t> newIndex(n + 1, codeStart + static_cast<uint32_t>(order.size()));
+  for (uint32_t i = 0; i < order.size(); ++i) newIndex[order[i]] = codeStart + i;
+  std::vector<uint32_t> landing(n + 1, newIndex[n]);  // where a branch to k, or k's line entry, now lands
+  for (uint32_t k = n; k-- > 0;) landing[k] = inPlace[k] ? newIndex[k] : landing[k + 1];
+  std::vector<Instr> out(order.size());
+  for (uint32_t i = 0; i < order.size(); ++i) {
+    const uint32_t k = order[i];
+    out[i] = code[codeStart + k];
+    if (target[k] < 0) continue;
+    const int64_t offset = int64_t{landing[static_cast<size_t>(target[k] - codeStart)]} - (codeStart + i) - 1;
+    if (std::abs(offset) > bc::maxBranchOffset(out[i].op)) return false;
+    out[i] = bc::withBranchOffset(out[i], static_cast<int32_t>(offset));
+  }
+  code.resize(codeStart);
+  code.insert(code.end(), out.begin(), out.end());
+  for (size_t i = firstLine; i < m.lines.size(); ++i)
+    if (m.lines[i].pc >= codeStart && m.lines[i].pc < codeStart + n) m.lines[i].pc = landing[m.lines[i].pc - codeStart];
+  return true;
+}
+
+// Drops the instructions marked `removed` (which only shortens branches).
 void compact(bc::Module& m, uint32_t codeStart, size_t firstLine, const std::vector<bool>& removed,
              const std::vector<int64_t>& target) {
-  std::vector<Instr>& code = m.code;
-  const uint32_t n = static_cast<uint32_t>(removed.size());
-  const uint32_t end = codeStart + n;
-  // A removed instruction's new index is that of the next one kept (for line entries).
-  std::vector<uint32_t> newIndex(n + 1);
-  uint32_t kept = 0;
-  for (uint32_t k = 0; k < n; ++k) {
-    newIndex[k] = codeStart + kept;
-    if (!removed[k]) ++kept;
-  }
-  newIndex[n] = codeStart + kept;
-  for (uint32_t k = 0; k < n; ++k) {
-    if (removed[k]) continue;
-    Instr ins = code[codeStart + k];
-    if (target[k] >= 0) {
-      const int64_t to = newIndex[static_cast<size_t>(target[k] - codeStart)];
-      ins = bc::withBranchOffset(ins, static_cast<int32_t>(to - newIndex[k] - 1));
-    }
-    code[newIndex[k]] = ins;
-  }
-  code.resize(codeStart + kept);
-  for (size_t i = firstLine; i < m.lines.size(); ++i)
-    if (m.lines[i].pc >= codeStart && m.lines[i].pc < end) m.lines[i].pc = newIndex[m.lines[i].pc - codeStart];
+  std::vector<uint32_t> order;
+  for (uint32_t k = 0; k < removed.size(); ++k)
+    if (!removed[k]) order.push_back(k);
+  std::vector<bool> inPlace(removed.size());
+  for (size_t k = 0; k < removed.size(); ++k) inPlace[k] = !removed[k];
+  relayout(m, codeStart, firstLine, order, inPlace, target);
 }
 
 // Fuses each comparison with the JZ/JNZ testing it where the register is dead afterwards.
@@ -119,22 +131,49 @@ void fuseBranches(bc::Module& m, uint32_t codeStart, size_t firstLine, uint16_t 
   compact(m, codeStart, firstLine, removed, target);
 }
 
+// Loads the constants of each loop once, before it (loop_constants.hpp): one loop at a time, so an
+// inner loop's constant may then leave its outer loop too. At most kLoopConstantRegisters
+// registers are added to the POU's window (and never beyond code generation's limit).
+constexpr uint16_t kLoopConstantRegisters = 64;
+void hoistLoopConstants(bc::Module& m, uint32_t codeStart, size_t firstLine, uint16_t& numRegs) {
+  const auto maxRegs = static_cast<uint16_t>(std::min<uint32_t>(numRegs + kLoopConstantRegisters, 0xfff0));
+  for (;;) {
+    const auto end = static_cast<uint32_t>(m.code.size());
+    const std::optional<std::vector<int64_t>> targets = branchTargets(m.code, codeStart, end);
+    if (!targets) return;
+    const std::optional<LoopConstants> plan = takeLoopConstants(m.code, codeStart, end, *targets, numRegs, maxRegs);
+    if (!plan) return;
+    std::vector<bool> inPlace(end - codeStart, true);
+    for (uint32_t k : plan->moved) inPlace[k] = false;
+    for (uint32_t k : plan->dropped) inPlace[k] = false;
+    std::vector<uint32_t> order;
+    for (uint32_t k = 0; k < inPlace.size(); ++k) {
+      if (k == plan->head) order.insert(order.end(), plan->moved.begin(), plan->moved.end());
+      if (inPlace[k]) order.push_back(k);
+    }
+    // Each round takes at least one load out of a loop; a branch that no longer reaches ends them.
+    if (!relayout(m, codeStart, firstLine, order, inPlace, *targets)) return;
+  }
+}
+
 }  // namespace
 
-void optimizePou(bc::Module& m, uint32_t codeStart, size_t firstLine, uint16_t numRegs) {
+uint16_t optimizePou(bc::Module& m, uint32_t codeStart, size_t firstLine, uint16_t numRegs) {
   // Forwarding renames the readers of a removed load, after which a later block may repeat a
   // computation on the renamed register (`INDEX r12, r5` where it knew `INDEX r6, r5` only by its
   // old operand): run it again on its own result until it removes nothing.
   for (;;) {
     const uint32_t end = static_cast<uint32_t>(m.code.size());
-    if (end <= codeStart + 1) return;
+    if (end <= codeStart + 1) return numRegs;
     const std::optional<std::vector<int64_t>> targets = branchTargets(m.code, codeStart, end);
-    if (!targets) return;
+    if (!targets) return numRegs;
     const std::vector<bool> removed = forwardLoads(m.code, codeStart, end, numRegs, m.indexes);
     if (std::none_of(removed.begin(), removed.end(), [](bool r) { return r; })) break;
     compact(m, codeStart, firstLine, removed, *targets);
   }
+  hoistLoopConstants(m, codeStart, firstLine, numRegs);
   fuseBranches(m, codeStart, firstLine, numRegs);
+  return numRegs;
 }
 
 }  // namespace virtcom::st

@@ -59,6 +59,7 @@ void runGearbox(benchmark::State& state, int64_t cycleNs, bool skipRepeatedScans
       options.traceSinks.push_back(recorder.get());
     }
     sim::Simulation simulation(*cell, options);
+    simulation.plc().machine().countInstructions(true);
     state.ResumeTiming();
     RunEnd end = simulation.run();  // with a recorder, its end() waits for the last commit
     state.PauseTiming();

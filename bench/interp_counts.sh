@@ -24,8 +24,8 @@ for c in arith:arithNative fb_calls:fbCallsScan bits:bitsScan strings:stringsSca
   name=${c%%:*}
   set -- $(callgrind 'virtcom::plc::Runtime::tick()' "$scan" "$root/bench/st/$name.st" "$scans")
   x86=$1
-  vm=$(awk '/vm_instr_per_scan/ { print $2 }' "$dir/out")
   hash=$(awk '/memory_hash/ { print $2 }' "$dir/out")
+  vm=$("$scan" "$root/bench/st/$name.st" "$scans" count | awk '/vm_instr_per_scan/ { print $2 }')
   native=0
   if [ -x "$bench" ]; then
     set -- $(callgrind "$(twin "${c#*:}")" "$bench" --benchmark_filter="^$name/native\$")
@@ -36,6 +36,7 @@ for c in arith:arithNative fb_calls:fbCallsScan bits:bitsScan strings:stringsSca
 done
 [ -x "$bench" ] || exit 0
 # The gearbox benchmark's vm_instr counter is per cycle: per scan = per cycle * iterations / scans.
+# Its x86 count includes the counting of VM instructions (one x86 instruction each).
 # (The benchmark's name carries its minimum time: gearbox/cycle_1ms/min_time:1.000.)
 set -- $(callgrind 'virtcom::plc::Runtime::tick()' "$bench" --benchmark_filter='^gearbox/cycle_1ms(/min_time:[0-9.]+)?$' \
   --benchmark_format=json)

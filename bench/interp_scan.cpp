@@ -1,10 +1,11 @@
-// virtcom_interp_scan FILE.st SCANS [aot]: compiles FILE.st, cold starts it on the interpreter
-// (or, with `aot`, on the AOT backend's machine code; every scan executed, 10 ms virtual task),
-// runs SCANS scans and prints the VM instructions per scan (0 on AOT code) and an FNV-1a hash of
+// virtcom_interp_scan FILE.st SCANS [aot|count]: compiles FILE.st, cold starts it on the
+// interpreter (or, with `aot`, on the AOT backend's machine code; every scan executed, 10 ms
+// virtual task), runs SCANS scans and prints the VM instructions per scan (counted with `count`
+// only, as counting costs an x86 instruction per VM instruction; else 0) and an FNV-1a hash of
 // the memory image after the last scan. bench/interp_counts.sh and bench/aot_counts.sh run it
 // under callgrind (x86 instructions per Runtime::tick or per call of the compiled MAIN, exactly
-// SCANS calls); equal hashes before and after a change, and between the backends, show the same
-// results. Links only the compiler, the runtime and the AOT backend, so it builds in a fraction
+// SCANS calls), and interp_counts.sh again with `count`; equal hashes before and after a change,
+// and between the backends, show the same results. Links only the compiler, the runtime and the AOT backend, so it builds in a fraction
 // of virtcom_bench's time.
 #include <cstdio>
 #include <cstdlib>
@@ -22,8 +23,9 @@
 int main(int argc, char** argv) {
   using namespace virtcom;
   const bool aotBackend = argc == 4 && std::string_view(argv[3]) == "aot";
-  if (argc != 3 && !aotBackend) {
-    std::fprintf(stderr, "usage: virtcom_interp_scan FILE.st SCANS [aot]\n");
+  const bool counting = argc == 4 && std::string_view(argv[3]) == "count";
+  if (argc != 3 && !aotBackend && !counting) {
+    std::fprintf(stderr, "usage: virtcom_interp_scan FILE.st SCANS [aot|count]\n");
     return 2;
   }
   std::ifstream in(argv[1], std::ios::binary);
@@ -48,6 +50,7 @@ int main(int argc, char** argv) {
     }
     runtime.machine().useCompiled(compiled.code);
   }
+  runtime.machine().countInstructions(counting);
   const long scans = std::strtol(argv[2], nullptr, 10);
   bool ok = runtime.coldStart();
   const uint64_t before = runtime.machine().instructionsExecuted();

@@ -48,6 +48,7 @@ StProgram::StProgram(std::string_view fileName, Backend backend, bool coverage) 
   plc::RuntimeOptions options;
   options.skipRepeatedScans = false;
   runtime_ = std::make_unique<plc::Runtime>(*module_, clock_, options);
+  runtime_->machine().countInstructions(true);  // the vm_instr counters (the timings include the count)
   if (backend == Backend::Aot) {
     aot::CompileResult compiled = aot::compileModule(*module_);
     if (!compiled.code) {

@@ -96,7 +96,12 @@ bool Machine::executeCompiled(uint32_t pou, uint32_t startSp) {
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpedantic"  // labels as values
 #endif
-bool Machine::execute(uint32_t pou, const uint32_t startSp) {
+bool Machine::execute(uint32_t pou, uint32_t startSp) {
+  return countInstructions_ ? interpret<true>(pou, startSp) : interpret<false>(pou, startSp);
+}
+
+template <bool kCounting>
+bool Machine::interpret(uint32_t pou, const uint32_t startSp) {
   // Two copies of the code with the same pcs: each activation runs the quickened one if its
   // POU's entry check admits its fp and this, else the module's own (vm/quicken.hpp).
   const Instr* const quick = quick_.code.data();
@@ -182,7 +187,7 @@ bool Machine::execute(uint32_t pou, const uint32_t startSp) {
   };
 #define VM_NEXT()                                  \
   do {                                             \
-    ++executed;                                    \
+    if constexpr (kCounting) ++executed;           \
     goto* kLabels[static_cast<uint8_t>((ip++)->op)]; \
   } while (0)
 #define VM_CASE(name) op_##name:
@@ -193,7 +198,7 @@ bool Machine::execute(uint32_t pou, const uint32_t startSp) {
 #define VM_CASE(name) case Op::name:
 #define VM_QCASE(name) case quickOpcode(QuickOp::name):
   for (;;) {
-    ++executed;
+    if constexpr (kCounting) ++executed;
     switch ((ip++)->op) {
 #endif
 

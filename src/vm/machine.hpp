@@ -58,7 +58,10 @@ class Machine {
   bool usesCompiled() const { return compiled_ != nullptr; }
 
   const FaultInfo& fault() const { return fault_; }
-  uint64_t instructionsExecuted() const { return executed_; }  // cumulative since construction
+  // Interpreted instructions, cumulative since construction, counted only while
+  // countInstructions(true) (benchmarks): the count costs an instruction per instruction.
+  uint64_t instructionsExecuted() const { return executed_; }
+  void countInstructions(bool on) { countInstructions_ = on; }
   // How often SYSTIME ran (cumulative): a scan that read no time and changed no memory is
   // idempotent, which lets the runtime skip identical scans exactly.
   uint64_t timeReads() const { return timeReads_; }
@@ -74,6 +77,8 @@ class Machine {
   };
 
   bool execute(uint32_t pou, uint32_t startSp);
+  template <bool kCounting>
+  bool interpret(uint32_t pou, uint32_t startSp);
   bool executeCompiled(uint32_t pou, uint32_t startSp);
   bool raise(bc::FaultKind kind, uint32_t pc, uint32_t depth, uint32_t startSp);
 
@@ -90,6 +95,7 @@ class Machine {
   int64_t taskTimeNs_ = 0;
   uint64_t budget_ = 50'000'000;
   uint64_t executed_ = 0;
+  bool countInstructions_ = false;
   uint64_t timeReads_ = 0;
 };
 

@@ -216,6 +216,7 @@ TEST(MachineCall, WatchdogStopsEndlessLoop) {
   b.emit(abc(Op::NOP), 1, 1);
   b.emit(asbx(Op::JMP, 0, -2), 2, 1);
   vm::Machine vm(b.m);
+  vm.countInstructions(true);
   vm.coldStart();
   vm.setBudget(1000);
   ASSERT_FALSE(vm.run(0, 0));

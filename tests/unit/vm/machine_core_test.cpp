@@ -399,6 +399,9 @@ TEST(MachineCore, LoopsWithJumps) {
   vm.coldStart();
   ASSERT_TRUE(vm.run(0, 0));
   EXPECT_EQ(vm.memory()[kOut], 55);
+  EXPECT_EQ(vm.instructionsExecuted(), 0u);  // not counted unless asked for
+  vm.countInstructions(true);
+  ASSERT_TRUE(vm.run(0, 0));
   EXPECT_GT(vm.instructionsExecuted(), 40u);
 }
 

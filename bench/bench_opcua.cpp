@@ -7,9 +7,9 @@
 //                        to its DataChangeNotification on the bus of the cell's client bridge
 //                        (proto/opcua/client_bridge: subscribed, one Publish always posted),
 //                        with the publishing and sampling intervals at the server's minimum
-//                        (10 ms); the bridge is polled every 20 µs of real time. A PLC's
+//                        (1 ms); the bridge is polled every 20 µs of real time. A PLC's
 //                        change falls anywhere in the server's publishing cycle: each one
-//                        waits a pseudo-random 0..10 ms first (not timed), else every change
+//                        waits a pseudo-random 0..1 ms first (not timed), else every change
 //                        would come just after a publish and wait a whole interval
 // p50_us and p99_us are the round trips' median and 99th percentile, as in bench_ads.cpp.
 #include <benchmark/benchmark.h>
@@ -101,7 +101,7 @@ void notification(benchmark::State& state) {
   const virtcom::TagId tag = bridge->tag(0);
   RoundTrips trips;
   std::minstd_rand phases(17);
-  std::uniform_int_distribution<int> phaseUs(0, 10'000);
+  std::uniform_int_distribution<int> phaseUs(0, 1'000);
   int32_t value = 0;
   for (auto _ : state) {
     std::this_thread::sleep_for(std::chrono::microseconds(phaseUs(phases)));

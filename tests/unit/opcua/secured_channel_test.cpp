@@ -18,7 +18,8 @@ namespace {
 
 using Bytes = std::vector<uint8_t>;
 
-constexpr uint32_t kBadSecurityChecksFailed = 0x80130000, kBadSequenceNumberInvalid = 0x80880000;
+constexpr uint32_t kBadSecurityChecksFailed = 0x80130000, kBadSequenceNumberInvalid = 0x80880000,
+                   kBadSecureChannelIdInvalid = 0x80220000;
 
 std::string text(const Bytes& b) { return std::string(b.begin(), b.end()); }
 uint32_t get32(std::span<const uint8_t> b, size_t at) {
@@ -207,6 +208,14 @@ TEST_F(SecuredChannelTest, SequenceNumbersMustRiseByOne) {
   trustClient(true);
   open(SecurityMode::SignAndEncrypt);
   EXPECT_EQ(errorStatus(send(getEndpoints(4, SecurityMode::SignAndEncrypt))), kBadSequenceNumberInvalid) << "a chunk skipped";
+}
+
+TEST_F(SecuredChannelTest, AChunkUnderAnUnknownTokenIsRefused) {
+  open(SecurityMode::SignAndEncrypt);
+  ++tokenId_;
+  bool keep = true;
+  EXPECT_EQ(errorStatus(send(getEndpoints(2, SecurityMode::SignAndEncrypt), &keep)), kBadSecureChannelIdInvalid);
+  EXPECT_FALSE(keep);
 }
 
 TEST_F(SecuredChannelTest, AnotherReceiverThumbprintIsRefused) {

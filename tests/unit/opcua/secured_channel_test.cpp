@@ -69,9 +69,9 @@ class SecuredChannelTest : public ::testing::Test {
     encode(w, ExtensionObject{});
   }
 
-  // HEL, then a secured OPN issuing a channel of `mode` with `thumbprint` as the receiver's;
-  // returns the server's answer.
-  Bytes openSecured(SecurityMode mode, std::span<const uint8_t> thumbprint) {
+  // HEL, then a secured OPN issuing a channel of `mode` with `thumbprint` as the receiver's,
+  // its byte `flipFromEnd` from the end changed after sealing if not 0; returns the server's answer.
+  Bytes openSecured(SecurityMode mode, std::span<const uint8_t> thumbprint, size_t flipFromEnd = 0) {
     EXPECT_EQ(send(hello())[0], 'A');
     clientNonce_.assign(kSecureNonceBytes, 0x5A);
     Bytes b;
@@ -91,6 +91,7 @@ class SecuredChannelTest : public ::testing::Test {
     w.u32(600000);
     finishMessage(w, start);
     EXPECT_TRUE(sealAsymmetric(b, start, headerEnd, client_));
+    if (flipFromEnd != 0) b[b.size() - flipFromEnd] ^= 0x01;
     return send(b);
   }
 
@@ -216,6 +217,10 @@ TEST_F(SecuredChannelTest, AChunkUnderAnUnknownTokenIsRefused) {
   bool keep = true;
   EXPECT_EQ(errorStatus(send(getEndpoints(2, SecurityMode::SignAndEncrypt), &keep)), kBadSecureChannelIdInvalid);
   EXPECT_FALSE(keep);
+}
+
+TEST_F(SecuredChannelTest, AnOpenRequestWithOneByteChangedIsRefused) {
+  EXPECT_EQ(errorStatus(openSecured(SecurityMode::SignAndEncrypt, serverPki_.thumbprint, 1)), kBadSecurityChecksFailed);
 }
 
 TEST_F(SecuredChannelTest, AnotherReceiverThumbprintIsRefused) {

@@ -300,6 +300,12 @@ TEST(OpcuaE2e, SecuredEndpointsAndTheTrustListWithNodeOpcua) {
   ASSERT_GT(server->port(), 0) << server->errorOutput();
   EXPECT_TRUE(server->waitFor("(security Basic256Sha256 SignAndEncrypt, PKI ")) << server->errorOutput();
   EXPECT_EQ(std::filesystem::last_write_time(pki + "/own/certs/virtcom.der"), certificateTime);
+  // Without a None endpoint: discovery over a None channel still works, a session needs security.
+  const std::string again = "cd '" + kClientDir + "' && node check_opcua_security.js " + std::to_string(server->port()) + " '" +
+                            clientPki + "' encrypt-only";
+  out.clear();
+  EXPECT_EQ(virtcom::e2e::shell(again, out), 0) << out;
+  EXPECT_NE(out.find("ok: encrypt-only"), std::string::npos) << out;
   EXPECT_EQ(server->stop(), 0) << server->errorOutput();
   std::filesystem::remove_all(dir);
 }

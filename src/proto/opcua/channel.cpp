@@ -97,7 +97,9 @@ bool Channel::onOpen(std::span<const uint8_t> frame, std::vector<uint8_t>& tx) {
       !body.u32(clientVersion) || !body.u32(requestType) || !body.u32(mode) || !decode(body, nonce) || !body.u32(lifetime))
     return fail(tx, StatusCodeValue::BadDecodingError, "malformed OpenSecureChannel request");
   const auto asked = static_cast<SecurityMode>(mode);
-  if (secured == (asked == SecurityMode::None) || !core_.offers(asked) || (channelId_ != 0 && asked != mode_))
+  // A None channel is always open for discovery (GetEndpoints, FindServers: OPC 10000-4 §5.4);
+  // CreateSession refuses it unless None is offered.
+  if (secured == (asked == SecurityMode::None) || (secured && !core_.offers(asked)) || (channelId_ != 0 && asked != mode_))
     return fail(tx, StatusCodeValue::BadSecurityModeRejected, "security mode not offered by an endpoint (--opcua-security)");
   if (requestType == kSecureChannelIssue && channelId_ == 0) {
     channelId_ = core_.newChannelId();

@@ -180,6 +180,8 @@ uint32_t handleCreateSession(ServiceContext& ctx, Reader& in, Writer& out) {
   if (!skipApplicationDescription(in) || !decode(in, serverUri) || !decode(in, endpointUrl) || !decode(in, sessionName) ||
       !decode(in, clientNonce) || !decode(in, clientCertificate) || !decode(in, timeoutMs) || !in.u32(maxResponse))
     return kDecodingError;
+  // A channel of a mode no endpoint offers (None, kept open for discovery) carries no session.
+  if (!ctx.core.offers(ctx.securityMode)) return static_cast<uint32_t>(StatusCodeValue::BadSecurityModeRejected);
   const bool secured = ctx.securityMode != SecurityMode::None;
   // OPC 10000-4 §5.6.2: the nonce of a secured session has 32 bytes at least, and the client
   // certificate is the channel's and names the client's ApplicationUri.

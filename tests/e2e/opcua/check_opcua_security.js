@@ -7,8 +7,11 @@
 //   server's rejected/certs to trusted/certs, as an operator would);
 // - `trusted`: SignAndEncrypt and Sign connections succeed; over them the read-write user writes
 //   (its password encrypted with the server's key), a wrong password is refused, a read-only
-//   user reads but may not write, a subscription reports a change; None still serves.
-// Usage: node check_opcua_security.js PORT CLIENT_PKI untrusted|trusted. The users file holds
+//   user reads but may not write, a subscription reports a change; None still serves;
+// - `encrypt-only` (a server of `--opcua-security sign-encrypt` alone): its one endpoint is found
+//   over a None channel (discovery), an anonymous SignAndEncrypt session reads, and a None
+//   session is refused.
+// Usage: node check_opcua_security.js PORT CLIENT_PKI untrusted|trusted|encrypt-only. The users file holds
 // operator/op-pass (read-write) and viewer/view-pass (read-only). Exits non-zero with a message on
 // the first failure.
 'use strict';
@@ -89,7 +92,24 @@ async function servesOver(securityMode, value) {
   await client.disconnect();
 }
 
+async function encryptOnly() {
+  const discovery = await clientFor(MessageSecurityMode.None);
+  await discovery.connect(url);
+  const endpoints = await discovery.getEndpoints();
+  await discovery.disconnect();
+  assert.deepEqual(endpoints.map((e) => MessageSecurityMode[e.securityMode]), ['SignAndEncrypt'], 'the one endpoint');
+  const client = await clientFor(MessageSecurityMode.SignAndEncrypt);
+  await client.connect(url);
+  const session = await client.createSession();
+  assert.equal((await session.read({ nodeId: level, attributeId: AttributeIds.Value })).statusCode.value, StatusCodes.Good.value);
+  await session.close();
+  await client.disconnect();
+  assert.notEqual(await refusal(MessageSecurityMode.None, {}), '', 'no session without security');
+  console.log('ok: encrypt-only');
+}
+
 (async () => {
+  if (phase === 'encrypt-only') return encryptOnly();
   if (phase === 'untrusted') {
     await listsTheEndpoints();
     const why = await refusal(MessageSecurityMode.SignAndEncrypt, operator);

@@ -111,10 +111,17 @@ struct OpcuaNodeName {
 // TF6100, a Siemens PLC, or `virtcom exec --opcua`). The wiring names PLC variables as with
 // `plc: ads:`; each becomes the node `nodes:` gives it (a node id or a browse path), else
 // node_prefix + the variable (a variable written as a node id, `ns=2;i=17`, is taken as it is).
+// `security:` of `plc: opcua:`, with the values of OPC UA's MessageSecurityMode (OPC 10000-4
+// §7.20); secured means security policy Basic256Sha256.
+enum class OpcuaSecurity : uint32_t { None = 1, Sign = 2, SignAndEncrypt = 3 };
+
 struct OpcuaClientSettings {
   std::string url;                     // "opc.tcp://127.0.0.1:4840" as written
   Endpoint server;                     // its host and port (port never 0)
   SourceLocation endpointLoc;          // where connection problems are reported
+  OpcuaSecurity security = OpcuaSecurity::None;
+  std::string pkiDir;                  // the bridge's PKI folder (relative: to the cell file's); empty: the default
+  bool trustAnyServer = false;         // trust_server: any (else only the certificates of PKI/trusted/certs)
   std::string user, password;          // empty user: an anonymous session
   std::string nodePrefix = "ns=4;s=|var|virtcom.Application.";  // CODESYS' form, virtcom's device name
   std::vector<OpcuaNodeName> nodes;

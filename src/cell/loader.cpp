@@ -85,7 +85,7 @@ class Loader {
     top.child("extends");          // applied by takeBaseSections()
     top.child("replace_devices");  // applied by takeBaseSections()
     if (plcAds_) readAdsClient(*cell->plcAds, *plcAds_, diags_);
-    if (cell->plcOpcua) readOpcuaClient(*cell->plcOpcua, *plcOpcua_, diags_);
+    if (cell->plcOpcua) readOpcuaClient(*cell->plcOpcua, *plcOpcua_, cell->file.parent_path(), diags_);
     if (cell->namedWires()) addExternalRunWires(*cell);
     top.rejectUnknownKeys();
     if (diags_.hasErrors()) return nullptr;

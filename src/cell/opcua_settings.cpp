@@ -17,6 +17,25 @@ void readEndpoint(ConfigReader& r, const ConfigNode& node, OpcuaClientSettings& 
   else r.error(at->loc(), "'endpoint': " + server.error());
 }
 
+// `security:`, `pki:` and `trust_server:` into s.
+void readSecurity(ConfigReader& r, const ConfigNode& node, const std::filesystem::path& cellDir, OpcuaClientSettings& s) {
+  const std::string security = r.optString("security", "none");
+  if (security == "sign") s.security = OpcuaSecurity::Sign;
+  else if (security == "sign-encrypt") s.security = OpcuaSecurity::SignAndEncrypt;
+  else if (security != "none")
+    r.error(node.find("security")->loc(), "'security' must be none, sign or sign-encrypt (Basic256Sha256), not '" + security + "'");
+  const std::string pki = r.optString("pki", "");
+  if (!pki.empty()) s.pkiDir = (cellDir / pki).lexically_normal().string();
+  const std::string trust = r.optString("trust_server", "");
+  if (!trust.empty() && trust != "any")
+    r.error(node.find("trust_server")->loc(), "'trust_server' can only be 'any' (every server certificate, for labs), not '" + trust +
+                                                   "'; leave it out to trust the certificates in the PKI folder's trusted/certs");
+  s.trustAnyServer = trust == "any";
+  for (const char* key : {"pki", "trust_server"})
+    if (s.security == OpcuaSecurity::None && node.find(key))
+      r.error(node.find(key)->loc(), std::string("'") + key + "' is for a secured link: it needs 'security: sign' or 'security: sign-encrypt'");
+}
+
 }  // namespace
 
 std::expected<Endpoint, std::string> opcuaServerOf(std::string_view url) {
@@ -30,7 +49,7 @@ std::expected<Endpoint, std::string> opcuaServerOf(std::string_view url) {
   return std::unexpected((parsed ? std::string("port 0 cannot be connected to") : parsed.error()) + expected);
 }
 
-void readOpcuaClient(OpcuaClientSettings& s, const ConfigNode& node, Diagnostics& diags) {
+void readOpcuaClient(OpcuaClientSettings& s, const ConfigNode& node, const std::filesystem::path& cellDir, Diagnostics& diags) {
   ConfigReader r(node, diags, "'plc: opcua'");
   if (node.kind() != ConfigNode::Kind::Map) {
     r.error(node.loc(), "'plc: opcua' must be a map with 'endpoint: opc.tcp://HOST:PORT' of the external PLC's OPC UA server");
@@ -38,9 +57,7 @@ void readOpcuaClient(OpcuaClientSettings& s, const ConfigNode& node, Diagnostics
   }
   s.endpointLoc = node.loc();
   readEndpoint(r, node, s);
-  const std::string security = r.optString("security", "none");
-  if (security != "none")
-    r.error(node.find("security")->loc(), "'security': only 'none' is supported by the bridge (security policy None), not '" + security + "'");
+  readSecurity(r, node, cellDir, s);
   s.user = r.optString("user", "");
   s.password = r.optString("password", "");
   if (s.user.empty() != s.password.empty())

@@ -4,6 +4,7 @@
 
 #include "cli/external_wires.hpp"
 #include "core/cell_diagnostic_codes.hpp"
+#include "proto/opcua/pki.hpp"
 
 namespace virtcom::cli {
 
@@ -29,6 +30,9 @@ std::unique_ptr<proto::opcua::ClientBridge> startOpcuaBridge(cell::Cell& cell, c
   ua::BridgeConfig config;
   config.client.server = s.server;
   config.client.endpointUrl = s.url;
+  config.client.security = static_cast<ua::SecurityMode>(s.security);  // the same values
+  config.client.pkiDir = s.pkiDir.empty() ? ua::defaultClientPkiDir() : s.pkiDir;
+  config.client.trustAnyServer = s.trustAnyServer;
   config.client.user = s.user;
   config.client.password = s.password;
   config.client.timeoutNs = s.timeoutNs;

@@ -13,8 +13,6 @@ namespace {
 
 // Channel token lifetimes the server grants (ms).
 constexpr uint32_t kMinLifetimeMs = 10'000, kMaxLifetimeMs = 3'600'000;
-// After the message header: channel id, token id, sequence number, request id.
-constexpr size_t kSymmetricHeaderSize = kMessageHeaderSize + 16;
 
 void encodeResponseHeader(Writer& w, uint32_t requestHandle, uint32_t serviceResult) {
   encode(w, dateTimeNow());
@@ -185,11 +183,7 @@ bool Channel::renewKeys(const ByteString& clientNonce, std::array<uint8_t, kSecu
   return deriveKeys(serverNonce, client, clientKeys_) && deriveKeys(client, serverNonce, serverKeys_);
 }
 
-bool Channel::sequenceFollows(uint32_t sequence) {
-  // It may wrap to below 1024 once it passed UInt32 max - 1024.
-  constexpr uint32_t kWrapFrom = 0xFFFFFFFFu - 1024, kWrapBelow = 1024;
-  return sequence == lastSequence_ + 1 || (lastSequence_ > kWrapFrom && sequence < kWrapBelow);
-}
+bool Channel::sequenceFollows(uint32_t sequence) { return sequenceNumberFollows(lastSequence_, sequence); }
 
 bool Channel::onMessage(char chunk, std::span<const uint8_t> frame, std::vector<uint8_t>& tx, int64_t nowNs) {
   Reader r(frame.subspan(kMessageHeaderSize));
@@ -286,13 +280,7 @@ Channel::Reply Channel::serve(std::span<const uint8_t> request, uint32_t request
 
 void Channel::sendChunks(const char* type, uint32_t requestId, std::vector<uint8_t>& tx) {
   const size_t buffer = std::max<size_t>(peerReceiveBuffer_, kMinBufferSize);
-  // Secured, a chunk also carries the signature and, encrypted, whole AES blocks with at least
-  // one padding byte.
-  const size_t room = mode_ == SecurityMode::None ? buffer - kSymmetricHeaderSize
-                      : mode_ == SecurityMode::Sign
-                          ? buffer - kSymmetricHeaderSize - kSymmetricSignatureBytes
-                          : (buffer - kSymmetricClearBytes) / kAesBlockBytes * kAesBlockBytes - kSymmetricSignatureBytes - 1 -
-                                (kSymmetricHeaderSize - kSymmetricClearBytes);
+  const size_t room = symmetricChunkRoom(buffer, mode_);
   std::span<const uint8_t> rest(body_);
   Writer out(tx);
   do {

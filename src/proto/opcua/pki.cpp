@@ -85,14 +85,19 @@ bool inTrustList(const fs::path& dir, std::span<const uint8_t> certificate) {
   return false;
 }
 
+// $XDG_DATA_HOME, else ~/.local/share.
+std::string dataDir() {
+  const char* data = std::getenv("XDG_DATA_HOME");
+  if (data && *data) return data;
+  const char* home = std::getenv("HOME");
+  return std::string(home && *home ? home : ".") + "/.local/share";
+}
+
 }  // namespace
 
-std::string defaultPkiDir() {
-  const char* data = std::getenv("XDG_DATA_HOME");
-  if (data && *data) return std::string(data) + "/virtcom/opcua-pki";
-  const char* home = std::getenv("HOME");
-  return std::string(home && *home ? home : ".") + "/.local/share/virtcom/opcua-pki";
-}
+std::string defaultPkiDir() { return dataDir() + "/virtcom/opcua-pki"; }
+
+std::string defaultClientPkiDir() { return dataDir() + "/virtcom/opcua-client-pki"; }
 
 std::expected<Pki, std::string> openPki(const std::string& dir, const std::string& applicationUri) {
   const fs::path root(dir);
@@ -125,23 +130,23 @@ std::string certificateUri(std::span<const uint8_t> certificate) {
   return uri;
 }
 
-PeerCheck checkPeerCertificate(const Pki& pki, std::span<const uint8_t> certificate, int64_t nowUnixSeconds) {
+PeerCheck checkPeerCertificate(const Pki& pki, std::span<const uint8_t> certificate, int64_t nowUnixSeconds, const std::string& peer) {
   int64_t notBefore = 0, notAfter = 0;
   char uri[kMaxCertificateUri];
   size_t uriLength = 0;
   uint32_t bits = 0;
   if (!crypto().certificateFacts(certificate.data(), certificate.size(), &notBefore, &notAfter, uri, sizeof uri, &uriLength, &bits))
-    return {PeerTrust::Invalid, "the client certificate is not a readable X.509 certificate"};
+    return {PeerTrust::Invalid, "the " + peer + " certificate is not a readable X.509 certificate"};
   if (bits / 8 < kMinRsaBytes || bits / 8 > kMaxRsaBytes)
-    return {PeerTrust::Invalid, "the client certificate's key is not RSA of 2048 to 4096 bits (Basic256Sha256)"};
+    return {PeerTrust::Invalid, "the " + peer + " certificate's key is not RSA of 2048 to 4096 bits (Basic256Sha256)"};
   if (nowUnixSeconds < notBefore || nowUnixSeconds > notAfter)
-    return {PeerTrust::Invalid, "the client certificate is not valid now (outside its validity period)"};
+    return {PeerTrust::Invalid, "the " + peer + " certificate is not valid now (outside its validity period)"};
   if (pki.trustAny || inTrustList(pki.dir, certificate)) return {PeerTrust::Trusted, {}};
   uint8_t thumbprint[20];
   const fs::path rejected = fs::path(pki.dir) / "rejected/certs" /
-                            ((crypto().sha1(certificate.data(), certificate.size(), thumbprint) ? lowerHex(thumbprint) : "client") + ".der");
+                            ((crypto().sha1(certificate.data(), certificate.size(), thumbprint) ? lowerHex(thumbprint) : peer) + ".der");
   auto written = writeNewFile(rejected, certificate, 0644);
-  return {PeerTrust::Untrusted, "the client certificate is not trusted; " +
+  return {PeerTrust::Untrusted, "the " + peer + " certificate is not trusted; " +
                                     (written ? "to trust it, move " + rejected.string() + " to " +
                                                    (fs::path(pki.dir) / "trusted/certs").string() + "/"
                                              : written.error())};

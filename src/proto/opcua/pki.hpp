@@ -22,6 +22,8 @@ struct Pki {
 
 // $XDG_DATA_HOME/virtcom/opcua-pki, else ~/.local/share/virtcom/opcua-pki.
 std::string defaultPkiDir();
+// The client bridge's own (`plc: opcua: pki:`), beside the server's: .../virtcom/opcua-client-pki.
+std::string defaultClientPkiDir();
 
 // Opens the folder `dir`, creating its layout, and the certificate and key in it; with none
 // yet, generates a self-signed RSA-2048 SHA-256 certificate naming `applicationUri` (and this
@@ -33,10 +35,11 @@ struct PeerCheck {
   PeerTrust trust = PeerTrust::Invalid;
   std::string message;  // why not trusted, and what the operator may do about it
 };
-// Whether a client's certificate (DER) is trusted: an RSA certificate of 2048 to 4096 bits,
+// Whether a peer's certificate (DER; `peer` names its role in the message: "client", "server") is trusted: an RSA certificate of 2048 to 4096 bits,
 // valid at `nowUnixSeconds`, byte for byte one of trusted/certs (or any with trustAny). An
 // untrusted one is written to rejected/certs (named by its thumbprint) for the operator.
-PeerCheck checkPeerCertificate(const Pki& pki, std::span<const uint8_t> certificate, int64_t nowUnixSeconds);
+PeerCheck checkPeerCertificate(const Pki& pki, std::span<const uint8_t> certificate, int64_t nowUnixSeconds,
+                               const std::string& peer = "client");
 
 // The first URI of a certificate's subjectAltName (empty if none or unreadable).
 std::string certificateUri(std::span<const uint8_t> certificate);

@@ -73,6 +73,18 @@ size_t paddingFor(size_t length, size_t blockBytes, size_t signatureBytes) {
   return (blockBytes - (length + 1 + signatureBytes) % blockBytes) % blockBytes;
 }
 
+size_t symmetricChunkRoom(size_t bufferBytes, SecurityMode mode) {
+  constexpr size_t kHeaders = kSymmetricClearBytes + 8;  // and the sequence header
+  if (mode == SecurityMode::None) return bufferBytes - kHeaders;
+  if (mode == SecurityMode::Sign) return bufferBytes - kHeaders - kSymmetricSignatureBytes;
+  return (bufferBytes - kSymmetricClearBytes) / kAesBlockBytes * kAesBlockBytes - kSymmetricSignatureBytes - 1 - 8;
+}
+
+bool sequenceNumberFollows(uint32_t last, uint32_t next) {
+  constexpr uint32_t kWrapFrom = 0xFFFFFFFFu - 1024, kWrapBelow = 1024;
+  return next == last + 1 || (last > kWrapFrom && next < kWrapBelow);
+}
+
 bool sealSymmetric(std::vector<uint8_t>& tx, size_t start, SecurityMode mode, const SymmetricKeys& keys) {
   const bool encrypt = mode == SecurityMode::SignAndEncrypt;
   if (encrypt) appendPadding(tx, paddingFor(tx.size() - start - kSymmetricClearBytes, kAesBlockBytes, kSymmetricSignatureBytes), false);

@@ -42,6 +42,15 @@ bool deriveKeys(std::span<const uint8_t> secret, std::span<const uint8_t> seed, 
 // the PaddingSize value (the count of padding bytes after the PaddingSize byte).
 size_t paddingFor(size_t length, size_t blockBytes, size_t signatureBytes);
 
+// The body bytes a symmetric chunk of `bufferBytes` can carry after its headers (message header,
+// channel and token ids, sequence header): secured, it also carries the signature and, encrypted,
+// whole AES blocks with at least one padding byte.
+size_t symmetricChunkRoom(size_t bufferBytes, SecurityMode mode);
+
+// Whether a secured channel's sequence number `next` follows `last` (OPC 10000-6 §6.7.2.4): by
+// one, or wrapped to below 1024 once it passed UInt32 max - 1024.
+bool sequenceNumberFollows(uint32_t last, uint32_t next);
+
 // Secures the chunk `tx[start..]` in place, which holds the message header, the channel and
 // token ids, the sequence header and the body: pads it (SignAndEncrypt), patches its size, signs
 // it and encrypts it from the sequence header on. Allocates only if `tx` must grow.

@@ -88,7 +88,7 @@ TEST_F(OpcuaSection, MistakesAreReportedAtTheirPosition) {
                     kDevices),
               ElementsAre("cell.yaml:3:15: error[C010]: 'endpoint': 'http://10.1.2.3:4840' is not an opc.tcp URL (expected "
                           "opc.tcp://HOST:PORT, e.g. opc.tcp://127.0.0.1:4840)",
-                          "cell.yaml:4:15: error[C010]: 'security': only 'none' is supported by the bridge (security policy None), not "
+                          "cell.yaml:4:15: error[C010]: 'security' must be none, sign or sign-encrypt (Basic256Sha256), not "
                           "'basic256sha256'",
                           "cell.yaml:5:11: error[C010]: 'user' and 'password' go together (a UserName identity); leave both out for an "
                           "anonymous session",

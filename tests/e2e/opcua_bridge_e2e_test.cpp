@@ -115,6 +115,53 @@ TEST_F(OpcuaBridgeE2e, TheCellCompletesItsCyclesAgainstANodeOpcuaServer) {
     EXPECT_NE(plc->errorOutput().find(written), std::string::npos) << written << plc->errorOutput();
 }
 
+// Basic256Sha256 on the bridge (`security:`, `pki:`) against `virtcom exec --opcua-security`
+// with a read-write user: the server's certificate is not trusted at first (the run stops and
+// says which file to move), then it is; SignAndEncrypt and Sign complete the cycles, the password
+// encrypted with the server's key; a wrong password and a mode the server lacks are refused.
+TEST_F(OpcuaBridgeE2e, SecuredChannelsWithTheTrustWorkflowAndAUser) {
+  std::string out;
+  const std::string users = (dir_ / "users.txt").string(), clientPki = (dir_ / "client-pki").string();
+  ASSERT_EQ(shell("printf 'op-pass\\n' | " + kExe + " opcua-user add " + users + " operator --role read-write", out), 0) << out;
+  auto plc = startPlc({"--opcua-users", users, "--opcua-security", "sign,sign-encrypt", "--opcua-pki", (dir_ / "server-pki").string(),
+                       "--opcua-trust-any-client"});
+  ASSERT_GT(plc->port(), 0) << plc->errorOutput();
+  // A timeout of 5 s: this build's RSA and the password hash on the server take longer than 500 ms.
+  const auto secured = [&](const std::string& mode, const std::string& password) {
+    const std::string cell = bridgeCell(plc->port(), "security: none", "security: " + mode + "\n    pki: " + clientPki +
+                                                                           "\n    user: operator\n    password: " + password);
+    std::string text = readFile(cell);
+    text.replace(text.find("timeout: 500 ms"), 15, "timeout: 5 s");
+    std::ofstream(cell) << text;
+    return cell;
+  };
+  out.clear();
+  EXPECT_EQ(shell(kExe + " run " + secured("sign-encrypt", "op-pass"), out), 1) << out;
+  EXPECT_NE(out.find("the server certificate is not trusted; to trust it, move " + clientPki + "/rejected/certs/"), std::string::npos)
+      << out;
+  std::vector<std::filesystem::path> rejected;
+  for (const auto& entry : std::filesystem::directory_iterator(clientPki + "/rejected/certs")) rejected.push_back(entry.path());
+  ASSERT_EQ(rejected.size(), 1u);
+  std::filesystem::rename(rejected[0], clientPki + "/trusted/certs/" + rejected[0].filename().string());
+  for (const char* mode : {"sign-encrypt", "sign"}) {
+    out.clear();
+    EXPECT_EQ(shell(kExe + " run " + secured(mode, "op-pass"), out), 0) << mode << out;
+    EXPECT_NE(out.find("Run ended     completed: 2 cycle(s) completed"), std::string::npos) << mode << out;
+  }
+  out.clear();
+  EXPECT_EQ(shell(kExe + " run " + secured("sign", "wrong"), out), 1) << out;
+  EXPECT_NE(out.find("BadUserAccessDenied"), std::string::npos) << out;
+  EXPECT_EQ(plc->stop(), 0) << plc->errorOutput();
+  // A server without the mode asked for: the error names what it offers.
+  plc = startPlc({"--opcua-anonymous", "write"});
+  ASSERT_GT(plc->port(), 0) << plc->errorOutput();
+  out.clear();
+  EXPECT_EQ(shell(kExe + " run " + bridgeCell(plc->port(), "security: none", "security: sign\n    pki: " + clientPki), out), 1) << out;
+  EXPECT_NE(out.find("has no endpoint with security"), std::string::npos) << out;
+  EXPECT_NE(out.find("it offers"), std::string::npos) << out;
+  EXPECT_EQ(plc->stop(), 0) << plc->errorOutput();
+}
+
 TEST_F(OpcuaBridgeE2e, ANodeOpcuaServerKilledMidRunEndsTheRunAsAFault) {
   auto plc = startNodeOpcuaPlc();
   ASSERT_GT(plc->port(), 0) << plc->errorOutput();

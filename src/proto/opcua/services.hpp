@@ -49,7 +49,7 @@ struct ServiceContext {
   int64_t nowNs = 0;
   uint32_t requestId = 0, requestHandle = 0;
   SecurityMode securityMode = SecurityMode::None;  // of the channel
-  std::span<const uint8_t> clientCertificate;      // the channel's client certificate (DER), with a mode other than None
+  std::span<const uint8_t> clientCertificate{};    // the channel's client certificate (DER), with a mode other than None
 };
 
 // What a handler returns when it answers later (Publish): no response now.

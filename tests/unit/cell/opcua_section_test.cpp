@@ -105,6 +105,30 @@ TEST_F(OpcuaSection, MistakesAreReportedAtTheirPosition) {
               ElementsAre(::testing::HasSubstr("cell.yaml:2:10: error[C0")));
 }
 
+TEST_F(OpcuaSection, SecurityKeysAndTheirMistakes) {
+  auto cell = loads(std::string("plc:\n  opcua:\n    endpoint: opc.tcp://10.1.2.3:4841\n    security: sign-encrypt\n"
+                                "    pki: keys/opcua\n    trust_server: any\n") +
+                    kDevices);
+  ASSERT_TRUE(cell);
+  const OpcuaClientSettings& s = *cell->plcOpcua;
+  EXPECT_EQ(s.security, OpcuaSecurity::SignAndEncrypt);
+  EXPECT_EQ(s.pkiDir, path("keys/opcua")) << "relative to the cell file's folder";
+  EXPECT_TRUE(s.trustAnyServer);
+  cell = loads(std::string("plc:\n  opcua: { endpoint: 'opc.tcp://127.0.0.1:4840', security: sign }\n") + kDevices);
+  ASSERT_TRUE(cell);
+  EXPECT_EQ(cell->plcOpcua->security, OpcuaSecurity::Sign);
+  EXPECT_TRUE(cell->plcOpcua->pkiDir.empty()) << "the default folder";
+  EXPECT_FALSE(cell->plcOpcua->trustAnyServer);
+  EXPECT_THAT(fails(std::string("plc:\n  opcua:\n    endpoint: opc.tcp://10.1.2.3:4841\n    pki: keys\n    trust_server: all\n") +
+                    kDevices),
+              ElementsAre("cell.yaml:4:10: error[C010]: 'pki' is for a secured link: it needs 'security: sign' or 'security: "
+                          "sign-encrypt'",
+                          "cell.yaml:5:19: error[C010]: 'trust_server' can only be 'any' (every server certificate, for labs), not "
+                          "'all'; leave it out to trust the certificates in the PKI folder's trusted/certs",
+                          "cell.yaml:5:19: error[C010]: 'trust_server' is for a secured link: it needs 'security: sign' or "
+                          "'security: sign-encrypt'"));
+}
+
 TEST_F(OpcuaSection, OneExternalPlcAtATime) {
   write("main.st", kMainSt);
   EXPECT_THAT(fails(std::string("plc:\n  sources: [main.st]\n  opcua: { endpoint: 'opc.tcp://127.0.0.1:4840' }\n") + kDevices),

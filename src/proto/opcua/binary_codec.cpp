@@ -77,9 +77,11 @@ bool Reader::arrayLength(uint32_t& n, size_t minElementBytes) {
   return uint64_t{n} * minElementBytes <= remaining();
 }
 
-void Writer::string(std::string_view s) {
-  i32(static_cast<int32_t>(s.size()));
-  w_.bytes({reinterpret_cast<const uint8_t*>(s.data()), s.size()});
+void Writer::string(std::string_view s) { byteString(asBytes(s)); }
+
+void Writer::byteString(std::span<const uint8_t> b) {
+  i32(static_cast<int32_t>(b.size()));
+  w_.bytes(b);
 }
 
 bool decode(Reader& r, bool& v) {

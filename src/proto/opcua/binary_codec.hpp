@@ -55,6 +55,7 @@ class Writer {
   void raw(std::span<const uint8_t> b) { w_.bytes(b); }
   // A String / ByteString body: int32 length, then the bytes.
   void string(std::string_view s);
+  void byteString(std::span<const uint8_t> b);
   void nullString() { i32(-1); }
   size_t size() const { return out_.size(); }
   void put32(size_t at, uint32_t v) { w_.put32(at, v); }

@@ -151,14 +151,13 @@ bool Channel::openSecured(std::span<const uint8_t> frame, size_t headerEnd, cons
                           std::span<const uint8_t>& plain, std::vector<uint8_t>& tx) {
   const Pki* pki = core_.config().pki.get();
   if (!pki) return fail(tx, StatusCodeValue::BadSecurityPolicyRejected, "security policy not served (--opcua-security none)");
-  const auto bytes = [](const ByteString& b) { return std::span(reinterpret_cast<const uint8_t*>(b.bytes.data()), b.bytes.size()); };
-  if (!std::ranges::equal(bytes(thumbprint), pki->thumbprint))
+  if (!std::ranges::equal(thumbprint.view(), pki->thumbprint))
     return fail(tx, StatusCodeValue::BadSecurityChecksFailed, "the receiver thumbprint is not this server's certificate");
   if (channelId_ != 0) {
-    if (!std::ranges::equal(bytes(certificate), asymmetric_.peerCertificate))
+    if (!std::ranges::equal(certificate.view(), asymmetric_.peerCertificate))
       return fail(tx, StatusCodeValue::BadSecurityChecksFailed, "a renewal must come with the channel's client certificate");
   } else {
-    const PeerCheck check = checkPeerCertificate(*pki, bytes(certificate), ::time(nullptr));
+    const PeerCheck check = checkPeerCertificate(*pki, certificate.view(), ::time(nullptr));
     if (check.trust != PeerTrust::Trusted) {
       rejection_ = check.message;
       // BadSecurityChecksFailed, not the reason: OPC 10000-4 §5.5.2 asks not to tell the peer why.
@@ -166,7 +165,7 @@ bool Channel::openSecured(std::span<const uint8_t> frame, size_t headerEnd, cons
     }
     asymmetric_.ownCertificate = pki->certificate;
     asymmetric_.ownKeyPem = pki->keyPem;
-    asymmetric_.peerCertificate.assign(bytes(certificate).begin(), bytes(certificate).end());
+    asymmetric_.peerCertificate.assign(certificate.view().begin(), certificate.view().end());
   }
   if (!openAsymmetric(frame, headerEnd, asymmetric_, scratch_, plain))
     return fail(tx, StatusCodeValue::BadSecurityChecksFailed, "the OpenSecureChannel request is not signed by its certificate or not "
@@ -176,7 +175,7 @@ bool Channel::openSecured(std::span<const uint8_t> frame, size_t headerEnd, cons
 
 bool Channel::renewKeys(const ByteString& clientNonce, std::array<uint8_t, kSecureNonceBytes>& serverNonce) {
   if (clientNonce.bytes.size() != kSecureNonceBytes || !crypto().randomBytes(serverNonce.data(), serverNonce.size())) return false;
-  const auto client = std::span(reinterpret_cast<const uint8_t*>(clientNonce.bytes.data()), clientNonce.bytes.size());
+  const auto client = clientNonce.view();
   previousClientKeys_ = clientKeys_;
   // OPC 10000-6 §6.7.5: the client's keys from P_SHA256(ServerNonce, ClientNonce), the server's
   // from P_SHA256(ClientNonce, ServerNonce).

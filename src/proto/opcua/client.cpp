@@ -52,13 +52,6 @@ std::optional<uint32_t> decodeResponseHeader(Reader& r) {
   return result;
 }
 
-void encodeBytes(Writer& w, std::span<const uint8_t> b) {
-  w.i32(static_cast<int32_t>(b.size()));
-  w.raw(b);
-}
-
-std::span<const uint8_t> bytesOf(const ByteString& b) { return {reinterpret_cast<const uint8_t*>(b.bytes.data()), b.bytes.size()}; }
-
 // The identity token of ActivateSession: an ExtensionObject whose binary body is the token (of
 // a user: the password and the algorithm it is encrypted with, none for a plain one).
 ExtensionObject identityToken(uint32_t typeId, const std::string& policy, const std::string* user = nullptr,
@@ -68,7 +61,7 @@ ExtensionObject identityToken(uint32_t typeId, const std::string& policy, const 
   w.string(policy);
   if (user) {
     w.string(*user);
-    encodeBytes(w, password);
+    w.byteString(password);
     if (algorithm) w.string(algorithm);
     else w.nullString();
   }
@@ -228,17 +221,17 @@ std::expected<void, ClientError> Client::openChannel(uint32_t requestType) {
   const bool secured = mode_ != SecurityMode::None;
   if (secured && !crypto().randomBytes(channelNonce_.data(), channelNonce_.size()))
     return std::unexpected(lost("the crypto module gave no random bytes for the channel's nonce"));
-  if (secured) encodeBytes(b, channelNonce_);
+  if (secured) b.byteString(channelNonce_);
   else b.nullString();  // ClientNonce: none with policy None
   b.u32(kRequestedLifetimeMs);
   beginMessage("OPN");
   Writer w(tx_);
   if (secured) {
     w.string(kSecurityPolicyBasic256Sha256);
-    encodeBytes(w, asymmetric_.ownCertificate);
+    w.byteString(asymmetric_.ownCertificate);
     std::array<uint8_t, 20> thumbprint{};
     crypto().sha1(asymmetric_.peerCertificate.data(), asymmetric_.peerCertificate.size(), thumbprint.data());
-    encodeBytes(w, thumbprint);
+    w.byteString(thumbprint);
   } else {
     w.string(kSecurityPolicyNone);
     w.nullString();  // SenderCertificate
@@ -282,7 +275,7 @@ bool Client::deriveChannelKeys(const ByteString& serverNonce) {
   previousServerKeys_ = serverKeys_;
   // OPC 10000-6 §6.7.5: the client's keys from P_SHA256(ServerNonce, ClientNonce), the server's
   // from P_SHA256(ClientNonce, ServerNonce).
-  return deriveKeys(bytesOf(serverNonce), channelNonce_, clientKeys_) && deriveKeys(channelNonce_, bytesOf(serverNonce), serverKeys_);
+  return deriveKeys(serverNonce.view(), channelNonce_, clientKeys_) && deriveKeys(channelNonce_, serverNonce.view(), serverKeys_);
 }
 
 std::expected<void, ClientError> Client::createSession() {
@@ -303,8 +296,8 @@ std::expected<void, ClientError> Client::createSession() {
   w.string(config_.endpointUrl);
   w.string("virtcom bridge");
   if (secured) {
-    encodeBytes(w, clientNonce);
-    encodeBytes(w, asymmetric_.ownCertificate);
+    w.byteString(clientNonce);
+    w.byteString(asymmetric_.ownCertificate);
   } else {
     w.nullString();  // ClientNonce
     w.nullString();  // ClientCertificate
@@ -326,11 +319,11 @@ std::expected<void, ClientError> Client::createSession() {
   if (!decode(*r, algorithm) || !decode(*r, signature)) return std::unexpected(lost("a malformed CreateSession response"));
   // OPC 10000-4 §5.6.2: the server proves it holds the key of the certificate the channel was
   // opened for by signing our certificate and nonce.
-  if (secured && (!std::ranges::equal(bytesOf(certificate), asymmetric_.peerCertificate) ||
-                  !verifyBoth(asymmetric_.peerCertificate, asymmetric_.ownCertificate, clientNonce, bytesOf(signature))))
+  if (secured && (!std::ranges::equal(certificate.view(), asymmetric_.peerCertificate) ||
+                  !verifyBoth(asymmetric_.peerCertificate, asymmetric_.ownCertificate, clientNonce, signature.view())))
     return std::unexpected(lost("the server's CreateSession signature is not that of the endpoint's certificate"));
-  serverCertificate_.assign(bytesOf(certificate).begin(), bytesOf(certificate).end());
-  sessionNonce_.assign(bytesOf(nonce).begin(), bytesOf(nonce).end());
+  serverCertificate_.assign(certificate.view().begin(), certificate.view().end());
+  sessionNonce_.assign(nonce.view().begin(), nonce.view().end());
   // The policy ids of the identity tokens, from the endpoint of this channel's security (the
   // servers name them as they like: "anonymous", "Anonymous", "0", ...).
   auto endpoint = pickEndpoint(endpoints, mode_, config_.endpointUrl);
@@ -348,8 +341,7 @@ std::expected<void, ClientError> Client::createSession() {
 std::expected<ExtensionObject, ClientError> Client::userNameToken() {
   const std::string& password = config_.password;
   if (userNameSecurityPolicy_ != kSecurityPolicyBasic256Sha256)
-    return identityToken(ids::kUserNameIdentityToken, userNamePolicy_, &config_.user,
-                         std::span(reinterpret_cast<const uint8_t*>(password.data()), password.size()));
+    return identityToken(ids::kUserNameIdentityToken, userNamePolicy_, &config_.user, asBytes(password));
   const auto refused = [this](const std::string& why) {
     return std::unexpected(ClientError{false, 0, "cannot send the password of user '" + config_.user + "': " + why});
   };
@@ -378,7 +370,7 @@ std::expected<void, ClientError> Client::activateSession() {
     w.nullString();  //                  Signature
   } else {
     w.string(kRsaSha256SignatureUri);
-    encodeBytes(w, signature);
+    w.byteString(signature);
   }
   w.i32(0);  // ClientSoftwareCertificates
   w.i32(0);  // LocaleIds
@@ -540,7 +532,7 @@ std::expected<bool, ClientError> Client::takeChunk(std::span<const uint8_t> fram
       return std::unexpected(lost("a malformed OPN header"));
     sequenced = r.rest();
     if (mode_ != SecurityMode::None &&
-        (!std::ranges::equal(bytesOf(certificate), asymmetric_.peerCertificate) ||
+        (!std::ranges::equal(certificate.view(), asymmetric_.peerCertificate) ||
          !openAsymmetric(frame, frame.size() - r.rest().size(), asymmetric_, scratch_, sequenced)))
       return std::unexpected(lost("the OpenSecureChannel response is not signed with the endpoint's certificate or not encrypted for ours"));
   } else if (type == MessageType::Message) {

@@ -38,7 +38,7 @@ bool decryptPassword(const Pki& pki, const ByteString& secret, std::span<const u
   size_t used = 0;
   for (size_t at = 0; at < secret.bytes.size(); at += block) {
     size_t written = 0;
-    if (!crypto().rsaOaepSha1Decrypt(pki.keyPem.data(), pki.keyPem.size(), reinterpret_cast<const uint8_t*>(secret.bytes.data()) + at,
+    if (!crypto().rsaOaepSha1Decrypt(pki.keyPem.data(), pki.keyPem.size(), secret.view().data() + at,
                                      block, reinterpret_cast<uint8_t*>(plain.data()) + used, plain.size() - used, &written))
       return false;
     used += written;
@@ -56,7 +56,7 @@ bool decryptPassword(const Pki& pki, const ByteString& secret, std::span<const u
 // UserNameIdentityToken (OPC 10000-4 §7.41.3): PolicyId, UserName, Password, EncryptionAlgorithm.
 uint32_t checkUserName(const ServerConfig& config, const ExtensionObject& token, UserAccess& access, const IdentitySecurity& security) {
   if (config.users.empty() || token.body != ExtensionObject::Body::Binary) return bad(StatusCodeValue::BadIdentityTokenInvalid);
-  Reader in(std::span(reinterpret_cast<const uint8_t*>(token.bytes.data()), token.bytes.size()));
+  Reader in(token.view());
   std::string policyId, user, algorithm;
   ByteString password;
   if (!decode(in, policyId) || !decode(in, user) || !decode(in, password) || !decode(in, algorithm))

@@ -32,21 +32,13 @@ bool encodeNonce(Writer& w, const ServerCore& core, Session& s) {
     thread_local std::mt19937 random{std::random_device{}()};
     for (uint8_t& b : s.nonce) b = static_cast<uint8_t>(random());
   }
-  w.i32(static_cast<int32_t>(s.nonce.size()));
-  w.raw(s.nonce);
+  w.byteString(s.nonce);
   return true;
 }
 
 void encodeNullSignature(Writer& w) {
   w.nullString();
   w.nullString();
-}
-
-std::span<const uint8_t> bytesOf(const ByteString& b) { return {reinterpret_cast<const uint8_t*>(b.bytes.data()), b.bytes.size()}; }
-
-void encodeBytes(Writer& w, std::span<const uint8_t> b) {
-  w.i32(static_cast<int32_t>(b.size()));
-  w.raw(b);
 }
 
 // SignatureData (OPC 10000-4 §7.36) of the server over the client's certificate and nonce.
@@ -58,7 +50,7 @@ bool encodeServerSignature(Writer& w, const Pki& pki, std::span<const uint8_t> c
   if (!crypto().rsaSha256Sign(pki.keyPem.data(), pki.keyPem.size(), data.data(), data.size(), signature.data(), signature.size(), &length))
     return false;
   w.string(kRsaSha256Signature);
-  encodeBytes(w, std::span(signature).first(length));
+  w.byteString(std::span(signature).first(length));
   return true;
 }
 
@@ -70,7 +62,7 @@ bool clientSignatureValid(const ServiceContext& ctx, const std::string& algorith
   data.insert(data.end(), ctx.session->nonce.begin(), ctx.session->nonce.end());
   return algorithm == kRsaSha256Signature &&
          crypto().rsaSha256Verify(ctx.clientCertificate.data(), ctx.clientCertificate.size(), data.data(), data.size(),
-                                  bytesOf(signature).data(), signature.bytes.size());
+                                  signature.view().data(), signature.bytes.size());
 }
 
 constexpr uint32_t kDecodingError = static_cast<uint32_t>(StatusCodeValue::BadDecodingError);
@@ -131,7 +123,7 @@ void encodeApplicationDescription(Writer& w, const ServerCore& core) {
 void encodeEndpointDescription(Writer& w, const ServerCore& core, SecurityMode mode) {
   w.string(core.endpointUrl());
   encodeApplicationDescription(w, core);
-  if (const Pki* pki = core.config().pki.get()) encodeBytes(w, pki->certificate);
+  if (const Pki* pki = core.config().pki.get()) w.byteString(pki->certificate);
   else w.nullString();  // ServerCertificate: none without a PKI folder
   w.u32(static_cast<uint32_t>(mode));
   w.string(mode == SecurityMode::None ? kSecurityPolicyNone : kSecurityPolicyBasic256Sha256);
@@ -186,7 +178,7 @@ uint32_t handleCreateSession(ServiceContext& ctx, Reader& in, Writer& out) {
   // OPC 10000-4 §5.6.2: the nonce of a secured session has 32 bytes at least, and the client
   // certificate is the channel's and names the client's ApplicationUri.
   if (secured && clientNonce.bytes.size() < kSecureNonceBytes) return static_cast<uint32_t>(StatusCodeValue::BadNonceInvalid);
-  if (secured && !std::ranges::equal(bytesOf(clientCertificate), ctx.clientCertificate))
+  if (secured && !std::ranges::equal(clientCertificate.view(), ctx.clientCertificate))
     return static_cast<uint32_t>(StatusCodeValue::BadSecurityChecksFailed);
   if (secured && certificateUri(ctx.clientCertificate) != clientUri)
     return static_cast<uint32_t>(StatusCodeValue::BadCertificateUriInvalid);
@@ -199,7 +191,7 @@ uint32_t handleCreateSession(ServiceContext& ctx, Reader& in, Writer& out) {
   encode(out, NodeId::num(1, s->token));
   encode(out, s->timeoutMs);
   if (!encodeNonce(out, ctx.core, *s)) return static_cast<uint32_t>(StatusCodeValue::BadInternalError);
-  if (const Pki* pki = ctx.core.config().pki.get()) encodeBytes(out, pki->certificate);
+  if (const Pki* pki = ctx.core.config().pki.get()) out.byteString(pki->certificate);
   else out.nullString();  // ServerCertificate
   encodeEndpointDescriptions(out, ctx.core);
   out.i32(0);  // ServerSoftwareCertificates

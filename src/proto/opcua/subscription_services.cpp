@@ -228,7 +228,7 @@ uint32_t handleCreateMonitoredItems(ServiceContext& ctx, Reader& in, Writer& out
       status = bad(StatusCodeValue::BadAttributeIdInvalid);
     else if (sub->items.size() >= ctx.core.config().maxMonitoredItems) status = kBadTooManyMonitoredItems;
     else if (filter.typeId == NodeId::num(0, kDataChangeFilterId)) {
-      Reader f(std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(filter.bytes.data()), filter.bytes.size()));
+      Reader f(filter.view());
       uint32_t trigger = 0, deadbandType = 0;
       if (!f.u32(trigger) || !f.u32(deadbandType) || !decode(f, deadband)) return kDecodingError;
       if (deadbandType > kDeadbandAbsolute || deadband < 0) status = kBadMonitoredItemFilterUnsupported;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -31,6 +32,9 @@ enum class StatusCodeValue : uint32_t {
 std::string statusName(uint32_t code);
 inline bool isBad(uint32_t code) { return (code & 0x80000000u) != 0; }
 
+// The bytes a byte-like built-in holds in its std::string, without a copy.
+inline std::span<const uint8_t> asBytes(std::string_view s) { return {reinterpret_cast<const uint8_t*>(s.data()), s.size()}; }
+
 // Wrappers give the byte-like built-ins distinct C++ types, so a Scalar's index is its type id.
 struct String {
   std::string text;
@@ -40,6 +44,7 @@ struct String {
 struct ByteString {
   std::string bytes;
   bool null = false;
+  std::span<const uint8_t> view() const { return asBytes(bytes); }
   bool operator==(const ByteString&) const = default;
 };
 struct XmlElement {
@@ -100,6 +105,7 @@ struct ExtensionObject {
   NodeId typeId;
   Body body = Body::None;
   std::string bytes;
+  std::span<const uint8_t> view() const { return asBytes(bytes); }
   bool operator==(const ExtensionObject&) const = default;
 };
 

@@ -383,7 +383,7 @@ class SubscriptionTest : public ChannelTest {
         ExtensionObject change;
         EXPECT_TRUE(decode(r, change));
         EXPECT_EQ(change.typeId, NodeId::num(0, 811));
-        Reader c(std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(change.bytes.data()), change.bytes.size()));
+        Reader c(change.view());
         uint32_t count = 0;
         EXPECT_TRUE(c.u32(count));
         for (uint32_t i = 0; i < count; ++i) {

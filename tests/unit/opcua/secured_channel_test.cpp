@@ -118,7 +118,7 @@ class SecuredChannelTest : public ::testing::Test {
     ByteString serverNonce;
     ASSERT_TRUE(token.u32(channelId_) && token.u32(tokenId_) && token.u64(created) && token.u32(lifetime) && decode(token, serverNonce));
     ASSERT_EQ(serverNonce.bytes.size(), kSecureNonceBytes);
-    const auto server = std::span(reinterpret_cast<const uint8_t*>(serverNonce.bytes.data()), serverNonce.bytes.size());
+    const auto server = serverNonce.view();
     ASSERT_TRUE(deriveKeys(server, clientNonce_, clientKeys_));
     ASSERT_TRUE(deriveKeys(clientNonce_, server, serverKeys_));
   }

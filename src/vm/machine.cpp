@@ -185,10 +185,14 @@ bool Machine::interpret(uint32_t pou, const uint32_t startSp) {
       VIRTCOM_VM_QUICK_OPS(Q)
 #undef Q
   };
+  // The table's address in a register: hidden from the optimiser, which would otherwise
+  // recompute it (one more x86 instruction) at every dispatch.
+  void* const* labels = kLabels;
+  asm("" : "+r"(labels));
 #define VM_NEXT()                                  \
   do {                                             \
     if constexpr (kCounting) ++executed;           \
-    goto* kLabels[static_cast<uint8_t>((ip++)->op)]; \
+    goto* labels[static_cast<uint8_t>((ip++)->op)]; \
   } while (0)
 #define VM_CASE(name) op_##name:
 #define VM_QCASE(name) quick_##name:

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <type_traits>
 
 #include "vm/natives.hpp"
 #include "vm/value.hpp"
@@ -182,7 +183,7 @@ bool Machine::interpret(uint32_t pou, const uint32_t startSp) {
 #include "bytecode/opcodes.def"
 #undef X
 #define Q(name) &&quick_##name,
-      VIRTCOM_VM_QUICK_OPS(Q)
+      VIRTCOM_VM_QUICK_OPS(Q) VIRTCOM_VM_SPECIAL_OPS(Q)
 #undef Q
   };
   // The table's address in a register: hidden from the optimiser, which would otherwise
@@ -269,13 +270,21 @@ bool Machine::interpret(uint32_t pou, const uint32_t startSp) {
   }
     VM_NEXT();
 
-  VM_CASE(INDEX) {
-    const bc::IndexDesc& d = indexes[INS->c];
-    const int64_t k = asI(r[INS->b] - fromI(d.lo));
-    if (k < 0 || k >= int64_t{d.count}) VM_FAULT(IndexOutOfRange);
-    r[INS->a] = fromI(k) * d.stride;
+#define VM_INDEX()                                                   \
+  {                                                                  \
+    const bc::IndexDesc& d = indexes[INS->c];                        \
+    const int64_t k = asI(r[INS->b] - fromI(d.lo));                  \
+    if (k < 0 || k >= int64_t{d.count}) VM_FAULT(IndexOutOfRange);   \
+    r[INS->a] = fromI(k) * d.stride;                                 \
   }
-    VM_NEXT();
+  VM_CASE(INDEX) VM_INDEX();
+  VM_NEXT();
+  // INDEX, then the ADD after it (vm/quicken.hpp).
+  VM_QCASE(INDEX_ADD) VM_INDEX();
+  ++ip;
+  if constexpr (kCounting) ++executed;
+  VM_BIN(x + y);
+#undef VM_INDEX
 
   VM_CASE(ADD) VM_BIN(x + y);
   VM_CASE(SUB) VM_BIN(x - y);
@@ -386,6 +395,27 @@ bool Machine::interpret(uint32_t pou, const uint32_t startSp) {
   VM_CASE(JLEK) VM_BRANCH_IF(asI(r[INS->a]) <= immC(), static_cast<int16_t>(INS->b));
   VM_CASE(JGTK) VM_BRANCH_IF(asI(r[INS->a]) > immC(), static_cast<int16_t>(INS->b));
   VM_CASE(JGEK) VM_BRANCH_IF(asI(r[INS->a]) >= immC(), static_cast<int16_t>(INS->b));
+  // The interpreter's specialisations (vm/quicken.hpp, VIRTCOM_VM_SPECIAL_OPS).
+  VM_QCASE(SEXT8) r[INS->a] = fromI(static_cast<int8_t>(r[INS->b])); VM_NEXT();
+  VM_QCASE(SEXT16) r[INS->a] = fromI(static_cast<int16_t>(r[INS->b])); VM_NEXT();
+  VM_QCASE(SEXT32) r[INS->a] = fromI(static_cast<int32_t>(r[INS->b])); VM_NEXT();
+  VM_QCASE(ZEXT8) r[INS->a] = static_cast<uint8_t>(r[INS->b]); VM_NEXT();
+  VM_QCASE(ZEXT16) r[INS->a] = static_cast<uint16_t>(r[INS->b]); VM_NEXT();
+  VM_QCASE(ZEXT32) r[INS->a] = static_cast<uint32_t>(r[INS->b]); VM_NEXT();
+  // ADDI a, a, k; ST_w a, base, off; LD_Iw a, base, off (what the store left: the sum's low w
+  // bits, sign-extended); then the JLE_I that follows, as itself.
+#define VM_FOR_NEXT(T)                                                  \
+  {                                                                     \
+    const T v = static_cast<T>(r[INS->b] + static_cast<uint64_t>(immC())); \
+    storeLe<T>(mem + r[ip->b] + ip->c, v);                              \
+    r[INS->a] = fromI(static_cast<std::make_signed_t<T>>(v));           \
+    ip += 3;                                                            \
+    if constexpr (kCounting) executed += 3;                             \
+  }                                                                     \
+  VM_BRANCH_IF(asI(r[INS->a]) <= asI(r[INS->b]), static_cast<int16_t>(INS->c))
+  VM_QCASE(FOR_NEXT_I16) VM_FOR_NEXT(uint16_t);
+  VM_QCASE(FOR_NEXT_I32) VM_FOR_NEXT(uint32_t);
+#undef VM_FOR_NEXT
   VM_CASE(ENTER) {
     const bc::PouInfo& p = pous[INS->bx()];
     if (sp + p.frameSize > memSize) VM_FAULT(StackOverflow);
@@ -394,6 +424,8 @@ bool Machine::interpret(uint32_t pou, const uint32_t startSp) {
     sp += p.frameSize;
   }
     VM_NEXT();
+  // A frame of 0 bytes: sp <= memSize always holds, so nothing to check or copy.
+  VM_QCASE(ENTER0) r[INS->a] = sp; VM_NEXT();
   VM_CASE(CALL) {
     const bc::PouInfo& p = pous[INS->bx()];
     if (remaining == 0) VM_FAULT(WatchdogBudget);

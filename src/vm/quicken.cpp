@@ -41,6 +41,36 @@ bool basesReadOnly(const bc::Module& m, const bc::PouInfo& p) {
   });
 }
 
+// The specialised form of an instruction on its own or with the one after it (`next`, null at
+// the end of its POU), for every POU: SEXT/ZEXT of the IEC widths, INDEX_ADD, ENTER0.
+std::optional<QuickOp> specialForm(const bc::Module& m, const Instr& ins, const Instr* next) {
+  if (ins.op == Op::INDEX && next && next->op == Op::ADD) return QuickOp::INDEX_ADD;
+  if (ins.op == Op::ENTER && m.pous[ins.bx()].frameSize == 0) return QuickOp::ENTER0;
+  if (ins.op != Op::SEXT && ins.op != Op::ZEXT) return std::nullopt;
+  const bool sext = ins.op == Op::SEXT;
+  switch (ins.c) {
+    case 8: return sext ? QuickOp::SEXT8 : QuickOp::ZEXT8;
+    case 16: return sext ? QuickOp::SEXT16 : QuickOp::ZEXT16;
+    case 32: return sext ? QuickOp::SEXT32 : QuickOp::ZEXT32;
+    default: return std::nullopt;
+  }
+}
+
+// The FOR_NEXT form of the quickened code at `at` (QuickOp comment), if the four instructions
+// from there are a FOR loop's step, store, reload and test of one register and one location.
+std::optional<QuickOp> forNextForm(const Instr* at, const Instr* end) {
+  if (end - at < 4) return std::nullopt;
+  const Instr& step = at[0];
+  const Instr& store = at[1];
+  const Instr& load = at[2];
+  if (step.op != Op::ADDI || step.b != step.a || store.a != step.a || load.a != step.a || load.b != store.b ||
+      load.c != store.c || at[3].op != Op::JLE_I)
+    return std::nullopt;
+  if (store.op == quickOpcode(QuickOp::ST_16) && load.op == quickOpcode(QuickOp::LD_I16)) return QuickOp::FOR_NEXT_I16;
+  if (store.op == quickOpcode(QuickOp::ST_32) && load.op == quickOpcode(QuickOp::LD_I32)) return QuickOp::FOR_NEXT_I32;
+  return std::nullopt;
+}
+
 }  // namespace
 
 QuickCode quicken(const bc::Module& m, uint64_t memorySize) {
@@ -66,7 +96,15 @@ QuickCode quicken(const bc::Module& m, uint64_t memorySize) {
       Instr& ins = q.code[pc];
       if (ins.b < 2 && quickForm(ins.op)) ins.op = quickOpcode(*quickForm(ins.op));
     }
+    const Instr* const end = q.code.data() + p.codeStart + p.codeSize;
+    for (uint32_t pc = p.codeStart; pc < p.codeStart + p.codeSize; ++pc)
+      if (const std::optional<QuickOp> fused = forNextForm(&q.code[pc], end)) q.code[pc].op = quickOpcode(*fused);
   }
+  for (const bc::PouInfo& p : m.pous)
+    for (uint32_t pc = p.codeStart; pc < p.codeStart + p.codeSize; ++pc) {
+      const Instr* next = pc + 1 < p.codeStart + p.codeSize ? &q.code[pc + 1] : nullptr;
+      if (const std::optional<QuickOp> special = specialForm(m, q.code[pc], next)) q.code[pc].op = quickOpcode(*special);
+    }
   return q;
 }
 

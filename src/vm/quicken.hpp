@@ -1,7 +1,8 @@
 #pragma once
 // Load-time specialisation of a verified module's code for the interpreter ("quickening"):
 // loads and stores relative to a POU's frame (r0) or instance (r1) that cannot leave memory once
-// the POU's entry has checked fp and this, so their handlers skip checkedAddress.
+// the POU's entry has checked fp and this, so their handlers skip checkedAddress; and the
+// specialisations of VIRTCOM_VM_SPECIAL_OPS below.
 //
 // Why it is exact: a POU is quickened only if none of its instructions writes r0 or r1 (no
 // destination register below 2, no CALL or CALLN window starting below 2), so fp and this keep
@@ -22,10 +23,24 @@ namespace virtcom::vm {
   Q(LD_I8) Q(LD_U8) Q(LD_I16) Q(LD_U16) Q(LD_I32) Q(LD_U32) Q(LD_64) Q(LD_F32) Q(LD_BIT) Q(ST_8)      \
   Q(ST_16) Q(ST_32) Q(ST_64) Q(ST_F32) Q(ST_BIT) Q(STK_8) Q(STK_16) Q(STK_32) Q(STK_64)
 
+// Interpreter-only specialisations, exact like the quickened accesses:
+// - SEXT/ZEXT of 8, 16 or 32 bits (the widths of the IEC integers): one x86 extension instead
+//   of shifts by a variable count. In every POU.
+// - FOR_NEXT_I16/_I32: the end of a FOR loop over an INT/DINT variable as code generation emits
+//   it, `ADDI a, a, k; ST_w a, base, off; LD_Iw a, base, off; JLE_I x, y, target` with base r0 or
+//   r1 (quickened), in one dispatch instead of four. It replaces the ADDI only: the three others
+//   stay in place, so a jump to one of them runs it on its own. In quickened POUs.
+// - INDEX_ADD: an INDEX followed by an ADD (how an array element's address is computed: the
+//   offset, then base + offset), both run in one dispatch; the ADD stays for jumps to it.
+// - ENTER0: the ENTER of a POU without a frame (most function blocks): no copy of a template.
+#define VIRTCOM_VM_SPECIAL_OPS(S)                                                                  \
+  S(SEXT8) S(SEXT16) S(SEXT32) S(ZEXT8) S(ZEXT16) S(ZEXT32) S(FOR_NEXT_I16) S(FOR_NEXT_I32) S(INDEX_ADD) \
+  S(ENTER0)
+
 // Interpreter-only opcode numbers, right after the bytecode's (bc::Op::Count_).
 enum class QuickOp : uint8_t {
 #define Q(name) name,
-  VIRTCOM_VM_QUICK_OPS(Q)
+  VIRTCOM_VM_QUICK_OPS(Q) VIRTCOM_VM_SPECIAL_OPS(Q)
 #undef Q
   Count_
 };

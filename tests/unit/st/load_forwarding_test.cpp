@@ -93,6 +93,26 @@ TEST(LoadForwarding, AStoreIntoAnArrayElementKeepsWhatIsOutsideTheArray) {
   EXPECT_EQ(reloads(6), 8u);  // the last element: read again
 }
 
+TEST(LoadForwarding, AStoreIntoAMemberOfAnArrayElementKeepsWhatIsOutsideTheArrayOfMembers) {
+  // ARRAY[0..3] of an 8-byte FB at r1 + 0 (x0), i at r1 + 40: a[i].m := v with m at +4 (the
+  // ADDI that a call of a[i] or an assignment to its member makes), then load `offset` again.
+  const auto reloads = [](uint16_t offset) {
+    const Instr ld16 = Instr::abc(Op::LD_U16, 2, 1, offset);
+    Instr again = ld16;
+    again.a = 7;
+    return optimised({ld16, Instr::abc(Op::LD_I16, 3, 1, 40), Instr::abc(Op::INDEX, 4, 3, 0),
+                      Instr::abc(Op::ADD, 5, 1, 4), Instr::abc(Op::ADDI, 6, 5, 4), Instr::abc(Op::ST_16, 2, 6, 0), again,
+                      Instr::abc(Op::ST_16, 7, 1, 44), kRet},
+                     {{0, 4, 8}})
+        .code.size();
+  };
+  EXPECT_EQ(reloads(40), 8u);  // i, past the array: served from r2
+  EXPECT_EQ(reloads(2), 8u);   // before the first element's member
+  EXPECT_EQ(reloads(30), 8u);  // just past the last element's member
+  EXPECT_EQ(reloads(28), 9u);  // the last element's member: read again
+  EXPECT_EQ(reloads(12), 9u);  // the second element's member
+}
+
 TEST(LoadForwarding, WritingTheHoldingRegisterBeforeTheLastReadKeepsTheLoad) {
   const bc::Module m = optimised({ld(2, 0), ld(3, 0), Instr::asbx(Op::LDI, 2, 9), Instr::abc(Op::ADD, 4, 3, 2),
                                   Instr::abc(Op::ST_32, 4, 1, 8), kRet});

@@ -46,6 +46,7 @@ TEST(MachineQuick, AccessesRelativeToReadOnlyFpOrThisAreQuickened) {
   EXPECT_EQ(q.code[5].op, vm::quickOpcode(vm::QuickOp::LD_I32));
   EXPECT_EQ(q.code[7].op, vm::quickOpcode(vm::QuickOp::ST_32));
   EXPECT_EQ(q.code[6].op, Op::ADDI);
+  EXPECT_EQ(q.code[1].op, vm::quickOpcode(vm::QuickOp::ENTER0));  // FB has no frame
   EXPECT_TRUE(q.entry[1].admits(kStatic, 64));
   EXPECT_FALSE(q.entry[1].admits(kStatic, 8));                        // this below the null guard
   EXPECT_FALSE(q.entry[1].admits(kStatic, b.m.memorySize() - 15));    // this->[12..16) past the end
@@ -106,6 +107,181 @@ TEST(MachineQuick, TheTopPouIsCheckedOnEntryToo) {
   EXPECT_FALSE(vm.run(1, 2));  // FB run directly with this = 2
   EXPECT_EQ(vm.fault().pc, 5u);
   EXPECT_TRUE(vm.run(1, 64)) << vm.fault().describe(b.m);
+}
+
+// A FOR loop as code generation emits it (Program, this = 64): i := start (this->[0], INT or
+// DINT); DO count := count + 1 (r4); i := i + step; reload i; WHILE i <= end; this->[8] := count.
+// With `jumpIntoStore`, the first pass enters at the store (pc 6), as a jump to it would.
+ModuleBuilder forLoop(bool dint, int16_t start, int32_t end, int16_t step, bool jumpIntoStore = false) {
+  ModuleBuilder b(kStatic);
+  b.beginPou("MAIN", 5, 0, 0, bc::PouKind::Program);
+  b.emit(abc(dint ? Op::STK_32 : Op::STK_16, static_cast<uint16_t>(start), 1, 0));  // 0
+  b.emit(asbx(Op::LDI, 3, end));                                                    // 1
+  b.emit(dint ? abc(Op::LD_I32, 2, 1, 0) : abc(Op::LD_I16, 2, 1, 0));               // 2
+  b.emit(asbx(Op::JMP, 0, jumpIntoStore ? 2 : 0));                                  // 3
+  b.emit(abc(Op::ADDI, 4, 4, 1), 20);                                               // 4: the body
+  b.emit(abc(Op::ADDI, 2, 2, static_cast<uint16_t>(step)), 21);                     // 5
+  b.emit(abc(dint ? Op::ST_32 : Op::ST_16, 2, 1, 0));                               // 6
+  b.emit(abc(dint ? Op::LD_I32 : Op::LD_I16, 2, 1, 0));                             // 7
+  b.emit(abc(Op::JLE_I, 2, 3, static_cast<uint16_t>(-5)));                          // 8: to 4
+  b.emit(abc(Op::ST_32, 4, 1, 8));                                                  // 9
+  b.emit(abc(Op::RET));                                                             // 10
+  return b;
+}
+
+int32_t loaded(const vm::Machine& vm, uint32_t addr, bool dint) {
+  if (dint) {
+    int32_t v;
+    std::memcpy(&v, vm.memory() + addr, 4);
+    return v;
+  }
+  int16_t v;
+  std::memcpy(&v, vm.memory() + addr, 2);
+  return v;
+}
+
+TEST(MachineQuick, AForLoopsStepStoreReloadAndTestAreOneDispatch) {
+  for (const bool dint : {false, true}) {
+    ModuleBuilder b = forLoop(dint, -3, 40, 4);
+    ASSERT_EQ(bc::verifyModule(b.m), "");
+    const vm::QuickCode q = vm::quicken(b.m, b.m.memorySize());
+    EXPECT_EQ(q.code[5].op, vm::quickOpcode(dint ? vm::QuickOp::FOR_NEXT_I32 : vm::QuickOp::FOR_NEXT_I16));
+    // The three it covers stay, for jumps to them.
+    EXPECT_EQ(q.code[6].op, vm::quickOpcode(dint ? vm::QuickOp::ST_32 : vm::QuickOp::ST_16));
+    EXPECT_EQ(q.code[7].op, vm::quickOpcode(dint ? vm::QuickOp::LD_I32 : vm::QuickOp::LD_I16));
+    EXPECT_EQ(q.code[8].op, Op::JLE_I);
+    vm::Machine vm(b.m);
+    vm.coldStart();
+    vm.countInstructions(true);
+    ASSERT_TRUE(vm.run(0, 64)) << vm.fault().describe(b.m);
+    EXPECT_EQ(loaded(vm, 64, dint), 41);      // -3, 1, ..., 37, then 41 > 40
+    EXPECT_EQ(loaded(vm, 64 + 8, true), 11);  // 11 passes
+    EXPECT_EQ(vm.instructionsExecuted(), 4u + 11 * 5 + 2) << "counted as the instructions it stands for";
+  }
+}
+
+TEST(MachineQuick, AJumpIntoAFusedForStepRunsTheRestOnItsOwn) {
+  // Entering at the store skips the first step: i stays at its start for one pass more.
+  for (const bool dint : {false, true}) {
+    ModuleBuilder b = forLoop(dint, 0, 9, 3, true);
+    ASSERT_EQ(bc::verifyModule(b.m), "");
+    vm::Machine vm(b.m);
+    vm.coldStart();
+    ASSERT_TRUE(vm.run(0, 64)) << vm.fault().describe(b.m);
+    EXPECT_EQ(loaded(vm, 64, dint), 12);
+    EXPECT_EQ(loaded(vm, 64 + 8, true), 4);  // the body ran for i = 0, 3, 6, 9
+  }
+}
+
+TEST(MachineQuick, AFusedForStepWrapsLikeItsStoreAndReloadAndKeepsTheWatchdog) {
+  // INT: 32767 + 1 stores and reloads as -32768, which is <= 32767 again: an endless loop that
+  // the watchdog stops at the JLE_I, as it does without the fusion.
+  ModuleBuilder b = forLoop(false, 32766, 32767, 1);
+  ASSERT_EQ(bc::verifyModule(b.m), "");
+  vm::Machine vm(b.m);
+  vm.coldStart();
+  vm.setBudget(70000);
+  ASSERT_FALSE(vm.run(0, 64));
+  EXPECT_EQ(vm.fault().kind, bc::FaultKind::WatchdogBudget);
+  EXPECT_EQ(vm.fault().pc, 8u);
+  // DINT: the sum in 64 bits would end the loop; the 32-bit reload wraps it to negative.
+  ModuleBuilder d = forLoop(true, 0, 2147483647, 1);
+  d.m.code[0] = abc(Op::NOP);                  // i starts as this->[0], set below
+  d.poke<int32_t>(64, 2147483646);
+  ASSERT_EQ(bc::verifyModule(d.m), "");
+  vm::Machine dv(d.m);
+  dv.coldStart();
+  dv.setBudget(1000);
+  ASSERT_FALSE(dv.run(0, 64));
+  EXPECT_EQ(dv.fault().kind, bc::FaultKind::WatchdogBudget);
+  EXPECT_EQ(dv.fault().pc, 8u);
+  EXPECT_LT(loaded(dv, 64, true), 0);
+}
+
+TEST(MachineQuick, ExtensionsToTheIecWidthsAreSpecialisedAndComputeTheSame) {
+  const uint64_t x = 0x1234'5678'9abc'def0;  // every byte with its top bit differently set
+  ModuleBuilder b(kStatic);
+  b.constant(x);
+  b.beginPou("MAIN", 4, 0, 0, bc::PouKind::Program);
+  uint32_t out = 0;
+  for (const Op op : {Op::SEXT, Op::ZEXT})
+    for (const uint16_t bits : {8, 16, 32, 12, 64}) {
+      b.emit(abx(Op::LDK, 2, 0));
+      b.emit(abc(op, 3, 2, bits));
+      b.emit(abc(Op::ST_64, 3, 1, static_cast<uint16_t>(out)));
+      out += 8;
+    }
+  b.emit(abc(Op::RET));
+  ASSERT_EQ(bc::verifyModule(b.m), "");
+  const vm::QuickCode q = vm::quicken(b.m, b.m.memorySize());
+  EXPECT_EQ(q.code[1].op, vm::quickOpcode(vm::QuickOp::SEXT8));
+  EXPECT_EQ(q.code[4].op, vm::quickOpcode(vm::QuickOp::SEXT16));
+  EXPECT_EQ(q.code[7].op, vm::quickOpcode(vm::QuickOp::SEXT32));
+  EXPECT_EQ(q.code[10].op, Op::SEXT);  // 12 bits: the general form
+  EXPECT_EQ(q.code[16].op, vm::quickOpcode(vm::QuickOp::ZEXT8));
+  EXPECT_EQ(q.code[22].op, vm::quickOpcode(vm::QuickOp::ZEXT32));
+  vm::Machine vm(b.m);
+  vm.coldStart();
+  ASSERT_TRUE(vm.run(0, 64)) << vm.fault().describe(b.m);
+  const uint64_t expected[] = {0xffff'ffff'ffff'fff0, 0xffff'ffff'ffff'def0, 0xffff'ffff'9abc'def0, 0xffff'ffff'ffff'fef0, x,
+                               0xf0, 0xdef0, 0x9abc'def0, 0xef0, x};
+  for (size_t k = 0; k < std::size(expected); ++k) {
+    uint64_t v;
+    std::memcpy(&v, vm.memory() + 64 + 8 * k, 8);
+    EXPECT_EQ(v, expected[k]) << k;
+  }
+}
+
+// MAIN (this = 64): r2 := this->[0]; INDEX r3 := (r2 - 1) * 4 over [1..4]; ADD r4 := this + r3;
+// this->[8] := r4 - this (the element's offset). With `jumpToAdd`, r3 := 12 and a jump to the ADD.
+ModuleBuilder indexThenAdd(int32_t i, bool jumpToAdd = false) {
+  ModuleBuilder b(kStatic);
+  b.m.indexes.push_back({1, 4, 4});
+  b.poke<int32_t>(64, i);
+  b.beginPou("MAIN", 6, 0, 0, bc::PouKind::Program);
+  b.emit(abc(Op::LD_I32, 2, 1, 0));                      // 0
+  b.emit(asbx(Op::LDI, 3, 12));                          // 1
+  b.emit(asbx(Op::JMP, 0, jumpToAdd ? 1 : 0));           // 2
+  b.emit(abc(Op::INDEX, 3, 2, 0), 30);                   // 3
+  b.emit(abc(Op::ADD, 4, 1, 3));                         // 4
+  b.emit(abc(Op::SUB, 5, 4, 1));                         // 5
+  b.emit(abc(Op::ST_32, 5, 1, 8));                       // 6
+  b.emit(abc(Op::RET));                                  // 7
+  return b;
+}
+
+TEST(MachineQuick, AnIndexAndTheAddAfterItAreOneDispatch) {
+  ModuleBuilder b = indexThenAdd(3);
+  ASSERT_EQ(bc::verifyModule(b.m), "");
+  const vm::QuickCode q = vm::quicken(b.m, b.m.memorySize());
+  EXPECT_EQ(q.code[3].op, vm::quickOpcode(vm::QuickOp::INDEX_ADD));
+  EXPECT_EQ(q.code[4].op, Op::ADD);  // stays, for jumps to it
+  vm::Machine vm(b.m);
+  vm.coldStart();
+  vm.countInstructions(true);
+  ASSERT_TRUE(vm.run(0, 64)) << vm.fault().describe(b.m);
+  EXPECT_EQ(loaded(vm, 64 + 8, true), 8);  // element 3 of [1..4], 4 bytes each
+  EXPECT_EQ(vm.instructionsExecuted(), 8u);
+  // Entering at the ADD adds what r3 holds.
+  ModuleBuilder j = indexThenAdd(3, true);
+  ASSERT_EQ(bc::verifyModule(j.m), "");
+  vm::Machine jv(j.m);
+  jv.coldStart();
+  ASSERT_TRUE(jv.run(0, 64)) << jv.fault().describe(j.m);
+  EXPECT_EQ(loaded(jv, 64 + 8, true), 12);
+}
+
+TEST(MachineQuick, AFusedIndexFaultsAtTheIndexAsBefore) {
+  for (const int32_t i : {0, 5}) {
+    ModuleBuilder b = indexThenAdd(i);
+    ASSERT_EQ(bc::verifyModule(b.m), "");
+    vm::Machine vm(b.m);
+    vm.coldStart();
+    ASSERT_FALSE(vm.run(0, 64));
+    EXPECT_EQ(vm.fault().kind, bc::FaultKind::IndexOutOfRange);
+    EXPECT_EQ(vm.fault().pc, 3u);
+    EXPECT_EQ(vm.fault().loc.line, 30u);
+  }
 }
 
 }  // namespace

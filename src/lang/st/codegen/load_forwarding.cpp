@@ -246,22 +246,37 @@ const Fact* holder(const Facts& facts, const Instr& ins) {
   return nullptr;
 }
 
-// What `at` may address, seen from a known base: when its base register holds the address of
+// The range `width` bytes at `offset` from `base` may address when `base` holds the address of
 // an element of a one-dimensional array (ADD base, rb, ri with ri = INDEX(.., d), as code
-// generation addresses a[i]), any element of the array relative to rb; `at` itself otherwise.
-// So a store into an array no longer hides every other variable of the instance.
-Access region(const Access& at, const Facts& facts, const std::vector<bc::IndexDesc>& indexes) {
-  if (at.absolute) return at;
+// generation addresses a[i]): any element of the array, relative to rb; nullopt otherwise.
+std::optional<Access> elementRegion(uint16_t base, int64_t offset, uint32_t width, const Facts& facts,
+                                    const std::vector<bc::IndexDesc>& indexes) {
   for (const Fact& sum : facts) {
-    if (sum.reg != at.base || sum.key.op != Op::ADD) continue;
+    if (sum.reg != base || sum.key.op != Op::ADD) continue;
     for (const Fact& index : facts)
       if (index.reg == sum.key.c && index.key.op == Op::INDEX && index.key.c < indexes.size()) {
         const bc::IndexDesc& d = indexes[index.key.c];
-        const uint64_t span = uint64_t{d.count - 1} * d.stride + at.width;
-        if (span > UINT32_MAX) return at;
-        return Access{false, sum.key.b, at.offset, static_cast<uint32_t>(span)};
+        const uint64_t span = uint64_t{d.count - 1} * d.stride + width;
+        if (span > UINT32_MAX || offset < 0 || offset > UINT32_MAX) return std::nullopt;
+        return Access{false, sum.key.b, static_cast<uint32_t>(offset), static_cast<uint32_t>(span)};
       }
   }
+  return std::nullopt;
+}
+
+// What `at` may address, seen from a known base: the array region of its element (above),
+// also when the base is an element's address plus a constant (ADDI: a member of an FB instance
+// in an array, as a call of counters[i] addresses it); `at` itself otherwise. So a store into an
+// array, or a standard FB of an array called, no longer hides every other variable of the
+// instance.
+Access region(const Access& at, const Facts& facts, const std::vector<bc::IndexDesc>& indexes) {
+  if (at.absolute) return at;
+  if (const std::optional<Access> element = elementRegion(at.base, at.offset, at.width, facts, indexes)) return *element;
+  for (const Fact& member : facts)
+    if (member.reg == at.base && member.key.op == Op::ADDI)
+      if (const std::optional<Access> element = elementRegion(
+              member.key.b, int64_t{at.offset} + static_cast<int16_t>(member.key.c), at.width, facts, indexes))
+        return *element;
   return at;
 }
 

@@ -447,11 +447,12 @@ bool Machine::interpret(uint32_t pou, const uint32_t startSp) {
     }
   }
     VM_NEXT();
-  VM_CASE(CALLFB) {
-    const uint32_t fb = INS->bx();
-    if (!checkedAddress(r[INS->a], 0, kNativeFbSizes[fb], memSize, guard, ad)) VM_FAULT(InvalidPointer);
-    if (kNativeFbs[fb](mem + ad, taskTimeNs_)) ++timeReads_;
-  }
+  VM_CASE(CALLFB)
+    if (!checkedAddress(r[INS->a], 0, kNativeFbSizes[INS->bx()], memSize, guard, ad)) VM_FAULT(InvalidPointer);
+    if (kNativeFbs[INS->bx()](mem + ad, taskTimeNs_)) ++timeReads_;
+    VM_NEXT();
+  VM_QCASE(CALLFB)
+    if (kNativeFbs[INS->bx()](mem + r[INS->a], taskTimeNs_)) ++timeReads_;
     VM_NEXT();
   VM_CASE(RET)
     if (depth == 0) {

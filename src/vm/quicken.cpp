@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "bytecode/verifier.hpp"
+#include "vm/natives.hpp"
 
 namespace virtcom::vm {
 
@@ -56,6 +57,66 @@ std::optional<QuickOp> specialForm(const bc::Module& m, const Instr& ins, const 
   }
 }
 
+// Where the base register of an access points: `reach` bytes or less past fp (base 0) or this
+// (base 1), never before it.
+struct Placed {
+  uint16_t base;
+  uint64_t reach;
+};
+
+// For each instruction of POU `p` (whose r0 and r1 nothing writes), where its B register points
+// if it is fp, this, or an address computed from them in the same basic block: an array element
+// (ADD of fp/this and an INDEX, which faults unless its result is 0 .. (count - 1) * stride), a
+// member at a constant offset (ADDI of a non-negative constant), or both (a member of an element,
+// an FB instance in an array). The element's accesses can then skip checkedAddress like the
+// direct ones, their reach added to the extent that the entry check proves.
+std::vector<std::optional<Placed>> placedBases(const bc::Module& m, const bc::PouInfo& p) {
+  const uint32_t n = p.codeSize;
+  const Instr* const code = m.code.data() + p.codeStart;
+  std::vector<bool> leader(n, false);
+  for (uint32_t k = 0; k < n; ++k)
+    if (bc::isBranch(code[k].op)) {
+      const int64_t target = bc::branchTarget(k, code[k]);
+      if (target >= 0 && target < n) leader[target] = true;
+    }
+  std::vector<std::optional<Placed>> out(n);
+  std::vector<std::optional<Placed>> address(p.numRegs);     // an address past fp or this
+  std::vector<std::optional<uint64_t>> offset(p.numRegs);    // an INDEX result, at most this
+  for (uint32_t k = 0; k < n; ++k) {
+    if (leader[k]) {
+      std::fill(address.begin(), address.end(), std::nullopt);
+      std::fill(offset.begin(), offset.end(), std::nullopt);
+    }
+    const Instr& ins = code[k];
+    const uint16_t base = ins.op == Op::CALLFB ? ins.a : ins.b;  // the instance, or the access's base
+    if (base < 2) out[k] = Placed{base, 0};
+    else if (base < p.numRegs) out[k] = address[base];
+    std::optional<Placed> placed;
+    std::optional<uint64_t> index;
+    if (ins.op == Op::INDEX && ins.c < m.indexes.size()) {
+      const bc::IndexDesc& d = m.indexes[ins.c];
+      index = d.count ? uint64_t{d.count - 1} * d.stride : 0;
+    } else if (ins.op == Op::ADD && ins.b < p.numRegs && ins.c < p.numRegs) {
+      if (ins.b < 2 && offset[ins.c]) placed = Placed{ins.b, *offset[ins.c]};
+      else if (ins.c < 2 && offset[ins.b]) placed = Placed{ins.c, *offset[ins.b]};
+    } else if (ins.op == Op::ADDI && ins.b < p.numRegs && static_cast<int16_t>(ins.c) >= 0) {
+      const auto constant = static_cast<uint64_t>(static_cast<int16_t>(ins.c));
+      if (ins.b < 2) placed = Placed{ins.b, constant};
+      else if (address[ins.b]) placed = Placed{address[ins.b]->base, address[ins.b]->reach + constant};
+    }
+    if (ins.op == Op::CALL || ins.op == Op::CALLN) {  // a callee may write its whole window
+      for (uint32_t r = ins.a; r < p.numRegs; ++r) {
+        address[r] = std::nullopt;
+        offset[r] = std::nullopt;
+      }
+    } else if (bc::writesOnlyA(ins.op) && ins.a < p.numRegs) {
+      address[ins.a] = placed;
+      offset[ins.a] = index;
+    }
+  }
+  return out;
+}
+
 // The FOR_NEXT form of the quickened code at `at` (QuickOp comment), if the four instructions
 // from there are a FOR loop's step, store, reload and test of one register and one location.
 std::optional<QuickOp> forNextForm(const Instr* at, const Instr* end) {
@@ -79,22 +140,28 @@ QuickCode quicken(const bc::Module& m, uint64_t memorySize) {
   for (size_t pou = 0; pou < m.pous.size(); ++pou) {
     const bc::PouInfo& p = m.pous[pou];
     if (!basesReadOnly(m, p)) continue;
+    // Each access with a placed base, and how far past fp or this it may reach; one whose reach
+    // memory could never hold stays checked (its fault is then the program's).
+    const std::vector<std::optional<Placed>> placed = placedBases(m, p);
+    std::vector<bool> quick(p.codeSize, false);
     uint64_t extent[2] = {0, 0};  // fp, this
-    for (uint32_t pc = p.codeStart; pc < p.codeStart + p.codeSize; ++pc) {
-      const Instr& ins = m.code[pc];
-      if (ins.b >= 2 || !quickForm(ins.op)) continue;
+    for (uint32_t k = 0; k < p.codeSize; ++k) {
+      const Instr& ins = m.code[p.codeStart + k];
+      const bool fb = ins.op == Op::CALLFB && ins.bx() < kNativeFbSizes.size();
+      if (!placed[k] || !(quickForm(ins.op) || fb)) continue;
       const bool bit = ins.op == Op::LD_BIT || ins.op == Op::ST_BIT;  // C is the bit, not an offset
-      extent[ins.b] = std::max<uint64_t>(extent[ins.b], (bit ? 0 : ins.c) + accessWidth(ins.op));
+      const uint64_t reach = placed[k]->reach + (fb ? kNativeFbSizes[ins.bx()] : (bit ? 0 : ins.c) + accessWidth(ins.op));
+      if (reach + guard > memorySize) continue;
+      quick[k] = true;
+      extent[placed[k]->base] = std::max(extent[placed[k]->base], reach);
     }
-    // Bases that can never pass the entry check (memory smaller than the extent): no quickening.
-    if (std::max(extent[0], extent[1]) + guard > memorySize) continue;
     EntryCheck& e = q.entry[pou];
     e.lo = guard;
     if (extent[0]) e.fpSpan = memorySize - extent[0] - guard;
     if (extent[1]) e.thisSpan = memorySize - extent[1] - guard;
-    for (uint32_t pc = p.codeStart; pc < p.codeStart + p.codeSize; ++pc) {
-      Instr& ins = q.code[pc];
-      if (ins.b < 2 && quickForm(ins.op)) ins.op = quickOpcode(*quickForm(ins.op));
+    for (uint32_t k = 0; k < p.codeSize; ++k) {
+      Instr& ins = q.code[p.codeStart + k];
+      if (quick[k]) ins.op = quickOpcode(ins.op == Op::CALLFB ? QuickOp::CALLFB : *quickForm(ins.op));
     }
     const Instr* const end = q.code.data() + p.codeStart + p.codeSize;
     for (uint32_t pc = p.codeStart; pc < p.codeStart + p.codeSize; ++pc)

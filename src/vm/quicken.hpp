@@ -1,8 +1,9 @@
 #pragma once
 // Load-time specialisation of a verified module's code for the interpreter ("quickening"):
-// loads and stores relative to a POU's frame (r0) or instance (r1) that cannot leave memory once
-// the POU's entry has checked fp and this, so their handlers skip checkedAddress; and the
-// specialisations of VIRTCOM_VM_SPECIAL_OPS below.
+// loads and stores relative to a POU's frame (r0) or instance (r1), or to an address computed
+// from them in the same basic block (an array element, a member: `placedBases` in quicken.cpp),
+// that cannot leave memory once the POU's entry has checked fp and this, so their handlers skip
+// checkedAddress; and the specialisations of VIRTCOM_VM_SPECIAL_OPS below.
 //
 // Why it is exact: a POU is quickened only if none of its instructions writes r0 or r1 (no
 // destination register below 2, no CALL or CALLN window starting below 2), so fp and this keep
@@ -33,9 +34,11 @@ namespace virtcom::vm {
 // - INDEX_ADD: an INDEX followed by an ADD (how an array element's address is computed: the
 //   offset, then base + offset), both run in one dispatch; the ADD stays for jumps to it.
 // - ENTER0: the ENTER of a POU without a frame (most function blocks): no copy of a template.
+// - CALLFB: a standard FB whose instance is placed like a quickened access (an element of an
+//   array of TONs), called without checkedAddress. In quickened POUs.
 #define VIRTCOM_VM_SPECIAL_OPS(S)                                                                  \
   S(SEXT8) S(SEXT16) S(SEXT32) S(ZEXT8) S(ZEXT16) S(ZEXT32) S(FOR_NEXT_I16) S(FOR_NEXT_I32) S(INDEX_ADD) \
-  S(ENTER0)
+  S(ENTER0) S(CALLFB)
 
 // Interpreter-only opcode numbers, right after the bytecode's (bc::Op::Count_).
 enum class QuickOp : uint8_t {

@@ -284,5 +284,80 @@ TEST(MachineQuick, AFusedIndexFaultsAtTheIndexAsBefore) {
   }
 }
 
+TEST(MachineQuick, AccessesToAnArrayElementAreQuickenedWithTheArrayInTheEntryCheck) {
+  // this->a : ARRAY[1..4] of 8-byte elements at this + 0; i at this + 0 too (only read first).
+  ModuleBuilder b(kStatic);
+  b.m.indexes.push_back({1, 4, 8});
+  b.poke<int32_t>(64, 2);
+  b.poke<int32_t>(64 + 8 + 4 + 8, 77);
+  b.beginPou("MAIN", 8, 0, 0, bc::PouKind::Program);
+  b.emit(abc(Op::LD_I32, 2, 1, 0));     // 0: i
+  b.emit(abc(Op::INDEX, 3, 2, 0));      // 1
+  b.emit(abc(Op::ADD, 4, 1, 3));        // 2: &a[i]
+  b.emit(abc(Op::ADDI, 5, 4, 4));       // 3: &a[i].m (+4)
+  b.emit(abc(Op::LD_I32, 6, 5, 8));     // 4: reaches 24 + 4 + 8 + 4 = 40 past this
+  b.emit(abc(Op::ST_32, 6, 4, 16));     // 5: reaches 24 + 16 + 4 = 44
+  b.emit(asbx(Op::JZ, 6, 0));           // 6: makes 7 a branch target
+  b.emit(abc(Op::LD_I32, 7, 4, 0));     // 7: another block: r4 no longer known
+  b.emit(abc(Op::RET));                 // 8
+  ASSERT_EQ(bc::verifyModule(b.m), "");
+  const vm::QuickCode q = vm::quicken(b.m, b.m.memorySize());
+  EXPECT_EQ(q.code[4].op, vm::quickOpcode(vm::QuickOp::LD_I32));
+  EXPECT_EQ(q.code[5].op, vm::quickOpcode(vm::QuickOp::ST_32));
+  EXPECT_EQ(q.code[7].op, Op::LD_I32);
+  EXPECT_TRUE(q.entry[0].admits(0, b.m.memorySize() - 44));
+  EXPECT_FALSE(q.entry[0].admits(0, b.m.memorySize() - 43));
+  vm::Machine vm(b.m);
+  vm.coldStart();
+  ASSERT_TRUE(vm.run(0, 64)) << vm.fault().describe(b.m);
+  EXPECT_EQ(loaded(vm, 64 + 8 + 16, true), 77);
+}
+
+TEST(MachineQuick, AStandardFbOfAnArrayIsCalledWithoutTheCheckWithTheArrayInTheEntryCheck) {
+  // this->t : ARRAY[0..3] OF R_TRIG (4 bytes each: CLK, Q, M) at this + 8; i at this + 0.
+  ModuleBuilder b(kStatic);
+  b.m.indexes.push_back({0, 4, 4});
+  b.poke<int32_t>(64, 2);
+  b.beginPou("MAIN", 6, 0, 0, bc::PouKind::Program);
+  b.emit(abc(Op::LD_I32, 2, 1, 0));                                          // 0: i
+  b.emit(abc(Op::INDEX, 3, 2, 0));                                           // 1
+  b.emit(abc(Op::ADD, 4, 1, 3));                                             // 2
+  b.emit(abc(Op::ADDI, 5, 4, 8));                                            // 3: &t[i]
+  b.emit(abc(Op::STK_8, 1, 5, 0));                                           // 4: t[i].CLK := TRUE
+  b.emit(abx(Op::CALLFB, 5, static_cast<uint32_t>(bc::NativeFb::R_TRIG)));  // 5: reaches 12 + 8 + 3
+  b.emit(abc(Op::RET));                                                      // 6
+  ASSERT_EQ(bc::verifyModule(b.m), "");
+  const vm::QuickCode q = vm::quicken(b.m, b.m.memorySize());
+  EXPECT_EQ(q.code[4].op, vm::quickOpcode(vm::QuickOp::STK_8));
+  EXPECT_EQ(q.code[5].op, vm::quickOpcode(vm::QuickOp::CALLFB));
+  EXPECT_TRUE(q.entry[0].admits(0, b.m.memorySize() - 23));
+  EXPECT_FALSE(q.entry[0].admits(0, b.m.memorySize() - 22));
+  vm::Machine vm(b.m);
+  vm.coldStart();
+  ASSERT_TRUE(vm.run(0, 64)) << vm.fault().describe(b.m);
+  EXPECT_EQ(vm.memory()[64 + 8 + 2 * 4 + 1], 1);  // t[2].Q: the rising edge
+  EXPECT_EQ(vm.memory()[64 + 8 + 1 * 4 + 1], 0);
+}
+
+TEST(MachineQuick, AnElementAddressAfterACallOrFromANegativeOffsetStaysChecked) {
+  ModuleBuilder b(kStatic);
+  b.m.indexes.push_back({0, 4, 8});
+  b.beginPou("MAIN", 8, 0, 0, bc::PouKind::Program);
+  b.emit(abc(Op::LD_I32, 2, 1, 0));                             // 0
+  b.emit(abc(Op::INDEX, 3, 2, 0));                              // 1
+  b.emit(abc(Op::ADD, 4, 1, 3));                                // 2
+  b.emit(abc(Op::ADDI, 5, 4, static_cast<uint16_t>(-4)));       // 3: before the element
+  b.emit(abc(Op::LD_I32, 6, 5, 0));                             // 4: checked
+  b.emit(abx(Op::CALLN, 4, static_cast<uint32_t>(bc::Native::Count_) - 1));  // 5: r4 and up rewritten
+  b.emit(abc(Op::LD_I32, 6, 4, 0));                             // 6: checked
+  b.emit(abc(Op::LD_I32, 6, 3, 0));                             // 7: r3 is an offset, not an address
+  b.emit(abc(Op::RET));                                         // 8
+  const vm::QuickCode q = vm::quicken(b.m, b.m.memorySize());
+  EXPECT_EQ(q.code[4].op, Op::LD_I32);
+  EXPECT_EQ(q.code[6].op, Op::LD_I32);
+  EXPECT_EQ(q.code[7].op, Op::LD_I32);
+  EXPECT_EQ(q.code[0].op, vm::quickOpcode(vm::QuickOp::LD_I32));
+}
+
 }  // namespace
 }  // namespace virtcom

@@ -124,8 +124,9 @@ std::optional<QuickOp> forNextForm(const Instr* at, const Instr* end) {
   const Instr& step = at[0];
   const Instr& store = at[1];
   const Instr& load = at[2];
+  // The base must not be the stepped register: the fused handler addresses with it as it was.
   if (step.op != Op::ADDI || step.b != step.a || store.a != step.a || load.a != step.a || load.b != store.b ||
-      load.c != store.c || at[3].op != Op::JLE_I)
+      load.c != store.c || store.b == step.a || at[3].op != Op::JLE_I)
     return std::nullopt;
   if (store.op == quickOpcode(QuickOp::ST_16) && load.op == quickOpcode(QuickOp::LD_I16)) return QuickOp::FOR_NEXT_I16;
   if (store.op == quickOpcode(QuickOp::ST_32) && load.op == quickOpcode(QuickOp::LD_I32)) return QuickOp::FOR_NEXT_I32;

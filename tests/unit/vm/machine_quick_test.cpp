@@ -198,6 +198,29 @@ TEST(MachineQuick, AFusedForStepWrapsLikeItsStoreAndReloadAndKeepsTheWatchdog) {
   EXPECT_LT(loaded(dv, 64, true), 0);
 }
 
+TEST(MachineQuick, AStepOfTheRegisterThatIsAlsoTheBaseIsNotFused) {
+  // r2 := this + 8, then r2 += 2; mem[r2] := r2; r2 := mem[r2]; the JLE_I: the shape of a FOR
+  // loop's end, but the store's address is the stepped r2 (an element address, quickened).
+  ModuleBuilder b(kStatic);
+  b.beginPou("MAIN", 4, 0, 0, bc::PouKind::Program);
+  b.emit(abc(Op::ADDI, 2, 1, 8));                              // 0
+  b.emit(asbx(Op::LDI, 3, 0));                                 // 1
+  b.emit(abc(Op::ADDI, 2, 2, 2));                              // 2
+  b.emit(abc(Op::ST_16, 2, 2, 0));                             // 3
+  b.emit(abc(Op::LD_I16, 2, 2, 0));                            // 4
+  b.emit(abc(Op::JLE_I, 2, 3, 0));                             // 5: to 6 either way
+  b.emit(abc(Op::RET));                                        // 6
+  ASSERT_EQ(bc::verifyModule(b.m), "");
+  const vm::QuickCode q = vm::quicken(b.m, b.m.memorySize());
+  EXPECT_EQ(q.code[2].op, Op::ADDI);
+  EXPECT_EQ(q.code[3].op, vm::quickOpcode(vm::QuickOp::ST_16));
+  vm::Machine vm(b.m);
+  vm.coldStart();
+  ASSERT_TRUE(vm.run(0, 64)) << vm.fault().describe(b.m);
+  EXPECT_EQ(loaded(vm, 74, false), 74);
+  EXPECT_EQ(loaded(vm, 72, false), 0);
+}
+
 TEST(MachineQuick, ExtensionsToTheIecWidthsAreSpecialisedAndComputeTheSame) {
   const uint64_t x = 0x1234'5678'9abc'def0;  // every byte with its top bit differently set
   ModuleBuilder b(kStatic);

@@ -200,11 +200,11 @@ bool Machine::interpret(uint32_t pou, const uint32_t startSp) {
   VM_NEXT();
 #else
 #define VM_NEXT() continue
-#define VM_CASE(name) case Op::name:
-#define VM_QCASE(name) case quickOpcode(QuickOp::name):
+#define VM_CASE(name) case static_cast<unsigned>(Op::name):
+#define VM_QCASE(name) case static_cast<unsigned>(quickOpcode(QuickOp::name)):
   for (;;) {
     if constexpr (kCounting) ++executed;
-    switch ((ip++)->op) {
+    switch (static_cast<unsigned>((ip++)->op)) {
 #endif
 
   VM_CASE(NOP) VM_NEXT();
@@ -481,7 +481,7 @@ bool Machine::interpret(uint32_t pou, const uint32_t startSp) {
   }
 
 #if !VIRTCOM_VM_COMPUTED_GOTO
-      case Op::Count_: break;
+      default: break;  // none after verification
     }
     executed_ += executed;
     return raise(FaultKind::InvalidPointer, pcOf(INS), depth, startSp);  // unreachable after verification

@@ -7,6 +7,8 @@
 
 #include <map>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "core/cell_diagnostic_codes.hpp"
 
@@ -25,12 +27,16 @@ bool isPlainNull(const yaml_event_t& e) {
   return v.empty() || v == "~" || v == "null" || v == "Null" || v == "NULL";
 }
 
-// Builds the tree from the event stream: one node per call, recursively. The first syntax error
-// stops it (libyaml cannot go on after one). A duplicate key is reported (C003) and the build goes
+// Builds the tree from the event stream: one node per call, recursively, at most kMaxNesting
+// sequences and mappings deep (deeper input, such as 3,000 `{` in a row, would exhaust the stack
+// here and when the tree is destroyed; no cell, mapping, routes or scenario file comes near it).
+// The first syntax error stops it (libyaml cannot go on after one). A duplicate key is reported (C003) and the build goes
 // on, so every duplicate of the file comes out of one load; YAML 1.2 requires unique keys and
 // silently keeping the first would hide the second value from the user.
 class TreeBuilder {
  public:
+  static constexpr int kMaxNesting = 256;
+
   TreeBuilder(yaml_parser_t& parser, uint32_t fileId, Diagnostics& diags)
       : parser_(parser), fileId_(fileId), diags_(diags) {}
 
@@ -49,8 +55,11 @@ class TreeBuilder {
     return node(out);
   }
 
-  std::string error() const { return parser_.problem ? parser_.problem : "unreadable YAML"; }
-  SourceLocation errorAt() const { return at(fileId_, parser_.problem_mark); }
+  std::string error() const {
+    if (tooDeepAt_) return "sequences and mappings nested more than " + std::to_string(kMaxNesting) + " deep";
+    return parser_.problem ? parser_.problem : "unreadable YAML";
+  }
+  SourceLocation errorAt() const { return tooDeepAt_ ? *tooDeepAt_ : at(fileId_, parser_.problem_mark); }
 
   ~TreeBuilder() { yaml_event_delete(&event_); }
 
@@ -77,8 +86,17 @@ class TreeBuilder {
         out = it != anchors_.end() ? it->second : ConfigNode::makeScalar("", loc);
         return true;
       }
-      case YAML_SEQUENCE_START_EVENT: return sequence(loc, out);
-      case YAML_MAPPING_START_EVENT: return mapping(loc, out);
+      case YAML_SEQUENCE_START_EVENT:
+      case YAML_MAPPING_START_EVENT: {
+        if (depth_ == kMaxNesting) {
+          tooDeepAt_ = loc;
+          return false;
+        }
+        ++depth_;
+        const bool ok = event_.type == YAML_SEQUENCE_START_EVENT ? sequence(loc, out) : mapping(loc, out);
+        --depth_;
+        return ok;
+      }
       default: out = ConfigNode::makeScalar("", loc); return true;
     }
   }
@@ -130,6 +148,8 @@ class TreeBuilder {
   Diagnostics& diags_;
   yaml_event_t event_{};
   std::map<std::string, ConfigNode> anchors_;
+  int depth_ = 0;                          // sequences and mappings open around the current node
+  std::optional<SourceLocation> tooDeepAt_;  // where nesting passed kMaxNesting
 };
 
 }  // namespace

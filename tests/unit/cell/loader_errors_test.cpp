@@ -46,6 +46,16 @@ TEST_F(LoaderErrors, YamlSyntaxErrorAtItsPosition) {
             "1 error(s), 0 warning(s)\n");
 }
 
+// Found by fuzz_ads_routes (2026-12-05): 3,087 `{` in a row overflowed the stack of the tree
+// builder. Nesting beyond 256 sequences and mappings is now a syntax error at the first one too
+// deep, for every YAML file the loader reads (cell, mapping, routes, scenario files).
+TEST_F(LoaderErrors, NestingTooDeepIsAnErrorNotACrash) {
+  EXPECT_THAT(fails("name: x\nplc: " + std::string(3087, '{') + "\n"),
+              ElementsAre("cell.yaml:2:261: error[C001]: YAML syntax error: sequences and mappings nested more than 256 deep"));
+  EXPECT_THAT(fails("name: x\nplc: " + std::string(100000, '[') + "\n"),
+              ElementsAre("cell.yaml:2:261: error[C001]: YAML syntax error: sequences and mappings nested more than 256 deep"));
+}
+
 // A key written twice in one mapping is an error at the second, naming the first (issue 16: the
 // first used to win silently); every duplicate of the file is reported, at any depth.
 TEST_F(LoaderErrors, DuplicateKeysAreErrorsNamingTheFirst) {

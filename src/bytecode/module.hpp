@@ -83,6 +83,11 @@ struct IndexDesc {
   int64_t lo = 0;
   uint32_t count = 1;
   uint32_t stride = 1;
+
+  // The largest byte offset INDEX yields with this description, (count - 1) * stride: it faults
+  // for an index outside lo .. lo + count - 1, so an element's address (the array's base plus
+  // INDEX) lies at most this far past the base. 0 for an empty array, whose INDEX always faults.
+  uint64_t lastOffset() const { return count ? uint64_t{count - 1} * stride : 0; }
 };
 
 // One entry per instruction that starts a statement (sorted by pc).

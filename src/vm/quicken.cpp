@@ -66,7 +66,7 @@ struct Placed {
 
 // For each instruction of POU `p` (whose r0 and r1 nothing writes), where its B register points
 // if it is fp, this, or an address computed from them in the same basic block: an array element
-// (ADD of fp/this and an INDEX, which faults unless its result is 0 .. (count - 1) * stride), a
+// (ADD of fp/this and an INDEX, at most IndexDesc::lastOffset past them), a
 // member at a constant offset (ADDI of a non-negative constant), or both (a member of an element,
 // an FB instance in an array). The element's accesses can then skip checkedAddress like the
 // direct ones, their reach added to the extent that the entry check proves.
@@ -94,8 +94,7 @@ std::vector<std::optional<Placed>> placedBases(const bc::Module& m, const bc::Po
     std::optional<Placed> placed;
     std::optional<uint64_t> index;
     if (ins.op == Op::INDEX && ins.c < m.indexes.size()) {
-      const bc::IndexDesc& d = m.indexes[ins.c];
-      index = d.count ? uint64_t{d.count - 1} * d.stride : 0;
+      index = m.indexes[ins.c].lastOffset();
     } else if (ins.op == Op::ADD && ins.b < p.numRegs && ins.c < p.numRegs) {
       if (ins.b < 2 && offset[ins.c]) placed = Placed{ins.b, *offset[ins.c]};
       else if (ins.c < 2 && offset[ins.b]) placed = Placed{ins.c, *offset[ins.b]};

@@ -255,8 +255,7 @@ std::optional<Access> elementRegion(uint16_t base, int64_t offset, uint32_t widt
     if (sum.reg != base || sum.key.op != Op::ADD) continue;
     for (const Fact& index : facts)
       if (index.reg == sum.key.c && index.key.op == Op::INDEX && index.key.c < indexes.size()) {
-        const bc::IndexDesc& d = indexes[index.key.c];
-        const uint64_t span = uint64_t{d.count - 1} * d.stride + width;
+        const uint64_t span = indexes[index.key.c].lastOffset() + width;
         if (span > UINT32_MAX || offset < 0 || offset > UINT32_MAX) return std::nullopt;
         return Access{false, sum.key.b, static_cast<uint32_t>(offset), static_cast<uint32_t>(span)};
       }

@@ -66,9 +66,9 @@ struct Placed {
 
 // For each instruction of POU `p` (whose r0 and r1 nothing writes), where its B register points
 // if it is fp, this, or an address computed from them in the same basic block: an array element
-// (ADD of fp/this and an INDEX, at most IndexDesc::lastOffset past them), a
-// member at a constant offset (ADDI of a non-negative constant), or both (a member of an element,
-// an FB instance in an array). The element's accesses can then skip checkedAddress like the
+// (ADD of fp/this and an INDEX, at most IndexDesc::lastOffset past them), a member at a constant
+// offset (ADDI of a non-negative constant), or both (a member of an element, an FB instance in an
+// array). The element's accesses can then skip checkedAddress like the
 // direct ones, their reach added to the extent that the entry check proves.
 std::vector<std::optional<Placed>> placedBases(const bc::Module& m, const bc::PouInfo& p) {
   const uint32_t n = p.codeSize;

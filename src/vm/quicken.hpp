@@ -1,7 +1,7 @@
 #pragma once
 // Load-time specialisation of a verified module's code for the interpreter ("quickening"):
 // loads and stores relative to a POU's frame (r0) or instance (r1), or to an address computed
-// from them in the same basic block (an array element, a member: `placedBases` in quicken.cpp),
+// from them in the same basic block (an array element, a member: bc::placedBases),
 // that cannot leave memory once the POU's entry has checked fp and this, so their handlers skip
 // checkedAddress; and the specialisations of VIRTCOM_VM_SPECIAL_OPS below.
 //

@@ -182,16 +182,20 @@ TEST(LoadForwarding, AStoreOfARegisterWhoseWriterWentServesNothing) {
   EXPECT_EQ(m.code[2].a, 2);
 }
 
-// The listing of MAIN of a program whose body is `body` over `vars` (DINT x, y, u by default).
-std::string mainListing(const std::string& body, const std::string& vars = "x, y, u : DINT;") {
+// The listing of MAIN in the compiled `text`.
+std::string listingOfMain(const std::string& text) {
   SourceManager sources;
   Diagnostics diags;
-  const std::string text = "PROGRAM MAIN\nVAR " + vars + " END_VAR\n" + body + "\nEND_PROGRAM\n";
   auto m = compileProgram({{"main.st", text}}, sources, diags);
   if (!m) return "compile error: " + diags.render(sources);
   for (uint32_t p = 0; p < m->pous.size(); ++p)
     if (m->pous[p].name == "MAIN") return bc::disassemble(*m, p);
   return "no MAIN";
+}
+
+// The listing of MAIN of a program whose body is `body` over `vars` (DINT x, y, u by default).
+std::string mainListing(const std::string& body, const std::string& vars = "x, y, u : DINT;") {
+  return listingOfMain("PROGRAM MAIN\nVAR " + vars + " END_VAR\n" + body + "\nEND_PROGRAM\n");
 }
 
 size_t count(const std::string& text, const std::string& what) {
@@ -229,6 +233,34 @@ TEST(LoadForwarding, RenamedReadersServeTheNextBlocksOnTheNextPass) {
   ASSERT_EQ(m.code.size(), 5u);
   EXPECT_EQ(m.code[3].op, Op::ST_32);
   EXPECT_EQ(m.code[3].a, 4);
+}
+
+// A call keeps what the caller loaded where the callee cannot write (bc::thisWriteReach): i is
+// loaded once around a call of an FB that writes only its own instance, but fb.y, which it
+// writes, is loaded again; a callee that writes a global, or one compiled after its caller
+// (whose code is not known yet), makes i be loaded again. Results: statements/call_reloads.st.
+TEST(LoadForwarding, ACallKeepsTheLoadsItsCalleeCannotWrite) {
+  const std::string fbAcc = "FUNCTION_BLOCK FB_Acc\nVAR_INPUT x : DINT; END_VAR\nVAR_OUTPUT y : DINT; END_VAR\n"
+                            "y := y + x;\nEND_FUNCTION_BLOCK\n";
+  const std::string fbGlobal = "VAR_GLOBAL g : DINT; END_VAR\nFUNCTION_BLOCK FB_Acc\nVAR_INPUT x : DINT; END_VAR\n"
+                               "VAR_OUTPUT y : DINT; END_VAR\ng := x;\nEND_FUNCTION_BLOCK\n";
+  const std::string main = "PROGRAM MAIN\nVAR fb : FB_Acc; i, s, t : DINT; END_VAR\n"
+                           "s := i + fb.y;\nfb(x := 1);\nt := i + fb.y;\nEND_PROGRAM\n";
+  const std::string kept = listingOfMain(fbAcc + main);
+  EXPECT_EQ(count(kept, "  LD_I32 "), 3u) << kept;  // i once, fb.y before and after the call
+  const std::string global = listingOfMain(fbGlobal + main);
+  EXPECT_EQ(count(global, "  LD_I32 "), 4u) << global;
+  const std::string later = listingOfMain(main + fbAcc);
+  EXPECT_EQ(count(later, "  LD_I32 "), 4u) << later;
+}
+
+// The arguments a call stores into its callee's new frame (on the stack above the caller's
+// frame) do not hide the caller's variables: i is loaded once for i + Twice(i) + i.
+TEST(LoadForwarding, ArgumentsStoredIntoACalleesFrameKeepTheCallersLoads) {
+  const std::string l = listingOfMain(
+      "FUNCTION Twice : DINT\nVAR_INPUT x : DINT; END_VAR\nTwice := x * 2;\nEND_FUNCTION\n"
+      "PROGRAM MAIN\nVAR i, s : DINT; END_VAR\ns := i + Twice(i) + i;\nEND_PROGRAM\n");
+  EXPECT_EQ(count(l, "  LD_I32 "), 2u) << l;  // i, and Twice's result from its frame
 }
 
 }  // namespace

@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <optional>
+#include <span>
 
+#include "bytecode/memory_effects.hpp"
 #include "bytecode/verifier.hpp"
 #include "lang/st/codegen/liveness.hpp"
 
@@ -19,19 +21,16 @@ using bc::Instr;
 using bc::Op;
 
 // A memory range addressed by an instruction: register `base` + offset, or an absolute address.
-struct Access {
-  bool absolute = false;
-  uint16_t base = 0;
-  uint32_t offset = 0;
-  uint32_t width = 0;
+using Access = bc::MemoryRange;
 
-  bool overlaps(const Access& o) const {
-    return offset < uint64_t{o.offset} + o.width && o.offset < uint64_t{offset} + width;
-  }
-  // Whether a store to `this` may change `o`: only a store from the same base register or to an
-  // absolute address, away from `o`'s range, is known not to (other bases may alias anything).
-  bool mayClobber(const Access& o) const { return absolute != o.absolute || base != o.base || overlaps(o); }
-};
+bool overlaps(const Access& a, const Access& b) {
+  return a.offset < uint64_t{b.offset} + b.width && b.offset < uint64_t{a.offset} + a.width;
+}
+// Whether a store to `to` may change `o`: only a store from the same base register or to an
+// absolute address, away from `o`'s range, is known not to (other bases may alias anything).
+bool mayClobber(const Access& to, const Access& o) {
+  return to.absolute != o.absolute || to.base != o.base || overlaps(to, o);
+}
 
 // Register `reg` holds what instruction `key` (its operand A ignored) computes: a load of a
 // location, or a pure function of its operands.
@@ -43,49 +42,6 @@ struct Fact {
   bool computes(const Instr& ins) const { return key.op == ins.op && key.b == ins.b && key.c == ins.c; }
 };
 using Facts = std::vector<Fact>;
-
-uint32_t accessWidth(Op op) {
-  switch (op) {
-    case Op::LD_I8: case Op::LD_U8: case Op::ST_8: case Op::STK_8: case Op::ST_BIT: return 1;
-    case Op::LD_I16: case Op::LD_U16: case Op::ST_16: case Op::STK_16: return 2;
-    case Op::LD_I32: case Op::LD_U32: case Op::LD_F32: case Op::ST_32: case Op::STK_32: case Op::ST_F32: return 4;
-    case Op::LD_64: case Op::ST_64: case Op::STK_64: return 8;
-    default: return bc::operandRoles(op).width;  // the absolute forms
-  }
-}
-
-// The location a load reads; nullopt for instructions that load nothing.
-std::optional<Access> loadOf(const Instr& ins) {
-  switch (ins.op) {
-    case Op::LD_BIT: return Access{false, ins.b, 0, 1};
-    case Op::LD_I8: case Op::LD_U8: case Op::LD_I16: case Op::LD_U16: case Op::LD_I32: case Op::LD_U32:
-    case Op::LD_64: case Op::LD_F32:
-      return Access{false, ins.b, ins.c, accessWidth(ins.op)};
-    case Op::LDA_I8: case Op::LDA_U8: case Op::LDA_I16: case Op::LDA_U16: case Op::LDA_I32: case Op::LDA_U32:
-    case Op::LDA_64: case Op::LDA_F32:
-      return Access{true, 0, ins.bx(), accessWidth(ins.op)};
-    default: return std::nullopt;
-  }
-}
-
-// The location a store writes (a CALLFB's instance); nullopt for instructions that store nothing.
-std::optional<Access> storeOf(const Instr& ins) {
-  switch (ins.op) {
-    case Op::ST_8: case Op::ST_16: case Op::ST_32: case Op::ST_64: case Op::ST_F32:
-    case Op::STK_8: case Op::STK_16: case Op::STK_32: case Op::STK_64:
-      return Access{false, ins.b, ins.c, accessWidth(ins.op)};
-    case Op::ST_BIT: return Access{false, ins.b, 0, 1};
-    case Op::STA_8: case Op::STA_16: case Op::STA_32: case Op::STA_64: case Op::STA_F32:
-      return Access{true, 0, ins.bx(), accessWidth(ins.op)};
-    case Op::CALLFB: {  // a standard FB writes its own members only
-      uint32_t size = 0;
-      for (const bc::NativeFbMember& m : bc::nativeFbMembers(static_cast<bc::NativeFb>(ins.bx())))
-        size = std::max(size, m.offset + m.size);
-      return Access{false, ins.a, 0, size};
-    }
-    default: return std::nullopt;
-  }
-}
 
 // What a register's value is, as far as reading its low bits back from memory goes.
 enum class Shape { Unknown, Bool, Zext8, Sext8, Zext16, Sext16, Zext32, Sext32, Float };
@@ -198,16 +154,6 @@ bool readsBC(const Instr& ins, uint16_t reg) {
   return (roles.b == bc::Operand::Reg && ins.b == reg) || (roles.c == bc::Operand::Reg && ins.c == reg);
 }
 
-// Instructions whose memory effects are not one store: copies, calls of POUs and natives (which
-// may write anything), frame set-up, coverage counters, and the ends of the POU.
-bool clobbersMemory(Op op) {
-  switch (op) {
-    case Op::COPY: case Op::CALL: case Op::CALLN: case Op::ENTER: case Op::COVER:
-    case Op::RET: case Op::TRAP: return true;
-    default: return false;
-  }
-}
-
 // Whether `shape` is already what extending its low `bits` bits gives (signed: SEXT; else ZEXT).
 bool extendedAlready(Shape shape, uint16_t bits, bool isSigned) {
   using enum Shape;
@@ -240,7 +186,7 @@ std::optional<uint16_t> copiedRegister(const Instr& ins, const Facts& facts) {
 
 // The fact that a register already holds what `ins` computes; null if none.
 const Fact* holder(const Facts& facts, const Instr& ins) {
-  if (!pure(ins.op) && !loadOf(ins)) return nullptr;
+  if (!pure(ins.op) && !bc::loadedRange(ins)) return nullptr;
   for (const Fact& f : facts)
     if (f.computes(ins)) return &f;
   return nullptr;
@@ -265,23 +211,118 @@ std::optional<Access> elementRegion(uint16_t base, int64_t offset, uint32_t widt
 
 // What `at` may address, seen from a known base: the array region of its element (above),
 // also when the base is an element's address plus a constant (ADDI: a member of an FB instance
-// in an array, as a call of counters[i] addresses it); `at` itself otherwise. So a store into an
-// array, or a standard FB of an array called, no longer hides every other variable of the
-// instance.
+// in an array, as a call of counters[i] addresses it); the same bytes from the ADDI's base when
+// the base is a member's address (the instance of a call of fb, scalar); `at` itself otherwise.
+// So a store into an array, or into the instance of an FB called, no longer hides every other
+// variable of the instance.
 Access region(const Access& at, const Facts& facts, const std::vector<bc::IndexDesc>& indexes) {
   if (at.absolute) return at;
   if (const std::optional<Access> element = elementRegion(at.base, at.offset, at.width, facts, indexes)) return *element;
-  for (const Fact& member : facts)
-    if (member.reg == at.base && member.key.op == Op::ADDI)
-      if (const std::optional<Access> element = elementRegion(
-              member.key.b, int64_t{at.offset} + static_cast<int16_t>(member.key.c), at.width, facts, indexes))
-        return *element;
+  for (const Fact& member : facts) {
+    if (member.reg != at.base || member.key.op != Op::ADDI) continue;
+    const int64_t offset = int64_t{at.offset} + static_cast<int16_t>(member.key.c);
+    if (const std::optional<Access> element = elementRegion(member.key.b, offset, at.width, facts, indexes)) return *element;
+    if (offset >= 0 && offset <= UINT32_MAX) return Access{false, member.key.b, static_cast<uint32_t>(offset), at.width};
+  }
   return at;
 }
 
-// The facts after `ins`. A repeated load keeps the register that already holds the location,
-// whether or not the load is then removed, so the facts hold for the code before and after.
-void transfer(const Instr& ins, Facts& facts, const std::vector<bc::IndexDesc>& indexes) {
+// The module's array shapes (INDEX) and what its POUs may write when called: what the facts of
+// one POU's code are checked against.
+class Effects {
+ public:
+  explicit Effects(const bc::Module& m) : m_(m), reach_(m.pous.size()) {}
+  const std::vector<bc::IndexDesc>& indexes() const { return m_.indexes; }
+  // bc::thisWriteReach of POU `pou`, worked out once.
+  std::optional<uint64_t> thisWriteReach(uint32_t pou) const {
+    if (pou >= reach_.size()) return std::nullopt;
+    if (!reach_[pou]) reach_[pou] = bc::thisWriteReach(m_, m_.pous[pou]);
+    return *reach_[pou];
+  }
+
+ private:
+  const bc::Module& m_;
+  mutable std::vector<std::optional<std::optional<uint64_t>>> reach_;  // a cache
+};
+
+// Drops the facts of loads whose location `lost` says may have changed. Locations are resolved
+// (region) with all facts still there.
+template <typename Lost>
+void dropLoads(Facts& facts, const std::vector<bc::IndexDesc>& indexes, Lost lost) {
+  Facts kept;
+  for (const Fact& f : facts) {
+    const std::optional<Access> at = bc::loadedRange(f.key);
+    if (!at || !lost(region(*at, facts, indexes))) kept.push_back(f);
+  }
+  facts = std::move(kept);
+}
+
+// The index in `before` of the last instruction that writes register `reg`, or nullopt.
+std::optional<size_t> lastWrite(std::span<const Instr> before, uint16_t reg) {
+  for (size_t k = before.size(); k-- > 0;)
+    if (writesRegister(before[k], reg)) return k;
+  return std::nullopt;
+}
+
+// What a CALL (at the end of `before`, the instructions of its block before it) may write in
+// memory besides the stack above its caller's frame: `reach` bytes past the this it passes, as
+// far as the facts place it (empty when nothing); nullopt when it may write anything else. Exact
+// for code as generated: the ENTER of the callee's frame into A, then MOV A + 1, rX (rX
+// unchanged since) for a callee that writes its instance.
+std::optional<std::optional<Access>> callWrites(const Instr& call, std::span<const Instr> before, const Facts& facts,
+                                                const Effects& effects) {
+  const std::optional<uint64_t> reach = effects.thisWriteReach(call.bx());
+  const std::optional<size_t> enter = lastWrite(before, call.a);
+  if (!reach || !enter || before[*enter].op != Op::ENTER || before[*enter].bx() != call.bx()) return std::nullopt;
+  if (*reach == 0) return std::optional<Access>{};
+  const std::optional<size_t> self = lastWrite(before, call.a + 1);
+  if (!self || before[*self].op != Op::MOV || *reach > UINT32_MAX) return std::nullopt;
+  const uint16_t source = before[*self].b;
+  if (lastWrite(before.subspan(*self + 1), source)) return std::nullopt;
+  return region(Access{false, source, 0, static_cast<uint32_t>(*reach)}, facts, effects.indexes());
+}
+
+// Whether `at` is a location of the running POU's frame or instance (fp and this: r0 and r1,
+// which lie below the stack's top) or a global (absolute, in static memory).
+bool callersOwn(const Access& at) { return at.absolute || at.base < 2; }
+
+// Whether register `reg` holds a frame the running POU set up for a callee (ENTER): an address
+// on the stack above its own frame, which none of its own locations overlap.
+bool holdsFrame(const Facts& facts, uint16_t reg) {
+  return std::any_of(facts.begin(), facts.end(), [&](const Fact& f) { return f.reg == reg && f.key.op == Op::ENTER; });
+}
+
+// The memory effects of `ins` on the facts (its register write is the caller's to apply).
+// ENTER writes only the stack above the running POU's frame, and a call whose callee writes
+// besides only its instance (callWrites) leaves the loads of the caller's own locations
+// (callersOwn) that the instance does not overlap; so does a store into a callee's frame (its
+// arguments). Other calls, copies and coverage counters may write anything: every load goes,
+// the pure facts stay.
+void applyStores(const Instr& ins, std::span<const Instr> before, Facts& facts, const Effects& effects) {
+  if (ins.op == Op::ENTER) {
+    dropLoads(facts, effects.indexes(), [&](const Access& at) { return !callersOwn(at); });
+  } else if (ins.op == Op::CALL) {
+    const std::optional<std::optional<Access>> written = callWrites(ins, before, facts, effects);
+    dropLoads(facts, effects.indexes(), [&](const Access& at) {
+      return !written || !callersOwn(at) || (*written && mayClobber(**written, at));
+    });
+  } else if (bc::writesBeyondRanges(ins.op)) {
+    dropLoads(facts, effects.indexes(), [](const Access&) { return true; });
+  } else if (const std::optional<Access> store = bc::storedRange(ins)) {
+    // The stored register's shape and the store's region are resolved before its loads go.
+    const Access to = region(*store, facts, effects.indexes());
+    const std::optional<Shape> stored = shapeOfRegister(facts, ins.a);
+    const bool toStack = !to.absolute && holdsFrame(facts, to.base);  // a callee's argument
+    dropLoads(facts, effects.indexes(), [&](const Access& at) { return mayClobber(to, at) && !(toStack && callersOwn(at)); });
+    // A store of a register nothing is known about adds nothing: it may be stale (transfer).
+    if (stored) addStoredFacts(ins, *stored, facts);
+  }
+}
+
+// The facts after `ins`, the end of `before` (the instructions of its block before it). A
+// repeated load keeps the register that already holds the location, whether or not the load is
+// then removed, so the facts hold for the code before and after.
+void transfer(const Instr& ins, std::span<const Instr> before, Facts& facts, const Effects& effects) {
   const Fact* held = holder(facts, ins);
   if (held && held->reg == ins.a) return;  // it writes the value its register already has
   // Forwarder::run judges a copy on its renamed operand; here, on the code as generated, an
@@ -289,21 +330,7 @@ void transfer(const Instr& ins, Facts& facts, const std::vector<bc::IndexDesc>& 
   // copy: such an extension adds no fact either.
   const bool extension = ins.op == Op::SEXT || ins.op == Op::ZEXT;
   const bool copied = ins.op == Op::MOV || (extension && (!shapeOfRegister(facts, ins.b) || copiedRegister(ins, facts)));
-  if (clobbersMemory(ins.op)) facts.clear();
-  if (const std::optional<Access> store = storeOf(ins)) {
-    // Regions and the stored register's shape are resolved with all facts still there, then
-    // the clobbered loads go.
-    const Access to = region(*store, facts, indexes);
-    const std::optional<Shape> stored = shapeOfRegister(facts, ins.a);
-    Facts kept;
-    for (const Fact& f : facts) {
-      const std::optional<Access> at = loadOf(f.key);
-      if (!at || !to.mayClobber(region(*at, facts, indexes))) kept.push_back(f);
-    }
-    facts = std::move(kept);
-    // A store of a register nothing is known about adds nothing: it may be stale (above).
-    if (stored) addStoredFacts(ins, *stored, facts);
-  }
+  applyStores(ins, before, facts, effects);
   if (const std::optional<RegisterWrite> w = registerWrite(ins)) {
     const auto hit = [&](uint16_t reg) { return reg == w->reg || (w->andAbove && reg > w->reg); };
     std::erase_if(facts, [&](const Fact& f) {
@@ -316,7 +343,8 @@ void transfer(const Instr& ins, Facts& facts, const std::vector<bc::IndexDesc>& 
   // A result that overwrote one of its own operands is no longer what the operands compute. A
   // copy (removed, or kept where renaming failed) adds nothing either: once removed, its register
   // is not written, and a later equal copy must not be served from it.
-  if (!held && !copied && (pure(ins.op) || loadOf(ins)) && !readsBC(ins, ins.a)) facts.push_back({ins, ins.a});
+  if (!held && !copied && (pure(ins.op) || bc::loadedRange(ins)) && !readsBC(ins, ins.a)) facts.push_back({ins, ins.a});
+  if (ins.op == Op::ENTER) facts.push_back({ins, ins.a});  // never served (holder): for holdsFrame
 }
 
 Facts meet(const Facts& a, const Facts& b) {
@@ -328,9 +356,8 @@ Facts meet(const Facts& a, const Facts& b) {
 
 class Forwarder {
  public:
-  Forwarder(std::vector<Instr>& code, uint32_t begin, uint32_t end, uint16_t numRegs,
-            const std::vector<bc::IndexDesc>& indexes)
-      : code_(code), indexes_(indexes), begin_(begin), n_(end - begin), numRegs_(numRegs), live_(code, begin, end, numRegs),
+  Forwarder(bc::Module& m, uint32_t begin, uint32_t end, uint16_t numRegs)
+      : code_(m.code), effects_(m), begin_(begin), n_(end - begin), numRegs_(numRegs), live_(m.code, begin, end, numRegs),
         leader_(n_, false), removed_(n_, false) {}
 
   std::vector<bool> run() {
@@ -349,7 +376,7 @@ class Forwarder {
         if (const Fact* held = holder(facts, original[j])) removed_[j] = rename(j, held->reg);
         // A copy is judged on its renamed operand: its original one may be a removed load's.
         else if (const std::optional<uint16_t> copied = copiedRegister(code_[begin_ + j], facts)) removed_[j] = rename(j, *copied);
-        transfer(original[j], facts, indexes_);
+        transfer(original[j], std::span(original).subspan(k, j - k), facts, effects_);
       }
     }
     return removed_;
@@ -396,7 +423,7 @@ class Forwarder {
         Facts facts = *in[k];
         uint32_t j = k;
         for (;; ++j) {
-          transfer(code_[begin_ + j], facts, indexes_);
+          transfer(code_[begin_ + j], std::span(code_).subspan(begin_ + k, j - k), facts, effects_);
           if (endsBlock(j) || j + 1 == n_ || leader_[j + 1]) break;
         }
         if (bc::isBranch(code_[begin_ + j].op)) flowInto(targetOf(j), facts, changed);
@@ -440,7 +467,7 @@ class Forwarder {
   }
 
   std::vector<Instr>& code_;
-  const std::vector<bc::IndexDesc>& indexes_;
+  Effects effects_;
   uint32_t begin_, n_;
   uint16_t numRegs_;
   Liveness live_;
@@ -450,9 +477,8 @@ class Forwarder {
 
 }  // namespace
 
-std::vector<bool> forwardLoads(std::vector<Instr>& code, uint32_t begin, uint32_t end, uint16_t numRegs,
-                               const std::vector<bc::IndexDesc>& indexes) {
-  return Forwarder(code, begin, end, numRegs, indexes).run();
+std::vector<bool> forwardLoads(bc::Module& m, uint32_t begin, uint32_t end, uint16_t numRegs) {
+  return Forwarder(m, begin, end, numRegs).run();
 }
 
 }  // namespace virtcom::st

@@ -167,7 +167,7 @@ uint16_t optimizePou(bc::Module& m, uint32_t codeStart, size_t firstLine, uint16
     if (end <= codeStart + 1) return numRegs;
     const std::optional<std::vector<int64_t>> targets = branchTargets(m.code, codeStart, end);
     if (!targets) return numRegs;
-    const std::vector<bool> removed = forwardLoads(m.code, codeStart, end, numRegs, m.indexes);
+    const std::vector<bool> removed = forwardLoads(m, codeStart, end, numRegs);
     if (std::none_of(removed.begin(), removed.end(), [](bool r) { return r; })) break;
     compact(m, codeStart, firstLine, removed, *targets);
   }

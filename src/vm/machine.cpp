@@ -54,7 +54,7 @@ bool Machine::raise(FaultKind kind, uint32_t pc, uint32_t depth, uint32_t startS
   fault_.pc = pc;
   fault_.loc = m_.locationOf(pc);
   fault_.callStack.clear();
-  for (uint32_t i = depth; i-- > 0;) fault_.callStack.push_back(frames_[i].returnPc - 1);
+  for (uint32_t i = depth; i-- > 0;) fault_.callStack.push_back(static_cast<uint32_t>(frames_[i].returnIp - frames_[i].code) - 1);
   sp_ = startSp;
   return false;
 }
@@ -107,7 +107,7 @@ bool Machine::interpret(uint32_t pou, const uint32_t startSp) {
   // POU's entry check admits its fp and this, else the module's own (vm/quicken.hpp).
   const Instr* const quick = quick_.code.data();
   const Instr* const plain = m_.code.data();
-  const EntryCheck* const entry = quick_.entry.data();
+  const PouEntry* const entry = quick_.entry.data();
   const Instr* code = entry[pou].admits(regs_[0], regs_[1]) ? quick : plain;
   const bc::PouInfo* const pous = m_.pous.data();
   const uint64_t* const constants = m_.constants.data();
@@ -426,19 +426,32 @@ bool Machine::interpret(uint32_t pou, const uint32_t startSp) {
     VM_NEXT();
   // A frame of 0 bytes: sp <= memSize always holds, so nothing to check or copy.
   VM_QCASE(ENTER0) r[INS->a] = sp; VM_NEXT();
-  VM_CASE(CALL) {
-    const bc::PouInfo& p = pous[INS->bx()];
-    if (remaining == 0) VM_FAULT(WatchdogBudget);
-    --remaining;
-    const uint64_t newBase = uint64_t{base} + INS->a;
-    if (depth >= maxDepth || newBase + p.numRegs > regCount) VM_FAULT(StackOverflow);
-    frames_[depth++] = CallFrame{pcOf(ip), base, r[INS->a], code};
-    code = entry[INS->bx()].admits(r[INS->a], r[INS->a + 1]) ? quick : plain;
-    base = static_cast<uint32_t>(newBase);
-    r = regs + base;
-    ip = code + p.codeStart;
-  }
-    VM_NEXT();
+// The callee's fp and this are read once, after the check that its window fits.
+#define VM_CALL()                                                                  \
+  {                                                                                \
+    const PouEntry& p = entry[INS->bx()];                                          \
+    const uint16_t window = INS->a;                                                \
+    if (remaining == 0) VM_FAULT(WatchdogBudget);                                  \
+    --remaining;                                                                   \
+    const uint64_t newBase = uint64_t{base} + window;                              \
+    if (depth >= maxDepth || newBase + p.numRegs > regCount) VM_FAULT(StackOverflow); \
+    const uint64_t fp = r[window], self = r[window + 1];                           \
+    frames_[depth++] = CallFrame{ip, base, fp, code};                              \
+    code = p.admits(fp, self) ? quick : plain;                                     \
+    base = static_cast<uint32_t>(newBase);                                         \
+    r = regs + base;                                                               \
+    ip = code + p.codeStart;                                                       \
+  }                                                                                \
+  VM_NEXT()
+  VM_CASE(CALL) VM_CALL();
+  // ENTER0, then the MOV and the CALL after it (vm/quicken.hpp).
+  VM_QCASE(ENTER0_CALL)
+    r[INS->a] = sp;
+    r[ip->a] = r[ip->b];
+    ip += 2;
+    if constexpr (kCounting) executed += 2;
+    VM_CALL();
+#undef VM_CALL
   VM_CASE(CALLN) {
     const FaultKind k = kNatives[INS->bx()](r + INS->a, nctx);
     if (k != FaultKind::None) {
@@ -467,7 +480,7 @@ bool Machine::interpret(uint32_t pou, const uint32_t startSp) {
       base = f.base;
       r = regs + base;
       code = f.code;
-      ip = code + f.returnPc;
+      ip = f.returnIp;
     }
     VM_NEXT();
   VM_CASE(COVER) storeLe<uint64_t>(mem + INS->bx(), loadLe<uint64_t>(mem + INS->bx()) + 1); VM_NEXT();

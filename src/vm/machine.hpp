@@ -70,10 +70,10 @@ class Machine {
 
  private:
   struct CallFrame {
-    uint32_t returnPc;
-    uint32_t base;          // caller's register window base
-    uint64_t fp;            // callee frame base (restores sp on RET)
-    const bc::Instr* code;  // the copy of the code the caller runs (quick_.code or the module's)
+    const bc::Instr* returnIp;  // in `code`
+    uint32_t base;              // caller's register window base
+    uint64_t fp;                // callee frame base (restores sp on RET)
+    const bc::Instr* code;      // the copy of the code the caller runs (quick_.code or the module's)
   };
 
   bool execute(uint32_t pou, uint32_t startSp);

@@ -25,11 +25,16 @@ std::optional<QuickOp> quickForm(Op op) {
   }
 }
 
-// The specialised form of an instruction on its own or with the one after it (`next`, null at
-// the end of its POU), for every POU: SEXT/ZEXT of the IEC widths, INDEX_ADD, ENTER0.
-std::optional<QuickOp> specialForm(const bc::Module& m, const Instr& ins, const Instr* next) {
-  if (ins.op == Op::INDEX && next && next->op == Op::ADD) return QuickOp::INDEX_ADD;
-  if (ins.op == Op::ENTER && m.pous[ins.bx()].frameSize == 0) return QuickOp::ENTER0;
+// The specialised form of the instruction at `at` on its own or with the ones after it (up to
+// `end`, the end of its POU), for every POU: SEXT/ZEXT of the IEC widths, INDEX_ADD, ENTER0,
+// ENTER0_CALL.
+std::optional<QuickOp> specialForm(const bc::Module& m, const Instr* at, const Instr* end) {
+  const Instr& ins = *at;
+  if (ins.op == Op::INDEX && end - at >= 2 && at[1].op == Op::ADD) return QuickOp::INDEX_ADD;
+  if (ins.op == Op::ENTER && m.pous[ins.bx()].frameSize == 0) {
+    const bool call = end - at >= 3 && at[1].op == Op::MOV && at[2].op == Op::CALL;
+    return call ? QuickOp::ENTER0_CALL : QuickOp::ENTER0;
+  }
   if (ins.op != Op::SEXT && ins.op != Op::ZEXT) return std::nullopt;
   const bool sext = ins.op == Op::SEXT;
   switch (ins.c) {
@@ -59,10 +64,13 @@ std::optional<QuickOp> forNextForm(const Instr* at, const Instr* end) {
 }  // namespace
 
 QuickCode quicken(const bc::Module& m, uint64_t memorySize) {
-  QuickCode q{m.code, std::vector<EntryCheck>(m.pous.size())};
+  QuickCode q{m.code, std::vector<PouEntry>(m.pous.size())};
   const uint64_t guard = bc::Module::kNullGuard;
   for (size_t pou = 0; pou < m.pous.size(); ++pou) {
     const bc::PouInfo& p = m.pous[pou];
+    PouEntry& e = q.entry[pou];
+    e.codeStart = p.codeStart;
+    e.numRegs = p.numRegs;
     if (!bc::basesReadOnly(m, p)) continue;
     // Each access with a placed base, and how far past fp or this it may reach; one whose reach
     // memory could never hold stays checked (its fault is then the program's).
@@ -80,7 +88,6 @@ QuickCode quicken(const bc::Module& m, uint64_t memorySize) {
       quick[k] = true;
       extent[placed[k]->base] = std::max(extent[placed[k]->base], reach);
     }
-    EntryCheck& e = q.entry[pou];
     e.lo = guard;
     if (extent[0]) e.fpSpan = memorySize - extent[0] - guard;
     if (extent[1]) e.thisSpan = memorySize - extent[1] - guard;
@@ -92,11 +99,11 @@ QuickCode quicken(const bc::Module& m, uint64_t memorySize) {
     for (uint32_t pc = p.codeStart; pc < p.codeStart + p.codeSize; ++pc)
       if (const std::optional<QuickOp> fused = forNextForm(&q.code[pc], end)) q.code[pc].op = quickOpcode(*fused);
   }
-  for (const bc::PouInfo& p : m.pous)
-    for (uint32_t pc = p.codeStart; pc < p.codeStart + p.codeSize; ++pc) {
-      const Instr* next = pc + 1 < p.codeStart + p.codeSize ? &q.code[pc + 1] : nullptr;
-      if (const std::optional<QuickOp> special = specialForm(m, q.code[pc], next)) q.code[pc].op = quickOpcode(*special);
-    }
+  for (const bc::PouInfo& p : m.pous) {
+    const Instr* const end = q.code.data() + p.codeStart + p.codeSize;
+    for (uint32_t pc = p.codeStart; pc < p.codeStart + p.codeSize; ++pc)
+      if (const std::optional<QuickOp> special = specialForm(m, &q.code[pc], end)) q.code[pc].op = quickOpcode(*special);
+  }
   return q;
 }
 

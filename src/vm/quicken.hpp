@@ -34,11 +34,14 @@ namespace virtcom::vm {
 // - INDEX_ADD: an INDEX followed by an ADD (how an array element's address is computed: the
 //   offset, then base + offset), both run in one dispatch; the ADD stays for jumps to it.
 // - ENTER0: the ENTER of a POU without a frame (most function blocks): no copy of a template.
+// - ENTER0_CALL: such an ENTER followed by a MOV and a CALL (how a user FB is called: its fp,
+//   its this, the call) in one dispatch; the MOV and the CALL stay for jumps to them, and a
+//   fault of the CALL is reported at its own pc.
 // - CALLFB: a standard FB whose instance is placed like a quickened access (an element of an
 //   array of TONs), called without checkedAddress. In quickened POUs.
 #define VIRTCOM_VM_SPECIAL_OPS(S)                                                                  \
   S(SEXT8) S(SEXT16) S(SEXT32) S(ZEXT8) S(ZEXT16) S(ZEXT32) S(FOR_NEXT_I16) S(FOR_NEXT_I32) S(INDEX_ADD) \
-  S(ENTER0) S(CALLFB)
+  S(ENTER0) S(ENTER0_CALL) S(CALLFB)
 
 // Interpreter-only opcode numbers, right after the bytecode's (bc::Op::Count_).
 enum class QuickOp : uint8_t {
@@ -53,19 +56,22 @@ constexpr bc::Op quickOpcode(QuickOp q) {
   return static_cast<bc::Op>(static_cast<unsigned>(bc::Op::Count_) + static_cast<unsigned>(q));
 }
 
-// The entry condition of one POU: (fp - lo) <= fpSpan and (this - lo) <= thisSpan, unsigned
-// (so a base below lo wraps to a huge value and fails). Always true for a POU without
-// quickened accesses.
-struct EntryCheck {
+// What a call of one POU needs, in one 32-byte entry: its entry condition, (fp - lo) <= fpSpan
+// and (this - lo) <= thisSpan, unsigned (so a base below lo wraps to a huge value and fails;
+// always true for a POU without quickened accesses), and, copied from bc::PouInfo, where its
+// code starts and its register window.
+struct PouEntry {
   uint64_t lo = 0;
   uint64_t fpSpan = UINT64_MAX;
   uint64_t thisSpan = UINT64_MAX;
+  uint32_t codeStart = 0;
+  uint32_t numRegs = 0;
   bool admits(uint64_t fp, uint64_t self) const { return fp - lo <= fpSpan && self - lo <= thisSpan; }
 };
 
 struct QuickCode {
-  std::vector<bc::Instr> code;     // the module's code with quickened opcodes, same pcs
-  std::vector<EntryCheck> entry;   // one per POU
+  std::vector<bc::Instr> code;   // the module's code with quickened opcodes, same pcs
+  std::vector<PouEntry> entry;   // one per POU
 };
 
 // `m` must have passed bc::verifyModule; `memorySize` is the machine's (m.memorySize()).

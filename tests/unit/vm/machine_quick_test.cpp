@@ -46,7 +46,10 @@ TEST(MachineQuick, AccessesRelativeToReadOnlyFpOrThisAreQuickened) {
   EXPECT_EQ(q.code[5].op, vm::quickOpcode(vm::QuickOp::LD_I32));
   EXPECT_EQ(q.code[7].op, vm::quickOpcode(vm::QuickOp::ST_32));
   EXPECT_EQ(q.code[6].op, Op::ADDI);
-  EXPECT_EQ(q.code[1].op, vm::quickOpcode(vm::QuickOp::ENTER0));  // FB has no frame
+  // FB has no frame, and its ENTER is followed by the MOV of this and the CALL
+  EXPECT_EQ(q.code[1].op, vm::quickOpcode(vm::QuickOp::ENTER0_CALL));
+  EXPECT_EQ(q.code[2].op, Op::MOV);   // stays, for jumps to it
+  EXPECT_EQ(q.code[3].op, Op::CALL);
   EXPECT_TRUE(q.entry[1].admits(kStatic, 64));
   EXPECT_FALSE(q.entry[1].admits(kStatic, 8));                        // this below the null guard
   EXPECT_FALSE(q.entry[1].admits(kStatic, b.m.memorySize() - 15));    // this->[12..16) past the end
@@ -380,6 +383,39 @@ TEST(MachineQuick, AnElementAddressAfterACallOrFromANegativeOffsetStaysChecked) 
   EXPECT_EQ(q.code[6].op, Op::LD_I32);
   EXPECT_EQ(q.code[7].op, Op::LD_I32);
   EXPECT_EQ(q.code[0].op, vm::quickOpcode(vm::QuickOp::LD_I32));
+}
+
+TEST(MachineQuick, AnEnterWithoutAFrameTheMovAndTheCallAreOneDispatch) {
+  ModuleBuilder b = callerAndFb(64);
+  ASSERT_EQ(bc::verifyModule(b.m), "");
+  vm::Machine vm(b.m);
+  vm.coldStart();
+  vm.countInstructions(true);
+  ASSERT_TRUE(vm.run(0, 0)) << vm.fault().describe(b.m);
+  EXPECT_EQ(loaded(vm, 64 + 12, true), 1);   // FB ran on this = 64: this->[12] := this->[8] + 1
+  EXPECT_EQ(vm.instructionsExecuted(), 9u);  // counted as the three instructions it stands for
+  // Something between the ENTER and the MOV (a function's argument stored into its frame):
+  // ENTER0 alone.
+  ModuleBuilder s = callerAndFb(64);
+  s.m.code[2] = abc(Op::STK_32, 5, 2, 0);
+  s.m.code.insert(s.m.code.begin() + 3, abc(Op::MOV, 3, 5));
+  s.m.pous[0].codeSize++;
+  s.m.pous[1].codeStart++;
+  const vm::QuickCode q = vm::quicken(s.m, s.m.memorySize());
+  EXPECT_EQ(q.code[1].op, vm::quickOpcode(vm::QuickOp::ENTER0));
+}
+
+TEST(MachineQuick, AFusedCallFaultsAtTheCallAsBefore) {
+  ModuleBuilder b = callerAndFb(64);
+  ASSERT_EQ(bc::verifyModule(b.m), "");
+  vm::Machine vm(b.m);
+  vm.coldStart();
+  vm.setBudget(0);  // no call left: the watchdog stops the CALL
+  ASSERT_FALSE(vm.run(0, 0));
+  EXPECT_EQ(vm.fault().kind, bc::FaultKind::WatchdogBudget);
+  EXPECT_EQ(vm.fault().pc, 3u);
+  EXPECT_EQ(vm.fault().loc.line, 4u);
+  EXPECT_EQ(loaded(vm, 64 + 12, true), 0);
 }
 
 }  // namespace

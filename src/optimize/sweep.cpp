@@ -1,6 +1,7 @@
 // Sweep files, their points, and one evaluation per point on an edited copy of the cell's tree.
 #include "optimize/sweep.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <random>
@@ -11,6 +12,8 @@
 #include "core/config_node.hpp"
 
 namespace virtcom::optimize {
+
+constexpr double kMaxTimeLimitSeconds = 9e9;
 
 std::optional<SweepSpec> readSweep(const std::string& path, SourceManager& sources, Diagnostics& diags) {
   std::ifstream in(path, std::ios::binary);
@@ -38,7 +41,13 @@ std::optional<SweepSpec> readSweep(const std::string& path, SourceManager& sourc
   else s.samples = static_cast<size_t>(samples);
   if (s.random && samples == 0) diags.error(celldiag::C070, root.loc(), "'sampling: random' needs 'samples', the number of points");
   s.seed = static_cast<uint64_t>(top.optInt("seed", 1));
-  if (top.has("time_limit")) s.timeLimitNs = static_cast<int64_t>(top.optQuantity("time_limit", Dimension::Time, 0) * 1e9 + 0.5);
+  if (top.has("time_limit")) {
+    // int64 nanoseconds hold about 292 years; beyond that the conversion is undefined (fuzz_sweep_file).
+    const double seconds = top.optQuantity("time_limit", Dimension::Time, 0);
+    if (!std::isfinite(seconds) || std::abs(seconds) > kMaxTimeLimitSeconds)
+      diags.error(celldiag::C070, root.find("time_limit")->loc(), "'time_limit' is out of range, expected at most 9e9 s");
+    else s.timeLimitNs = static_cast<int64_t>(seconds * 1e9 + 0.5);
+  }
   const ConfigNode* params = top.child("parameters");
   if (!params || params->kind() != ConfigNode::Kind::Map || params->entries().empty())
     diags.error(celldiag::C070, params ? params->loc() : root.loc(), "the sweep needs 'parameters:', e.g. { Robot1.max_speed: [800 mm/s, 1150 mm/s] }");

@@ -100,5 +100,20 @@ TEST(Sweep, NegativeSamplesAreRefused) {
   std::filesystem::remove(path);
 }
 
+// Found by fuzz_sweep_file: a time limit of 2e53 s was converted to int64 nanoseconds (undefined).
+TEST(Sweep, AnOutOfRangeTimeLimitIsRefused) {
+  const std::string path = (std::filesystem::temp_directory_path() / ("sweep_limit_" + std::to_string(::getpid()) + ".yaml")).string();
+  std::ofstream(path) << "cell: cell.yaml\n"
+                         "time_limit: 222222222222222222222222222222222222222222222222222120 s\n"
+                         "parameters:\n"
+                         "  MAIN.sequence: [1, 2]\n";
+  SourceManager sources;
+  Diagnostics diags;
+  EXPECT_FALSE(readSweep(path, sources, diags));
+  const std::string text = diags.render(sources);
+  EXPECT_NE(text.find(":2:13: error[C070]: 'time_limit' is out of range, expected at most 9e9 s"), std::string::npos) << text;
+  std::filesystem::remove(path);
+}
+
 }  // namespace
 }  // namespace virtcom::optimize

@@ -84,35 +84,36 @@ TEST(Sweep, UnknownParameterAndRefusedValueAreReportedAtTheSweepFile) {
   std::filesystem::remove(path);
 }
 
-// Found writing the fuzz target fuzz_sweep_file: `samples: -1` was cast to 2^64 - 1 points.
-TEST(Sweep, NegativeSamplesAreRefused) {
-  const std::string path = (std::filesystem::temp_directory_path() / ("sweep_samples_" + std::to_string(::getpid()) + ".yaml")).string();
-  std::ofstream(path) << "cell: cell.yaml\n"
-                         "sampling: random\n"
-                         "samples: -1\n"
-                         "parameters:\n"
-                         "  MAIN.sequence: [1, 2]\n";
+// The diagnostics of reading the sweep file `text`, which must be refused.
+std::string refusal(const std::string& name, const std::string& text) {
+  const std::string path = (std::filesystem::temp_directory_path() / (name + std::to_string(::getpid()) + ".yaml")).string();
+  std::ofstream(path) << text;
   SourceManager sources;
   Diagnostics diags;
   EXPECT_FALSE(readSweep(path, sources, diags));
-  const std::string text = diags.render(sources);
-  EXPECT_NE(text.find(":3:10: error[C070]: 'samples' is -1, expected a positive number of points"), std::string::npos) << text;
   std::filesystem::remove(path);
+  return diags.render(sources);
+}
+
+// Found writing the fuzz target fuzz_sweep_file: `samples: -1` was cast to 2^64 - 1 points.
+TEST(Sweep, NegativeSamplesAreRefused) {
+  const std::string text = refusal("sweep_samples_",
+                                   "cell: cell.yaml\n"
+                                   "sampling: random\n"
+                                   "samples: -1\n"
+                                   "parameters:\n"
+                                   "  MAIN.sequence: [1, 2]\n");
+  EXPECT_NE(text.find(":3:10: error[C070]: 'samples' is -1, expected a positive number of points"), std::string::npos) << text;
 }
 
 // Found by fuzz_sweep_file: a time limit of 2e53 s was converted to int64 nanoseconds (undefined).
 TEST(Sweep, AnOutOfRangeTimeLimitIsRefused) {
-  const std::string path = (std::filesystem::temp_directory_path() / ("sweep_limit_" + std::to_string(::getpid()) + ".yaml")).string();
-  std::ofstream(path) << "cell: cell.yaml\n"
-                         "time_limit: 222222222222222222222222222222222222222222222222222120 s\n"
-                         "parameters:\n"
-                         "  MAIN.sequence: [1, 2]\n";
-  SourceManager sources;
-  Diagnostics diags;
-  EXPECT_FALSE(readSweep(path, sources, diags));
-  const std::string text = diags.render(sources);
+  const std::string text = refusal("sweep_limit_",
+                                   "cell: cell.yaml\n"
+                                   "time_limit: 222222222222222222222222222222222222222222222222222120 s\n"
+                                   "parameters:\n"
+                                   "  MAIN.sequence: [1, 2]\n");
   EXPECT_NE(text.find(":2:13: error[C070]: 'time_limit' is out of range, expected at most 9e9 s"), std::string::npos) << text;
-  std::filesystem::remove(path);
 }
 
 }  // namespace

@@ -307,7 +307,7 @@ void applyStores(const Instr& ins, std::span<const Instr> before, Facts& facts, 
       return !written || !callersOwn(at) || (*written && mayClobber(**written, at));
     });
   } else if (bc::writesBeyondRanges(ins.op)) {
-    dropLoads(facts, effects.indexes(), [](const Access&) { return true; });
+    std::erase_if(facts, [](const Fact& f) { return bc::loadedRange(f.key).has_value(); });
   } else if (const std::optional<Access> store = bc::storedRange(ins)) {
     // The stored register's shape and the store's region are resolved before its loads go.
     const Access to = region(*store, facts, effects.indexes());
